@@ -1,0 +1,39 @@
+// Rays and the backend-neutral hit record that every accelerator returns.
+// Depends on core/math only: shading and accelerators share these types, nothing else.
+#pragma once
+
+#include "core/math.h"
+
+#include <cstdint>
+
+namespace kiln {
+
+// A ray segment o + t·d for t in [tmin, tmax]. Direction need not be unit length for
+// accelerators, but kiln's own rays keep it unit so t is a distance.
+struct ray {
+  vec3 origin{0.0f};
+  vec3 direction{0.0f, 0.0f, 1.0f};
+  float tmin = 0.0f;
+  float tmax = inf;
+};
+
+// True when a ray can be handed to a traversal backend: finite origin and direction, a
+// non-zero direction, and a non-empty, non-NaN extent. Embree's default build does not
+// filter invalid rays, so this check is mandatory.
+inline bool is_valid(const ray& r) {
+  return is_finite(r.origin) && is_finite(r.direction) && glm::dot(r.direction, r.direction) > 0.0f &&
+         !std::isnan(r.tmin) && !std::isnan(r.tmax) && r.tmin >= 0.0f && r.tmin <= r.tmax;
+}
+
+// The closest intersection of a ray with the scene, identical across backends.
+// (u, v) follow Embree's convention: p = (1-u-v)·p0 + u·p1 + v·p2 for triangles.
+struct hit {
+  float t = inf;
+  uint32_t instance_id = 0;   // index into scene.instances
+  uint32_t primitive_id = 0;  // triangle index within the instance's mesh
+  float u = 0.0f;
+  float v = 0.0f;
+  vec3 geometric_normal{0.0f};  // world space, unit length, front face by glTF winding
+};
+
+}  // namespace kiln

@@ -1,0 +1,34 @@
+// Writes a film as one OpenEXR file through OpenImageIO: premultiplied RGBA plus Z and N.
+// The only module that knows EXR. Writes go to a temporary file beside the target that is
+// renamed into place, so a failed write never leaves a partial image.
+#pragma once
+
+#include "core/math.h"
+#include "render/film.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace kiln {
+
+struct exr_settings {
+  bool full_float = false;  // RGBA and N as 32-bit float; half otherwise. Z is always float.
+};
+
+// What the header records besides the pixels.
+struct exr_metadata {
+  dmat4 world_to_camera{1.0};  // camera space: +X right, +Y up, looking along -Z
+  dmat4 world_to_ndc{1.0};
+  std::vector<std::pair<std::string, std::string>> attributes;  // e.g. {"kiln/spp", "4"}
+};
+
+// Throws kiln::error (io) when the directory of path does not exist or cannot be written.
+// Called before rendering so a long render never ends in an unwritable path.
+void check_output_writable(const std::string& path);
+
+// Writes the film to path atomically. Throws kiln::error (io) on failure.
+void write_exr(const std::string& path, const film& f, const exr_settings& settings,
+               const exr_metadata& metadata);
+
+}  // namespace kiln

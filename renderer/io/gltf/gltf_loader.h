@@ -1,0 +1,20 @@
+// Loads a glTF 2.0 asset (.gltf with external or data-URI buffers, or .glb) into a Scene.
+// The only module that knows glTF. Every reference and accessor is validated against its
+// buffer before any byte is read; bad input throws kiln::error with the file, the JSON pointer
+// (e.g. /accessors/7) and the reason.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <string>
+
+namespace kiln {
+
+struct gltf_load_options {
+  int scene_index = -1;  // -1: the file's default scene (or scene 0 when none is marked)
+};
+
+// Throws kiln::error (kind input) on any invalid or unsupported input.
+scene load_gltf(const std::string& path, const gltf_load_options& options = {});
+
+}  // namespace kiln

@@ -1,0 +1,161 @@
+// The backend-neutral scene: plain data holding only what the render needs.
+// Loaders fill it, accelerators and shading read it. Depends on core only: no glTF, no Embree.
+// A mesh is stored once however many instances place it; attributes a material does not use
+// are never stored.
+#pragma once
+
+#include "core/math.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kiln {
+
+// Decoded texture image. 8-bit sources stay 8-bit (4 channels, RGBA) and are decoded per lookup;
+// deeper sources are stored as float. Colour-space decoding depends on how a texture is used
+// (sRGB for base colour and emissive), so it is not a property of the image.
+struct image {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> texels8;   // width*height*4, row 0 at the top (glTF's UV origin)
+  std::vector<float> texels32;    // used instead of texels8 for 16-bit or float sources
+};
+
+enum class wrap_mode { repeat, clamp_to_edge, mirrored_repeat };
+enum class filter_mode { nearest, linear };
+
+// glTF sampler: wrap per axis and magnification filter.
+struct sampler {
+  wrap_mode wrap_s = wrap_mode::repeat;
+  wrap_mode wrap_t = wrap_mode::repeat;
+  filter_mode filter = filter_mode::linear;
+};
+
+struct texture {
+  uint32_t image = 0;
+  sampler sampling;
+};
+
+// A material's use of a texture: which texture, which UV set, and a scale (normal scale or
+// occlusion strength). texture < 0 means none.
+struct texture_ref {
+  int32_t texture = -1;
+  uint32_t texcoord = 0;
+  float scale = 1.0f;
+
+  bool present() const { return texture >= 0; }
+};
+
+enum class alpha_mode { opaque, mask, blend };
+
+// glTF metallic-roughness material with the extensions kiln understands. All colours are linear.
+struct material {
+  std::string name;
+  vec4 base_color_factor{1.0f};
+  texture_ref base_color_texture;  // sRGB
+  float metallic_factor = 1.0f;
+  float roughness_factor = 1.0f;
+  texture_ref metallic_roughness_texture;  // linear: G = roughness, B = metallic
+  vec3 emissive_factor{0.0f};
+  float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  texture_ref emissive_texture;    // sRGB
+  texture_ref normal_texture;
+  texture_ref occlusion_texture;
+  float specular_factor = 1.0f;       // KHR_materials_specular
+  vec3 specular_color_factor{1.0f};   // KHR_materials_specular
+  float ior = 1.5f;                   // KHR_materials_ior
+  alpha_mode alpha = alpha_mode::opaque;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
+};
+
+// One unique glTF mesh primitive, as triangles, in its own object space. Stored once.
+struct mesh {
+  std::string name;
+  std::vector<vec3> positions;
+  std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
+  std::vector<vec3> normals;      // per vertex; empty: flat (geometric) normals, as glTF says
+  std::vector<vec2> texcoords0;   // empty unless a material samples TEXCOORD_0
+  bounds3 bounds;                 // object space
+
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+enum class shape_kind { mesh };
+
+// One placement of a shape in the world. A thousand instances of one mesh cost a thousand of
+// these, not a thousand meshes.
+struct instance {
+  shape_kind kind = shape_kind::mesh;
+  uint32_t shape = 0;     // index into scene.meshes
+  uint32_t material = 0;  // index into scene.materials
+  uint32_t node = 0;      // glTF node that placed it (for ids and messages)
+  dmat4 world_from_object{1.0};
+  dmat4 object_from_world{1.0};
+  dmat3 world_from_object_normal{1.0};  // inverse transpose of the linear part
+};
+
+enum class light_kind { point, spot, directional };
+
+// KHR_lights_punctual light, already placed in the world. Units are glTF's: candela for point and
+// spot lights, lux for directional lights.
+struct light {
+  std::string name;
+  light_kind kind = light_kind::point;
+  vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;           // 0 means infinite
+  dvec3 position{0.0};          // world space (point, spot)
+  vec3 direction{0, 0, -1};     // world space, the way light travels (spot, directional)
+  float inner_cone_angle = 0.0f;
+  float outer_cone_angle = pi / 4.0f;
+};
+
+enum class projection { perspective, orthographic };
+
+// A glTF camera placed in the world. The camera looks along its local -Z with +Y up.
+struct camera {
+  std::string name;
+  projection kind = projection::perspective;
+  float yfov = 0.8f;          // radians (perspective)
+  float aspect_ratio = 0.0f;  // 0: use the image aspect
+  float xmag = 1.0f;          // half-width of the view (orthographic)
+  float ymag = 1.0f;          // half-height of the view (orthographic)
+  float znear = 0.0f;
+  dmat4 world_from_camera{1.0};
+};
+
+// What rays that leave the scene see: a constant colour (linear RGB radiance).
+struct environment {
+  vec3 color{0.0f};
+};
+
+// Numbers the loader reports so that users see what was dropped or skipped.
+struct load_statistics {
+  size_t degenerate_triangles_dropped = 0;
+  size_t non_triangle_primitives_skipped = 0;
+  std::vector<std::string> warnings;
+};
+
+struct scene {
+  std::string source;  // file it came from
+  std::vector<mesh> meshes;
+  std::vector<instance> instances;
+  std::vector<material> materials;  // never empty after loading: the last may be the default
+  std::vector<texture> textures;
+  std::vector<image> images;
+  std::vector<light> lights;
+  std::vector<camera> cameras;
+  environment env;
+  load_statistics stats;
+};
+
+// World-space bounds of every instance.
+bounds3 world_bounds(const scene& s);
+
+// Fills object_from_world and the normal matrix from world_from_object.
+void finish_instance_transform(instance& inst);
+
+}  // namespace kiln
