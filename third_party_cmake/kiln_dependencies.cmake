@@ -48,7 +48,7 @@ add_library(kiln::tinygltf ALIAS kiln_tinygltf)
 
 add_library(kiln_glm INTERFACE)
 target_link_libraries(kiln_glm INTERFACE glm::glm)
-target_compile_definitions(kiln_glm INTERFACE GLM_FORCE_XYZW_ONLY GLM_ENABLE_EXPERIMENTAL)
+target_compile_definitions(kiln_glm INTERFACE GLM_ENABLE_EXPERIMENTAL)
 add_library(kiln::glm ALIAS kiln_glm)
 
 add_library(kiln_cli11 INTERFACE)

@@ -1,0 +1,156 @@
+#include "accel/embree/embree_accelerator.h"
+
+#include "core/error.h"
+#include "geometry/triangle.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstring>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace kiln {
+
+// Embree reports errors through a C callback; it records the first message here and the
+// constructor throws after the Embree call has returned.
+struct embree_accelerator::state {
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::vector<RTCScene> mesh_scenes;
+  std::mutex error_mutex;
+  std::string first_error;
+
+  static void on_error(void* user, RTCError code, const char* message) {
+    auto* self = static_cast<state*>(user);
+    std::lock_guard<std::mutex> lock(self->error_mutex);
+    if (self->first_error.empty())
+      self->first_error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
+  }
+
+  void throw_if_failed(const std::string& during) {
+    std::lock_guard<std::mutex> lock(error_mutex);
+    if (!first_error.empty()) throw error(error_kind::render, "", "", first_error + " (while " + during + ")");
+  }
+
+  ~state() {
+    if (top) rtcReleaseScene(top);
+    for (RTCScene s : mesh_scenes)
+      if (s) rtcReleaseScene(s);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+// Builds the BVH of one mesh in its own object space. Positions are copied into an Embree-owned
+// buffer because Embree reads vertices as 16-byte loads and needs padding past the last one.
+RTCScene build_mesh_scene(RTCDevice device, const mesh& m) {
+  RTCScene mesh_scene = rtcNewScene(device);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(float) * 3, m.positions.size()));
+  if (vertices) std::memcpy(vertices, m.positions.data(), m.positions.size() * sizeof(vec3));
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(uint32_t) * 3, m.triangle_count()));
+  if (indices) std::memcpy(indices, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(mesh_scene, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(mesh_scene);
+  return mesh_scene;
+}
+
+void set_instance_transform(RTCGeometry geometry, const dmat4& world_from_object) {
+  float columns[12];
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) columns[c * 3 + r] = float(world_from_object[c][r]);
+  rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns);
+}
+
+RTCRay to_embree(const ray& r) {
+  RTCRay out{};
+  out.org_x = r.origin.x;
+  out.org_y = r.origin.y;
+  out.org_z = r.origin.z;
+  out.dir_x = r.direction.x;
+  out.dir_y = r.direction.y;
+  out.dir_z = r.direction.z;
+  out.tnear = r.tmin;
+  out.tfar = r.tmax;
+  out.mask = ~0u;
+  out.flags = 0;
+  out.time = 0.0f;
+  return out;
+}
+
+}  // namespace
+
+embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique<state>()), scene_(s) {
+  state_->device = rtcNewDevice("verbose=0");
+  if (!state_->device)
+    throw error(error_kind::render, "", "", "cannot create Embree device (error " +
+                                                std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(state_->device, &state::on_error, state_.get());
+
+  // Unique meshes first, built once, however many instances place them.
+  state_->mesh_scenes.assign(s.meshes.size(), nullptr);
+  std::vector<bool> used(s.meshes.size(), false);
+  for (const instance& inst : s.instances) used[inst.shape] = true;
+  for (size_t i = 0; i < s.meshes.size(); ++i)
+    if (used[i] && s.meshes[i].triangle_count() > 0)
+      state_->mesh_scenes[i] = build_mesh_scene(state_->device, s.meshes[i]);
+  state_->throw_if_failed("building mesh BVHs");
+
+  state_->top = rtcNewScene(state_->device);
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const instance& inst = s.instances[i];
+    RTCScene shape = state_->mesh_scenes[inst.shape];
+    if (!shape) continue;
+    RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geometry, shape);
+    set_instance_transform(geometry, inst.world_from_object);
+    rtcCommitGeometry(geometry);
+    // The geometry id is the instance index, so a hit names its instance directly.
+    rtcAttachGeometryByID(state_->top, geometry, unsigned(i));
+    rtcReleaseGeometry(geometry);
+  }
+  rtcCommitScene(state_->top);
+  state_->throw_if_failed("building the instance BVH");
+}
+
+embree_accelerator::~embree_accelerator() = default;
+
+std::optional<hit> embree_accelerator::intersect(const ray& r) const {
+  if (!is_valid(r)) return std::nullopt;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit query{};
+  query.ray = to_embree(r);
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(state_->top, &context, &query);
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+  hit h;
+  h.t = query.ray.tfar;
+  h.instance_id = query.hit.instID[0];
+  h.primitive_id = query.hit.primID;
+  h.u = query.hit.u;
+  h.v = query.hit.v;
+  const instance& inst = scene_.instances[h.instance_id];
+  h.geometric_normal = triangle_world_normal(inst, scene_.meshes[inst.shape], h.primitive_id);
+  return h;
+}
+
+bool embree_accelerator::occluded(const ray& r) const {
+  if (!is_valid(r)) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay query = to_embree(r);
+  rtcOccluded1(state_->top, &context, &query);
+  // Embree marks an occluded ray by setting tfar to -infinity.
+  return query.tfar < 0.0f;
+}
+
+}  // namespace kiln

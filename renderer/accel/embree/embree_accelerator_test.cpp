@@ -1,0 +1,106 @@
+#include "accel/embree/embree_accelerator.h"
+#include "geometry/triangle.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kiln {
+namespace {
+
+// A unit square in the z = 0 plane, front face +Z, two triangles.
+mesh unit_square() {
+  mesh m;
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  for (const vec3& p : m.positions) m.bounds.extend(dvec3(p));
+  return m;
+}
+
+scene two_instances() {
+  scene s;
+  s.meshes.push_back(unit_square());
+  s.materials.emplace_back();
+  instance a;
+  a.world_from_object = glm::translate(dmat4(1.0), dvec3(0, 0, -5));
+  finish_instance_transform(a);
+  instance b;  // mirrored in z and moved further away: its front face must point toward +Z still
+  b.world_from_object = glm::scale(glm::translate(dmat4(1.0), dvec3(10, 0, -8)), dvec3(1, 1, -1));
+  finish_instance_transform(b);
+  s.instances = {a, b};
+  return s;
+}
+
+TEST(embree_accelerator, closest_hit_reports_instance_t_and_barycentrics) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.origin = {0.5f, -0.25f, 0.0f};
+  r.direction = {0, 0, -1};
+  auto h = accel.intersect(r);
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->instance_id, 0u);
+  EXPECT_NEAR(h->t, 5.0f, 1e-5f);
+  // Reconstruct the hit from (u, v) with Embree's convention and compare with o + t·d.
+  auto p = triangle_vertices(s.meshes[0], h->primitive_id);
+  vec3 q = (1 - h->u - h->v) * p[0] + h->u * p[1] + h->v * p[2];
+  EXPECT_NEAR(q.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(q.y, -0.25f, 1e-5f);
+  EXPECT_NEAR(h->geometric_normal.z, 1.0f, 1e-6f);
+}
+
+TEST(embree_accelerator, mirrored_instance_keeps_front_face_through_normal_matrix) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.origin = {10.0f, 0.3f, 0.0f};
+  r.direction = {0, 0, -1};
+  auto h = accel.intersect(r);
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->instance_id, 1u);
+  EXPECT_NEAR(h->t, 8.0f, 1e-5f);
+  // Scale z by -1 maps the object +Z normal to world -Z: the normal matrix says the front face
+  // (counter-clockwise in object space) now faces -Z, as glTF's determinant rule demands.
+  EXPECT_NEAR(h->geometric_normal.z, -1.0f, 1e-6f);
+}
+
+TEST(embree_accelerator, occlusion_respects_segment_extent) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.origin = {0, 0, 0};
+  r.direction = {0, 0, -1};
+  r.tmax = 4.9f;
+  EXPECT_FALSE(accel.occluded(r));
+  r.tmax = 5.1f;
+  EXPECT_TRUE(accel.occluded(r));
+  r.tmin = 5.05f;
+  EXPECT_FALSE(accel.occluded(r));
+}
+
+TEST(embree_accelerator, invalid_rays_never_reach_embree) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.origin = {0, 0, 0};
+  r.direction = {0, 0, std::nanf("")};
+  EXPECT_FALSE(accel.intersect(r));
+  EXPECT_FALSE(accel.occluded(r));
+  r.direction = {0, 0, 0};
+  EXPECT_FALSE(accel.intersect(r));
+  r.direction = {0, 0, -1};
+  r.origin = {inf, 0, 0};
+  EXPECT_FALSE(accel.intersect(r));
+}
+
+TEST(embree_accelerator, misses_outside_geometry) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.origin = {3.0f, 0.0f, 0.0f};
+  r.direction = {0, 0, -1};
+  EXPECT_FALSE(accel.intersect(r));
+}
+
+}  // namespace
+}  // namespace kiln

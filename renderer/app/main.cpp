@@ -1,0 +1,62 @@
+// kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
+// on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure).
+#include "app/render_command.h"
+#include "core/error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+namespace {
+
+constexpr int exit_success = 0;
+constexpr int exit_failure = 1;
+constexpr int exit_bad_input = 2;
+
+std::string join_arguments(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) {
+    if (i) line += ' ';
+    line += argv[i];
+  }
+  return line;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"kiln: renders glTF 2.0 assets to HDR OpenEXR with Embree and Whitted shading"};
+  app.set_version_flag("--version", std::string("kiln ") + KILN_VERSION);
+  app.require_subcommand(1);
+
+  kiln::render_options render;
+  render.command_line = join_arguments(argc, argv);
+  CLI::App* render_command = app.add_subcommand("render", "Render a glTF asset to an OpenEXR image");
+  kiln::add_render_options(*render_command, render);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
+  } catch (const CLI::ParseError& e) {
+    std::string message = e.what();
+    std::cerr << "kiln: " << message << " (run 'kiln --help' or 'kiln render --help')\n";
+    return exit_bad_input;
+  }
+
+  try {
+    if (render_command->parsed()) kiln::run_render(render);
+    return exit_success;
+  } catch (const kiln::error& e) {
+    std::cerr << "kiln: " << e.what() << '\n';
+    return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "kiln: out of memory\n";
+    return exit_failure;
+  } catch (const std::exception& e) {
+    std::cerr << "kiln: " << e.what() << '\n';
+    return exit_failure;
+  }
+}

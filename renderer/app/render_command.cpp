@@ -1,0 +1,241 @@
+#include "app/render_command.h"
+
+#include "accel/embree/embree_accelerator.h"
+#include "core/error.h"
+#include "io/exr/exr_writer.h"
+#include "io/gltf/gltf_loader.h"
+#include "render/tile_renderer.h"
+#include "render/view_camera.h"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace kiln {
+
+namespace {
+
+constexpr int default_width = 640;
+constexpr int default_height = 480;
+constexpr int max_image_side = 65536;
+
+// Parses "X,Y,Z" into three finite numbers; CLI11 reports a ValidationError as a usage error.
+dvec3 parse_triple(const std::string& text, const std::string& option) {
+  dvec3 value;
+  std::istringstream in(text);
+  char comma1 = 0, comma2 = 0;
+  if (!(in >> value.x >> comma1 >> value.y >> comma2 >> value.z) || comma1 != ',' || comma2 != ',' ||
+      !(in >> std::ws).eof() || !is_finite(value))
+    throw CLI::ValidationError(option, "expects three finite numbers X,Y,Z, got '" + text + "'");
+  return value;
+}
+
+// Finds the camera named or numbered by the --camera argument.
+const camera& select_camera(const scene& world, const std::string& which) {
+  if (world.cameras.empty()) throw input_error(world.source, "--camera", "the file has no cameras");
+  char* end = nullptr;
+  long index = std::strtol(which.c_str(), &end, 10);
+  if (!which.empty() && end && *end == '\0') {
+    if (index < 0 || size_t(index) >= world.cameras.size())
+      throw input_error(world.source, "--camera", "camera index " + which + " out of range (file has " +
+                                                      std::to_string(world.cameras.size()) + " cameras)");
+    return world.cameras[size_t(index)];
+  }
+  std::string names;
+  for (const camera& c : world.cameras) {
+    if (c.name == which) return c;
+    names += (names.empty() ? "" : ", ") + ("'" + c.name + "'");
+  }
+  throw input_error(world.source, "--camera", "no camera named '" + which + "' (cameras: " + names + ")");
+}
+
+// Image size: explicit values win; a missing side follows the glTF camera's aspect ratio when it
+// has one, 4:3 otherwise; with neither given the image is 640 wide.
+void resolve_image_size(const render_options& options, float camera_aspect, int& width, int& height) {
+  double aspect = camera_aspect > 0.0f ? camera_aspect : double(default_width) / default_height;
+  if (options.width && options.height) {
+    width = *options.width;
+    height = *options.height;
+  } else if (options.width) {
+    width = *options.width;
+    height = std::max(1, int(std::lround(width / aspect)));
+  } else if (options.height) {
+    height = *options.height;
+    width = std::max(1, int(std::lround(height * aspect)));
+  } else {
+    width = default_width;
+    height = camera_aspect > 0.0f ? std::max(1, int(std::lround(width / aspect))) : default_height;
+  }
+  if (width > max_image_side || height > max_image_side)
+    throw input_error("", "image size", "at most " + std::to_string(max_image_side) + " pixels a side");
+}
+
+view_camera choose_view(const render_options& options, const scene& world, std::string& description) {
+  if (options.look_from || options.look_at) {
+    if (!options.look_from || !options.look_at)
+      throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
+    int width = 0, height = 0;
+    resolve_image_size(options, 0.0f, width, height);
+    description = "look-at";
+    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width, height);
+  }
+  if (!options.camera.empty() || !world.cameras.empty()) {
+    const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
+    int width = 0, height = 0;
+    resolve_image_size(options, c.aspect_ratio, width, height);
+    description = c.name.empty() ? "glTF camera" : c.name;
+    try {
+      return make_gltf_camera(c, width, height);
+    } catch (const error& e) {
+      throw input_error(world.source, e.location(), e.reason());
+    }
+  }
+  int width = 0, height = 0;
+  resolve_image_size(options, 0.0f, width, height);
+  description = "default";
+  return make_default_camera(world_bounds(world), width, height);
+}
+
+// When a file has no light, a point light at the camera (a headlight) keeps assets visible: its
+// intensity is chosen so a white surface facing it at the scene centre reflects radiance ≈ 1.
+void add_default_light(scene& world, const view_camera& cam) {
+  bounds3 b = world_bounds(world);
+  double distance = b.empty() ? 1.0 : std::max(glm::length(b.center() - cam.eye), 1e-6);
+  light headlight;
+  headlight.name = "kiln default headlight";
+  headlight.kind = light_kind::point;
+  headlight.position = cam.eye;
+  headlight.intensity = float(pi * distance * distance);
+  world.lights.push_back(headlight);
+}
+
+// A single progress line with percentage and ETA, shown only when stderr is a terminal.
+progress_callback make_progress(bool enabled) {
+  if (!enabled || !::isatty(STDERR_FILENO)) return {};
+  auto start = std::chrono::steady_clock::now();
+  return [start](size_t done, size_t total) {
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double eta = done ? elapsed * double(total - done) / double(done) : 0.0;
+    std::fprintf(stderr, "\rkiln: rendering %3d%%  ETA %6.1f s ", int(100.0 * done / total), eta);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  };
+}
+
+std::string format_vec(const vec3& v) {
+  std::ostringstream out;
+  out << v.x << ',' << v.y << ',' << v.z;
+  return out.str();
+}
+
+}  // namespace
+
+void add_render_options(CLI::App& app, render_options& o) {
+  app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
+  app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
+  app.add_option("--width", o.width, "Image width in pixels (default 640, or from --height and the camera's aspect)")
+      ->check(CLI::Range(1, max_image_side));
+  app.add_option("--height", o.height, "Image height in pixels (default 480, or from the camera's aspect ratio)")
+      ->check(CLI::Range(1, max_image_side));
+  app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option_function<std::string>(
+      "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
+      "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
+  app.add_option_function<std::string>(
+      "--look-at", [&o](const std::string& s) { o.look_at = parse_triple(s, "--look-at"); },
+      "Look-at camera target X,Y,Z");
+  app.add_option_function<std::string>(
+      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); }, "Look-at camera up vector X,Y,Z (default 0,1,0)");
+  app.add_option("--fov", o.fov_degrees, "Look-at camera vertical field of view in degrees")
+      ->check(CLI::Range(1e-3, 179.999))
+      ->capture_default_str();
+  app.add_option("--scene", o.scene_index, "glTF scene index (default: the file's default scene)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+  app.add_option_function<std::string>(
+      "--background",
+      [&o](const std::string& s) {
+        dvec3 c = parse_triple(s, "--background");
+        if (c.x < 0 || c.y < 0 || c.z < 0) throw CLI::ValidationError("--background", "colour must be non-negative");
+        o.background = vec3(c);
+      },
+      "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)");
+  app.add_flag("--show-background", o.show_background,
+               "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
+  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
+}
+
+void run_render(const render_options& options) {
+  check_output_writable(options.output);
+
+  auto load_start = std::chrono::steady_clock::now();
+  gltf_load_options load_options;
+  load_options.scene_index = options.scene_index;
+  scene world = load_gltf(options.input, load_options);
+  world.env.color = options.background;
+  double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  if (!options.quiet)
+    for (const std::string& warning : world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+
+  std::string camera_description;
+  view_camera cam = choose_view(options, world, camera_description);
+  if (world.lights.empty()) {
+    add_default_light(world, cam);
+    if (!options.quiet) std::cerr << "kiln: the file has no lights; using a headlight at the camera\n";
+  }
+
+  auto build_start = std::chrono::steady_clock::now();
+  embree_accelerator accel(world);
+  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+
+  render_settings settings;
+  settings.samples_per_pixel = options.samples_per_pixel;
+  settings.threads = options.threads;
+  settings.tile_size = options.tile_size;
+  settings.show_background = options.show_background;
+  settings.shading.max_depth = options.max_depth;
+  settings.shading.min_throughput = options.min_throughput;
+  render_statistics stats;
+  film image = render_image(world, accel, cam, settings, &stats, make_progress(!options.quiet));
+
+  exr_metadata metadata;
+  metadata.world_to_camera = world_to_camera(cam);
+  metadata.world_to_ndc = world_to_ndc(cam);
+  metadata.attributes = {
+      {"kiln/scene_file", options.input},
+      {"kiln/camera", camera_description},
+      {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
+      {"kiln/max_depth", std::to_string(options.max_depth)},
+      {"kiln/background", format_vec(options.background)},
+      {"kiln/depth", "ray distance"},
+      {"kiln/render_seconds", std::to_string(stats.seconds)},
+      {"kiln/command_line", options.command_line},
+  };
+  write_exr(options.output, image, exr_settings{options.full_float}, metadata);
+
+  if (!options.quiet) {
+    std::fprintf(stderr,
+                 "kiln: %dx%d, %d spp, %d threads: load %.3f s, build %.3f s, render %.3f s "
+                 "(%llu camera, %llu shadow, %llu reflection rays) -> %s\n",
+                 cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds, build_seconds,
+                 stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
+                 (unsigned long long)stats.rays.reflection, options.output.c_str());
+  }
+}
+
+}  // namespace kiln

@@ -1,0 +1,45 @@
+// `kiln render`: options, their validation, and the run that wires loader -> Scene -> Embree ->
+// tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
+#pragma once
+
+#include "core/math.h"
+
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace kiln {
+
+struct render_options {
+  std::string input;
+  std::string output;
+  std::optional<int> width;
+  std::optional<int> height;
+  int samples_per_pixel = 1;
+  int threads = 0;
+  int tile_size = 32;
+  std::string camera;  // glTF camera name or index; empty: the first camera, else a default view
+  std::optional<dvec3> look_from;
+  std::optional<dvec3> look_at;
+  dvec3 up{0.0, 1.0, 0.0};
+  double fov_degrees = 45.0;
+  int scene_index = -1;
+  bool full_float = false;
+  vec3 background{0.0f};
+  bool show_background = false;
+  int max_depth = 8;
+  float min_throughput = 1e-3f;
+  bool quiet = false;
+  std::string command_line;
+};
+
+// Declares the render subcommand's options on app, writing into options.
+void add_render_options(CLI::App& app, render_options& options);
+
+// Runs a render. Throws kiln::error for bad input (kind input) or I/O and render failures.
+void run_render(const render_options& options);
+
+}  // namespace kiln

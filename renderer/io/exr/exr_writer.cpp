@@ -1,0 +1,98 @@
+#include "io/exr/exr_writer.h"
+
+#include "core/error.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <system_error>
+
+namespace kiln {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int channel_count = 8;  // R G B A Z N.X N.Y N.Z
+
+// Temporary name beside the target, so the final rename stays on one file system.
+std::string temporary_path(const std::string& path) {
+  fs::path target(path);
+  std::string name = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid());
+  return (target.parent_path() / name).string();
+}
+
+OIIO::ImageSpec make_spec(const film& f, const exr_settings& settings, const exr_metadata& metadata) {
+  OIIO::ImageSpec spec(f.width, f.height, channel_count, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
+  spec.alpha_channel = 3;
+  spec.z_channel = 4;
+  OIIO::TypeDesc colour = settings.full_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+  spec.channelformats = {colour, colour, colour, colour, OIIO::TypeDesc::FLOAT, colour, colour, colour};
+  spec.attribute("compression", "zip");
+  spec.attribute("oiio:ColorSpace", "Linear");
+  // Rec.709 primaries and D65 white: glTF's linear colour space.
+  const float chromaticities[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+  spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities);
+  // OpenEXR stores matrices row-major with row vectors (p' = p·M): the transpose of GLM's
+  // column-vector convention, which in memory equals GLM's column-major layout.
+  float world_to_camera[16];
+  float world_to_ndc[16];
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      world_to_camera[c * 4 + r] = float(metadata.world_to_camera[c][r]);
+      world_to_ndc[c * 4 + r] = float(metadata.world_to_ndc[c][r]);
+    }
+  spec.attribute("worldToCamera", OIIO::TypeMatrix44, world_to_camera);
+  spec.attribute("worldToNDC", OIIO::TypeMatrix44, world_to_ndc);
+  spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
+  for (const auto& [key, value] : metadata.attributes) spec.attribute(key, value);
+  return spec;
+}
+
+std::vector<float> interleave(const film& f) {
+  std::vector<float> pixels(size_t(f.width) * f.height * channel_count);
+  for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
+    float* p = &pixels[i * channel_count];
+    for (int c = 0; c < 4; ++c) p[c] = f.color[i][c];
+    p[4] = f.depth[i];
+    for (int c = 0; c < 3; ++c) p[5 + c] = f.normal[i][c];
+  }
+  return pixels;
+}
+
+}  // namespace
+
+void check_output_writable(const std::string& path) {
+  fs::path target(path);
+  if (target.filename().empty()) throw io_error(path, "output path names a folder, not a file");
+  fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw io_error(path, "output folder does not exist: " + folder.string());
+  if (::access(folder.c_str(), W_OK) != 0) throw io_error(path, "output folder is not writable: " + folder.string());
+  if (fs::is_directory(target, ec)) throw io_error(path, "output path is a folder");
+}
+
+void write_exr(const std::string& path, const film& f, const exr_settings& settings,
+               const exr_metadata& metadata) {
+  check_output_writable(path);
+  if (f.width <= 0 || f.height <= 0 || f.color.size() != size_t(f.width) * f.height)
+    throw io_error(path, "refusing to write an empty or inconsistent image");
+  const std::string temporary = temporary_path(path);
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
+  OIIO::ImageSpec spec = make_spec(f, settings, metadata);
+  std::vector<float> pixels = interleave(f);
+  bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
+  ok = out->close() && ok;
+  std::string reason = ok ? std::string() : out->geterror();
+  std::error_code ec;
+  if (ok) fs::rename(temporary, path, ec);
+  if (!ok || ec) {
+    fs::remove(temporary, ec);
+    throw io_error(path, "cannot write EXR: " + (reason.empty() ? std::string("rename failed") : reason));
+  }
+}
+
+}  // namespace kiln

@@ -1,0 +1,44 @@
+// Per-pixel sample positions that depend only on (pixel, sample index): the reason the image is
+// bit-identical for any thread count and tile order. Depends on core only.
+#pragma once
+
+#include "core/math.h"
+
+#include <cstdint>
+
+namespace kiln {
+
+// A 32-bit integer hash with good avalanche (the "lowbias32" constants of Chris Wellons'
+// hash-prospector); enough for jitter, and the same on every platform.
+inline uint32_t hash_u32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return x;
+}
+
+// Uniform float in [0, 1) from a hash of three integers.
+inline float hash_to_unit(uint32_t a, uint32_t b, uint32_t c) {
+  uint32_t h = hash_u32(a ^ hash_u32(b ^ hash_u32(c)));
+  return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+// Offset of sample s (of spp) inside pixel (x, y), each coordinate in [0, 1).
+// One sample sits at the pixel centre. Otherwise the pixel is split into n×m strata
+// (n = ceil(sqrt(spp)) columns, enough rows for spp) visited in order, each jittered.
+inline vec2 sample_offset(uint32_t x, uint32_t y, uint32_t s, uint32_t spp) {
+  if (spp <= 1) return vec2(0.5f);
+  uint32_t columns = 1;
+  while (columns * columns < spp) ++columns;
+  uint32_t rows = (spp + columns - 1) / columns;
+  uint32_t cx = s % columns;
+  uint32_t cy = s / columns;
+  uint32_t pixel = hash_u32(x * 0x9E3779B1U + hash_u32(y));
+  float jx = hash_to_unit(pixel, s, 0x68E31DA4U);
+  float jy = hash_to_unit(pixel, s, 0xB5297A4DU);
+  return vec2((cx + jx) / float(columns), (cy + jy) / float(rows));
+}
+
+}  // namespace kiln

@@ -1,0 +1,37 @@
+// The tile scheduler: splits the image into tiles, renders them on a TBB task arena with the
+// requested thread count, and fills the film. Each pixel is computed by exactly one task in a
+// fixed sample order, so the result does not depend on scheduling.
+// Depends on shade (through the accelerator interface) and render; never on a backend.
+#pragma once
+
+#include "render/film.h"
+#include "render/view_camera.h"
+#include "shade/whitted.h"
+
+#include <functional>
+
+namespace kiln {
+
+struct render_settings {
+  int samples_per_pixel = 1;
+  int threads = 0;      // 0: all cores
+  int tile_size = 32;   // pixels per tile side
+  bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
+  shading_options shading;
+};
+
+struct render_statistics {
+  ray_counts rays;
+  double seconds = 0.0;
+  int threads_used = 0;
+};
+
+// Called after each finished tile with (tiles done, tiles total); may be called from any thread,
+// never concurrently.
+using progress_callback = std::function<void(size_t done, size_t total)>;
+
+film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
+                  const render_settings& settings, render_statistics* stats = nullptr,
+                  const progress_callback& progress = {});
+
+}  // namespace kiln

@@ -1,0 +1,148 @@
+#include "render/view_camera.h"
+
+#include "core/error.h"
+
+#include <cmath>
+
+namespace kiln {
+
+namespace {
+
+void check_image_size(int width, int height) {
+  if (width <= 0 || height <= 0)
+    throw input_error("", "camera", "image size must be positive, got " + std::to_string(width) + "x" +
+                                        std::to_string(height));
+}
+
+// Fills the perspective window for a vertical field of view at image-plane distance d = 1.
+void set_perspective_window(view_camera& cam, double yfov_radians) {
+  double aspect = double(cam.width) / double(cam.height);
+  cam.distance = 1.0;
+  cam.top = std::tan(0.5 * yfov_radians);
+  cam.bottom = -cam.top;
+  cam.right_edge = cam.top * aspect;
+  cam.left = -cam.right_edge;
+}
+
+}  // namespace
+
+view_camera make_look_at_camera(const dvec3& eye, const dvec3& target, const dvec3& up, double yfov_degrees,
+                                int width, int height) {
+  check_image_size(width, height);
+  if (!is_finite(eye) || !is_finite(target) || !is_finite(up) || !std::isfinite(yfov_degrees))
+    throw input_error("", "camera", "look-at parameters must be finite numbers");
+  if (!(yfov_degrees > 0.0 && yfov_degrees < 180.0))
+    throw input_error("", "camera", "field of view must be between 0 and 180 degrees, got " +
+                                        std::to_string(yfov_degrees));
+  dvec3 view = target - eye;
+  double length = glm::length(view);
+  if (!(length > 0.0)) throw input_error("", "camera", "look-from and look-at are the same point");
+  view /= length;
+  dvec3 right = glm::cross(view, up);
+  double right_length = glm::length(right);
+  if (!(right_length > 1e-9 * glm::length(up)) || !(glm::length(up) > 0.0))
+    throw input_error("", "camera", "up vector is zero or parallel to the view direction");
+  view_camera cam;
+  cam.eye = eye;
+  cam.view = view;
+  cam.right = right / right_length;
+  cam.up = glm::cross(cam.right, view);  // re-orthogonalised u
+  cam.width = width;
+  cam.height = height;
+  set_perspective_window(cam, glm::radians(yfov_degrees));
+  return cam;
+}
+
+view_camera make_gltf_camera(const camera& c, int width, int height) {
+  check_image_size(width, height);
+  const dmat4& m = c.world_from_camera;
+  view_camera cam;
+  cam.kind = c.kind;
+  cam.eye = dvec3(m[3]);
+  cam.view = glm::normalize(transform_vector(m, dvec3(0, 0, -1)));
+  dvec3 up = transform_vector(m, dvec3(0, 1, 0));
+  cam.right = glm::normalize(glm::cross(cam.view, up));
+  cam.up = glm::cross(cam.right, cam.view);
+  cam.width = width;
+  cam.height = height;
+  if (!is_finite(cam.view) || !is_finite(cam.right) || !is_finite(cam.eye))
+    throw input_error("", "camera '" + c.name + "'", "camera transform is degenerate");
+  if (c.kind == projection::perspective) {
+    if (!(c.yfov > 0.0f && c.yfov < pi))
+      throw input_error("", "camera '" + c.name + "'", "yfov must be in (0, pi)");
+    set_perspective_window(cam, c.yfov);
+  } else {
+    // glTF's xmag/ymag are half-extents of the view; the image aspect decides the width when the
+    // two disagree, so pixels stay square.
+    double aspect = double(width) / double(height);
+    cam.distance = 0.0;
+    cam.top = std::abs(double(c.ymag));
+    cam.bottom = -cam.top;
+    cam.right_edge = cam.top * aspect;
+    cam.left = -cam.right_edge;
+    if (!(cam.top > 0.0)) throw input_error("", "camera '" + c.name + "'", "ymag must be non-zero");
+  }
+  return cam;
+}
+
+view_camera make_default_camera(const bounds3& scene_bounds, int width, int height) {
+  check_image_size(width, height);
+  dvec3 centre(0.0);
+  double radius = 1.0;
+  if (!scene_bounds.empty()) {
+    centre = scene_bounds.center();
+    radius = std::max(0.5 * glm::length(scene_bounds.diagonal()), 1e-6);
+  }
+  const double yfov = 45.0;
+  double distance = radius / std::sin(glm::radians(0.5 * yfov));
+  return make_look_at_camera(centre + dvec3(0, 0, distance), centre, dvec3(0, 1, 0), yfov, width, height);
+}
+
+ray generate_camera_ray(const view_camera& cam, double px, double py) {
+  // Lower-left corner of the window and the point at fraction (sx, sy) across it.
+  dvec3 lower_left = cam.eye + cam.distance * cam.view + cam.left * cam.right + cam.bottom * cam.up;
+  double sx = px / cam.width;
+  double sy = 1.0 - py / cam.height;  // image rows run top-down, the window's u axis bottom-up
+  dvec3 on_window = lower_left + (cam.right_edge - cam.left) * sx * cam.right + (cam.top - cam.bottom) * sy * cam.up;
+  ray r;
+  if (cam.kind == projection::orthographic) {
+    r.origin = vec3(on_window);
+    r.direction = vec3(cam.view);
+  } else {
+    r.origin = vec3(cam.eye);
+    r.direction = vec3(glm::normalize(on_window - cam.eye));
+  }
+  return r;
+}
+
+dmat4 world_to_camera(const view_camera& cam) {
+  dmat4 camera_to_world(1.0);
+  camera_to_world[0] = dvec4(cam.right, 0.0);
+  camera_to_world[1] = dvec4(cam.up, 0.0);
+  camera_to_world[2] = dvec4(-cam.view, 0.0);
+  camera_to_world[3] = dvec4(cam.eye, 1.0);
+  return glm::inverse(camera_to_world);
+}
+
+dmat4 world_to_ndc(const view_camera& cam) {
+  dmat4 projection_matrix(0.0);
+  const double near_plane = 0.01, far_plane = 1e5;
+  double half_width = 0.5 * (cam.right_edge - cam.left);
+  double half_height = 0.5 * (cam.top - cam.bottom);
+  if (cam.kind == projection::perspective) {
+    projection_matrix[0][0] = cam.distance / half_width;
+    projection_matrix[1][1] = cam.distance / half_height;
+    projection_matrix[2][2] = -(far_plane + near_plane) / (far_plane - near_plane);
+    projection_matrix[2][3] = -1.0;
+    projection_matrix[3][2] = -2.0 * far_plane * near_plane / (far_plane - near_plane);
+  } else {
+    projection_matrix[0][0] = 1.0 / half_width;
+    projection_matrix[1][1] = 1.0 / half_height;
+    projection_matrix[2][2] = -2.0 / (far_plane - near_plane);
+    projection_matrix[3][2] = -(far_plane + near_plane) / (far_plane - near_plane);
+    projection_matrix[3][3] = 1.0;
+  }
+  return projection_matrix * world_to_camera(cam);
+}
+
+}  // namespace kiln

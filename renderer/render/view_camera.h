@@ -1,0 +1,48 @@
+// Camera rays in the lecture formulation: a gluLookAt-style basis (v = view direction, u = up,
+// x = v × u), an image-plane window l, r, t, b at distance d, and the lower-left corner
+// O = C + d·v + l·x + b·u. Depends on core and scene (for glTF cameras).
+#pragma once
+
+#include "core/ray.h"
+#include "scene/scene.h"
+
+#include <optional>
+#include <string>
+
+namespace kiln {
+
+struct view_camera {
+  projection kind = projection::perspective;
+  dvec3 eye{0.0};               // C
+  dvec3 view{0.0, 0.0, -1.0};   // v, unit
+  dvec3 up{0.0, 1.0, 0.0};      // u, unit, orthogonal to v
+  dvec3 right{1.0, 0.0, 0.0};   // x = v × u
+  double left = -1.0, right_edge = 1.0, bottom = -1.0, top = 1.0;  // window l, r, b, t
+  double distance = 1.0;        // d
+  int width = 1;
+  int height = 1;
+};
+
+// Throws kiln::error (input) for impossible parameters (zero or straight fov, eye == target,
+// up parallel to the view direction, non-finite values, non-positive image size).
+view_camera make_look_at_camera(const dvec3& eye, const dvec3& target, const dvec3& up, double yfov_degrees,
+                                int width, int height);
+
+// A glTF camera: position and orientation from its world transform (looking along -Z, +Y up).
+view_camera make_gltf_camera(const camera& c, int width, int height);
+
+// The default when a file has no camera: looks along -Z at the centre of the scene bounds from
+// far enough that the bounding sphere fills a 45° vertical field of view.
+view_camera make_default_camera(const bounds3& scene_bounds, int width, int height);
+
+// The ray through image position (px, py) in pixels, (0, 0) at the top-left corner of the image
+// and (width, height) at the bottom-right; pixel (i, j) has its centre at (i + 0.5, j + 0.5).
+ray generate_camera_ray(const view_camera& cam, double px, double py);
+
+// World to camera space (+X right, +Y up, looking along -Z): OpenEXR's worldToCamera.
+dmat4 world_to_camera(const view_camera& cam);
+
+// World to normalized device coordinates ([-1, 1] across the window): OpenEXR's worldToNDC.
+dmat4 world_to_ndc(const view_camera& cam);
+
+}  // namespace kiln

@@ -1,0 +1,99 @@
+#include "render/view_camera.h"
+
+#include "core/error.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kiln {
+namespace {
+
+// The lecture formulation written out independently of view_camera: basis v, u, x = v × u,
+// window l, r, t, b at distance d, lower-left corner O = C + d·v + l·x + b·u, and the pixel
+// centre of (i, j) (j counted from the top) at O + (r-l)(i+½)/W·x + (t-b)(H-j-½)/H·u.
+dvec3 lecture_direction(dvec3 c, dvec3 target, dvec3 up_hint, double fov_deg, int w, int h, int i, int j) {
+  dvec3 v = glm::normalize(target - c);
+  dvec3 x = glm::normalize(glm::cross(v, up_hint));
+  dvec3 u = glm::cross(x, v);
+  double d = 1.0;
+  double t = std::tan(glm::radians(fov_deg) / 2.0), b = -t;
+  double r = t * double(w) / h, l = -r;
+  dvec3 o = c + d * v + l * x + b * u;
+  dvec3 p = o + (r - l) * (i + 0.5) / w * x + (t - b) * (h - j - 0.5) / h * u;
+  return glm::normalize(p - c);
+}
+
+TEST(view_camera, camera_rays_match_the_lecture_formula) {
+  dvec3 eye(1.0, 2.0, 3.0), target(-0.5, 0.25, -4.0), up(0.1, 1.0, 0.0);
+  const int w = 64, h = 48;
+  view_camera cam = make_look_at_camera(eye, target, up, 50.0, w, h);
+  for (int j : {0, 7, 24, 47})
+    for (int i : {0, 13, 32, 63}) {
+      ray r = generate_camera_ray(cam, i + 0.5, j + 0.5);
+      dvec3 expected = lecture_direction(eye, target, up, 50.0, w, h, i, j);
+      EXPECT_NEAR(r.direction.x, expected.x, 1e-6);
+      EXPECT_NEAR(r.direction.y, expected.y, 1e-6);
+      EXPECT_NEAR(r.direction.z, expected.z, 1e-6);
+      EXPECT_NEAR(r.origin.x, eye.x, 1e-6);
+      EXPECT_NEAR(r.origin.z, eye.z, 1e-6);
+    }
+}
+
+TEST(view_camera, image_corners_span_the_field_of_view) {
+  view_camera cam = make_look_at_camera(dvec3(0), dvec3(0, 0, -1), dvec3(0, 1, 0), 90.0, 100, 50);
+  ray top_left = generate_camera_ray(cam, 0.0, 0.0);
+  // 90° vertical: top edge at 45° up; aspect 2 puts the left edge at x = -2 on the d = 1 plane.
+  EXPECT_NEAR(top_left.direction.y / -top_left.direction.z, 1.0, 1e-6);
+  EXPECT_NEAR(top_left.direction.x / -top_left.direction.z, -2.0, 1e-6);
+  ray centre = generate_camera_ray(cam, 50.0, 25.0);
+  EXPECT_NEAR(centre.direction.z, -1.0f, 1e-7f);
+}
+
+TEST(view_camera, gltf_camera_looks_down_its_negative_z) {
+  camera c;
+  c.yfov = 0.5f;
+  c.world_from_camera = glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
+  view_camera cam = make_gltf_camera(c, 32, 32);
+  ray r = generate_camera_ray(cam, 16.0, 16.0);
+  // Rotating -Z by +90° about Y gives -X.
+  EXPECT_NEAR(r.direction.x, -1.0f, 1e-6f);
+  EXPECT_NEAR(r.origin.z, 10.0f, 1e-6f);
+}
+
+TEST(view_camera, orthographic_rays_are_parallel_and_spread_over_the_window) {
+  camera c;
+  c.kind = projection::orthographic;
+  c.xmag = 2.0f;
+  c.ymag = 2.0f;
+  view_camera cam = make_gltf_camera(c, 10, 10);
+  ray a = generate_camera_ray(cam, 0.0, 0.0);
+  ray b = generate_camera_ray(cam, 10.0, 10.0);
+  EXPECT_EQ(a.direction, b.direction);
+  EXPECT_NEAR(a.origin.x, -2.0f, 1e-6f);
+  EXPECT_NEAR(a.origin.y, 2.0f, 1e-6f);
+  EXPECT_NEAR(b.origin.x, 2.0f, 1e-6f);
+  EXPECT_NEAR(b.origin.y, -2.0f, 1e-6f);
+}
+
+TEST(view_camera, impossible_cameras_are_input_errors) {
+  EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0), dvec3(0, 1, 0), 45, 10, 10), error);
+  EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 1, 0), dvec3(0, 1, 0), 45, 10, 10), error);
+  EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 0, -1), dvec3(0, 1, 0), 0, 10, 10), error);
+  EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 0, -1), dvec3(0, 1, 0), 180, 10, 10), error);
+  EXPECT_THROW(make_look_at_camera(dvec3(NAN), dvec3(0, 0, -1), dvec3(0, 1, 0), 45, 10, 10), error);
+  EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 0, -1), dvec3(0, 1, 0), 45, 0, 10), error);
+}
+
+TEST(view_camera, world_to_ndc_maps_window_corners_to_unit_square) {
+  view_camera cam = make_look_at_camera(dvec3(0, 0, 5), dvec3(0), dvec3(0, 1, 0), 60.0, 40, 20);
+  ray r = generate_camera_ray(cam, 40.0, 0.0);  // top-right corner
+  dvec4 p = world_to_ndc(cam) * dvec4(dvec3(r.origin) + 3.0 * dvec3(r.direction), 1.0);
+  EXPECT_NEAR(p.x / p.w, 1.0, 1e-5);
+  EXPECT_NEAR(p.y / p.w, 1.0, 1e-5);
+  dvec4 q = world_to_camera(cam) * dvec4(0, 0, 0, 1);
+  EXPECT_NEAR(q.z, -5.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -1,0 +1,81 @@
+#include "shade/material_eval.h"
+
+#include "shade/texture_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kiln {
+
+namespace {
+
+vec4 lookup(const scene& s, const texture_ref& ref, vec2 uv0, texel_encoding encoding) {
+  // Only TEXCOORD_0 is stored so far; other sets fall back to it.
+  return sample_texture(s, s.textures[size_t(ref.texture)], uv0, encoding);
+}
+
+}  // namespace
+
+material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
+  material_point mp;
+  vec4 base = m.base_color_factor;
+  if (m.base_color_texture.present()) base *= lookup(s, m.base_color_texture, uv0, texel_encoding::srgb);
+  mp.base_color = vec3(base);
+  mp.alpha = base.a;
+  mp.metallic = m.metallic_factor;
+  mp.roughness = m.roughness_factor;
+  if (m.metallic_roughness_texture.present()) {
+    vec4 mr = lookup(s, m.metallic_roughness_texture, uv0, texel_encoding::linear);
+    mp.roughness *= mr.g;
+    mp.metallic *= mr.b;
+  }
+  mp.metallic = std::clamp(mp.metallic, 0.0f, 1.0f);
+  mp.roughness = std::clamp(mp.roughness, 0.0f, 1.0f);
+  vec3 emission = m.emissive_factor * m.emissive_strength;
+  if (m.emissive_texture.present() && emission != vec3(0.0f))
+    emission *= vec3(lookup(s, m.emissive_texture, uv0, texel_encoding::srgb));
+  mp.emission = emission;
+  mp.specular_weight = m.specular_factor;
+  float r = (m.ior - 1.0f) / (m.ior + 1.0f);
+  mp.dielectric_f0 = glm::min(vec3(r * r) * m.specular_color_factor, vec3(1.0f));
+  return mp;
+}
+
+vec3 specular_f0(const material_point& mp) {
+  return glm::mix(mp.dielectric_f0 * mp.specular_weight, mp.base_color, mp.metallic);
+}
+
+vec3 fresnel_schlick(const vec3& f0, float cos_theta) {
+  float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
+  float m2 = m * m;
+  return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
+}
+
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l) {
+  float n_dot_l = glm::dot(n, l);
+  float n_dot_v = glm::dot(n, v);
+  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
+  vec3 h = glm::normalize(v + l);
+  float n_dot_h = std::max(glm::dot(n, h), 0.0f);
+  float v_dot_h = std::max(glm::dot(v, h), 0.0f);
+
+  // GGX distribution and height-correlated Smith visibility (glTF appendix B).
+  float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+  float a2 = alpha * alpha;
+  float d_denominator = n_dot_h * n_dot_h * (a2 - 1.0f) + 1.0f;
+  float distribution = a2 / (pi * d_denominator * d_denominator);
+  float visibility_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
+  float visibility_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
+  float visibility = 0.5f / std::max(visibility_l + visibility_v, 1e-8f);
+
+  // Dielectric layer: Fresnel-weighted specular over Lambert (KHR_materials_specular weights
+  // the Fresnel term); metal: specular only, tinted by base colour.
+  vec3 dielectric_fresnel = mp.specular_weight * fresnel_schlick(mp.dielectric_f0, v_dot_h);
+  vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
+  vec3 diffuse = mp.base_color / pi;
+  vec3 dielectric = (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
+  vec3 metal = metal_fresnel * (distribution * visibility);
+  return glm::mix(dielectric, metal, mp.metallic);
+}
+
+}  // namespace kiln

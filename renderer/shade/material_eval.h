@@ -1,0 +1,33 @@
+// Evaluates a glTF material at a shading point (factors times textures), and the glTF
+// metallic-roughness BRDF for punctual lights (glTF 2.0 specification, appendix B: Lambert
+// diffuse plus GGX/Smith specular with Schlick's Fresnel; KHR_materials_specular and
+// KHR_materials_ior adjust the dielectric reflectance). Depends on scene and texture sampling.
+#pragma once
+
+#include "scene/scene.h"
+
+namespace kiln {
+
+// A material's parameters at one point, textures already applied.
+struct material_point {
+  vec3 base_color{1.0f};
+  float alpha = 1.0f;
+  float metallic = 1.0f;
+  float roughness = 1.0f;  // perceptual; GGX alpha = roughness²
+  vec3 emission{0.0f};     // emitted radiance
+  float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
+  vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
+};
+
+material_point evaluate_material(const scene& s, const material& m, vec2 uv0);
+
+// Reflectance at normal incidence, mixed between dielectric and metal by metallic.
+vec3 specular_f0(const material_point& mp);
+
+// Schlick's Fresnel with F90 = 1.
+vec3 fresnel_schlick(const vec3& f0, float cos_theta);
+
+// BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l);
+
+}  // namespace kiln

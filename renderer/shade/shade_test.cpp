@@ -1,0 +1,168 @@
+#include "geometry/triangle.h"
+#include "shade/lights.h"
+#include "shade/material_eval.h"
+#include "shade/surface.h"
+#include "shade/texture_sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kiln {
+namespace {
+
+scene one_triangle(const dmat4& world_from_object) {
+  scene s;
+  mesh m;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {0, 4, 0}};
+  m.indices = {0, 1, 2};
+  m.normals = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+  m.texcoords0 = {{0, 0}, {1, 0}, {0, 1}};
+  s.meshes.push_back(m);
+  s.materials.emplace_back();
+  instance inst;
+  inst.world_from_object = world_from_object;
+  finish_instance_transform(inst);
+  s.instances.push_back(inst);
+  return s;
+}
+
+TEST(surface, barycentric_interpolation_follows_embree_convention) {
+  scene s = one_triangle(dmat4(1.0));
+  hit h;
+  h.u = 0.25f;
+  h.v = 0.5f;
+  h.geometric_normal = vec3(0, 0, 1);
+  ray r;
+  r.origin = {0.5f, 2.0f, 5.0f};
+  r.direction = {0, 0, -1};
+  surface_point sp = make_surface_point(s, h, r);
+  // p = 0.25·(1,0,0)·2 + 0.5·(0,4,0) = (0.5, 2, 0); uv = (u, v); n ∝ (0.25, 0.5, 0.25).
+  EXPECT_NEAR(sp.position.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(sp.position.y, 2.0f, 1e-6f);
+  EXPECT_NEAR(sp.uv0.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(sp.uv0.y, 0.5f, 1e-6f);
+  vec3 expected = glm::normalize(vec3(0.25f, 0.5f, 0.25f));
+  EXPECT_NEAR(sp.shading_normal.x, expected.x, 1e-6f);
+  EXPECT_NEAR(sp.shading_normal.y, expected.y, 1e-6f);
+  EXPECT_TRUE(sp.front_face);
+}
+
+TEST(surface, back_face_hit_flips_both_normals_toward_the_ray) {
+  scene s = one_triangle(dmat4(1.0));
+  hit h;
+  h.u = h.v = 0.2f;
+  h.geometric_normal = vec3(0, 0, 1);
+  ray r;
+  r.direction = {0, 0, 1};  // arrives from below
+  surface_point sp = make_surface_point(s, h, r);
+  EXPECT_FALSE(sp.front_face);
+  EXPECT_LT(sp.geometric_normal.z, 0.0f);
+  EXPECT_LT(glm::dot(sp.shading_normal, r.direction), 0.0f);
+}
+
+TEST(surface, hit_position_error_bound_contains_the_exact_point) {
+  dmat4 m = glm::translate(dmat4(1.0), dvec3(1e4, -3e3, 7e2)) * glm::scale(dmat4(1.0), dvec3(3.0, -2.0, 0.5));
+  scene s = one_triangle(m);
+  for (float u : {0.1f, 0.3f, 0.7f})
+    for (float v : {0.05f, 0.2f}) {
+      surface_position pos = triangle_hit_position(s.instances[0], s.meshes[0], 0, u, v);
+      dvec3 exact = transform_point(m, dvec3(2.0 * u, 4.0 * double(v), 0.0));
+      for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(double(pos.point[a]) - exact[a]), double(pos.error[a]) + 1e-12);
+    }
+}
+
+TEST(texture_sampling, wrap_modes) {
+  EXPECT_EQ(wrap_texel(-1, 4, wrap_mode::repeat), 3);
+  EXPECT_EQ(wrap_texel(5, 4, wrap_mode::repeat), 1);
+  EXPECT_EQ(wrap_texel(-1, 4, wrap_mode::clamp_to_edge), 0);
+  EXPECT_EQ(wrap_texel(9, 4, wrap_mode::clamp_to_edge), 3);
+  EXPECT_EQ(wrap_texel(4, 4, wrap_mode::mirrored_repeat), 3);
+  EXPECT_EQ(wrap_texel(-1, 4, wrap_mode::mirrored_repeat), 0);
+  EXPECT_EQ(wrap_texel(8, 4, wrap_mode::mirrored_repeat), 0);
+}
+
+TEST(texture_sampling, bilinear_decodes_srgb_before_filtering) {
+  scene s;
+  image img;
+  img.width = 2;
+  img.height = 1;
+  img.texels8 = {0, 0, 0, 255, 255, 255, 255, 255};
+  s.images.push_back(img);
+  texture tex;
+  tex.sampling.wrap_s = wrap_mode::clamp_to_edge;
+  // Halfway between the texel centres: the mean of linear 0 and linear 1.
+  vec4 c = sample_texture(s, tex, vec2(0.5f, 0.5f), texel_encoding::srgb);
+  EXPECT_NEAR(c.r, 0.5f, 1e-6f);
+  EXPECT_NEAR(c.a, 1.0f, 1e-6f);
+  vec4 at_first = sample_texture(s, tex, vec2(0.25f, 0.5f), texel_encoding::srgb);
+  EXPECT_NEAR(at_first.g, 0.0f, 1e-6f);
+  EXPECT_NEAR(srgb_to_linear(0.5f), 0.2140411f, 1e-6f);
+}
+
+TEST(material_eval, zero_specular_dielectric_is_exactly_lambert) {
+  material_point mp;
+  mp.base_color = vec3(0.5f, 0.25f, 1.0f);
+  mp.metallic = 0.0f;
+  mp.roughness = 0.5f;
+  mp.specular_weight = 0.0f;
+  vec3 n(0, 0, 1), v = glm::normalize(vec3(0.3f, 0.0f, 1.0f)), l = glm::normalize(vec3(-0.5f, 0.2f, 1.0f));
+  vec3 f = evaluate_brdf(mp, n, v, l);
+  EXPECT_NEAR(f.x, 0.5f / pi, 1e-7f);
+  EXPECT_NEAR(f.z, 1.0f / pi, 1e-7f);
+  EXPECT_EQ(evaluate_brdf(mp, n, v, -l), vec3(0.0f));  // light below the horizon
+}
+
+TEST(material_eval, metal_reflects_base_colour_at_normal_incidence_peak) {
+  material_point mp;
+  mp.base_color = vec3(0.9f, 0.6f, 0.3f);
+  mp.metallic = 1.0f;
+  mp.roughness = 0.3f;
+  vec3 n(0, 0, 1);
+  vec3 f = evaluate_brdf(mp, n, n, n);
+  // At normal incidence: F = base colour, D = 1/(π α²), V = 1/4 for n = v = l.
+  float alpha = 0.09f;
+  float expected = 1.0f / (pi * alpha * alpha) * 0.25f;
+  EXPECT_NEAR(f.x / expected, 0.9f, 1e-4f);
+  EXPECT_NEAR(f.z / expected, 0.3f, 1e-4f);
+}
+
+TEST(lights, point_light_follows_inverse_square) {
+  light l;
+  l.position = dvec3(0, 0, 2);
+  l.intensity = 8.0f;
+  light_sample a = sample_light(l, vec3(0));
+  EXPECT_NEAR(a.irradiance.x, 2.0f, 1e-6f);
+  EXPECT_NEAR(a.distance, 2.0f, 1e-6f);
+  EXPECT_NEAR(a.direction.z, 1.0f, 1e-6f);
+  l.range = 1.0f;  // beyond range: nothing
+  EXPECT_EQ(sample_light(l, vec3(0)).irradiance, vec3(0.0f));
+}
+
+TEST(lights, spot_cone_is_full_inside_inner_and_zero_outside_outer) {
+  light l;
+  l.kind = light_kind::spot;
+  l.position = dvec3(0, 0, 1);
+  l.direction = vec3(0, 0, -1);
+  l.inner_cone_angle = 0.2f;
+  l.outer_cone_angle = 0.4f;
+  EXPECT_NEAR(sample_light(l, vec3(0, 0, 0)).irradiance.x, 1.0f, 1e-6f);
+  EXPECT_EQ(sample_light(l, vec3(std::tan(0.5f), 0, 0)).irradiance, vec3(0.0f));
+  float mid = sample_light(l, vec3(std::tan(0.3f), 0, 0)).irradiance.x;
+  EXPECT_GT(mid, 0.0f);
+  EXPECT_LT(mid, 1.0f);
+}
+
+TEST(lights, directional_light_is_constant_irradiance) {
+  light l;
+  l.kind = light_kind::directional;
+  l.direction = vec3(0, -1, 0);
+  l.intensity = 3.0f;
+  light_sample ls = sample_light(l, vec3(100, 5, -7));
+  EXPECT_NEAR(ls.irradiance.y, 3.0f, 1e-6f);
+  EXPECT_EQ(ls.direction, vec3(0, 1, 0));
+  EXPECT_TRUE(std::isinf(ls.distance));
+}
+
+}  // namespace
+}  // namespace kiln

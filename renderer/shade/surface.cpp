@@ -1,0 +1,42 @@
+#include "shade/surface.h"
+
+#include "geometry/triangle.h"
+
+namespace kiln {
+
+surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
+  const instance& inst = s.instances[h.instance_id];
+  const mesh& m = s.meshes[inst.shape];
+  const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
+
+  surface_point sp;
+  surface_position pos = triangle_hit_position(inst, m, h.primitive_id, h.u, h.v);
+  sp.position = pos.point;
+  sp.position_error = pos.error;
+  sp.material = inst.material;
+
+  vec3 ng = h.geometric_normal;
+  vec3 ns = ng;
+  if (!m.normals.empty()) {
+    vec3 n_object = interpolate(m.normals[idx[0]], m.normals[idx[1]], m.normals[idx[2]], h.u, h.v);
+    dvec3 n_world = inst.world_from_object_normal * dvec3(n_object);
+    double len = glm::length(n_world);
+    if (len > 0.0 && std::isfinite(len)) ns = vec3(n_world / len);
+  }
+  if (!m.texcoords0.empty())
+    sp.uv0 = interpolate(m.texcoords0[idx[0]], m.texcoords0[idx[1]], m.texcoords0[idx[2]], h.u, h.v);
+
+  // Two-sided shading: both normals face the incoming ray, and the shading normal never points
+  // into the surface the geometric normal defines.
+  sp.front_face = glm::dot(ng, r.direction) < 0.0f;
+  if (!sp.front_face) {
+    ng = -ng;
+    ns = -ns;
+  }
+  if (glm::dot(ns, ng) < 0.0f) ns = glm::normalize(ns - 2.0f * glm::dot(ns, ng) * ng);
+  sp.geometric_normal = ng;
+  sp.shading_normal = ns;
+  return sp;
+}
+
+}  // namespace kiln

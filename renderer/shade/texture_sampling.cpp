@@ -1,0 +1,86 @@
+#include "shade/texture_sampling.h"
+
+#include <array>
+#include <cmath>
+
+namespace kiln {
+
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+int wrap_texel(int i, int size, wrap_mode mode) {
+  switch (mode) {
+    case wrap_mode::clamp_to_edge:
+      return i < 0 ? 0 : (i >= size ? size - 1 : i);
+    case wrap_mode::mirrored_repeat: {
+      int period = 2 * size;
+      int m = i % period;
+      if (m < 0) m += period;
+      return m < size ? m : period - 1 - m;
+    }
+    case wrap_mode::repeat:
+    default: {
+      int m = i % size;
+      return m < 0 ? m + size : m;
+    }
+  }
+}
+
+namespace {
+
+// 8-bit sRGB to linear, computed once: a table lookup per channel keeps 8-bit textures in
+// 8 bits of memory without paying pow() per texel.
+const std::array<float, 256>& srgb_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(i / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+vec4 fetch(const image& img, int x, int y, texel_encoding encoding) {
+  size_t i = (size_t(y) * img.width + x) * 4;
+  if (!img.texels8.empty()) {
+    const uint8_t* t = &img.texels8[i];
+    if (encoding == texel_encoding::srgb) {
+      const auto& table = srgb_table();
+      return {table[t[0]], table[t[1]], table[t[2]], t[3] / 255.0f};
+    }
+    return vec4(t[0], t[1], t[2], t[3]) / 255.0f;
+  }
+  const float* t = &img.texels32[i];
+  if (encoding == texel_encoding::srgb)
+    return {srgb_to_linear(t[0]), srgb_to_linear(t[1]), srgb_to_linear(t[2]), t[3]};
+  return {t[0], t[1], t[2], t[3]};
+}
+
+}  // namespace
+
+vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding) {
+  const image& img = s.images[tex.image];
+  if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return vec4(1.0f);
+  const sampler& smp = tex.sampling;
+  // Texel centres sit at half-integers; keep the coordinate bounded before converting to int.
+  float fx = std::fmod(uv.x, 65536.0f) * img.width - 0.5f;
+  float fy = std::fmod(uv.y, 65536.0f) * img.height - 0.5f;
+  if (smp.filter == filter_mode::nearest) {
+    int x = wrap_texel(int(std::floor(fx + 0.5f)), img.width, smp.wrap_s);
+    int y = wrap_texel(int(std::floor(fy + 0.5f)), img.height, smp.wrap_t);
+    return fetch(img, x, y, encoding);
+  }
+  float x0f = std::floor(fx);
+  float y0f = std::floor(fy);
+  float tx = fx - x0f;
+  float ty = fy - y0f;
+  int x0 = wrap_texel(int(x0f), img.width, smp.wrap_s);
+  int x1 = wrap_texel(int(x0f) + 1, img.width, smp.wrap_s);
+  int y0 = wrap_texel(int(y0f), img.height, smp.wrap_t);
+  int y1 = wrap_texel(int(y0f) + 1, img.height, smp.wrap_t);
+  vec4 top = glm::mix(fetch(img, x0, y0, encoding), fetch(img, x1, y0, encoding), tx);
+  vec4 bottom = glm::mix(fetch(img, x0, y1, encoding), fetch(img, x1, y1, encoding), tx);
+  return glm::mix(top, bottom, ty);
+}
+
+}  // namespace kiln

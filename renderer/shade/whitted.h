@@ -1,0 +1,53 @@
+// Whitted-style shading: emission, direct light from every punctual light with a shadow ray,
+// and recursive Fresnel-weighted mirror reflection for smooth surfaces. Sees the Scene and the
+// accelerator interface only, never a backend.
+#pragma once
+
+#include "accel/accelerator.h"
+#include "scene/scene.h"
+#include "shade/surface.h"
+
+#include <cstdint>
+
+namespace kiln {
+
+struct shading_options {
+  int max_depth = 8;             // camera ray is depth 0; reflections stop after this many bounces
+  float min_throughput = 1e-3f;  // a reflection whose weight falls below this is not traced
+  // Whitted's mirror is perfect; a glTF surface's mirror term fades linearly from full strength
+  // at roughness 0 to nothing at this roughness (rougher surfaces keep only their GGX highlight).
+  float mirror_roughness_limit = 0.25f;
+};
+
+// Rays traced by kind, for statistics and benchmarks.
+struct ray_counts {
+  uint64_t camera = 0;
+  uint64_t shadow = 0;
+  uint64_t reflection = 0;
+
+  ray_counts& operator+=(const ray_counts& o) {
+    camera += o.camera;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    return *this;
+  }
+};
+
+struct shading_context {
+  const scene& world;
+  const accelerator& accel;
+  const shading_options& options;
+};
+
+// Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth, float throughput,
+                   ray_counts& counts);
+
+// Radiance arriving along r from the surface at h (the closest hit of r).
+vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
+               ray_counts& counts);
+
+// Radiance arriving along r: shade the closest hit, or the environment on a miss.
+vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts);
+
+}  // namespace kiln

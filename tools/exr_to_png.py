@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""Convert a linear-light EXR (e.g. a kiln render) into an 8-bit sRGB PNG preview for humans.
+
+Usage: exr_to_png.py IN.exr OUT.png [--exposure STOPS]
+
+The pixels are scaled by 2^STOPS, NaNs become black, negatives are clamped to 0, the linear
+values are encoded with the sRGB transfer function and quantised to 8 bits (values above 1
+clip to white). R,G,B are used when present; a single Y (or other lone) channel is shown as
+grey; otherwise the first three channels are taken. Alpha is dropped.
+
+Needs `oiiotool` (Debian package openimageio-tools), which does the actual work.
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def channel_names(oiiotool, path):
+    """The channel names of the first subimage, from `oiiotool --info -v`."""
+    out = subprocess.run([oiiotool, "--info", "-v", path], check=True,
+                         capture_output=True, text=True).stdout
+    m = re.search(r"channel list:\s*(.*)", out)
+    if not m:
+        raise RuntimeError("could not read the channel list of %s" % path)
+    return [c.strip() for c in m.group(1).split(",") if c.strip()]
+
+
+def rgb_selection(names):
+    """An oiiotool --ch argument giving three channels to show."""
+    if all(c in names for c in ("R", "G", "B")):
+        return "R,G,B"
+    if "Y" in names:
+        return "R=Y,G=Y,B=Y"
+    if len(names) >= 3:
+        return "R=%s,G=%s,B=%s" % tuple(names[:3])
+    return "R=%s,G=%s,B=%s" % ((names[0],) * 3)
+
+
+def build_command(oiiotool, src, dst, exposure, channels):
+    return [
+        oiiotool, src,
+        "--ch", channels,
+        "--fixnan", "black",
+        "--mulc", repr(2.0 ** exposure),
+        "--clamp:min=0",
+        "--colorconvert", "linear", "sRGB",
+        "-d", "uint8",
+        "-o", dst,
+    ]
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        description="Convert a linear EXR to an 8-bit sRGB PNG preview (uses oiiotool).")
+    parser.add_argument("input", metavar="IN.exr")
+    parser.add_argument("output", metavar="OUT.png")
+    parser.add_argument("--exposure", type=float, default=0.0, metavar="STOPS",
+                        help="scale the linear values by 2^STOPS before encoding (default 0)")
+    parser.add_argument("--verbose", "-v", action="store_true",
+                        help="print the oiiotool command line")
+    args = parser.parse_args(argv)
+
+    oiiotool = shutil.which("oiiotool")
+    if not oiiotool:
+        print("exr_to_png.py: oiiotool not found (install openimageio-tools)", file=sys.stderr)
+        return 2
+    if not os.path.isfile(args.input):
+        print("exr_to_png.py: no such file: %s" % args.input, file=sys.stderr)
+        return 2
+
+    try:
+        names = channel_names(oiiotool, args.input)
+        cmd = build_command(oiiotool, args.input, args.output, args.exposure,
+                            rgb_selection(names))
+        if args.verbose:
+            print(" ".join(cmd))
+        subprocess.run(cmd, check=True, capture_output=not args.verbose, text=True)
+    except subprocess.CalledProcessError as e:
+        detail = (e.stderr or e.stdout or "").strip()
+        print("exr_to_png.py: oiiotool failed (exit %d)%s" % (
+            e.returncode, ": " + detail if detail else ""), file=sys.stderr)
+        return 1
+    except RuntimeError as e:
+        print("exr_to_png.py: %s" % e, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
