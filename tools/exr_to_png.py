@@ -26,7 +26,9 @@ def channel_names(oiiotool, path):
     m = re.search(r"channel list:\s*(.*)", out)
     if not m:
         raise RuntimeError("could not read the channel list of %s" % path)
-    return [c.strip() for c in m.group(1).split(",") if c.strip()]
+    # Mixed-format files list each channel with its type, e.g. "R (half), Z (float)".
+    names = [re.sub(r"\s*\(.*\)$", "", c.strip()) for c in m.group(1).split(",")]
+    return [n for n in names if n]
 
 
 def rgb_selection(names):

@@ -1,0 +1,52 @@
+#include "support/run_kiln.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace kiln::testing {
+
+namespace {
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::string scratch_folder(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("kiln_test_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+command_result run_kiln(const std::vector<std::string>& arguments) {
+  std::string err_file = scratch_folder("stderr") + "/stderr.txt";
+  std::string command = quote(KILN_BINARY);
+  for (const std::string& a : arguments) command += " " + quote(a);
+  command += " </dev/null >/dev/null 2>" + quote(err_file);
+  int status = std::system(command.c_str());
+  command_result result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::ifstream in(err_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  result.stderr_text = text.str();
+  return result;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+}  // namespace kiln::testing

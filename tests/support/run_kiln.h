@@ -1,0 +1,23 @@
+// Runs the kiln binary from tests and captures its exit code and stderr.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace kiln::testing {
+
+struct command_result {
+  int exit_code = -1;
+  std::string stderr_text;
+};
+
+// Runs KILN_BINARY with the given arguments (each quoted for the shell).
+command_result run_kiln(const std::vector<std::string>& arguments);
+
+// Lines of text, without the trailing empty line.
+std::vector<std::string> lines(const std::string& text);
+
+// Path to a fresh scratch folder for one test.
+std::string scratch_folder(const std::string& name);
+
+}  // namespace kiln::testing

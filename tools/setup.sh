@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The README's first command: installs missing Debian packages, builds kiln (incrementally) and
+# renders the demo scene to out/cornell_box.exr (plus a PNG preview beside it).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+tools/install_dependencies.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build --target kiln
+mkdir -p out
+build/renderer/app/kiln render scenes/cornell_box.gltf -o out/cornell_box.exr --spp 4
+python3 tools/exr_to_png.py out/cornell_box.exr out/cornell_box.png
+echo "kiln: wrote out/cornell_box.exr (preview: out/cornell_box.png)"
