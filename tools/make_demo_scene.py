@@ -8,7 +8,7 @@ A Cornell-box-like room (metres, +Y up), open at the front (+Z) where the camera
   tall box    mirror (metallic 1, roughness 0), back left, turned +40 degrees about Y so that its
               two visible faces reflect the red wall and the checker box (not the open front)
   short box   checkerboard baseColorTexture, front right, rotated -18 degrees about Y
-  ceiling     small emissive panel just under the ceiling, point light (KHR_lights_punctual) below it
+  ceiling     small emissive panel flush under the ceiling (its shadow on the ceiling stays a thin rim), point light (KHR_lights_punctual) below it
   fill light  weaker point light outside the open front, up and to the right of the camera: without
               it the box faces turned to the camera would be black (Whitted shading has no
               indirect light, and the ceiling light is behind those faces' planes)
@@ -354,7 +354,7 @@ def build_scene():
         {"name": "left_wall_red", "mesh": 1, "matrix": to_gltf_matrix(left_wall_matrix)},  # 5
         {"name": "right_wall_green", "mesh": 2, "translation": [0.5, 0.0, 0.0],         # 6
          "rotation": q(y_axis, -90.0)},
-        {"name": "light_panel", "mesh": 3, "translation": [0.0, 0.49, 0.0],              # 7
+        {"name": "light_panel", "mesh": 3, "translation": [0.0, 0.499, 0.0],             # 7
          "rotation": q(x_axis, 90.0), "scale": [0.25, 0.25, 0.25]},
         {"name": "objects", "translation": [0.0, 0.0, -0.05], "children": [9, 10, 11]},  # 8
         {"name": "tall_box_mirror", "mesh": 4, "matrix": to_gltf_matrix(tall_matrix)},   # 9

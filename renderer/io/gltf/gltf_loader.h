@@ -4,6 +4,7 @@
 // (e.g. /accessors/7) and the reason.
 #pragma once
 
+#include "core/error.h"  // callers catch the kiln::error this throws
 #include "scene/scene.h"
 
 #include <string>

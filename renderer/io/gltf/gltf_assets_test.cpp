@@ -1,0 +1,178 @@
+// The optional asset suite: Khronos sample models must load with the triangle counts listed in
+// ../shared/assets/README.md, and every file of the glTF-Validator invalid corpus must either
+// load or raise kiln::error, never crash; the ones whose damage makes rendering unsafe must throw.
+// Skips when ../shared/assets is absent (the project's own tests must pass without it).
+#include "io/gltf/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path assets = KILN_SHARED_ASSETS;
+
+size_t scene_triangles(const scene& s) {
+  size_t total = 0;
+  for (const instance& inst : s.instances) total += s.meshes.at(inst.shape).triangle_count();
+  return total;
+}
+
+size_t unique_triangles(const scene& s) {
+  size_t total = 0;
+  for (const mesh& m : s.meshes) total += m.triangle_count();
+  return total;
+}
+
+struct asset_case {
+  const char* file;
+  size_t scene_tris;
+  size_t unique_tris;
+};
+
+TEST(GltfAssets, SampleModelsLoadWithExpectedTriangleCounts) {
+  if (!fs::exists(assets / "README.md")) GTEST_SKIP() << "no sample assets at " << assets;
+  const asset_case cases[] = {
+      {"Box/glTF-Binary/Box.glb", 12, 12},
+      {"BoxTextured/glTF/BoxTextured.gltf", 12, 12},
+      {"BoxInterleaved/glTF-Binary/BoxInterleaved.glb", 12, 12},
+      {"Triangle/glTF/Triangle.gltf", 1, 1},
+      {"SimpleMeshes/glTF/SimpleMeshes.gltf", 2, 1},
+      {"MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf", 16, 16},
+      {"SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf", 12, 12},
+      {"Cameras/glTF/Cameras.gltf", 2, 2},
+      {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", 7724, 3884},
+      {"2CylinderEngine/glTF-Binary/2CylinderEngine.glb", 121496, 75730},
+      {"ToyCar/glTF/ToyCar.gltf", 108936, 108936},
+  };
+  for (const asset_case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const fs::path path = assets / c.file;
+    if (!fs::exists(path)) {
+      ADD_FAILURE() << "missing sample model " << path;
+      continue;
+    }
+    scene s;
+    try {
+      s = load_gltf(path.string());
+    } catch (const kiln::error& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
+    // A dropped degenerate triangle is still a triangle of the file: count it back in when
+    // comparing with the README, which counts what the file declares.
+    EXPECT_EQ(unique_triangles(s) + s.stats.degenerate_triangles_dropped, c.unique_tris);
+    if (s.stats.degenerate_triangles_dropped == 0) {
+      EXPECT_EQ(scene_triangles(s), c.scene_tris);
+    }
+    EXPECT_FALSE(s.materials.empty());
+  }
+}
+
+TEST(GltfAssets, SampleModelDetails) {
+  if (!fs::exists(assets / "README.md")) GTEST_SKIP() << "no sample assets at " << assets;
+  const scene simple = load_gltf((assets / "SimpleMeshes/glTF/SimpleMeshes.gltf").string());
+  EXPECT_EQ(simple.meshes.size(), 1u);
+  EXPECT_EQ(simple.instances.size(), 2u);
+  EXPECT_EQ(simple.materials.size(), 1u);  // the default material
+
+  const scene modes = load_gltf((assets / "MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf").string());
+  EXPECT_EQ(modes.stats.non_triangle_primitives_skipped, 4u);
+
+  const scene cameras = load_gltf((assets / "Cameras/glTF/Cameras.gltf").string());
+  ASSERT_EQ(cameras.cameras.size(), 2u);
+  EXPECT_EQ(cameras.cameras[0].kind, projection::perspective);
+  EXPECT_EQ(cameras.cameras[1].kind, projection::orthographic);
+
+  const scene textured = load_gltf((assets / "BoxTextured/glTF/BoxTextured.gltf").string());
+  ASSERT_EQ(textured.images.size(), 1u);
+  EXPECT_GT(textured.images[0].width, 0);
+  EXPECT_EQ(textured.images[0].texels8.size(), static_cast<size_t>(textured.images[0].width) *
+                                                   static_cast<size_t>(textured.images[0].height) * 4);
+  ASSERT_EQ(textured.meshes.size(), 1u);
+  EXPECT_EQ(textured.meshes[0].texcoords0.size(), textured.meshes[0].positions.size());
+
+  // The node-less Box.glb uses a matrix on its root node: the instance must carry it.
+  const scene box = load_gltf((assets / "Box/glTF-Binary/Box.glb").string());
+  ASSERT_EQ(box.instances.size(), 1u);
+  EXPECT_NE(box.instances[0].world_from_object, dmat4(1.0));
+}
+
+TEST(GltfAssets, DracoBoxNamesTheExtension) {
+  const fs::path path = assets / "Box/glTF-Draco/Box.gltf";
+  if (!fs::exists(path)) GTEST_SKIP() << "no sample assets at " << assets;
+  try {
+    load_gltf(path.string());
+    FAIL() << "Draco-compressed Box loaded";
+  } catch (const kiln::error& e) {
+    EXPECT_NE(std::string(e.what()).find("KHR_draco_mesh_compression"), std::string::npos) << e.what();
+  }
+}
+
+// Reads INDEX.md's table: file -> expected validator error codes.
+std::map<std::string, std::string> invalid_index(const fs::path& index) {
+  std::map<std::string, std::string> codes;
+  std::ifstream in(index);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("| ", 0) != 0) continue;
+    const size_t a = line.find('|', 1);
+    if (a == std::string::npos) continue;
+    const size_t b = line.find('|', a + 1);
+    if (b == std::string::npos) continue;
+    std::string file = line.substr(2, a - 3);
+    if (file.find(".gl") == std::string::npos) continue;
+    codes[file] = line.substr(a + 1, b - a - 1);
+  }
+  return codes;
+}
+
+// The damage classes that make a render wrong or unsafe: these files must be refused.
+bool must_refuse(const std::string& file, const std::string& codes) {
+  for (const char* code : {"IO_ERROR", "UNRESOLVED_REFERENCE", "ACCESSOR_INDEX_OOB", "GLB_", "INVALID_JSON",
+                           "BUFFER_", "ACCESSOR_TOO_LONG", "NODE_LOOP"})
+    if (codes.find(code) != std::string::npos) return true;
+  return file.find("infinite_transform") != std::string::npos;
+}
+
+TEST(GltfAssets, InvalidCorpusNeverCrashes) {
+  const fs::path root = assets / "invalid";
+  if (!fs::exists(root)) GTEST_SKIP() << "no invalid corpus at " << root;
+  const auto index = invalid_index(root / "INDEX.md");
+  EXPECT_GT(index.size(), 50u);
+  size_t files = 0;
+  size_t refused = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (!entry.is_regular_file() || (ext != ".gltf" && ext != ".glb")) continue;
+    ++files;
+    const std::string relative = fs::relative(entry.path(), root).generic_string();
+    SCOPED_TRACE(relative);
+    bool threw = false;
+    try {
+      const scene s = load_gltf(entry.path().string());
+      EXPECT_FALSE(s.materials.empty());
+    } catch (const kiln::error& e) {
+      threw = true;
+      const std::string message = e.what();
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      EXPECT_EQ(message.rfind(entry.path().string(), 0), 0u) << message;
+    }
+    refused += threw;
+    auto it = index.find(relative);
+    if (it != index.end() && must_refuse(relative, it->second)) {
+      EXPECT_TRUE(threw) << relative << " (" << it->second << ") must be refused";
+    }
+  }
+  EXPECT_EQ(files, 77u);
+  EXPECT_GT(refused, 40u);
+}
+
+}  // namespace
+}  // namespace kiln

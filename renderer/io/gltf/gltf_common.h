@@ -1,0 +1,56 @@
+// Small helpers shared by the glTF loader's files: JSON pointers for error messages and
+// overflow-checked size arithmetic. Internal to io/gltf; depends on the standard library only.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace kiln::gltf_internal {
+
+// Escapes one JSON-pointer token (RFC 6901: '~' -> "~0", '/' -> "~1").
+inline std::string pointer_token(const std::string& token) {
+  std::string out;
+  for (char c : token) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// "/<collection>/<index>", e.g. /accessors/7.
+inline std::string pointer(const char* collection, int64_t index) {
+  return std::string("/") + collection + "/" + std::to_string(index);
+}
+
+// Appends a key to a pointer: pointer_join("/nodes/2", "children") -> /nodes/2/children.
+inline std::string pointer_join(const std::string& base, const std::string& key) {
+  return base + "/" + pointer_token(key);
+}
+
+inline std::string pointer_join(const std::string& base, int64_t index) {
+  return base + "/" + std::to_string(index);
+}
+
+// a + b without wrap-around; false when the sum does not fit in 64 bits.
+inline bool checked_add(uint64_t a, uint64_t b, uint64_t& out) {
+  if (a > std::numeric_limits<uint64_t>::max() - b) return false;
+  out = a + b;
+  return true;
+}
+
+// a * b without wrap-around; false when the product does not fit in 64 bits.
+inline bool checked_mul(uint64_t a, uint64_t b, uint64_t& out) {
+  if (a != 0 && b > std::numeric_limits<uint64_t>::max() / a) return false;
+  out = a * b;
+  return true;
+}
+
+// Files larger than this are refused: tinygltf passes sizes through int and unsigned int.
+constexpr uint64_t max_file_bytes = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
+
+}  // namespace kiln::gltf_internal

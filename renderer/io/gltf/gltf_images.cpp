@@ -1,0 +1,108 @@
+#include "io/gltf/gltf_images.h"
+
+#include "core/error.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace kiln::gltf_internal {
+namespace {
+
+// Largest image kiln decodes; a texture header claiming more is treated as corrupt.
+constexpr uint64_t max_texels = uint64_t(1) << 28;
+
+bool starts_with(const std::vector<uint8_t>& bytes, const char* magic, size_t offset = 0) {
+  const size_t n = std::strlen(magic);
+  return bytes.size() >= offset + n && std::memcmp(bytes.data() + offset, magic, n) == 0;
+}
+
+// OpenImageIO picks a reader from the file name's extension; in-memory data has no name, so
+// derive one from the magic bytes. Empty when the format is not one kiln expects in glTF.
+std::string name_from_magic(const std::vector<uint8_t>& bytes) {
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return "image.png";
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "image.jpg";
+  if (starts_with(bytes, "RIFF") && starts_with(bytes, "WEBP", 8)) return "image.webp";
+  if (starts_with(bytes, "GIF87a") || starts_with(bytes, "GIF89a")) return "image.gif";
+  if (starts_with(bytes, "BM")) return "image.bmp";
+  return "";
+}
+
+// Expands n source channels (grey, grey+alpha, RGB, RGBA, or more) to RGBA.
+template <typename T>
+void expand_to_rgba(const std::vector<T>& src, int channels, size_t texels, T opaque, std::vector<T>& dst) {
+  dst.resize(texels * 4);
+  for (size_t i = 0; i < texels; ++i) {
+    const T* s = src.data() + i * static_cast<size_t>(channels);
+    T* d = dst.data() + i * 4;
+    if (channels == 1) {
+      d[0] = d[1] = d[2] = s[0];
+      d[3] = opaque;
+    } else if (channels == 2) {
+      d[0] = d[1] = d[2] = s[0];
+      d[3] = s[1];
+    } else {
+      d[0] = s[0];
+      d[1] = s[1];
+      d[2] = s[2];
+      d[3] = channels >= 4 ? s[3] : opaque;
+    }
+  }
+}
+
+}  // namespace
+
+image decode_image(const std::vector<uint8_t>& encoded, const std::string& name, const std::string& file,
+                   const std::string& where) {
+  auto fail = [&](const std::string& reason) { return input_error(file, where, reason); };
+  const std::string pseudo_name = name_from_magic(encoded);
+  if (pseudo_name.empty()) throw fail("image data is not PNG, JPEG, WebP, GIF or BMP");
+
+  OIIO::Filesystem::IOMemReader proxy(encoded.data(), encoded.size());
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // glTF alpha is straight, not premultiplied
+  // OIIO 2.4's readers take the proxy from this hint: the ioproxy argument of open() alone is
+  // overridden when the reader re-reads its configuration. The attribute stores the pointer's value.
+  OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
+  auto input = OIIO::ImageInput::open(pseudo_name, &config, &proxy);
+  if (!input) {
+    std::string why = OIIO::geterror();
+    why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
+    throw fail("cannot decode image: " + (why.empty() ? std::string("unknown error") : why));
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || spec.depth > 1)
+    throw fail("image has invalid dimensions");
+  const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
+  if (texels > max_texels) throw fail("image is larger than kiln's limit of 2^28 texels");
+
+  image out;
+  out.name = name;
+  out.width = spec.width;
+  out.height = spec.height;
+  const int used_channels = std::min(channels, 4);
+  const bool eight_bit = spec.format == OIIO::TypeDesc::UINT8;
+  // OpenImageIO returns scanlines top to bottom, which is glTF's UV origin: no flip.
+  bool ok = false;
+  if (eight_bit) {
+    std::vector<uint8_t> pixels(texels * static_cast<size_t>(used_channels));
+    ok = input->read_image(0, 0, 0, used_channels, OIIO::TypeDesc::UINT8, pixels.data());
+    if (ok) expand_to_rgba<uint8_t>(pixels, used_channels, texels, 255, out.texels8);
+  } else {
+    std::vector<float> pixels(texels * static_cast<size_t>(used_channels));
+    ok = input->read_image(0, 0, 0, used_channels, OIIO::TypeDesc::FLOAT, pixels.data());
+    if (ok) expand_to_rgba<float>(pixels, used_channels, texels, 1.0f, out.texels32);
+  }
+  if (!ok) {
+    std::string why = input->geterror();
+    why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
+    throw fail("cannot decode image: " + (why.empty() ? std::string("truncated or corrupt data") : why));
+  }
+  return out;
+}
+
+}  // namespace kiln::gltf_internal

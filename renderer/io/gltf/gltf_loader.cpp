@@ -1,0 +1,395 @@
+// load_gltf: parse (gltf_parse), validate everything (gltf_validate), then build the scene:
+// flatten the chosen scene's node forest to double-precision world transforms, build each
+// (mesh, primitive) pair once as a triangle mesh, place one instance per node that uses it, and
+// convert the materials, lights and cameras the scene uses.
+#include "io/gltf/gltf_loader.h"
+
+#include "core/error.h"
+#include "io/gltf/gltf_accessors.h"
+#include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_materials.h"
+#include "io/gltf/gltf_parse.h"
+#include "io/gltf/gltf_validate.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <utility>
+
+namespace kiln {
+namespace {
+
+using namespace gltf_internal;
+
+// Everything the scene builder shares while it walks the node forest.
+struct build_context {
+  const tinygltf::Model& model;
+  const std::string& file;
+  scene& out;
+  std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
+  std::vector<int> instance_gltf_material;            // per scene instance; -1: default material
+  std::set<std::string> warned;                       // each distinct warning is reported once
+};
+
+void warn_once(build_context& ctx, const std::string& message) {
+  if (ctx.warned.insert(message).second) ctx.out.stats.warnings.push_back(message);
+}
+
+// Column-major rotation matrix of the unit quaternion (x, y, z, w), glTF's component order.
+dmat4 rotation_matrix(double x, double y, double z, double w) {
+  const double len = std::sqrt(x * x + y * y + z * z + w * w);  // validation refused len == 0
+  x /= len, y /= len, z /= len, w /= len;
+  dmat4 r(1.0);
+  r[0] = dvec4(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0);
+  r[1] = dvec4(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0);
+  r[2] = dvec4(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0);
+  return r;
+}
+
+// A node's parent_from_node: its matrix (column-major), or T * R * S.
+dmat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    dmat4 m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<size_t>(c * 4 + r)];
+    return m;
+  }
+  dmat4 t(1.0);
+  if (node.translation.size() == 3)
+    t[3] = dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+  dmat4 r(1.0);
+  if (node.rotation.size() == 4)
+    r = rotation_matrix(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
+  dmat4 s(1.0);
+  if (node.scale.size() == 3) {
+    s[0][0] = node.scale[0];
+    s[1][1] = node.scale[1];
+    s[2][2] = node.scale[2];
+  }
+  return t * r * s;
+}
+
+std::string primitive_pointer(int mesh_index, int prim_index) {
+  return pointer_join(pointer_join(pointer("meshes", mesh_index), "primitives"), prim_index);
+}
+
+// Reads a float attribute and refuses NaN or infinity (they would poison bounds and traversal).
+std::vector<float> read_finite(build_context& ctx, int accessor, const std::string& where,
+                               const std::string& name) {
+  std::vector<float> values = read_accessor_floats(ctx.model, accessor, ctx.file);
+  const size_t components = component_count(ctx.model.accessors[static_cast<size_t>(accessor)].type);
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw input_error(ctx.file, where,
+                        name + " element " + std::to_string(i / components) + " of accessor " +
+                            std::to_string(accessor) + " is NaN or infinite");
+  return values;
+}
+
+// The primitive's vertex indices in its own topology (sequential when it has no indices).
+std::vector<uint32_t> primitive_indices(build_context& ctx, const tinygltf::Primitive& prim,
+                                        size_t vertex_count, const std::string& where) {
+  if (prim.indices < 0) {
+    std::vector<uint32_t> sequential(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) sequential[i] = static_cast<uint32_t>(i);
+    return sequential;
+  }
+  std::vector<uint32_t> indices = read_accessor_indices(ctx.model, prim.indices, ctx.file);
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= vertex_count)
+      throw input_error(ctx.file, pointer_join(where, "indices"),
+                        "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) +
+                            " is out of range (POSITION has " + std::to_string(vertex_count) + " vertices)");
+  return indices;
+}
+
+// Triangle lists from TRIANGLES, TRIANGLE_STRIP (alternate triangles swap two vertices so all
+// keep the strip's winding, glTF spec 3.7.2.1) and TRIANGLE_FAN.
+std::vector<uint32_t> to_triangle_list(build_context& ctx, const std::vector<uint32_t>& idx, int mode,
+                                       const std::string& where) {
+  std::vector<uint32_t> tris;
+  const size_t n = idx.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (n % 3 != 0)
+      warn_once(ctx, where + ": index count is not a multiple of 3; the last indices are ignored");
+    tris.assign(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(n / 3 * 3));
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (size_t i = 0; i + 2 < n; ++i) {
+      const bool odd = i % 2 == 1;
+      tris.insert(tris.end(), {idx[i], idx[odd ? i + 2 : i + 1], idx[odd ? i + 1 : i + 2]});
+    }
+  } else {  // TRIANGLE_FAN
+    for (size_t i = 1; i + 1 < n; ++i) tris.insert(tris.end(), {idx[0], idx[i], idx[i + 1]});
+  }
+  return tris;
+}
+
+// Builds the kiln mesh of one glTF primitive, or -1 when it has nothing to render.
+int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
+  const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(mesh_index)];
+  const tinygltf::Primitive& prim = src.primitives[static_cast<size_t>(prim_index)];
+  const std::string where = primitive_pointer(mesh_index, prim_index);
+  const std::string attributes = pointer_join(where, "attributes");
+
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ++ctx.out.stats.non_triangle_primitives_skipped;
+    warn_once(ctx, "points and line primitives are not rendered; they are skipped");
+    return -1;
+  }
+
+  mesh m;
+  m.name = src.name.empty() ? "mesh " + std::to_string(mesh_index) : src.name;
+  if (src.primitives.size() > 1) m.name += "/" + std::to_string(prim_index);
+
+  const int position_accessor = prim.attributes.at("POSITION");
+  const std::vector<float> pos =
+      read_finite(ctx, position_accessor, pointer_join(attributes, "POSITION"), "POSITION");
+  const size_t vertex_count = pos.size() / 3;
+  m.positions.resize(vertex_count);
+  for (size_t i = 0; i < vertex_count; ++i) m.positions[i] = vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+
+  const std::vector<uint32_t> topology = primitive_indices(ctx, prim, vertex_count, where);
+  const std::vector<uint32_t> tris = to_triangle_list(ctx, topology, prim.mode, where);
+
+  // Drop degenerate triangles: a repeated vertex, or a zero (or non-finite) area. The cross
+  // product is taken in double so that tiny but valid float triangles are kept.
+  m.indices.reserve(tris.size());
+  for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+    const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
+    const dvec3 pa(m.positions[a]), pb(m.positions[b]), pc(m.positions[c]);
+    const double area2 = glm::length(glm::cross(pb - pa, pc - pa));
+    if (a == b || b == c || a == c || !(area2 > 0.0) || !std::isfinite(area2)) {
+      ++ctx.out.stats.degenerate_triangles_dropped;
+      continue;
+    }
+    m.indices.insert(m.indices.end(), {a, b, c});
+    m.bounds.extend(pa);
+    m.bounds.extend(pb);
+    m.bounds.extend(pc);
+  }
+  if (m.indices.empty()) return -1;
+
+  auto normal = prim.attributes.find("NORMAL");
+  if (normal != prim.attributes.end()) {
+    const std::vector<float> n =
+        read_finite(ctx, normal->second, pointer_join(attributes, "NORMAL"), "NORMAL");
+    m.normals.resize(vertex_count);
+    bool all_usable = true;
+    for (size_t i = 0; i < vertex_count && all_usable; ++i) {
+      const vec3 v(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+      const float len = glm::length(v);
+      all_usable = len > 0.0f && std::isfinite(len);
+      if (all_usable) m.normals[i] = v / len;
+    }
+    if (!all_usable) {
+      m.normals.clear();
+      warn_once(ctx,
+                pointer_join(attributes, "NORMAL") + ": zero-length normals; the mesh uses flat normals");
+    }
+  }
+
+  if (material_samples_texcoord0(ctx.model, prim.material)) {
+    auto uv = prim.attributes.find("TEXCOORD_0");
+    if (uv == prim.attributes.end()) {
+      warn_once(ctx, where + ": the material samples TEXCOORD_0 but the primitive has none");
+    } else {
+      const std::vector<float> t =
+          read_finite(ctx, uv->second, pointer_join(attributes, "TEXCOORD_0"), "TEXCOORD_0");
+      m.texcoords0.resize(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) m.texcoords0[i] = vec2(t[2 * i], t[2 * i + 1]);
+    }
+  }
+  if (material_samples_other_texcoords(ctx.model, prim.material))
+    warn_once(ctx,
+              pointer("materials", prim.material) +
+                  ": textures on TEXCOORD_1 or higher are not supported; they read TEXCOORD_0 positions");
+
+  ctx.out.meshes.push_back(std::move(m));
+  return static_cast<int32_t>(ctx.out.meshes.size() - 1);
+}
+
+int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
+  const auto key = std::make_pair(mesh_index, prim_index);
+  auto cached = ctx.mesh_cache.find(key);
+  if (cached != ctx.mesh_cache.end()) return cached->second;
+  const int32_t built = build_mesh(ctx, mesh_index, prim_index);
+  ctx.mesh_cache.emplace(key, built);
+  return built;
+}
+
+void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
+  const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(node.mesh)];
+  for (size_t p = 0; p < src.primitives.size(); ++p) {
+    const int32_t shape = mesh_for(ctx, node.mesh, static_cast<int>(p));
+    if (shape < 0) continue;
+    instance inst;
+    inst.kind = shape_kind::mesh;
+    inst.shape = static_cast<uint32_t>(shape);
+    inst.node = static_cast<uint32_t>(node_index);
+    inst.world_from_object = world;
+    finish_instance_transform(inst);
+    if (!is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0) {
+      warn_once(ctx,
+                pointer("nodes", node_index) + ": singular transform (zero scale); its mesh is not placed");
+      return;
+    }
+    ctx.out.instances.push_back(inst);
+    ctx.instance_gltf_material.push_back(src.primitives[p].material);
+  }
+}
+
+// A camera frame without scale: keep the view direction (-Z) and the up vector (+Y) of the node.
+void place_camera(build_context& ctx, int node_index, const dmat4& world) {
+  const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  const tinygltf::Camera& src = ctx.model.cameras[static_cast<size_t>(node.camera)];
+  const dvec3 z = glm::normalize(dvec3(world[2]));
+  const dvec3 y_raw = dvec3(world[1]) - glm::dot(dvec3(world[1]), z) * z;
+  const dvec3 y = glm::normalize(y_raw);
+  const dvec3 x = glm::cross(y, z);
+  if (!is_finite(z) || !is_finite(y) || !is_finite(x) || glm::length(y_raw) == 0.0) {
+    warn_once(ctx,
+              pointer("nodes", node_index) + ": camera node transform is singular; the camera is skipped");
+    return;
+  }
+  camera cam;
+  cam.name = !src.name.empty() ? src.name : node.name;
+  cam.world_from_camera = dmat4(dvec4(x, 0.0), dvec4(y, 0.0), dvec4(z, 0.0), dvec4(dvec3(world[3]), 1.0));
+  if (src.type == "perspective") {
+    cam.kind = projection::perspective;
+    cam.yfov = static_cast<float>(src.perspective.yfov);
+    cam.aspect_ratio = static_cast<float>(src.perspective.aspectRatio);
+    cam.znear = static_cast<float>(src.perspective.znear);
+  } else {
+    cam.kind = projection::orthographic;
+    cam.xmag = static_cast<float>(src.orthographic.xmag);
+    cam.ymag = static_cast<float>(src.orthographic.ymag);
+    cam.znear = static_cast<float>(src.orthographic.znear);
+  }
+  ctx.out.cameras.push_back(cam);
+}
+
+void place_light(build_context& ctx, int node_index, int light_index, const dmat4& world) {
+  const tinygltf::Light& src = ctx.model.lights[static_cast<size_t>(light_index)];
+  light l;
+  l.name = src.name;
+  l.kind = src.type == "spot"          ? light_kind::spot
+           : src.type == "directional" ? light_kind::directional
+                                       : light_kind::point;
+  if (src.color.size() == 3)
+    l.color = vec3(static_cast<float>(src.color[0]), static_cast<float>(src.color[1]),
+                   static_cast<float>(src.color[2]));
+  l.intensity = static_cast<float>(src.intensity);
+  l.range = static_cast<float>(src.range);
+  l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
+  l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+  l.position = transform_point(world, dvec3(0.0));
+  const dvec3 dir = transform_vector(world, dvec3(0.0, 0.0, -1.0));
+  const double len = glm::length(dir);
+  if (l.kind != light_kind::point) {
+    if (!(len > 0.0) || !std::isfinite(len)) {
+      warn_once(ctx,
+                pointer("nodes", node_index) + ": light node transform is singular; the light is skipped");
+      return;
+    }
+    l.direction = vec3(dir / len);
+  }
+  ctx.out.lights.push_back(l);
+}
+
+// Walks the scene's node forest iteratively (validation proved it acyclic) in document order.
+void place_nodes(build_context& ctx, const std::vector<int>& roots) {
+  std::vector<std::pair<int, dmat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, dmat4(1.0));
+  while (!stack.empty()) {
+    const auto [node_index, parent_world] = stack.back();
+    stack.pop_back();
+    const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+    const dmat4 world = parent_world * local_transform(node);
+    if (!is_finite(world))
+      throw input_error(ctx.file, pointer("nodes", node_index), "world transform overflows to infinity");
+    if (node.mesh >= 0) place_mesh(ctx, node_index, world);
+    if (node.camera >= 0) place_camera(ctx, node_index, world);
+    const int light_index = node_light_index(node);
+    if (light_index >= 0) place_light(ctx, node_index, light_index, world);
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
+  }
+}
+
+// Converts the materials instances use, in glTF order, then the default material last if needed.
+void convert_used_materials(build_context& ctx) {
+  std::set<int> used(ctx.instance_gltf_material.begin(), ctx.instance_gltf_material.end());
+  texture_remap remap = make_texture_remap(ctx.model);
+  std::map<int, uint32_t> scene_index;
+  for (int gltf_material : used) {
+    if (gltf_material < 0) continue;
+    ctx.out.materials.push_back(convert_material(ctx.model, gltf_material, remap, ctx.out, ctx.file));
+    scene_index[gltf_material] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
+  }
+  if (used.count(-1) != 0 || ctx.out.materials.empty()) {
+    ctx.out.materials.push_back(default_material());
+    scene_index[-1] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
+  }
+  for (size_t i = 0; i < ctx.out.instances.size(); ++i)
+    ctx.out.instances[i].material = scene_index.at(ctx.instance_gltf_material[i]);
+}
+
+// Index values are checked while a primitive is built; primitives the chosen scene does not
+// place are never built, yet an out-of-range index there still marks a broken file.
+void check_unplaced_indices(build_context& ctx) {
+  for (size_t m = 0; m < ctx.model.meshes.size(); ++m) {
+    const auto& primitives = ctx.model.meshes[m].primitives;
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      const auto key = std::make_pair(static_cast<int>(m), static_cast<int>(p));
+      if (ctx.mesh_cache.count(key) != 0 || primitives[p].indices < 0) continue;
+      const size_t vertex_count =
+          ctx.model.accessors[static_cast<size_t>(primitives[p].attributes.at("POSITION"))].count;
+      primitive_indices(ctx, primitives[p], vertex_count, primitive_pointer(key.first, key.second));
+    }
+  }
+}
+
+int chosen_scene(const tinygltf::Model& model, const gltf_load_options& options, const std::string& file) {
+  const int count = static_cast<int>(model.scenes.size());
+  const auto missing = [&](int index, const std::string& where) {
+    return input_error(file, where,
+                       "/scenes/" + std::to_string(index) + " does not exist (file has " +
+                           std::to_string(count) + " scenes)");
+  };
+  if (options.scene_index >= 0) {
+    if (options.scene_index >= count) throw missing(options.scene_index, "");
+    return options.scene_index;
+  }
+  if (model.defaultScene >= 0) return model.defaultScene;  // validated to be in range
+  return count > 0 ? 0 : -1;
+}
+
+}  // namespace
+
+scene load_gltf(const std::string& path, const gltf_load_options& options) {
+  const tinygltf::Model model = parse_gltf_file(path);
+  validate_model(model, path);
+
+  scene out;
+  out.source = path;
+  build_context ctx{model, path, out, {}, {}, {}};
+
+  const auto& supported = supported_extensions();
+  for (const std::string& name : model.extensionsUsed)
+    if (std::find(supported.begin(), supported.end(), name) == supported.end())
+      warn_once(ctx, "extension " + name + " is not supported; it is ignored");
+  if (!model.skins.empty() || !model.animations.empty())
+    warn_once(ctx, "skins and animations are ignored; meshes are rendered in their rest pose");
+
+  const int scene_index = chosen_scene(model, options, path);
+  if (scene_index < 0)
+    warn_once(ctx, "the file has no scenes; nothing is placed");
+  else
+    place_nodes(ctx, model.scenes[static_cast<size_t>(scene_index)].nodes);
+  check_unplaced_indices(ctx);
+  convert_used_materials(ctx);
+  return out;
+}
+
+}  // namespace kiln

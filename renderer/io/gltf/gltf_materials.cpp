@@ -1,0 +1,236 @@
+#include "io/gltf/gltf_materials.h"
+
+#include "core/error.h"
+#include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_images.h"
+
+#include <cmath>
+
+namespace kiln::gltf_internal {
+namespace {
+
+// The (index, texCoord) pairs of the five core texture slots of a material.
+std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
+  return {{m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.texCoord},
+          {m.pbrMetallicRoughness.metallicRoughnessTexture.index,
+           m.pbrMetallicRoughness.metallicRoughnessTexture.texCoord},
+          {m.normalTexture.index, m.normalTexture.texCoord},
+          {m.occlusionTexture.index, m.occlusionTexture.texCoord},
+          {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
+}
+
+wrap_mode to_wrap(int gl) {
+  switch (gl) {
+    case 33071: return wrap_mode::clamp_to_edge;
+    case 33648: return wrap_mode::mirrored_repeat;
+    default: return wrap_mode::repeat;  // 10497; validation refused anything else
+  }
+}
+
+// The encoded bytes of a glTF image: kept by the parser for URIs, read from the (validated)
+// bufferView otherwise.
+std::vector<uint8_t> encoded_bytes(const tinygltf::Model& model, const tinygltf::Image& img) {
+  if (img.bufferView < 0) return img.image;
+  const tinygltf::BufferView& bv = model.bufferViews[static_cast<size_t>(img.bufferView)];
+  const tinygltf::Buffer& buffer = model.buffers[static_cast<size_t>(bv.buffer)];
+  const auto begin = buffer.data.begin() + static_cast<std::ptrdiff_t>(bv.byteOffset);
+  return std::vector<uint8_t>(begin, begin + static_cast<std::ptrdiff_t>(bv.byteLength));
+}
+
+int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_remap& remap, scene& out,
+                      const std::string& file) {
+  int32_t& slot = remap.images[static_cast<size_t>(gltf_image)];
+  if (slot >= 0) return slot;
+  const tinygltf::Image& img = model.images[static_cast<size_t>(gltf_image)];
+  const std::string name = !img.name.empty() ? img.name : img.uri;
+  out.images.push_back(decode_image(encoded_bytes(model, img), name, file, pointer("images", gltf_image)));
+  slot = static_cast<int32_t>(out.images.size() - 1);
+  return slot;
+}
+
+int32_t resolve_texture(const tinygltf::Model& model, int gltf_texture, texture_remap& remap, scene& out,
+                        const std::string& file) {
+  if (gltf_texture < 0) return -1;
+  const size_t t = static_cast<size_t>(gltf_texture);
+  if (remap.textures[t] >= 0) return remap.textures[t];
+  const tinygltf::Texture& tex = model.textures[t];
+  if (tex.source < 0) {
+    // Only an extension source (KHR_texture_basisu, EXT_texture_webp...) or none: when such an
+    // extension is required, parsing already refused the file; here the texture is simply absent.
+    if (!remap.missing_source_warned[t]) {
+      out.stats.warnings.push_back(pointer("textures", gltf_texture) +
+                                   ": texture has no source image kiln can read; it is ignored");
+      remap.missing_source_warned[t] = 1;
+    }
+    return -1;
+  }
+  texture result;
+  result.image = static_cast<uint32_t>(resolve_image(model, tex.source, remap, out, file));
+  if (tex.sampler >= 0) {
+    const tinygltf::Sampler& s = model.samplers[static_cast<size_t>(tex.sampler)];
+    result.sampling.wrap_s = to_wrap(s.wrapS);
+    result.sampling.wrap_t = to_wrap(s.wrapT);
+    result.sampling.filter = s.magFilter == 9728 ? filter_mode::nearest : filter_mode::linear;
+  }
+  out.textures.push_back(result);
+  remap.textures[t] = static_cast<int32_t>(out.textures.size() - 1);
+  return remap.textures[t];
+}
+
+texture_ref make_ref(const tinygltf::Model& model, int index, int texcoord, double scale,
+                     texture_remap& remap, scene& out, const std::string& file) {
+  texture_ref ref;
+  ref.texture = resolve_texture(model, index, remap, out, file);
+  ref.texcoord = static_cast<uint32_t>(texcoord);
+  ref.scale = static_cast<float>(scale);
+  return ref;
+}
+
+// Reads a number member of an extension object; false when absent.
+bool extension_number(const tinygltf::Value& object, const char* key, double& out) {
+  if (!object.IsObject() || !object.Has(key)) return false;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsNumber()) return false;
+  out = v.GetNumberAsDouble();
+  return true;
+}
+
+const tinygltf::Value* find_extension(const tinygltf::Material& m, const char* name) {
+  auto it = m.extensions.find(name);
+  return it == m.extensions.end() ? nullptr : &it->second;
+}
+
+void require(bool ok, const std::string& file, const std::string& where, const std::string& reason) {
+  if (!ok) throw input_error(file, where, reason);
+}
+
+}  // namespace
+
+texture_remap make_texture_remap(const tinygltf::Model& model) {
+  texture_remap remap;
+  remap.textures.assign(model.textures.size(), -1);
+  remap.images.assign(model.images.size(), -1);
+  remap.missing_source_warned.assign(model.textures.size(), 0);
+  return remap;
+}
+
+material default_material() {
+  material m;
+  m.name = "default";
+  return m;  // scene.h's defaults are glTF's defaults
+}
+
+material convert_material(const tinygltf::Model& model, int index, texture_remap& remap, scene& out,
+                          const std::string& file) {
+  const tinygltf::Material& src = model.materials[static_cast<size_t>(index)];
+  const std::string where = pointer("materials", index);
+  const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+  const std::string pbr_where = pointer_join(where, "pbrMetallicRoughness");
+
+  material m;
+  m.name = src.name;
+  require(pbr.baseColorFactor.size() == 4, file, pointer_join(pbr_where, "baseColorFactor"),
+          "baseColorFactor must have 4 numbers");
+  for (int i = 0; i < 4; ++i) {
+    const double v = pbr.baseColorFactor[static_cast<size_t>(i)];
+    require(std::isfinite(v), file, pointer_join(pbr_where, "baseColorFactor"),
+            "baseColorFactor is not finite");
+    m.base_color_factor[i] = static_cast<float>(v);
+  }
+  require(std::isfinite(pbr.metallicFactor) && std::isfinite(pbr.roughnessFactor), file, pbr_where,
+          "metallicFactor and roughnessFactor must be finite");
+  m.metallic_factor = static_cast<float>(pbr.metallicFactor);
+  m.roughness_factor = static_cast<float>(pbr.roughnessFactor);
+  require(src.emissiveFactor.size() == 3, file, pointer_join(where, "emissiveFactor"),
+          "emissiveFactor must have 3 numbers");
+  for (int i = 0; i < 3; ++i) {
+    const double v = src.emissiveFactor[static_cast<size_t>(i)];
+    require(std::isfinite(v) && v >= 0.0, file, pointer_join(where, "emissiveFactor"),
+            "emissiveFactor must be finite and not negative");
+    m.emissive_factor[i] = static_cast<float>(v);
+  }
+
+  m.base_color_texture =
+      make_ref(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0, remap, out, file);
+  m.metallic_roughness_texture = make_ref(model, pbr.metallicRoughnessTexture.index,
+                                          pbr.metallicRoughnessTexture.texCoord, 1.0, remap, out, file);
+  m.emissive_texture =
+      make_ref(model, src.emissiveTexture.index, src.emissiveTexture.texCoord, 1.0, remap, out, file);
+  require(std::isfinite(src.normalTexture.scale) && std::isfinite(src.occlusionTexture.strength), file, where,
+          "normalTexture.scale and occlusionTexture.strength must be finite");
+  m.normal_texture = make_ref(model, src.normalTexture.index, src.normalTexture.texCoord,
+                              src.normalTexture.scale, remap, out, file);
+  m.occlusion_texture = make_ref(model, src.occlusionTexture.index, src.occlusionTexture.texCoord,
+                                 src.occlusionTexture.strength, remap, out, file);
+
+  if (src.alphaMode == "OPAQUE")
+    m.alpha = alpha_mode::opaque;
+  else if (src.alphaMode == "MASK")
+    m.alpha = alpha_mode::mask;
+  else if (src.alphaMode == "BLEND")
+    m.alpha = alpha_mode::blend;
+  else
+    throw input_error(file, pointer_join(where, "alphaMode"), "unknown alphaMode '" + src.alphaMode + "'");
+  require(std::isfinite(src.alphaCutoff) && src.alphaCutoff >= 0.0, file, pointer_join(where, "alphaCutoff"),
+          "alphaCutoff must be finite and not negative");
+  m.alpha_cutoff = static_cast<float>(src.alphaCutoff);
+  m.double_sided = src.doubleSided;
+
+  const std::string ext_where = pointer_join(where, "extensions");
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_emissive_strength")) {
+    double strength = 1.0;
+    if (extension_number(*ext, "emissiveStrength", strength)) {
+      require(std::isfinite(strength) && strength >= 0.0, file,
+              pointer_join(pointer_join(ext_where, "KHR_materials_emissive_strength"), "emissiveStrength"),
+              "emissiveStrength must be finite and not negative");
+      m.emissive_strength = static_cast<float>(strength);
+    }
+  }
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_ior")) {
+    double ior = 1.5;
+    if (extension_number(*ext, "ior", ior)) {
+      require(std::isfinite(ior) && (ior == 0.0 || ior >= 1.0), file,
+              pointer_join(pointer_join(ext_where, "KHR_materials_ior"), "ior"),
+              "ior must be 0 or at least 1");
+      m.ior = static_cast<float>(ior);
+    }
+  }
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_specular")) {
+    const std::string at = pointer_join(ext_where, "KHR_materials_specular");
+    double factor = 1.0;
+    if (extension_number(*ext, "specularFactor", factor)) {
+      require(std::isfinite(factor) && factor >= 0.0, file, pointer_join(at, "specularFactor"),
+              "specularFactor must be finite and not negative");
+      m.specular_factor = static_cast<float>(factor);
+    }
+    if (ext->IsObject() && ext->Has("specularColorFactor")) {
+      const tinygltf::Value& color = ext->Get("specularColorFactor");
+      require(color.IsArray() && color.ArrayLen() == 3, file, pointer_join(at, "specularColorFactor"),
+              "specularColorFactor must have 3 numbers");
+      for (int i = 0; i < 3; ++i) {
+        const tinygltf::Value& c = color.Get(i);
+        require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
+                pointer_join(at, "specularColorFactor"),
+                "specularColorFactor must be finite and not negative");
+        m.specular_color_factor[i] = static_cast<float>(c.GetNumberAsDouble());
+      }
+    }
+  }
+  return m;
+}
+
+bool material_samples_texcoord0(const tinygltf::Model& model, int material_index) {
+  if (material_index < 0) return false;
+  for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
+    if (index >= 0 && texcoord == 0) return true;
+  return false;
+}
+
+bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index) {
+  if (material_index < 0) return false;
+  for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
+    if (index >= 0 && texcoord > 0) return true;
+  return false;
+}
+
+}  // namespace kiln::gltf_internal

@@ -1,0 +1,38 @@
+// glTF materials, textures, samplers and images to kiln's scene types. Only what used materials
+// reference is converted: textures and images get new, dense indices, and unused images are
+// never decoded. Internal to io/gltf; runs after gltf_validate.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <tiny_gltf.h>
+
+#include <string>
+#include <vector>
+
+namespace kiln::gltf_internal {
+
+// glTF texture/image index -> scene index, filled as materials are converted (-1: not yet).
+struct texture_remap {
+  std::vector<int32_t> textures;
+  std::vector<int32_t> images;
+  std::vector<char> missing_source_warned;  // per glTF texture: warned once about a missing source
+};
+
+texture_remap make_texture_remap(const tinygltf::Model& model);
+
+// Converts glTF material `index`, appending the textures and images it references to `out`.
+// Throws kiln::error (input) for non-finite or out-of-range factors and undecodable images.
+material convert_material(const tinygltf::Model& model, int index, texture_remap& remap, scene& out,
+                          const std::string& file);
+
+// The glTF default material: white, metallic 1, roughness 1, opaque, single-sided.
+material default_material();
+
+// True when a glTF material samples any texture through TEXCOORD_0.
+bool material_samples_texcoord0(const tinygltf::Model& model, int material_index);
+
+// True when a glTF material samples any texture through a TEXCOORD_n with n > 0.
+bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index);
+
+}  // namespace kiln::gltf_internal
