@@ -1,10 +1,24 @@
 #!/usr/bin/env bash
 # The README's second command: installs missing Debian packages, builds everything and runs the
-# whole test suite (CTest over GoogleTest). .ci/run calls exactly this.
+# whole test suite (CTest over GoogleTest) twice: an optimised build, then the same suite built
+# with AddressSanitizer and UndefinedBehaviorSanitizer (any finding fails its test).
+# .ci/run calls exactly this. KILN_SKIP_SANITIZERS=1 runs the first stage only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/install_dependencies.sh
+jobs="$(nproc)"
+
+echo "== release build and tests"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build
-ctest --test-dir build --output-on-failure -j "$(nproc)"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+if [[ "${KILN_SKIP_SANITIZERS:-0}" != 1 ]]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+  cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKILN_SANITIZE=address,undefined >/dev/null
+  cmake --build build-sanitize
+  ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1 \
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+fi

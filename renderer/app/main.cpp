@@ -1,10 +1,12 @@
 // kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure).
+#include "app/interrupt.h"
 #include "app/render_command.h"
 #include "core/error.h"
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -46,11 +48,13 @@ int main(int argc, char** argv) {
     return exit_bad_input;
   }
 
+  kiln::install_interrupt_handlers();
   try {
     if (render_command->parsed()) kiln::run_render(render);
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';
+    if (e.kind() == kiln::error_kind::interrupted) return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
     return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;
   } catch (const std::bad_alloc&) {
     std::cerr << "kiln: out of memory\n";

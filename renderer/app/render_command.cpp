@@ -1,6 +1,7 @@
 #include "app/render_command.h"
 
 #include "accel/embree/embree_accelerator.h"
+#include "app/interrupt.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
 #include "io/gltf/gltf_loader.h"
@@ -210,8 +211,16 @@ void run_render(const render_options& options) {
   settings.show_background = options.show_background;
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
+  settings.cancel = &interrupt_requested();
   render_statistics stats;
-  film image = render_image(world, accel, cam, settings, &stats, make_progress(!options.quiet));
+  film image;
+  try {
+    image = render_image(world, accel, cam, settings, &stats, make_progress(!options.quiet));
+  } catch (const error& e) {
+    if (e.kind() != error_kind::interrupted) throw;
+    if (::isatty(STDERR_FILENO) && !options.quiet) std::fprintf(stderr, "\n");  // end the progress line
+    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  }
 
   exr_metadata metadata;
   metadata.world_to_camera = world_to_camera(cam);
@@ -226,6 +235,8 @@ void run_render(const render_options& options) {
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/command_line", options.command_line},
   };
+  // A signal that arrives after the last pixel still stops the run before anything is written.
+  if (interrupt_requested()) throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {

@@ -8,8 +8,9 @@
 
 namespace kiln {
 
-// What kind of failure: bad input maps to exit code 2, I/O or render failure to exit code 1.
-enum class error_kind { input, io, render };
+// What kind of failure: bad input maps to exit code 2, I/O or render failure to exit code 1, and
+// a render stopped by SIGINT/SIGTERM to 128 + the signal number, as shells report it.
+enum class error_kind { input, io, render, interrupted };
 
 class error : public std::runtime_error {
  public:
@@ -28,9 +29,10 @@ class error : public std::runtime_error {
  private:
   static std::string format(const std::string& file, const std::string& location,
                             const std::string& reason) {
-    std::string line = file.empty() ? std::string("kiln") : file;
-    if (!location.empty()) line += ": " + location;
-    return line + ": " + reason;
+    // The CLI prefixes "kiln: "; an error without a file is just its location and reason.
+    std::string line = file;
+    if (!location.empty()) line += (line.empty() ? "" : ": ") + location;
+    return line.empty() ? reason : line + ": " + reason;
   }
 
   error_kind kind_;

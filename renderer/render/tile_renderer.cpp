@@ -1,5 +1,6 @@
 #include "render/tile_renderer.h"
 
+#include "core/error.h"
 #include "render/sample_pattern.h"
 
 #include <tbb/blocked_range.h>
@@ -77,13 +78,14 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
+  auto cancelled = [&settings] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t t = range.begin(); t != range.end(); ++t) {
         const tile& tl = tiles[t];
         ray_counts counts;
-        for (int y = tl.y0; y < tl.y1; ++y)
+        for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
           for (int x = tl.x0; x < tl.x1; ++x) render_pixel(ctx, cam, settings, x, y, out, counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
@@ -92,6 +94,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       }
     });
   });
+
+  if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");
 
   if (stats) {
     stats->rays = total_counts;

@@ -8,6 +8,7 @@
 #include "render/view_camera.h"
 #include "shade/whitted.h"
 
+#include <atomic>
 #include <functional>
 
 namespace kiln {
@@ -18,6 +19,9 @@ struct render_settings {
   int tile_size = 32;   // pixels per tile side
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
+  // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
+  // row and render_image throws kiln::error of kind interrupted.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct render_statistics {

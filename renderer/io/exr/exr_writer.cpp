@@ -72,6 +72,10 @@ void check_output_writable(const std::string& path) {
   if (!fs::is_directory(folder, ec)) throw io_error(path, "output folder does not exist: " + folder.string());
   if (::access(folder.c_str(), W_OK) != 0) throw io_error(path, "output folder is not writable: " + folder.string());
   if (fs::is_directory(target, ec)) throw io_error(path, "output path is a folder");
+  // The temporary file is renamed over the target: that must never replace a device, a pipe or
+  // a socket.
+  if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
+    throw io_error(path, "output exists and is not a regular file");
 }
 
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,

@@ -1,0 +1,154 @@
+// Faults from outside the renderer: signals during a render, a full disk, and outputs that are not
+// files. In every case kiln exits non-zero with one line, leaves no temporary file, and never
+// touches an output that already existed.
+#include "support/run_kiln.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::lines;
+using testing::scratch_folder;
+
+const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
+const std::string previous_content = "an earlier render that must survive\n";
+
+// A kiln process started with fork/exec so the test can signal it and limit its resources.
+struct child_process {
+  pid_t pid = -1;
+  std::string stderr_path;
+
+  // Waits for the exit; returns the exit code, or 128 + signal when it was killed.
+  int wait() const {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+  std::string stderr_text() const {
+    std::ifstream in(stderr_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+};
+
+// Starts kiln with arguments; prepare runs in the child just before exec (resource limits).
+child_process start_kiln(const std::vector<std::string>& arguments, const std::string& folder,
+                         const std::function<void()>& prepare = {}) {
+  child_process child;
+  child.stderr_path = folder + "/stderr.txt";
+  std::vector<std::string> argv_storage{KILN_BINARY};
+  argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_storage) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  child.pid = ::fork();
+  if (child.pid == 0) {
+    int err = ::open(child.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(err, STDERR_FILENO);
+    int null = ::open("/dev/null", O_RDWR);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    if (prepare) prepare();
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return child;
+}
+
+void write_file(const std::string& path, const std::string& content) { std::ofstream(path) << content; }
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Files in folder other than the test's own stderr capture and the pre-existing output.
+std::vector<std::string> stray_files(const std::string& folder, const std::string& keep) {
+  std::vector<std::string> stray;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    std::string name = entry.path().filename().string();
+    if (name != "stderr.txt" && name != keep) stray.push_back(name);
+  }
+  return stray;
+}
+
+// A render that takes many seconds, so a signal always arrives mid-render.
+std::vector<std::string> long_render(const std::string& output) {
+  return {"render", demo_scene, "-o", output, "--width", "1920", "--height", "1440", "--spp", "1024", "--threads", "2"};
+}
+
+void expect_signal_stops_render(int signo) {
+  std::string folder = scratch_folder("signal_" + std::to_string(signo));
+  std::string output = folder + "/frame.exr";
+  write_file(output, previous_content);
+  child_process child = start_kiln(long_render(output), folder);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // loaded and tracing by now
+  auto sent = std::chrono::steady_clock::now();
+  ASSERT_EQ(::kill(child.pid, signo), 0);
+  int code = child.wait();
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+
+  EXPECT_EQ(code, 128 + signo) << child.stderr_text();
+  EXPECT_LT(seconds, 1.0) << "kiln took " << seconds << " s to stop";
+  std::vector<std::string> message = lines(child.stderr_text());
+  ASSERT_FALSE(message.empty());
+  EXPECT_NE(message.back().find("interrupted"), std::string::npos) << message.back();
+  EXPECT_NE(message.back().find(output), std::string::npos) << message.back();
+  EXPECT_EQ(read_file(output), previous_content) << "the earlier output was touched";
+  EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a temporary file was left behind";
+}
+
+TEST(faults, sigint_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGINT); }
+
+TEST(faults, sigterm_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGTERM); }
+
+TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
+  std::string folder = scratch_folder("full_disk");
+  std::string output = folder + "/frame.exr";
+  write_file(output, previous_content);
+  // A file-size limit of 4 KiB makes every write past it fail with EFBIG, as a full disk does
+  // with ENOSPC; SIGXFSZ is ignored so the write reports the error instead of killing kiln.
+  child_process child = start_kiln({"render", demo_scene, "-o", output, "--width", "160", "-q"}, folder, [] {
+    std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+  });
+  int code = child.wait();
+  EXPECT_EQ(code, 1) << child.stderr_text();
+  std::vector<std::string> message = lines(child.stderr_text());
+  ASSERT_EQ(message.size(), 1u) << child.stderr_text();
+  EXPECT_NE(message[0].find(output), std::string::npos) << message[0];
+  EXPECT_EQ(read_file(output), previous_content);
+  EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a partial temporary file was left behind";
+}
+
+TEST(faults, output_that_is_not_a_regular_file_is_refused_before_rendering) {
+  // Writing "to" a device would replace the device node by rename; kiln refuses instead.
+  auto result = testing::run_kiln({"render", demo_scene, "-o", "/dev/null", "--width", "32"});
+  EXPECT_EQ(result.exit_code, 1);
+  ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("not a regular file"), std::string::npos) << result.stderr_text;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+}  // namespace
+}  // namespace kiln
