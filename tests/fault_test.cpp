@@ -33,11 +33,20 @@ struct child_process {
   pid_t pid = -1;
   std::string stderr_path;
 
-  // Waits for the exit; returns the exit code, or 128 + signal when it was killed.
+  // Waits for the exit; returns the exit code, or minus the signal number when a signal killed
+  // the process (so a handled signal, exit 128 + n, and an unhandled one differ).
   int wait() const {
     int status = 0;
     ::waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  }
+
+  // True once the process catches signo (its handler is installed), read from /proc.
+  bool catches(int signo) const {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> (signo - 1)) & 1u;
+    return false;
   }
 
   std::string stderr_text() const {
@@ -101,7 +110,11 @@ void expect_signal_stops_render(int signo) {
   std::string output = folder + "/frame.exr";
   write_file(output, previous_content);
   child_process child = start_kiln(long_render(output), folder);
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // loaded and tracing by now
+  // Wait until kiln handles the signal (a loaded machine may take a while to start it), then
+  // give it time to load the scene and start tracing.
+  for (int i = 0; i < 1000 && !child.catches(signo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(child.catches(signo)) << "kiln never installed a handler for signal " << signo;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   auto sent = std::chrono::steady_clock::now();
   ASSERT_EQ(::kill(child.pid, signo), 0);
   int code = child.wait();

@@ -13,6 +13,7 @@ import json
 import os
 import struct
 import sys
+import zlib
 
 FLOAT, USHORT = 5126, 5123
 
@@ -109,6 +110,29 @@ def main():
     write(folder, "nan_matrix.gltf", dumps(doc))
 
     write(folder, "not_json.gltf", "this is not JSON: {\"asset\": \n")
+
+    # A textured triangle whose PNG ends inside its IDAT chunk.
+    doc = triangle_doc(data_uri(triangle_buffer()))
+    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    doc["textures"] = [{"source": 0}]
+    doc["images"] = [{"uri": "truncated_png.png"}]
+    write(folder, "truncated_png.gltf", dumps(doc))
+    write(folder, "truncated_png.png", checker_png()[:-30])
+
+    # A buffer URI that climbs out of the asset's folder towards a system file.
+    write(folder, "escapes_folder.gltf", dumps(triangle_doc("../../../../../../etc/passwd")))
+
+
+def checker_png(size=16):
+    """A small opaque RGB checkerboard PNG, built with the standard library."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\0" + b"".join(b"\xff\x80\x00" if (x // 4 + y // 4) % 2 else b"\x10\x10\x60"
+                                       for x in range(size)) for y in range(size))
+    header = struct.pack(">IIBBBBB", size, size, 8, 2, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows))
+            + chunk(b"IEND", b""))
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ if [[ "${KILN_SKIP_SANITIZERS:-0}" != 1 ]]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKILN_SANITIZE=address,undefined >/dev/null
   cmake --build build-sanitize
-  ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1 \
+  ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1 LSAN_OPTIONS=suppressions="$PWD/fuzz/lsan.supp" \
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
 fi

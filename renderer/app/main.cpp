@@ -29,6 +29,7 @@ std::string join_arguments(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  kiln::install_interrupt_handlers();  // first, so a signal never finds the default action
   CLI::App app{"kiln: renders glTF 2.0 assets to HDR OpenEXR with Embree and Whitted shading"};
   app.set_version_flag("--version", std::string("kiln ") + KILN_VERSION);
   app.require_subcommand(1);
@@ -48,7 +49,6 @@ int main(int argc, char** argv) {
     return exit_bad_input;
   }
 
-  kiln::install_interrupt_handlers();
   try {
     if (render_command->parsed()) kiln::run_render(render);
     return exit_success;

@@ -178,6 +178,8 @@ void add_render_options(CLI::App& app, render_options& o) {
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_flag("--allow-outside-files", o.allow_outside_files,
+               "Let buffer and image URIs name files outside the asset's folder (absolute paths, '..')");
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -187,6 +189,7 @@ void run_render(const render_options& options) {
   auto load_start = std::chrono::steady_clock::now();
   gltf_load_options load_options;
   load_options.scene_index = options.scene_index;
+  load_options.allow_files_outside_folder = options.allow_outside_files;
   scene world = load_gltf(options.input, load_options);
   world.env.color = options.background;
   double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();

@@ -32,6 +32,7 @@ struct render_options {
   bool show_background = false;
   int max_depth = 8;
   float min_throughput = 1e-3f;
+  bool allow_outside_files = false;
   bool quiet = false;
   std::string command_line;
 };

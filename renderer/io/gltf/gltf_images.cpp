@@ -5,7 +5,11 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 namespace kiln::gltf_internal {
@@ -52,6 +56,40 @@ void expand_to_rgba(const std::vector<T>& src, int channels, size_t texels, T op
   }
 }
 
+// libpng reports decoding errors by printing "libpng error: ..." to stderr itself before
+// OpenImageIO turns them into an error string; kiln reports that string as its one line. While
+// an image decodes, fd 2 points at /dev/null. Loading is single-threaded, so nothing else
+// loses output meanwhile.
+class silenced_stderr {
+ public:
+  silenced_stderr() {
+    std::fflush(stderr);
+    saved_ = ::dup(STDERR_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, STDERR_FILENO);
+    if (null >= 0) ::close(null);
+  }
+  ~silenced_stderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+    }
+  }
+  silenced_stderr(const silenced_stderr&) = delete;
+  silenced_stderr& operator=(const silenced_stderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// OpenImageIO's messages may span lines; kiln's error is one line.
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (size_t pos; (pos = text.find('\n')) != std::string::npos;) text.replace(pos, 1, "; ");
+  return text;
+}
+
 }  // namespace
 
 image decode_image(const std::vector<uint8_t>& encoded, const std::string& name, const std::string& file,
@@ -67,10 +105,10 @@ image decode_image(const std::vector<uint8_t>& encoded, const std::string& name,
   // overridden when the reader re-reads its configuration. The attribute stores the pointer's value.
   OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
+  silenced_stderr quiet;
   auto input = OIIO::ImageInput::open(pseudo_name, &config, &proxy);
   if (!input) {
-    std::string why = OIIO::geterror();
-    why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
+    std::string why = one_line(OIIO::geterror());
     throw fail("cannot decode image: " + (why.empty() ? std::string("unknown error") : why));
   }
   const OIIO::ImageSpec& spec = input->spec();
@@ -98,8 +136,7 @@ image decode_image(const std::vector<uint8_t>& encoded, const std::string& name,
     if (ok) expand_to_rgba<float>(pixels, used_channels, texels, 1.0f, out.texels32);
   }
   if (!ok) {
-    std::string why = input->geterror();
-    why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
+    std::string why = one_line(input->geterror());
     throw fail("cannot decode image: " + (why.empty() ? std::string("truncated or corrupt data") : why));
   }
   return out;

@@ -13,6 +13,9 @@ namespace kiln {
 
 struct gltf_load_options {
   int scene_index = -1;  // -1: the file's default scene (or scene 0 when none is marked)
+  // Buffer and image URIs may name files outside the asset's folder (absolute paths, ".."
+  // escapes). Off by default: a scene file must not read arbitrary files on a farm node.
+  bool allow_files_outside_folder = false;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.

@@ -407,6 +407,8 @@ TEST(GltfLoaderErrors, BadGltfFixturesAreRefused) {
       {"unsupported_required_extension.gltf", "KHR_draco_mesh_compression"},
       {"nan_matrix.gltf", "invalid glTF"},
       {"not_json.gltf", "invalid glTF"},
+      {"truncated_png.gltf", "/images/0: cannot decode image"},
+      {"escapes_folder.gltf", "/buffers/0/uri: '../../../../../../etc/passwd' refers to a file outside"},
   };
   for (const auto& [name, fragment] : expected) {
     const fs::path path = folder / name;

@@ -17,10 +17,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What the tinygltf file-system callbacks may touch: files inside the asset's folder only.
+// What the tinygltf file-system callbacks may touch: files inside the asset's folder only,
+// unless the caller allows files anywhere.
 struct fs_context {
-  std::string folder_prefix;  // absolute asset folder, ending in '/'
+  std::string folder_prefix;  // absolute, lexically normal asset folder, ending in '/'
+  bool allow_outside = false;
 };
+
+// True when path, with "." and ".." resolved lexically, lies inside the asset's folder. A scene
+// file must not read arbitrary files (../../etc/passwd) on a render farm node.
+bool inside_asset_folder(const std::string& path, const fs_context& context) {
+  const std::string normal = fs::path(path).lexically_normal().string();
+  return normal.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
+}
 
 bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::string& why) {
   std::error_code ec;
@@ -52,10 +61,11 @@ bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::st
 }
 
 // tinygltf also searches the current directory after the asset folder; joined with "." those
-// paths are relative, so accepting only paths under the (absolute) asset folder disables that.
-bool file_exists(const std::string& path, void* user) {
-  const auto* context = static_cast<const fs_context*>(user);
-  if (path.compare(0, context->folder_prefix.size(), context->folder_prefix) != 0) return false;
+// paths are relative, so they never lie inside the (absolute) asset folder and are not found.
+// A file outside the folder that exists is reported as existing so that read_whole_file can
+// refuse it with a clear reason instead of tinygltf's "not found".
+bool file_exists(const std::string& path, void*) {
+  if (fs::path(path).is_relative()) return false;
   std::error_code ec;
   return fs::is_regular_file(path, ec);
 }
@@ -66,6 +76,11 @@ std::string expand_file_path(const std::string& path, void*) { return path; }
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   if (!file_exists(path, user)) {
     if (err) *err += "not found: " + path + "\n";
+    return false;
+  }
+  const auto* context = static_cast<const fs_context*>(user);
+  if (!context->allow_outside && !inside_asset_folder(path, *context)) {
+    if (err) *err += "refers to a file outside the asset's folder (allow with --allow-outside-files)";
     return false;
   }
   std::string why;
@@ -148,6 +163,45 @@ void check_required_extensions_in_json(const uint8_t* text, size_t size, const s
   check_required_extensions(names, path);
 }
 
+// Decodes %XX escapes (RFC 3986) so that "%2E%2E/" cannot hide a ".." from the check below.
+std::string percent_decode(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// Refuses buffer and image URIs that would read outside the asset's folder, naming the JSON
+// pointer, before tinygltf touches any file. glTF URIs are relative references: an absolute path
+// or a file: URI is never followed; ".." that leaves the folder only with the allow option.
+void check_uris_in_json(const uint8_t* text, size_t size, const std::string& path, const fs_context& context) {
+  const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) return;
+  for (const char* collection : {"buffers", "images"}) {
+    auto items = doc.find(collection);
+    if (items == doc.end() || !items->is_array()) continue;
+    for (size_t i = 0; i < items->size(); ++i) {
+      const nlohmann::json& item = (*items)[i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = percent_decode(item["uri"].get<std::string>());
+      if (uri.rfind("data:", 0) == 0) continue;
+      const std::string where = pointer_join(pointer(collection, static_cast<int64_t>(i)), "uri");
+      if (uri.rfind("file:", 0) == 0 || fs::path(uri).is_absolute())
+        throw input_error(path, where, "'" + uri + "' is an absolute path; glTF URIs are relative to the asset");
+      if (!context.allow_outside && !inside_asset_folder(context.folder_prefix + uri, context))
+        throw input_error(path, where,
+                          "'" + uri + "' refers to a file outside the asset's folder (allow with --allow-outside-files)");
+    }
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
@@ -156,7 +210,7 @@ const std::vector<std::string>& supported_extensions() {
   return names;
 }
 
-tinygltf::Model parse_gltf_file(const std::string& path) {
+tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outside_folder) {
   std::vector<uint8_t> bytes;
   std::string why;
   if (!read_file_bytes(path, bytes, why)) throw input_error(path, "", why);
@@ -165,10 +219,12 @@ tinygltf::Model parse_gltf_file(const std::string& path) {
   fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
   if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   fs_context context;
-  context.folder_prefix = folder.string();
+  context.folder_prefix = folder.lexically_normal().string();
+  context.allow_outside = allow_files_outside_folder;
   if (context.folder_prefix.empty() || context.folder_prefix.back() != '/') context.folder_prefix += '/';
 
   tinygltf::TinyGLTF parser;
+  const bool is_glb = ends_with_glb(path) || has_glb_magic(bytes);
   parser.SetFsCallbacks(
       tinygltf::FsCallbacks{&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &context});
   parser.SetImageLoader(&keep_encoded_image, nullptr);
@@ -180,10 +236,11 @@ tinygltf::Model parse_gltf_file(const std::string& path) {
   size_t json_offset = 0;
   size_t json_length = bytes.size();
   try {
-    if (ends_with_glb(path) || has_glb_magic(bytes)) {
+    if (is_glb) {
       const glb_layout layout = check_glb_container(bytes, path);
       json_offset = layout.json_offset;
       json_length = layout.json_length;
+      check_uris_in_json(bytes.data() + json_offset, json_length, path, context);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
         throw input_error(path, "", "GLB JSON chunk starts with a byte order mark, which glTF forbids");
       ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
@@ -191,6 +248,7 @@ tinygltf::Model parse_gltf_file(const std::string& path) {
     } else {
       if (has_utf8_bom(bytes.data(), bytes.size()))
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
+      check_uris_in_json(bytes.data(), bytes.size(), path, context);
       ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                       static_cast<unsigned int>(bytes.size()), folder.string());
     }

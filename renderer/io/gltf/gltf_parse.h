@@ -18,7 +18,8 @@ const std::vector<std::string>& supported_extensions();
 // Parses the file at `path`. Images keep their encoded bytes in image.image (as_is = true);
 // images stored in a bufferView are left empty, to be read after the bufferView is validated.
 // Throws kiln::error (input) for a missing or unreadable file, a broken container, invalid JSON,
-// an asset version other than 2.x or an unsupported required extension.
-tinygltf::Model parse_gltf_file(const std::string& path);
+// an asset version other than 2.x or an unsupported required extension. Buffers and images are
+// read only from inside the asset's folder unless allow_files_outside_folder is set.
+tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outside_folder = false);
 
 }  // namespace kiln::gltf_internal

@@ -264,12 +264,15 @@ void validate_meshes(const tinygltf::Model& model, const std::string& file) {
       auto position = prim.attributes.find("POSITION");
       if (position == prim.attributes.end())
         throw input_error(file, attributes, "primitive has no POSITION attribute");
-      size_t vertex_count = 0;
+      // POSITION sets the vertex count; check its reference first, since attributes are visited
+      // in name order and NORMAL comes before it.
+      check_ref(position->second, model.accessors.size(), false, "accessors", file,
+                pointer_join(attributes, "POSITION"));
+      const size_t vertex_count = model.accessors[static_cast<size_t>(position->second)].count;
       for (const auto& [name, index] : prim.attributes) {
         check_ref(index, model.accessors.size(), false, "accessors", file, pointer_join(attributes, name));
         const tinygltf::Accessor& acc = model.accessors[static_cast<size_t>(index)];
         check_attribute_format(acc, name, file, pointer_join(attributes, name));
-        if (vertex_count == 0) vertex_count = model.accessors[static_cast<size_t>(position->second)].count;
         if (acc.count != vertex_count)
           throw input_error(file, pointer_join(attributes, name),
                             "accessor has " + std::to_string(acc.count) + " elements but POSITION has " +

@@ -1,0 +1,97 @@
+// Which files an asset may make kiln read: buffers and images resolve relative to the asset's
+// folder; ".." escapes and absolute paths that leave it are refused unless allowed; percent-
+// encoded URIs and names with spaces work.
+#include "io/gltf/gltf_loader.h"
+#include "io/gltf/gltf_test_util.h"
+
+#include <gtest/gtest.h>
+
+namespace kiln {
+namespace {
+
+using namespace gltf_test;
+
+// The single triangle with its buffer under the URI `uri`, written to dir/sub/scene.gltf; the
+// buffer bytes go to dir/<bin_location> (relative to dir).
+std::string write_with_buffer_at(const temp_folder& dir, const std::string& uri, const std::string& bin_location) {
+  gltf_builder b = single_triangle();
+  fs::create_directories(dir.file("sub"));
+  const std::string path = dir.file("sub/scene.gltf");
+  write_text(path, b.finished(uri).dump(2));
+  write_bytes(dir.file(bin_location), b.bin);
+  return path;
+}
+
+gltf_load_options allowing_outside() {
+  gltf_load_options options;
+  options.allow_files_outside_folder = true;
+  return options;
+}
+
+TEST(GltfFileAccess, DotDotEscapeIsRefusedNamingTheReason) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "../outside.bin", "outside.bin");
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_EQ(message.rfind(path, 0), 0u) << message;
+  EXPECT_NE(message.find("/buffers/0/uri"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(GltfFileAccess, PercentEncodedDotDotEscapeIsRefused) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "%2E%2E/outside.bin", "outside.bin");
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;
+}
+
+TEST(GltfFileAccess, DotDotEscapeLoadsWhenAllowed) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "../outside.bin", "outside.bin");
+  const scene s = load_gltf(path, allowing_outside());
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].positions[1], vec3(1, 0, 0));
+}
+
+TEST(GltfFileAccess, DotDotThatStaysInsideIsFine) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "../sub/inside.bin", "sub/inside.bin");
+  EXPECT_EQ(load_gltf(path).meshes.size(), 1u);
+}
+
+TEST(GltfFileAccess, AbsolutePathIsRefusedEvenWhenOutsideFilesAreAllowed) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, dir.file("absolute.bin"), "absolute.bin");
+  for (const gltf_load_options& options : {gltf_load_options{}, allowing_outside()}) {
+    const std::string message = error_of([&] { load_gltf(path, options); });
+    EXPECT_NE(message.find("/buffers/0/uri"), std::string::npos) << message;
+    EXPECT_NE(message.find("absolute path"), std::string::npos) << message;
+  }
+}
+
+TEST(GltfFileAccess, ImageUriEscapeIsRefused) {
+  temp_folder dir;
+  gltf_builder b = single_triangle();
+  b.doc["images"] = json::array({json{{"uri", "../../secret.png"}}});
+  const std::string path = b.write_gltf(dir);
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_NE(message.find("/images/0/uri"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;
+}
+
+TEST(GltfFileAccess, PercentEncodedUriWithSpacesLoads) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "my%20data.bin", "sub/my data.bin");
+  const scene s = load_gltf(path);
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].positions[2], vec3(0, 1, 0));
+}
+
+TEST(GltfFileAccess, PlainSpacesInUriLoad) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "my data.bin", "sub/my data.bin");
+  EXPECT_EQ(load_gltf(path).meshes.size(), 1u);
+}
+
+}  // namespace
+}  // namespace kiln
