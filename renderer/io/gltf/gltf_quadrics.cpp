@@ -191,6 +191,21 @@ quadric read_definition(const tinygltf::Value& value, const std::string& where, 
   return q;
 }
 
+// " (placed by /nodes/3 'name')": the nodes that use definition i, so that an error in a shared
+// definition names what the user sees in their scene.
+std::string users_of(const tinygltf::Model& model, size_t definition) {
+  std::string users;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    auto ext = model.nodes[n].extensions.find(quadric_extension);
+    if (ext == model.nodes[n].extensions.end() || !ext->second.IsObject() || !ext->second.Has("primitive")) continue;
+    const tinygltf::Value& index = ext->second.Get("primitive");
+    if (!index.IsInt() || index.GetNumberAsInt() != int(definition)) continue;
+    users += (users.empty() ? "" : ", ") + pointer("nodes", int64_t(n));
+    if (!model.nodes[n].name.empty()) users += " '" + model.nodes[n].name + "'";
+  }
+  return users.empty() ? " (no node places it)" : " (placed by " + users + ")";
+}
+
 }  // namespace
 
 std::vector<quadric> read_quadric_definitions(const tinygltf::Model& model, const std::string& file) {
@@ -202,8 +217,13 @@ std::vector<quadric> read_quadric_definitions(const tinygltf::Model& model, cons
   if (!root.IsObject() || !root.Has("primitives") || !root.Get("primitives").IsArray())
     throw input_error(file, where, "expected an object with an array 'primitives'");
   const tinygltf::Value& list = root.Get("primitives");
-  for (size_t i = 0; i < list.ArrayLen(); ++i)
-    out.push_back(read_definition(list.Get(int(i)), pointer_join(pointer_join(where, "primitives"), int64_t(i)), file));
+  for (size_t i = 0; i < list.ArrayLen(); ++i) {
+    try {
+      out.push_back(read_definition(list.Get(int(i)), pointer_join(pointer_join(where, "primitives"), int64_t(i)), file));
+    } catch (const error& e) {
+      throw input_error(file, e.location(), e.reason() + users_of(model, i));
+    }
+  }
   return out;
 }
 
