@@ -83,13 +83,45 @@ struct mesh {
   size_t triangle_count() const { return indices.size() / 3; }
 };
 
-enum class shape_kind { mesh };
+// The analytic primitive kinds (see docs/quadrics.md for each canonical object space).
+enum class quadric_kind {
+  sphere,                  // x²+y²+z² = r²
+  cylinder,                // x²+y² = r², zmin ≤ z ≤ zmax
+  cone,                    // radius r at z = 0, apex at z = height, zmin ≤ z ≤ zmax
+  paraboloid,              // x²+y² = r²·z/zmax, zmin ≤ z ≤ zmax
+  hyperboloid_one_sheet,   // (x²+y²)/r² − z²/c² = 1, zmin ≤ z ≤ zmax
+  hyperboloid_two_sheets,  // z²/c² − (x²+y²)/r² = 1, zmin ≤ z ≤ zmax
+  disk,                    // z = 0, inner_radius ≤ ρ ≤ r
+  general,                 // ten coefficients, clipped to box
+  torus,                   // (|p|² + R² − r²)² = 4R²(x²+y²), R = major_radius, r = radius
+};
+
+// One analytic primitive definition in its own canonical object space (z is the axis). Any number
+// of instances share it. Only the fields of its kind are meaningful; the loader checks them.
+struct quadric {
+  std::string name;
+  quadric_kind kind = quadric_kind::sphere;
+  double radius = 1.0;        // sphere, cylinder, cone (base), paraboloid (at zmax), hyperboloid
+                              // (waist / a), disk (outer), torus (minor)
+  double inner_radius = 0.0;  // disk
+  double major_radius = 0.0;  // torus
+  double height = 1.0;        // cone apex height
+  double c = 1.0;             // hyperboloids: the z semi-axis
+  double zmin = -1.0, zmax = 1.0;  // clipping along z for the axial kinds
+  bool caps = false;               // close the axial kinds with disks at zmin/zmax where they have area
+  // general: A x² + B y² + C z² + D xy + E xz + F yz + G x + H y + I z + J = 0, clipped to box.
+  double coefficients[10] = {};
+  bounds3 box;
+  bounds3 bounds;  // tight object-space bounds, filled by geometry/quadric_bounds()
+};
+
+enum class shape_kind { mesh, quadric };
 
 // One placement of a shape in the world. A thousand instances of one mesh cost a thousand of
 // these, not a thousand meshes.
 struct instance {
   shape_kind kind = shape_kind::mesh;
-  uint32_t shape = 0;     // index into scene.meshes
+  uint32_t shape = 0;     // index into scene.meshes (or scene.quadrics for shape_kind::quadric)
   uint32_t material = 0;  // index into scene.materials
   uint32_t node = 0;      // glTF node that placed it (for ids and messages)
   dmat4 world_from_object{1.0};
@@ -142,6 +174,7 @@ struct load_statistics {
 struct scene {
   std::string source;  // file it came from
   std::vector<mesh> meshes;
+  std::vector<quadric> quadrics;  // KILN_quadric definitions, each shared by its instances
   std::vector<instance> instances;
   std::vector<material> materials;  // never empty after loading: the last may be the default
   std::vector<texture> textures;

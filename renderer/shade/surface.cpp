@@ -1,11 +1,33 @@
 #include "shade/surface.h"
 
+#include "geometry/quadric.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
 
+namespace {
+
+// A quadric hit: the point projected onto the exact surface with its error bound, the gradient
+// normal (shading normal = geometric normal: the surface is exact) and the parametric UV.
+surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r) {
+  quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
+  surface_point sp;
+  sp.position = w.point;
+  sp.position_error = w.error;
+  sp.material = inst.material;
+  sp.uv0 = w.uv;
+  // Two-sided: the normal faces the incoming ray; front = arrived from outside (F > 0).
+  sp.front_face = glm::dot(w.normal, r.direction) < 0.0f;
+  sp.geometric_normal = sp.front_face ? w.normal : -w.normal;
+  sp.shading_normal = sp.geometric_normal;
+  return sp;
+}
+
+}  // namespace
+
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
   const instance& inst = s.instances[h.instance_id];
+  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r);
   const mesh& m = s.meshes[inst.shape];
   const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
 

@@ -1,6 +1,8 @@
 #include "accel/embree/embree_accelerator.h"
 
+#include "accel/embree/embree_quadrics.h"
 #include "core/error.h"
+#include "geometry/quadric.h"
 #include "geometry/triangle.h"
 
 #include <embree3/rtcore.h>
@@ -18,6 +20,7 @@ struct embree_accelerator::state {
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::vector<RTCScene> mesh_scenes;
+  std::vector<RTCScene> quadric_scenes;  // one user-geometry scene per used quadric definition
   std::mutex error_mutex;
   std::string first_error;
 
@@ -36,6 +39,8 @@ struct embree_accelerator::state {
   ~state() {
     if (top) rtcReleaseScene(top);
     for (RTCScene s : mesh_scenes)
+      if (s) rtcReleaseScene(s);
+    for (RTCScene s : quadric_scenes)
       if (s) rtcReleaseScene(s);
     if (device) rtcReleaseDevice(device);
   }
@@ -96,16 +101,23 @@ embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique
   // Unique meshes first, built once, however many instances place them.
   state_->mesh_scenes.assign(s.meshes.size(), nullptr);
   std::vector<bool> used(s.meshes.size(), false);
-  for (const instance& inst : s.instances) used[inst.shape] = true;
+  std::vector<bool> used_quadric(s.quadrics.size(), false);
+  for (const instance& inst : s.instances) (inst.kind == shape_kind::quadric ? used_quadric : used)[inst.shape] = true;
   for (size_t i = 0; i < s.meshes.size(); ++i)
     if (used[i] && s.meshes[i].triangle_count() > 0)
       state_->mesh_scenes[i] = build_mesh_scene(state_->device, s.meshes[i]);
   state_->throw_if_failed("building mesh BVHs");
+  // Each quadric definition is one user-geometry scene, however many nodes place it.
+  state_->quadric_scenes.assign(s.quadrics.size(), nullptr);
+  for (size_t i = 0; i < s.quadrics.size(); ++i)
+    if (used_quadric[i]) state_->quadric_scenes[i] = build_quadric_scene(state_->device, s.quadrics[i]);
+  state_->throw_if_failed("building quadric geometry");
 
   state_->top = rtcNewScene(state_->device);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const instance& inst = s.instances[i];
-    RTCScene shape = state_->mesh_scenes[inst.shape];
+    RTCScene shape =
+        inst.kind == shape_kind::quadric ? state_->quadric_scenes[inst.shape] : state_->mesh_scenes[inst.shape];
     if (!shape) continue;
     RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geometry, shape);
@@ -123,13 +135,15 @@ embree_accelerator::~embree_accelerator() = default;
 
 std::optional<hit> embree_accelerator::intersect(const ray& r) const {
   if (!is_valid(r)) return std::nullopt;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  kiln_intersect_context context;
+  rtcInitIntersectContext(&context.embree);
+  context.world = &scene_;
+  context.world_ray = &r;
   RTCRayHit query{};
   query.ray = to_embree(r);
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(state_->top, &context, &query);
+  rtcIntersect1(state_->top, &context.embree, &query);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
   hit h;
@@ -139,16 +153,26 @@ std::optional<hit> embree_accelerator::intersect(const ray& r) const {
   h.u = query.hit.u;
   h.v = query.hit.v;
   const instance& inst = scene_.instances[h.instance_id];
+  if (inst.kind == shape_kind::quadric) {
+    // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
+    quadric_world_point w = quadric_world_hit(inst, scene_.quadrics[inst.shape], r, h.t, h.primitive_id);
+    h.geometric_normal = w.normal;
+    h.u = w.uv.x;
+    h.v = w.uv.y;
+    return h;
+  }
   h.geometric_normal = triangle_world_normal(inst, scene_.meshes[inst.shape], h.primitive_id);
   return h;
 }
 
 bool embree_accelerator::occluded(const ray& r) const {
   if (!is_valid(r)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  kiln_intersect_context context;
+  rtcInitIntersectContext(&context.embree);
+  context.world = &scene_;
+  context.world_ray = &r;
   RTCRay query = to_embree(r);
-  rtcOccluded1(state_->top, &context, &query);
+  rtcOccluded1(state_->top, &context.embree, &query);
   // Embree marks an occluded ray by setting tfar to -infinity.
   return query.tfar < 0.0f;
 }

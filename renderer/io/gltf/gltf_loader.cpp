@@ -9,6 +9,7 @@
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_materials.h"
 #include "io/gltf/gltf_parse.h"
+#include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
 
 #include <algorithm>
@@ -240,6 +241,22 @@ void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
   }
 }
 
+// A KILN_quadric placement: one instance of a shared definition. Unlike a mesh, a quadric
+// with a singular transform is an error: its object-space ray would be undefined.
+void place_quadric(build_context& ctx, int node_index, const quadric_placement& placement, const dmat4& world) {
+  instance inst;
+  inst.kind = shape_kind::quadric;
+  inst.shape = placement.primitive;
+  inst.node = static_cast<uint32_t>(node_index);
+  inst.world_from_object = world;
+  finish_instance_transform(inst);
+  if (!is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0)
+    throw input_error(ctx.file, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension),
+                      "the node's transform is not invertible (zero scale); a quadric cannot be placed by it");
+  ctx.out.instances.push_back(inst);
+  ctx.instance_gltf_material.push_back(placement.material);
+}
+
 // A camera frame without scale: keep the view direction (-Z) and the up vector (+Y) of the node.
 void place_camera(build_context& ctx, int node_index, const dmat4& world) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
@@ -310,6 +327,8 @@ void place_nodes(build_context& ctx, const std::vector<int>& roots) {
     if (!is_finite(world))
       throw input_error(ctx.file, pointer("nodes", node_index), "world transform overflows to infinity");
     if (node.mesh >= 0) place_mesh(ctx, node_index, world);
+    if (auto placement = read_quadric_placement(ctx.model, node_index, ctx.out.quadrics.size(), ctx.file))
+      place_quadric(ctx, node_index, *placement, world);
     if (node.camera >= 0) place_camera(ctx, node_index, world);
     const int light_index = node_light_index(node);
     if (light_index >= 0) place_light(ctx, node_index, light_index, world);
@@ -382,6 +401,7 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   if (!model.skins.empty() || !model.animations.empty())
     warn_once(ctx, "skins and animations are ignored; meshes are rendered in their rest pose");
 
+  out.quadrics = read_quadric_definitions(model, path);
   const int scene_index = chosen_scene(model, options, path);
   if (scene_index < 0)
     warn_once(ctx, "the file has no scenes; nothing is placed");

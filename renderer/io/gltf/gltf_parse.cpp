@@ -206,7 +206,8 @@ void check_uris_in_json(const uint8_t* text, size_t size, const std::string& pat
 
 const std::vector<std::string>& supported_extensions() {
   static const std::vector<std::string> names = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                 "KHR_materials_ior", "KHR_materials_specular"};
+                                                 "KHR_materials_ior", "KHR_materials_specular",
+                                                 "KILN_quadric"};
   return names;
 }
 

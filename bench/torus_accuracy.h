@@ -1,0 +1,20 @@
+// Torus solver accuracy against a brute-force long-double reference (for quadric_bench).
+#pragma once
+
+#include <cstdint>
+
+namespace kiln::bench {
+
+struct torus_accuracy {
+  int64_t rays = 0;
+  int64_t reference_hits = 0;
+  int64_t missed = 0;    // the reference hits, the solver does not
+  int64_t invented = 0;  // the solver hits, the reference does not
+  int64_t wrong_t = 0;   // both hit, |t − t_ref| > 1e-6·(1 + t_ref)
+};
+
+// Rays from `distance` away; grazing = aimed along the tangent plane of a random surface point
+// with a normal component of 1e-4 to 1e-3 (the hard case for quartic solvers).
+torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed);
+
+}  // namespace kiln::bench

@@ -1,0 +1,75 @@
+#include "accel/embree/embree_quadrics.h"
+
+#include "core/float_bits.h"
+#include "geometry/quadric.h"
+
+#include <optional>
+
+namespace kiln {
+
+namespace {
+
+void quadric_bounds_callback(const RTCBoundsFunctionArguments* args) {
+  const auto* q = static_cast<const quadric*>(args->geometryUserPtr);
+  const bounds3 b = quadric_bounds(*q);
+  // Round outward to float so the box still contains the double-precision surface.
+  args->bounds_o->lower_x = next_float_down(float(b.lower.x));
+  args->bounds_o->lower_y = next_float_down(float(b.lower.y));
+  args->bounds_o->lower_z = next_float_down(float(b.lower.z));
+  args->bounds_o->upper_x = next_float_up(float(b.upper.x));
+  args->bounds_o->upper_y = next_float_up(float(b.upper.y));
+  args->bounds_o->upper_z = next_float_up(float(b.upper.z));
+}
+
+// The quadric hit of the world ray within [tnear, tfar] of the instance Embree is visiting.
+std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const void* user, float tnear,
+                                     float tfar) {
+  const auto* context = reinterpret_cast<const kiln_intersect_context*>(embree_context);
+  const instance& inst = context->world->instances[embree_context->instID[0]];
+  const dvec3 o = transform_point(inst.object_from_world, dvec3(context->world_ray->origin));
+  const dvec3 d = transform_vector(inst.object_from_world, dvec3(context->world_ray->direction));
+  return intersect_quadric(*static_cast<const quadric*>(user), o, d, tnear, tfar);
+}
+
+void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  // kiln traces single rays (rtcIntersect1), so N is 1.
+  if (args->N != 1 || !args->valid[0]) return;
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  std::optional<quadric_ray_hit> h = query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar);
+  if (!h) return;
+  rayhit->ray.tfar = float(h->t);
+  // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.
+  rayhit->hit.Ng_x = 0.0f;
+  rayhit->hit.Ng_y = 0.0f;
+  rayhit->hit.Ng_z = 1.0f;
+  rayhit->hit.u = 0.0f;
+  rayhit->hit.v = 0.0f;
+  rayhit->hit.primID = h->part;
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.instID[0] = args->context->instID[0];
+}
+
+void quadric_occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  auto* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (query(args->context, args->geometryUserPtr, r->tnear, r->tfar)) r->tfar = -inf;
+}
+
+}  // namespace
+
+RTCScene build_quadric_scene(RTCDevice device, const quadric& q) {
+  RTCScene quadric_scene = rtcNewScene(device);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, 1);
+  rtcSetGeometryUserData(geometry, const_cast<quadric*>(&q));
+  rtcSetGeometryBoundsFunction(geometry, &quadric_bounds_callback, nullptr);
+  rtcSetGeometryIntersectFunction(geometry, &quadric_intersect_callback);
+  rtcSetGeometryOccludedFunction(geometry, &quadric_occluded_callback);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(quadric_scene, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(quadric_scene);
+  return quadric_scene;
+}
+
+}  // namespace kiln

@@ -1,0 +1,26 @@
+// Quadrics as Embree user geometry (RTC_GEOMETRY_TYPE_USER): one scene per distinct KILN_quadric
+// definition, placed by instances exactly like meshes. The callbacks are thin wrappers around
+// geometry/quadric.h. Internal to accel/embree, the only module that includes Embree.
+#pragma once
+
+#include "core/ray.h"
+#include "scene/scene.h"
+
+#include <embree3/rtcore.h>
+
+namespace kiln {
+
+// The intersect context kiln passes to rtcIntersect1/rtcOccluded1. Embree hands user geometry
+// the ray already moved to object space in float; the quadric callbacks instead re-transform the
+// original world ray in double (object_from_world of the instance Embree is visiting), so the
+// hit does not carry float transform error and equals what a non-Embree backend computes.
+struct kiln_intersect_context {
+  RTCIntersectContext embree;  // must stay first: Embree sees a pointer to this member
+  const scene* world = nullptr;
+  const ray* world_ray = nullptr;
+};
+
+// Builds the single-primitive user-geometry scene of one quadric definition. `q` must outlive it.
+RTCScene build_quadric_scene(RTCDevice device, const quadric& q);
+
+}  // namespace kiln

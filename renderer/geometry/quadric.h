@@ -1,0 +1,74 @@
+// Analytic primitives (KILN_quadric): tight bounds, ray intersection and the surface at a hit
+// (gradient normal, parametric UV, tangent, error bound), all in the primitive's canonical object
+// space. Pure math in double precision with no Embree dependency: the Embree user-geometry
+// callbacks and the grid backend call these same functions, so both return the same hit.
+// Depends on core and scene only. See docs/quadrics.md for each kind's parameterisation.
+#pragma once
+
+#include "core/ray.h"
+#include "scene/scene.h"
+
+#include <optional>
+
+namespace kiln {
+
+using dvec2 = glm::dvec2;
+
+// The sub-surface a hit lies on; carried in hit.primitive_id.
+enum quadric_part : uint32_t { quadric_side = 0, quadric_cap_zmin = 1, quadric_cap_zmax = 2 };
+
+// A ray parameter and the part it hit.
+struct quadric_ray_hit {
+  double t = 0.0;
+  uint32_t part = quadric_side;
+};
+
+// Tight object-space bounds of a primitive (its clipped extent, caps included).
+bounds3 quadric_bounds(const quadric& q);
+
+// The closest hit of o + t·d with t in (tmin, tmax), in object space and double precision, or
+// empty. d need not be unit length; t is in units of d, so it is the world t of the same ray.
+std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d, double tmin,
+                                                 double tmax);
+
+// The implicit function F of the side surface (F < 0 inside, F = 0 on the surface), and its gradient.
+double quadric_implicit(const quadric& q, const dvec3& p);
+dvec3 quadric_gradient(const quadric& q, const dvec3& p);
+
+// The object-space surface at a hit.
+struct quadric_surface {
+  dvec3 point{0.0};   // projected onto the surface of `part`
+  dvec3 normal{0.0};  // unit; normalised gradient of F (outward), or ±z on caps and disks
+  dvec3 dpdu{0.0};    // unit tangent along u, perpendicular to normal
+  dvec2 uv{0.0};      // parametric UV in [0,1]² (see docs/quadrics.md)
+  double error = 0.0;  // bound on the distance of `point` from the exact surface, object units
+};
+
+// The surface of `part` near an approximate hit point (e.g. o + t·d): the point is projected onto
+// the surface in double precision, so its error no longer depends on how t was found.
+quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point);
+
+// A quadric hit in world space, with a per-axis bound on the position's rounding error.
+struct quadric_world_point {
+  vec3 point{0.0f};
+  vec3 error{0.0f};
+  vec3 normal{0.0f};   // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
+  vec3 tangent{0.0f};  // unit, world dp/du
+  vec2 uv{0.0f};
+};
+
+// Reconstructs the hit of world ray r at parameter t on `part` of instance `inst` of q: the ray
+// moves to object space in double, the point is projected onto the surface, then moves back.
+quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
+
+// Torus: the closest root of the quartic in (tmin, tmax) (see torus.cpp).
+std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o, const dvec3& d,
+                                      double tmin, double tmax);
+
+// Radius of an axial kind's cross-section at height z (the cap radius at zmin/zmax).
+double quadric_radius_at(const quadric& q, double z);
+
+// Slab test of o + t·d against a box: narrows [tmin, tmax] to the part inside; false when empty.
+bool clip_ray_to_box(const bounds3& box, const dvec3& o, const dvec3& d, double& tmin, double& tmax);
+
+}  // namespace kiln
