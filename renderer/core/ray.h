@@ -8,6 +8,9 @@
 
 namespace kiln {
 
+// Why a ray was traced. Accelerators ignore it; `kiln compare` reports its statistics per kind.
+enum class ray_kind : uint8_t { camera, shadow, reflection, refraction, other };
+
 // A ray segment o + t·d for t in [tmin, tmax]. Direction need not be unit length for
 // accelerators, but kiln's own rays keep it unit so t is a distance.
 struct ray {
@@ -15,6 +18,7 @@ struct ray {
   vec3 direction{0.0f, 0.0f, 1.0f};
   float tmin = 0.0f;
   float tmax = inf;
+  ray_kind kind = ray_kind::other;
 };
 
 // True when a ray can be handed to a traversal backend: finite origin and direction, a

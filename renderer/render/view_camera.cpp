@@ -105,6 +105,7 @@ ray generate_camera_ray(const view_camera& cam, double px, double py) {
   double sy = 1.0 - py / cam.height;  // image rows run top-down, the window's u axis bottom-up
   dvec3 on_window = lower_left + (cam.right_edge - cam.left) * sx * cam.right + (cam.top - cam.bottom) * sy * cam.up;
   ray r;
+  r.kind = ray_kind::camera;
   if (cam.kind == projection::orthographic) {
     r.origin = vec3(on_window);
     r.direction = vec3(cam.view);

@@ -30,6 +30,7 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
     ray shadow;
     shadow.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
     shadow.direction = ls.direction;
+    shadow.kind = ray_kind::shadow;
     shadow.tmax = std::isinf(ls.distance)
                       ? inf
                       : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
@@ -69,6 +70,7 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
       ray reflected;
       reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
       reflected.direction = glm::normalize(direction);
+      reflected.kind = ray_kind::reflection;
       ++counts.reflection;
       radiance += weight * trace_radiance(ctx, reflected, depth + 1, next_throughput, counts);
     }
