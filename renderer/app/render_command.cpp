@@ -180,6 +180,15 @@ void add_render_options(CLI::App& app, render_options& o) {
       ->capture_default_str();
   app.add_flag("--allow-outside-files", o.allow_outside_files,
                "Let buffer and image URIs name files outside the asset's folder (absolute paths, '..')");
+  app.add_option("--max-json-bytes", o.max_json_bytes, "Refuse glTF JSON larger than this (bytes)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-json-depth", o.max_json_depth, "Refuse glTF JSON nested deeper than this")
+      ->check(CLI::Range(size_t(1), size_t(100000)))
+      ->capture_default_str();
+  app.add_option("--max-nodes", o.max_nodes, "Refuse glTF files with more nodes than this")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -190,6 +199,9 @@ void run_render(const render_options& options) {
   gltf_load_options load_options;
   load_options.scene_index = options.scene_index;
   load_options.allow_files_outside_folder = options.allow_outside_files;
+  load_options.limits.max_json_bytes = options.max_json_bytes;
+  load_options.limits.max_json_depth = options.max_json_depth;
+  load_options.limits.max_nodes = options.max_nodes;
   scene world = load_gltf(options.input, load_options);
   world.env.color = options.background;
   double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();

@@ -4,6 +4,7 @@
 
 #include "core/math.h"
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,10 @@ struct render_options {
   int max_depth = 8;
   float min_throughput = 1e-3f;
   bool allow_outside_files = false;
+  // Loader limits (see gltf_limits for what each guards against).
+  size_t max_json_bytes = size_t(512) << 20;
+  size_t max_json_depth = 512;
+  size_t max_nodes = 1000000;
   bool quiet = false;
   std::string command_line;
 };

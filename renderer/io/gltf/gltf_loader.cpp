@@ -387,7 +387,7 @@ int chosen_scene(const tinygltf::Model& model, const gltf_load_options& options,
 }  // namespace
 
 scene load_gltf(const std::string& path, const gltf_load_options& options) {
-  const tinygltf::Model model = parse_gltf_file(path, options.allow_files_outside_folder);
+  const tinygltf::Model model = parse_gltf_file(path, options);
   validate_model(model, path);
 
   scene out;

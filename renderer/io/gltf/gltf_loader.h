@@ -11,11 +11,21 @@
 
 namespace kiln {
 
+// Bounds on what a file may make the loader do, so a hostile or broken file is refused with a
+// message instead of exhausting memory, time or the stack. Defaults cover every real asset kiln
+// has met with a wide margin; the CLI can raise them.
+struct gltf_limits {
+  size_t max_json_bytes = size_t(512) << 20;  // the JSON text (GLB: its JSON chunk)
+  size_t max_json_depth = 512;                // nesting of arrays and objects; glTF itself needs < 10
+  size_t max_nodes = 1000000;                 // entries in "nodes"
+};
+
 struct gltf_load_options {
   int scene_index = -1;  // -1: the file's default scene (or scene 0 when none is marked)
   // Buffer and image URIs may name files outside the asset's folder (absolute paths, ".."
   // escapes). Off by default: a scene file must not read arbitrary files on a farm node.
   bool allow_files_outside_folder = false;
+  gltf_limits limits;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.

@@ -178,12 +178,46 @@ std::string percent_decode(const std::string& uri) {
   return out;
 }
 
-// Refuses buffer and image URIs that would read outside the asset's folder, naming the JSON
-// pointer, before tinygltf touches any file. glTF URIs are relative references: an absolute path
-// or a file: URI is never followed; ".." that leaves the folder only with the allow option.
-void check_uris_in_json(const uint8_t* text, size_t size, const std::string& path, const fs_context& context) {
+// The deepest nesting of arrays and objects in JSON text, found without parsing: JSON parsers
+// (and the destructors of what they build) recurse per level, so millions of '[' exhaust the
+// stack. Stops counting once past `limit`.
+size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
+  size_t depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < size && deepest <= limit; ++i) {
+    const uint8_t c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;  // skip the escaped character
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+// Checks the JSON before tinygltf parses it: size and nesting within the limits, the node count
+// within its limit, and every buffer and image URI inside the asset's folder. glTF URIs are
+// relative references: an absolute path or a file: URI is never followed; ".." that leaves the
+// folder only with the allow option. Each refusal names the JSON pointer.
+void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path, const fs_context& context,
+                               const gltf_limits& limits) {
+  if (size > limits.max_json_bytes)
+    throw input_error(path, "", "JSON is " + std::to_string(size) + " bytes, over the limit of " +
+                                    std::to_string(limits.max_json_bytes) + " (--max-json-bytes)");
+  if (json_nesting_depth(text, size, limits.max_json_depth) > limits.max_json_depth)
+    throw input_error(path, "", "JSON nests deeper than " + std::to_string(limits.max_json_depth) +
+                                    " levels (--max-json-depth)");
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return;
+  auto nodes = doc.find("nodes");
+  if (nodes != doc.end() && nodes->is_array() && nodes->size() > limits.max_nodes)
+    throw input_error(path, "/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
+                                          std::to_string(limits.max_nodes) + " (--max-nodes)");
   for (const char* collection : {"buffers", "images"}) {
     auto items = doc.find(collection);
     if (items == doc.end() || !items->is_array()) continue;
@@ -211,7 +245,7 @@ const std::vector<std::string>& supported_extensions() {
   return names;
 }
 
-tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outside_folder) {
+tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options) {
   std::vector<uint8_t> bytes;
   std::string why;
   if (!read_file_bytes(path, bytes, why)) throw input_error(path, "", why);
@@ -221,7 +255,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outsid
   if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   fs_context context;
   context.folder_prefix = folder.lexically_normal().string();
-  context.allow_outside = allow_files_outside_folder;
+  context.allow_outside = options.allow_files_outside_folder;
   if (context.folder_prefix.empty() || context.folder_prefix.back() != '/') context.folder_prefix += '/';
 
   tinygltf::TinyGLTF parser;
@@ -241,7 +275,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outsid
       const glb_layout layout = check_glb_container(bytes, path);
       json_offset = layout.json_offset;
       json_length = layout.json_length;
-      check_uris_in_json(bytes.data() + json_offset, json_length, path, context);
+      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
         throw input_error(path, "", "GLB JSON chunk starts with a byte order mark, which glTF forbids");
       ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
@@ -249,7 +283,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outsid
     } else {
       if (has_utf8_bom(bytes.data(), bytes.size()))
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
-      check_uris_in_json(bytes.data(), bytes.size(), path, context);
+      check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits);
       ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                       static_cast<unsigned int>(bytes.size()), folder.string());
     }

@@ -5,6 +5,8 @@
 // extensions. Internal to io/gltf. No scene construction and no validation of references here.
 #pragma once
 
+#include "io/gltf/gltf_loader.h"
+
 #include <tiny_gltf.h>
 
 #include <string>
@@ -18,8 +20,9 @@ const std::vector<std::string>& supported_extensions();
 // Parses the file at `path`. Images keep their encoded bytes in image.image (as_is = true);
 // images stored in a bufferView are left empty, to be read after the bufferView is validated.
 // Throws kiln::error (input) for a missing or unreadable file, a broken container, invalid JSON,
-// an asset version other than 2.x or an unsupported required extension. Buffers and images are
-// read only from inside the asset's folder unless allow_files_outside_folder is set.
-tinygltf::Model parse_gltf_file(const std::string& path, bool allow_files_outside_folder = false);
+// an asset version other than 2.x, an unsupported required extension, or JSON beyond
+// options.limits. Buffers and images are read only from inside the asset's folder unless
+// options.allow_files_outside_folder is set.
+tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options);
 
 }  // namespace kiln::gltf_internal
