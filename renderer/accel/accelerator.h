@@ -13,10 +13,11 @@ class accelerator {
  public:
   virtual ~accelerator() = default;
 
-  // The closest hit with t in [r.tmin, r.tmax], or empty for a miss or an invalid ray.
+  // The closest hit with t in (r.tmin, r.tmax] (Embree's depth test), or empty for a miss or an
+  // invalid ray.
   virtual std::optional<hit> intersect(const ray& r) const = 0;
 
-  // True when anything blocks the segment [r.tmin, r.tmax]. Invalid rays report not occluded.
+  // True when anything blocks the segment (r.tmin, r.tmax]. Invalid rays report not occluded.
   virtual bool occluded(const ray& r) const = 0;
 };
 

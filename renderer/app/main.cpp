@@ -1,5 +1,7 @@
 // kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
-// on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure).
+// on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
+// 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render).
+#include "app/compare_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
 #include "core/error.h"
@@ -39,6 +41,12 @@ int main(int argc, char** argv) {
   CLI::App* render_command = app.add_subcommand("render", "Render a glTF asset to an OpenEXR image");
   kiln::add_render_options(*render_command, render);
 
+  kiln::compare_options compare;
+  compare.view.command_line = render.command_line;
+  CLI::App* compare_command =
+      app.add_subcommand("compare", "Trace one view with two backends and report where their answers differ");
+  kiln::add_compare_options(*compare_command, compare);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -51,6 +59,7 @@ int main(int argc, char** argv) {
 
   try {
     if (render_command->parsed()) kiln::run_render(render);
+    if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';

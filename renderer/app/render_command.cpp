@@ -1,6 +1,6 @@
 #include "app/render_command.h"
 
-#include "accel/embree/embree_accelerator.h"
+#include "accel/make_accelerator.h"
 #include "app/interrupt.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
@@ -137,9 +137,8 @@ std::string format_vec(const vec3& v) {
 
 }  // namespace
 
-void add_render_options(CLI::App& app, render_options& o) {
+void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
-  app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   app.add_option("--width", o.width, "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
   app.add_option("--height", o.height, "Image height in pixels (default 480, or from the camera's aspect ratio)")
@@ -163,7 +162,6 @@ void add_render_options(CLI::App& app, render_options& o) {
       ->capture_default_str();
   app.add_option("--scene", o.scene_index, "glTF scene index (default: the file's default scene)")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
   app.add_option_function<std::string>(
       "--background",
       [&o](const std::string& s) {
@@ -192,9 +190,17 @@ void add_render_options(CLI::App& app, render_options& o) {
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
-void run_render(const render_options& options) {
-  check_output_writable(options.output);
+void add_render_options(CLI::App& app, render_options& o) {
+  add_view_options(app, o);
+  app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
+  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+  app.add_option("--accel", o.accel, "Traversal backend")
+      ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
+      ->capture_default_str();
+}
 
+prepared_scene prepare_scene(const render_options& options) {
+  prepared_scene p;
   auto load_start = std::chrono::steady_clock::now();
   gltf_load_options load_options;
   load_options.scene_index = options.scene_index;
@@ -202,23 +208,21 @@ void run_render(const render_options& options) {
   load_options.limits.max_json_bytes = options.max_json_bytes;
   load_options.limits.max_json_depth = options.max_json_depth;
   load_options.limits.max_nodes = options.max_nodes;
-  scene world = load_gltf(options.input, load_options);
-  world.env.color = options.background;
-  double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  p.world = load_gltf(options.input, load_options);
+  p.world.env.color = options.background;
+  p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet)
-    for (const std::string& warning : world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
 
-  std::string camera_description;
-  view_camera cam = choose_view(options, world, camera_description);
-  if (world.lights.empty()) {
-    add_default_light(world, cam);
+  p.cam = choose_view(options, p.world, p.camera_description);
+  if (p.world.lights.empty()) {
+    add_default_light(p.world, p.cam);
     if (!options.quiet) std::cerr << "kiln: the file has no lights; using a headlight at the camera\n";
   }
+  return p;
+}
 
-  auto build_start = std::chrono::steady_clock::now();
-  embree_accelerator accel(world);
-  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
-
+render_settings make_render_settings(const render_options& options) {
   render_settings settings;
   settings.samples_per_pixel = options.samples_per_pixel;
   settings.threads = options.threads;
@@ -227,10 +231,27 @@ void run_render(const render_options& options) {
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
   settings.cancel = &interrupt_requested();
+  return settings;
+}
+
+void run_render(const render_options& options) {
+  check_output_writable(options.output);
+
+  prepared_scene prepared = prepare_scene(options);
+  const scene& world = prepared.world;
+  const view_camera& cam = prepared.cam;
+  const std::string& camera_description = prepared.camera_description;
+  const double load_seconds = prepared.load_seconds;
+
+  auto build_start = std::chrono::steady_clock::now();
+  std::unique_ptr<accelerator> accel = make_accelerator(world, *parse_accel_kind(options.accel));
+  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+
+  render_settings settings = make_render_settings(options);
   render_statistics stats;
   film image;
   try {
-    image = render_image(world, accel, cam, settings, &stats, make_progress(!options.quiet));
+    image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet));
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
     if (::isatty(STDERR_FILENO) && !options.quiet) std::fprintf(stderr, "\n");  // end the progress line
@@ -243,6 +264,7 @@ void run_render(const render_options& options) {
   metadata.attributes = {
       {"kiln/scene_file", options.input},
       {"kiln/camera", camera_description},
+      {"kiln/accelerator", options.accel},
       {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},

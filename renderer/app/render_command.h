@@ -3,6 +3,9 @@
 #pragma once
 
 #include "core/math.h"
+#include "render/tile_renderer.h"
+#include "render/view_camera.h"
+#include "scene/scene.h"
 
 #include <cstddef>
 #include <optional>
@@ -31,6 +34,7 @@ struct render_options {
   bool full_float = false;
   vec3 background{0.0f};
   bool show_background = false;
+  std::string accel = "embree";  // embree | grid | adaptive-grid
   int max_depth = 8;
   float min_throughput = 1e-3f;
   bool allow_outside_files = false;
@@ -42,8 +46,26 @@ struct render_options {
   std::string command_line;
 };
 
-// Declares the render subcommand's options on app, writing into options.
+// Declares the options every subcommand that renders shares (asset, image size, camera, samples,
+// shading limits, threads), writing into options. `kiln compare` reuses them.
+void add_view_options(CLI::App& app, render_options& options);
+
+// Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);
+
+// A loaded scene with the chosen view and, when the file has none, the default headlight.
+struct prepared_scene {
+  scene world;
+  view_camera cam;
+  std::string camera_description;
+  double load_seconds = 0.0;
+};
+
+// Loads options.input and chooses the view. Throws kiln::error for bad input.
+prepared_scene prepare_scene(const render_options& options);
+
+// The renderer's settings from the command-line options.
+render_settings make_render_settings(const render_options& options);
 
 // Runs a render. Throws kiln::error for bad input (kind input) or I/O and render failures.
 void run_render(const render_options& options);

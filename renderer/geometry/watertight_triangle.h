@@ -5,6 +5,7 @@
 // p = (1-u-v)·p0 + u·p1 + v·p2. Depends on core only: accelerators and tests share it.
 #pragma once
 
+#include "core/float_bits.h"
 #include "core/math.h"
 
 #include <algorithm>
@@ -41,8 +42,9 @@ struct triangle_hit {
   float v = 0.0f;
 };
 
-// Intersects the sheared ray with triangle (p0, p1, p2), both faces, accepting t in [tmin, tmax]
-// inclusive as Embree does. Returns false on a miss.
+// Intersects the sheared ray with triangle (p0, p1, p2), both faces, accepting t in (tmin, tmax]
+// exactly as Embree's depth test does (tnear < t <= tfar): a hit at t == tmin, such as a shadow
+// ray whose origin rounds back onto its own surface, is no hit. Returns false on a miss.
 inline bool intersect_watertight(const sheared_ray& r, const vec3& p0, const vec3& p1, const vec3& p2, float tmin,
                                  float tmax, triangle_hit& out) {
   const vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
@@ -67,7 +69,21 @@ inline bool intersect_watertight(const sheared_ray& r, const vec3& p0, const vec
   // One division for t and both barycentrics; t is checked after it so tmin/tmax stay exact.
   const float inv_det = 1.0f / det;
   const float t = scaled_t * inv_det;
-  if (!(t >= tmin && t <= tmax)) return false;
+  if (!(t > tmin && t <= tmax)) return false;
+  // A t within its own rounding error of 0 may be the surface the ray just left (a shadow ray
+  // whose offset origin still rounds onto its plane): bound that error as pbrt-v4 does for this
+  // test (Pharr et al., 4th ed., section 6.8.7) and require t to exceed it. No global epsilon.
+  const float max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
+  const float max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
+  const float max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
+  const float delta_x = gamma_bound(5) * (max_x + max_z);
+  const float delta_y = gamma_bound(5) * (max_y + max_z);
+  const float delta_z = gamma_bound(3) * max_z;
+  const float delta_e = 2.0f * (gamma_bound(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  const float max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+  const float delta_t =
+      3.0f * (gamma_bound(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
+  if (t <= delta_t) return false;
   out.t = t;
   out.u = e1 * inv_det;
   out.v = e2 * inv_det;

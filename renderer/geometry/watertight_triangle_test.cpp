@@ -26,13 +26,14 @@ TEST(watertight_triangle, barycentrics_follow_embree_convention) {
   EXPECT_FLOAT_EQ(h.v, 0.25f);
 }
 
-TEST(watertight_triangle, respects_tmin_tmax_inclusive_and_misses_outside) {
+TEST(watertight_triangle, accepts_t_in_half_open_tmin_tmax_and_misses_outside) {
   const vec3 p0(0, 0, 0), p1(1, 0, 0), p2(0, 1, 0);
   sheared_ray r = shear_ray({0.2f, 0.2f, 1.0f}, {0, 0, -1});
   triangle_hit h;
   EXPECT_TRUE(intersect_watertight(r, p0, p1, p2, 0.0f, 1.0f, h));
   EXPECT_FALSE(intersect_watertight(r, p0, p1, p2, 0.0f, 0.999f, h));
   EXPECT_FALSE(intersect_watertight(r, p0, p1, p2, 1.001f, 5.0f, h));
+  EXPECT_FALSE(intersect_watertight(r, p0, p1, p2, 1.0f, 5.0f, h));  // t == tmin is excluded, as in Embree
   EXPECT_FALSE(hit_triangle({0.6f, 0.6f, 1.0f}, {0, 0, -1}, p0, p1, p2, h));
   // A ray in the triangle's plane never hits it (determinant 0), and produces no NaN.
   EXPECT_FALSE(hit_triangle({-1.0f, 0.2f, 0.0f}, {1, 0, 0}, p0, p1, p2, h));
