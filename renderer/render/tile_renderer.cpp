@@ -72,7 +72,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  shading_context ctx{world, accel, settings.shading};
+  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
 
   std::mutex merge_mutex;
   ray_counts total_counts;

@@ -69,6 +69,17 @@ struct material {
   alpha_mode alpha = alpha_mode::opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  // KHR_materials_transmission: share of the dielectric part that lets light through (R channel
+  // of the texture), tinted by the base colour.
+  float transmission_factor = 0.0f;
+  texture_ref transmission_texture;
+  // KHR_materials_volume: thickness 0 means thin-walled (rays pass straight through); otherwise the
+  // mesh bounds a volume that refracts and absorbs by Beer-Lambert. Thickness is in object units.
+  float thickness_factor = 0.0f;
+  float attenuation_distance = inf;  // world units; infinite: no absorption
+  vec3 attenuation_color{1.0f};      // colour that white light has after attenuation_distance
+
+  bool has_volume() const { return thickness_factor > 0.0f; }
 };
 
 // One unique glTF mesh primitive, as triangles, in its own object space. Stored once.

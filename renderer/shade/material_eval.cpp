@@ -38,6 +38,10 @@ material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
   mp.specular_weight = m.specular_factor;
   float r = (m.ior - 1.0f) / (m.ior + 1.0f);
   mp.dielectric_f0 = glm::min(vec3(r * r) * m.specular_color_factor, vec3(1.0f));
+  mp.transmission = m.transmission_factor;
+  if (m.transmission_texture.present() && mp.transmission > 0.0f)
+    mp.transmission *= lookup(s, m.transmission_texture, uv0, texel_encoding::linear).r;
+  mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
   return mp;
 }
 
@@ -72,7 +76,8 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
   // the Fresnel term); metal: specular only, tinted by base colour.
   vec3 dielectric_fresnel = mp.specular_weight * fresnel_schlick(mp.dielectric_f0, v_dot_h);
   vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
-  vec3 diffuse = mp.base_color / pi;
+  // Transmitted light is traced as refraction, so it leaves the diffuse lobe (glTF's mix).
+  vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) / pi);
   vec3 dielectric = (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
   vec3 metal = metal_fresnel * (distribution * visibility);
   return glm::mix(dielectric, metal, mp.metallic);

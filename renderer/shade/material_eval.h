@@ -17,7 +17,12 @@ struct material_point {
   vec3 emission{0.0f};     // emitted radiance
   float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
+  float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
 };
+
+// Share of light that the surface passes on through itself: the dielectric part times the
+// transmission factor. The diffuse lobe is scaled by one minus the transmission factor.
+inline float see_through_weight(const material_point& mp) { return (1.0f - mp.metallic) * mp.transmission; }
 
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);
 

@@ -320,7 +320,13 @@ gltf_builder textured_quad(const std::string& png_base64, int texcoord_component
                          {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
                           {"KHR_materials_ior", {{"ior", 1.33}}},
                           {"KHR_materials_specular",
-                           {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}}}}}});
+                           {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}},
+                          {"KHR_materials_transmission",
+                           {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}},
+                          {"KHR_materials_volume",
+                           {{"thicknessFactor", 0.1},
+                            {"attenuationDistance", 2.5},
+                            {"attenuationColor", {0.9, 0.8, 0.7}}}}}}}});
   const int mesh_index =
       b.add_mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}, {"material", 1}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
@@ -350,6 +356,11 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_FLOAT_EQ(m.occlusion_texture.scale, 0.3f);
   EXPECT_FALSE(m.emissive_texture.present());
   EXPECT_FALSE(m.metallic_roughness_texture.present());
+  EXPECT_FLOAT_EQ(m.transmission_factor, 0.8f);
+  EXPECT_EQ(m.transmission_texture.texture, 0);
+  EXPECT_FLOAT_EQ(m.thickness_factor, 0.1f);
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 2.5f);
+  EXPECT_EQ(m.attenuation_color, vec3(0.9f, 0.8f, 0.7f));
 
   ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(s.textures[0].sampling.wrap_s, wrap_mode::clamp_to_edge);

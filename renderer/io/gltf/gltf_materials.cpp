@@ -5,18 +5,31 @@
 #include "io/gltf/gltf_images.h"
 
 #include <cmath>
+#include <limits>
 
 namespace kiln::gltf_internal {
 namespace {
 
-// The (index, texCoord) pairs of the five core texture slots of a material.
+// The textureInfo at key inside a material extension, as (index, texCoord); (-1, 0) when absent or
+// malformed (convert_material reports malformed ones).
+std::pair<int, int> extension_texture_slot(const tinygltf::Material& m, const char* extension, const char* key) {
+  auto it = m.extensions.find(extension);
+  if (it == m.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return {-1, 0};
+  const tinygltf::Value& info = it->second.Get(key);
+  if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) return {-1, 0};
+  const bool has_texcoord = info.Has("texCoord") && info.Get("texCoord").IsInt();
+  return {info.Get("index").GetNumberAsInt(), has_texcoord ? info.Get("texCoord").GetNumberAsInt() : 0};
+}
+
+// The (index, texCoord) pairs of every texture slot of a material kiln reads.
 std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
   return {{m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.texCoord},
           {m.pbrMetallicRoughness.metallicRoughnessTexture.index,
            m.pbrMetallicRoughness.metallicRoughnessTexture.texCoord},
           {m.normalTexture.index, m.normalTexture.texCoord},
           {m.occlusionTexture.index, m.occlusionTexture.texCoord},
-          {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
+          {m.emissiveTexture.index, m.emissiveTexture.texCoord},
+          extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
 }
 
 wrap_mode to_wrap(int gl) {
@@ -102,6 +115,73 @@ const tinygltf::Value* find_extension(const tinygltf::Material& m, const char* n
 
 void require(bool ok, const std::string& file, const std::string& where, const std::string& reason) {
   if (!ok) throw input_error(file, where, reason);
+}
+
+// Reads a number member that must lie in [low, high] when present; false when absent.
+bool bounded_number(const tinygltf::Value& object, const char* key, double low, double high, double& out,
+                    const std::string& file, const std::string& where) {
+  if (!object.IsObject() || !object.Has(key)) return false;
+  const tinygltf::Value& v = object.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(v.IsNumber(), file, at, std::string(key) + " must be a number");
+  out = v.GetNumberAsDouble();
+  require(std::isfinite(out) && out >= low && out <= high, file, at,
+          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+  return true;
+}
+
+// A textureInfo inside a material extension, validated like the core ones.
+texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Value& ext, const char* key,
+                              texture_remap& remap, scene& out, const std::string& file, const std::string& where) {
+  if (!ext.IsObject() || !ext.Has(key)) return texture_ref{};
+  const tinygltf::Value& info = ext.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(info.IsObject() && info.Has("index") && info.Get("index").IsInt(), file, at,
+          "textureInfo needs an integer index");
+  const int index = info.Get("index").GetNumberAsInt();
+  require(index >= 0 && size_t(index) < model.textures.size(), file, pointer_join(at, "index"),
+          "texture " + std::to_string(index) + " does not exist");
+  int texcoord = 0;
+  if (info.Has("texCoord")) {
+    require(info.Get("texCoord").IsInt() && info.Get("texCoord").GetNumberAsInt() >= 0, file,
+            pointer_join(at, "texCoord"), "texCoord must be a non-negative integer");
+    texcoord = info.Get("texCoord").GetNumberAsInt();
+  }
+  return make_ref(model, index, texcoord, 1.0, remap, out, file);
+}
+
+// KHR_materials_transmission and KHR_materials_volume.
+void convert_transmission(const tinygltf::Model& model, const tinygltf::Material& src, material& m,
+                          texture_remap& remap, scene& out, const std::string& file, const std::string& ext_where) {
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_transmission")) {
+    const std::string at = pointer_join(ext_where, "KHR_materials_transmission");
+    double factor = 0.0;
+    if (bounded_number(*ext, "transmissionFactor", 0.0, 1.0, factor, file, at))
+      m.transmission_factor = static_cast<float>(factor);
+    m.transmission_texture = extension_texture(model, *ext, "transmissionTexture", remap, out, file, at);
+  }
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_volume")) {
+    const std::string at = pointer_join(ext_where, "KHR_materials_volume");
+    const double largest = std::numeric_limits<double>::max();
+    double value = 0.0;
+    if (bounded_number(*ext, "thicknessFactor", 0.0, largest, value, file, at))
+      m.thickness_factor = static_cast<float>(value);
+    if (bounded_number(*ext, "attenuationDistance", 0.0, largest, value, file, at)) {
+      require(value > 0.0, file, pointer_join(at, "attenuationDistance"), "attenuationDistance must be positive");
+      m.attenuation_distance = static_cast<float>(value);
+    }
+    if (ext->IsObject() && ext->Has("attenuationColor")) {
+      const tinygltf::Value& color = ext->Get("attenuationColor");
+      const std::string color_at = pointer_join(at, "attenuationColor");
+      require(color.IsArray() && color.ArrayLen() == 3, file, color_at, "attenuationColor must have 3 numbers");
+      for (int i = 0; i < 3; ++i) {
+        const tinygltf::Value& c = color.Get(i);
+        require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
+                color_at, "attenuationColor must be finite and not negative");
+        m.attenuation_color[i] = static_cast<float>(c.GetNumberAsDouble());
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -216,6 +296,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
       }
     }
   }
+  convert_transmission(model, src, m, remap, out, file, ext_where);
   return m;
 }
 
