@@ -3,53 +3,39 @@
 // reflectance of a slab sums the Fresnel series, total internal reflection
 // sends nothing through, Beer-Lambert absorption over a known length, and
 // shadows through a transmissive sheet take its transmission colour.
+#include "accel/embree/embree_accelerator.h"
+#include "shade/dielectric.h"
+#include "shade/whitted.h"
+#include "support/shadow_probe.h"
+#include "support/test_scenes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <mutex>
 #include <vector>
 
-#include "accel/embree/embree_accelerator.h"
-#include "shade/dielectric.h"
-#include "shade/whitted.h"
-
 namespace kiln {
 namespace {
+
+using testing::add_box;
+using testing::make_ray;
 
 // Passes queries on to a real backend and records every ray handed to
 // intersect().
 class recording_accelerator final : public accelerator {
  public:
-  explicit recording_accelerator(const accelerator &inner) : inner_(inner) {}
-  std::optional<hit> intersect(const ray &r) const override {
+  explicit recording_accelerator(const accelerator& inner) : inner_(inner) {}
+  std::optional<hit> intersect(const ray& r) const override {
     rays.push_back(r);
     return inner_.intersect(r);
   }
-  bool occluded(const ray &r) const override { return inner_.occluded(r); }
+  bool occluded(const ray& r) const override { return inner_.occluded(r); }
   mutable std::vector<ray> rays;
 
  private:
-  const accelerator &inner_;
+  const accelerator& inner_;
 };
-
-// An axis-aligned box with outward-facing counter-clockwise triangles (a closed
-// volume).
-void add_box(scene &s, const vec3 &lo, const vec3 &hi, uint32_t material) {
-  mesh m;
-  for (int i = 0; i < 8; ++i)
-    m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
-  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto &q : quads) m.indices.insert(m.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
-  for (const vec3 &p : m.positions) m.bounds.extend(dvec3(p));
-  s.meshes.push_back(m);
-  instance inst;
-  inst.shape = uint32_t(s.meshes.size() - 1);
-  inst.material = material;
-  finish_instance_transform(inst);
-  s.instances.push_back(inst);
-}
 
 // Smooth glass: all of the dielectric part transmits; no diffuse, no faded
 // mirror.
@@ -70,13 +56,6 @@ material emitter(float radiance) {
   m.specular_factor = 0.0f;
   m.emissive_factor = vec3(radiance);
   return m;
-}
-
-ray make_ray(const vec3 &origin, const vec3 &direction) {
-  ray r;
-  r.origin = origin;
-  r.direction = glm::normalize(direction);
-  return r;
 }
 
 TEST(dielectric, normal_incidence_fresnel_is_the_squared_ratio) {
@@ -136,8 +115,8 @@ TEST(refraction, glass_slab_shifts_a_ray_by_the_snell_offset) {
     trace_radiance(ctx, camera, 0, 1.0f, counts);
     // The first ray that left the bottom face going down (later ones follow
     // internal reflections).
-    const ray *exit = nullptr;
-    for (const ray &r : accel.rays)
+    const ray* exit = nullptr;
+    for (const ray& r : accel.rays)
       if (!exit && std::abs(r.origin.z + thickness) < 1e-4f && r.direction.z < 0.0f) exit = &r;
     ASSERT_NE(exit, nullptr) << angle;
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(exit->direction[a], camera.direction[a], 2e-6f) << angle;
@@ -227,23 +206,9 @@ TEST(refraction, shadow_through_a_transmissive_sheet_takes_its_colour) {
   const vec3 tint(0.5f, 0.25f, 1.0f);
   sheet.base_color_factor = vec4(tint, 1.0f);
   s.materials = {floor, sheet};
-  add_box(s, vec3(-10, -10, -1), vec3(10, 10, 0), 0);
-  add_box(s, vec3(0, -10, 1), vec3(10, 10, 1.01f), 1);
-  light l;
-  l.position = dvec3(0, 0, 4);
-  l.intensity = 16.0f;
-  s.lights.push_back(l);
-  embree_accelerator accel(s);
-  shading_options options;
-  options.max_depth = 0;
-  shading_context ctx{s, accel, options, scene_has_see_through(s)};
-  ray_counts counts;
-  // Floor points at equal distance from the light, one under the sheet (two
-  // crossings), one not.
-  vec3 open = trace_radiance(ctx, make_ray(vec3(-0.5f, 0, 0.5f), vec3(0, 0, -1)), 0, 1.0f, counts);
-  vec3 covered = trace_radiance(ctx, make_ray(vec3(0.5f, 0, 0.5f), vec3(0, 0, -1)), 0, 1.0f, counts);
-  ASSERT_GT(open.x, 0.0f);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(covered[c] / open[c], tint[c] * tint[c], 1e-5f) << c;
+  add_box(s, vec3(0, -10, 1), vec3(10, 10, 1.01f), 1);  // two crossings
+  vec3 through = testing::light_through_cover(s);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(through[c], tint[c] * tint[c], 1e-5f) << c;
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
     ++counts.camera;
-    std::optional<hit> h = ctx.accel.intersect(r);
+    std::optional<hit> h = find_visible_hit(ctx, r, counts);
     if (!h) {
       if (settings.show_background) {
         colour_sum += ctx.world.env.color;

@@ -20,7 +20,7 @@ float fresnel_dielectric(float cos_i, float eta) {
   return 0.5f * (r_s * r_s + r_p * r_p);
 }
 
-std::optional<vec3> refract_direction(const vec3 &d, const vec3 &n, float eta) {
+std::optional<vec3> refract_direction(const vec3& d, const vec3& n, float eta) {
   float cos_i = std::clamp(-glm::dot(d, n), 0.0f, 1.0f);
   float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
   if (sin2_t >= 1.0f) return std::nullopt;
@@ -29,7 +29,7 @@ std::optional<vec3> refract_direction(const vec3 &d, const vec3 &n, float eta) {
   return glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
 }
 
-vec3 beer_transmittance(const vec3 &attenuation_color, float attenuation_distance, float distance) {
+vec3 beer_transmittance(const vec3& attenuation_color, float attenuation_distance, float distance) {
   if (!(attenuation_distance < inf) || attenuation_distance <= 0.0f || distance <= 0.0f) return vec3(1.0f);
   vec3 result;
   for (int c = 0; c < 3; ++c)
@@ -39,7 +39,7 @@ vec3 beer_transmittance(const vec3 &attenuation_color, float attenuation_distanc
   return result;
 }
 
-float material_ior(const material &m) { return m.ior >= 1.0f ? m.ior : 1.5f; }
+float material_ior(const material& m) { return m.ior >= 1.0f ? m.ior : 1.5f; }
 
 bool medium_stack::contains(uint32_t m) const {
   for (int i = 0; i < size; ++i)
@@ -64,7 +64,7 @@ medium_stack medium_stack::without(uint32_t m) const {
   return out;
 }
 
-float medium_stack::ior(const scene &s) const {
+float medium_stack::ior(const scene& s) const {
   return empty() ? 1.0f : material_ior(s.materials[innermost()]);
 }
 

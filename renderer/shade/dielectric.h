@@ -4,10 +4,10 @@
 // arguments; depends on scene (for material iors) only.
 #pragma once
 
+#include "scene/scene.h"
+
 #include <array>
 #include <optional>
-
-#include "scene/scene.h"
 
 namespace kiln {
 
@@ -20,16 +20,16 @@ float fresnel_dielectric(float cos_i, float eta);
 // Snell refraction of the unit incident direction d at a surface with unit
 // normal n facing the incoming ray (dot(d, n) < 0), eta = n_incident /
 // n_transmitted. Empty on total internal reflection. The result is unit length.
-std::optional<vec3> refract_direction(const vec3 &d, const vec3 &n, float eta);
+std::optional<vec3> refract_direction(const vec3& d, const vec3& n, float eta);
 
 // Beer-Lambert transmittance over distance through a medium whose attenuation
 // colour is reached after attenuation_distance (KHR_materials_volume): T =
 // colour^(distance / attenuation_distance).
-vec3 beer_transmittance(const vec3 &attenuation_color, float attenuation_distance, float distance);
+vec3 beer_transmittance(const vec3& attenuation_color, float attenuation_distance, float distance);
 
 // The index of refraction kiln uses for a material: glTF allows ior 0 (no
 // refraction data), kiln treats anything below 1 as 1.5, glTF's default.
-float material_ior(const material &m);
+float material_ior(const material& m);
 
 // The closed volumes a ray is inside, innermost last. Entering a front face
 // pushes the material, leaving through a back face removes that material
@@ -48,7 +48,7 @@ struct medium_stack {
   medium_stack with(uint32_t m) const;     // after entering m
   medium_stack without(uint32_t m) const;  // after leaving m (its innermost entry)
   // Index of refraction of the innermost medium (1 for vacuum).
-  float ior(const scene &s) const;
+  float ior(const scene& s) const;
 };
 
 }  // namespace kiln

@@ -13,14 +13,18 @@ constexpr int max_shadow_crossings = 32;
 
 }  // namespace
 
-vec3 surface_transmittance(const scene &s, const surface_point &sp) {
-  const material &m = s.materials[sp.material];
-  if (m.transmission_factor <= 0.0f) return vec3(0.0f);
+vec3 surface_transmittance(const scene& s, const surface_point& sp) {
+  const material& m = s.materials[sp.material];
+  const bool blend = m.alpha == alpha_mode::blend;
+  if (m.transmission_factor <= 0.0f && !blend) return vec3(0.0f);
   material_point mp = evaluate_material(s, m, sp.uv0);
-  return mp.base_color * see_through_weight(mp);
+  vec3 through = mp.base_color * see_through_weight(mp);
+  // BLEND: the uncovered share (1 - alpha) passes untouched, the covered share as above.
+  if (blend) through = vec3(1.0f - mp.alpha) + mp.alpha * through;
+  return through;
 }
 
-vec3 shadow_transmittance(const scene &s, const accelerator &accel, ray r, uint64_t &crossings) {
+vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint64_t& crossings) {
   vec3 transmittance(1.0f);
   for (int i = 0; i < max_shadow_crossings; ++i) {
     std::optional<hit> h = accel.intersect(r);

@@ -1,11 +1,11 @@
 #include "shade/whitted.h"
 
-#include <algorithm>
-
 #include "core/float_bits.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/shadow_transmittance.h"
+
+#include <algorithm>
 
 namespace kiln {
 
@@ -16,22 +16,33 @@ namespace {
 // scene scale.
 constexpr float shadow_length_fraction = 1.0f - 1e-4f;
 
-float max_component(const vec3 &v) { return std::max({v.x, v.y, v.z}); }
+// A ray passing more culled back faces than this is treated as a miss (bounds the work).
+constexpr int max_culled_crossings = 16;
+
+float max_component(const vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+// glTF: doubleSided false enables back-face culling. Transmissive volumes are exempt: their rays
+// leave through back faces.
+bool back_face_culled(const scene& s, const hit& h, const ray& r) {
+  const material& m = s.materials[s.instances[h.instance_id].material];
+  if (m.double_sided || m.transmission_factor > 0.0f) return false;
+  return glm::dot(h.geometric_normal, r.direction) > 0.0f;
+}
 
 // Visibility of a light along a shadow ray: one occlusion query, then (only for
 // an occluded ray in a scene with see-through materials) the walk that
 // attenuates by transmission colours.
-vec3 shadow_visibility(const shading_context &ctx, const ray &shadow, ray_counts &counts) {
+vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts& counts) {
   ++counts.shadow;
   if (!ctx.accel.occluded(shadow)) return vec3(1.0f);
   if (!ctx.see_through_shadows) return vec3(0.0f);
   return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
 }
 
-vec3 direct_light(const shading_context &ctx, const surface_point &sp, const material_point &mp,
-                  const vec3 &to_viewer, ray_counts &counts) {
+vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                  const vec3& to_viewer, ray_counts& counts) {
   vec3 total(0.0f);
-  for (const light &l : ctx.world.lights) {
+  for (const light& l : ctx.world.lights) {
     light_sample ls = sample_light(l, sp.position);
     if (ls.irradiance == vec3(0.0f)) continue;
     // A light behind the geometric surface cannot reach it, whatever the
@@ -59,7 +70,7 @@ vec3 direct_light(const shading_context &ctx, const surface_point &sp, const mat
 // Fresnel (linear in F0, so metal and dielectric mix), faded out with roughness
 // (see shading_options). The transmissive part reflects by exact Fresnel
 // instead (see shade_surface).
-vec3 mirror_weight(const shading_options &options, const material_point &mp, float cos_theta) {
+vec3 mirror_weight(const shading_options& options, const material_point& mp, float cos_theta) {
   if (mp.roughness >= options.mirror_roughness_limit) return vec3(0.0f);
   float fade = 1.0f - mp.roughness / options.mirror_roughness_limit;
   vec3 metal = fresnel_schlick(mp.base_color, cos_theta) * mp.metallic;
@@ -81,9 +92,9 @@ struct interface_crossing {
 // (sp.front_face), never by the shading normal. A back-face hit on a volume not
 // in the stack (a camera inside glass, an open mesh) still counts as leaving
 // that material.
-interface_crossing cross_interface(const scene &s, const surface_point &sp, const medium_stack &media) {
+interface_crossing cross_interface(const scene& s, const surface_point& sp, const medium_stack& media) {
   interface_crossing c;
-  const material &m = s.materials[sp.material];
+  const material& m = s.materials[sp.material];
   const float ior = material_ior(m);
   if (!m.has_volume()) {
     c.eta = media.ior(s) / ior;
@@ -103,16 +114,32 @@ interface_crossing cross_interface(const scene &s, const surface_point &sp, cons
 
 }  // namespace
 
-bool scene_has_see_through(const scene &s) {
-  for (const material &m : s.materials)
-    if (m.transmission_factor > 0.0f && m.metallic_factor < 1.0f) return true;
+bool scene_has_see_through(const scene& s) {
+  for (const material& m : s.materials)
+    if ((m.transmission_factor > 0.0f && m.metallic_factor < 1.0f) || m.alpha == alpha_mode::blend)
+      return true;
   return false;
 }
 
-vec3 shade_surface(const shading_context &ctx, const ray &r, const surface_point &sp, int depth,
-                   float throughput, ray_counts &counts, const medium_stack &media) {
-  const material &m = ctx.world.materials[sp.material];
-  material_point mp = evaluate_material(ctx.world, m, sp.uv0);
+std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts) {
+  for (int i = 0; i < max_culled_crossings; ++i) {
+    std::optional<hit> h = ctx.accel.intersect(r);
+    if (!h || !back_face_culled(ctx.world, *h, r)) return h;
+    surface_point sp = make_surface_point(ctx.world, *h, r);
+    vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);
+    if (!std::isinf(r.tmax)) r.tmax = std::max(r.tmax - glm::length(origin - r.origin), 0.0f);
+    r.origin = origin;
+    ++counts.transparency;
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// Emission, direct light, mirror and refraction at a fully covering surface.
+vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
+                   const material_point& mp, int depth, float throughput, ray_counts& counts,
+                   const medium_stack& media) {
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
 
@@ -174,20 +201,48 @@ vec3 shade_surface(const shading_context &ctx, const ray &r, const surface_point
   return radiance;
 }
 
-vec3 shade_hit(const shading_context &ctx, const ray &r, const hit &h, int depth, float throughput,
-               ray_counts &counts, const medium_stack &media) {
+}  // namespace
+
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
+                   float throughput, ray_counts& counts, const medium_stack& media) {
+  const material& m = ctx.world.materials[sp.material];
+  material_point mp = evaluate_material(ctx.world, m, sp.uv0);
+  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
+    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media);
+
+  // BLEND: the surface covers a share alpha of the ray; the rest continues unbent behind it (one
+  // depth level, so stacked transparent layers stay bounded by max_depth).
+  const float alpha = std::max(mp.alpha, 0.0f);
+  vec3 radiance(0.0f);
+  if (alpha > 0.0f)
+    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media);
+  const float behind = throughput * (1.0f - alpha);
+  if (depth < ctx.options.max_depth && behind >= ctx.options.min_throughput) {
+    ray through;
+    through.direction = glm::normalize(r.direction);
+    through.origin =
+        offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
+    ++counts.transparency;
+    radiance += (1.0f - alpha) * trace_radiance(ctx, through, depth + 1, behind, counts, media);
+  }
+  return radiance;
+}
+
+vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
+               ray_counts& counts, const medium_stack& media) {
   return shade_surface(ctx, r, make_surface_point(ctx.world, h, r), depth, throughput, counts, media);
 }
 
-vec3 trace_radiance(const shading_context &ctx, const ray &r, int depth, float throughput, ray_counts &counts,
-                    const medium_stack &media) {
-  std::optional<hit> h = ctx.accel.intersect(r);
+vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, float throughput,
+                    ray_counts& counts, const medium_stack& media) {
+  ray r = r_in;
+  std::optional<hit> h = find_visible_hit(ctx, r, counts);
   if (media.empty()) return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : ctx.world.env.color;
 
   // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
   // that leaves the scene from inside (an open mesh, no exit surface) is
   // attenuated over the material's thickness.
-  const material &inside = ctx.world.materials[media.innermost()];
+  const material& inside = ctx.world.materials[media.innermost()];
   const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);

@@ -27,8 +27,10 @@ struct ray_counts {
   uint64_t shadow = 0;
   uint64_t reflection = 0;
   uint64_t refraction = 0;
+  uint64_t transparency = 0;  // continuations through BLEND surfaces and culled back faces
 
   ray_counts& operator+=(const ray_counts& o) {
+    transparency += o.transparency;
     camera += o.camera;
     shadow += o.shadow;
     reflection += o.reflection;
@@ -46,8 +48,14 @@ struct shading_context {
   bool see_through_shadows = false;
 };
 
-// True when some material can pass light through itself, so shadow rays need the walk.
+// True when some material can pass light through itself (transmission or alphaMode BLEND), so
+// shadow rays need the walk.
 bool scene_has_see_through(const scene& s);
+
+// The closest hit along r that is visible: back faces of single-sided (doubleSided false), opaque
+// materials are culled, as glTF requires, by continuing the ray past them; r's origin moves with
+// it. Shadow rays do not cull (a single-sided surface still casts a shadow from behind).
+std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts);
 
 // Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
 // media: the closed volumes r travels in (empty for camera rays).
