@@ -42,8 +42,12 @@ struct texture {
 // occlusion strength). texture < 0 means none.
 struct texture_ref {
   int32_t texture = -1;
-  uint32_t texcoord = 0;
+  uint32_t texcoord = 0;  // TEXCOORD_n set (after KHR_texture_transform's texCoord override)
   float scale = 1.0f;
+  // KHR_texture_transform: uv' = offset + rotate(rotation) · (uv_scale ⊙ uv).
+  vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise as the extension defines
+  vec2 uv_scale{1.0f};
 
   bool present() const { return texture >= 0; }
 };
@@ -89,6 +93,8 @@ struct mesh {
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
   std::vector<vec3> normals;      // per vertex; empty: flat (geometric) normals, as glTF says
   std::vector<vec2> texcoords0;   // empty unless a material samples TEXCOORD_0
+  std::vector<vec2> texcoords1;   // empty unless a material samples TEXCOORD_1
+  std::vector<vec4> colors0;      // COLOR_0 as linear RGBA (alpha 1 for vec3); empty when absent
   bounds3 bounds;                 // object space
 
   size_t triangle_count() const { return indices.size() / 3; }

@@ -10,11 +10,14 @@ float alpha_at(const scene& s, uint32_t instance_id, uint32_t primitive_id, floa
   const material& m = s.materials[inst.material];
   float alpha = m.base_color_factor.a;
   const mesh& shape = s.meshes[inst.shape];
-  if (m.base_color_texture.present() && !shape.texcoords0.empty()) {
-    const uint32_t* idx = &shape.indices[size_t(primitive_id) * 3];
-    vec2 uv = interpolate(shape.texcoords0[idx[0]], shape.texcoords0[idx[1]], shape.texcoords0[idx[2]], u, v);
-    alpha *=
-        sample_texture(s, s.textures[size_t(m.base_color_texture.texture)], uv, texel_encoding::linear).a;
+  const uint32_t* idx = &shape.indices[size_t(primitive_id) * 3];
+  if (!shape.colors0.empty())
+    alpha *= interpolate(shape.colors0[idx[0]].a, shape.colors0[idx[1]].a, shape.colors0[idx[2]].a, u, v);
+  const texture_ref& ref = m.base_color_texture;
+  const std::vector<vec2>& set = ref.texcoord == 1 && !shape.texcoords1.empty() ? shape.texcoords1 : shape.texcoords0;
+  if (ref.present() && !set.empty()) {
+    vec2 uv = transform_uv(ref, interpolate(set[idx[0]], set[idx[1]], set[idx[2]], u, v));
+    alpha *= sample_texture(s, s.textures[size_t(ref.texture)], uv, texel_encoding::linear).a;
   }
   return alpha;
 }

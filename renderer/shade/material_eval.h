@@ -5,6 +5,7 @@
 #pragma once
 
 #include "scene/scene.h"
+#include "shade/surface.h"
 
 namespace kiln {
 
@@ -24,6 +25,23 @@ struct material_point {
 // transmission factor. The diffuse lobe is scaled by one minus the transmission factor.
 inline float see_through_weight(const material_point& mp) { return (1.0f - mp.metallic) * mp.transmission; }
 
+// The texture coordinate sets and vertex colour at a shading point.
+struct material_inputs {
+  vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};  // TEXCOORD_0, TEXCOORD_1
+  vec4 color0{1.0f};                      // COLOR_0 (multiplies the base colour)
+};
+
+material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
+
+inline material_inputs material_inputs_at(const surface_point& sp) {
+  material_inputs in;
+  in.uv[0] = sp.uv0;
+  in.uv[1] = sp.uv1;
+  in.color0 = sp.color0;
+  return in;
+}
+
+// Only TEXCOORD_0, no vertex colour.
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);
 
 // Reflectance at normal incidence, mixed between dielectric and metal by metallic.

@@ -17,7 +17,7 @@ vec3 surface_transmittance(const scene& s, const surface_point& sp) {
   const material& m = s.materials[sp.material];
   const bool blend = m.alpha == alpha_mode::blend;
   if (m.transmission_factor <= 0.0f && !blend) return vec3(0.0f);
-  material_point mp = evaluate_material(s, m, sp.uv0);
+  material_point mp = evaluate_material(s, m, material_inputs_at(sp));
   vec3 through = mp.base_color * see_through_weight(mp);
   // BLEND: the uncovered share (1 - alpha) passes untouched, the covered share as above.
   if (blend) through = vec3(1.0f - mp.alpha) + mp.alpha * through;

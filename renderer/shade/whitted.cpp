@@ -206,7 +206,7 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
                    float throughput, ray_counts& counts, const medium_stack& media) {
   const material& m = ctx.world.materials[sp.material];
-  material_point mp = evaluate_material(ctx.world, m, sp.uv0);
+  material_point mp = evaluate_material(ctx.world, m, material_inputs_at(sp));
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
     return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media);
 
