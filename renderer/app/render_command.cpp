@@ -279,10 +279,11 @@ void run_render(const render_options& options) {
   if (!options.quiet) {
     std::fprintf(stderr,
                  "kiln: %dx%d, %d spp, %d threads: load %.3f s, build %.3f s, render %.3f s "
-                 "(%llu camera, %llu shadow, %llu reflection rays) -> %s\n",
+                 "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",
                  cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
-                 (unsigned long long)stats.rays.reflection, options.output.c_str());
+                 (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
+                 options.output.c_str());
   }
 }
 

@@ -42,7 +42,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
     ++counts.camera;
-    std::optional<hit> h = ctx.accel.intersect(r);
+    std::optional<hit> h = find_visible_hit(ctx, r, counts);
     if (!h) {
       if (settings.show_background) {
         colour_sum += ctx.world.env.color;
@@ -73,7 +73,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  shading_context ctx{world, accel, settings.shading};
+  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
 
   std::mutex merge_mutex;
   ray_counts total_counts;

@@ -42,8 +42,12 @@ struct texture {
 // occlusion strength). texture < 0 means none.
 struct texture_ref {
   int32_t texture = -1;
-  uint32_t texcoord = 0;
+  uint32_t texcoord = 0;  // TEXCOORD_n set (after KHR_texture_transform's texCoord override)
   float scale = 1.0f;
+  // KHR_texture_transform: uv' = offset + rotate(rotation) · (uv_scale ⊙ uv).
+  vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise as the extension defines
+  vec2 uv_scale{1.0f};
 
   bool present() const { return texture >= 0; }
 };
@@ -69,6 +73,17 @@ struct material {
   alpha_mode alpha = alpha_mode::opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  // KHR_materials_transmission: share of the dielectric part that lets light through (R channel
+  // of the texture), tinted by the base colour.
+  float transmission_factor = 0.0f;
+  texture_ref transmission_texture;
+  // KHR_materials_volume: thickness 0 means thin-walled (rays pass straight through); otherwise the
+  // mesh bounds a volume that refracts and absorbs by Beer-Lambert. Thickness is in object units.
+  float thickness_factor = 0.0f;
+  float attenuation_distance = inf;  // world units; infinite: no absorption
+  vec3 attenuation_color{1.0f};      // colour that white light has after attenuation_distance
+
+  bool has_volume() const { return thickness_factor > 0.0f; }
 };
 
 // One unique glTF mesh primitive, as triangles, in its own object space. Stored once.
@@ -78,6 +93,8 @@ struct mesh {
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
   std::vector<vec3> normals;      // per vertex; empty: flat (geometric) normals, as glTF says
   std::vector<vec2> texcoords0;   // empty unless a material samples TEXCOORD_0
+  std::vector<vec2> texcoords1;   // empty unless a material samples TEXCOORD_1
+  std::vector<vec4> colors0;      // COLOR_0 as linear RGBA (alpha 1 for vec3); empty when absent
   bounds3 bounds;                 // object space
 
   size_t triangle_count() const { return indices.size() / 3; }

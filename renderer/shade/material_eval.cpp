@@ -9,23 +9,30 @@ namespace kiln {
 
 namespace {
 
-vec4 lookup(const scene& s, const texture_ref& ref, vec2 uv0, texel_encoding encoding) {
-  // Only TEXCOORD_0 is stored so far; other sets fall back to it.
-  return sample_texture(s, s.textures[size_t(ref.texture)], uv0, encoding);
+vec4 lookup(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+  // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
+  vec2 uv = transform_uv(ref, in.uv[ref.texcoord == 1 ? 1 : 0]);
+  return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
 }
 
 }  // namespace
 
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
+  material_inputs in;
+  in.uv[0] = in.uv[1] = uv0;
+  return evaluate_material(s, m, in);
+}
+
+material_point evaluate_material(const scene& s, const material& m, const material_inputs& in) {
   material_point mp;
-  vec4 base = m.base_color_factor;
-  if (m.base_color_texture.present()) base *= lookup(s, m.base_color_texture, uv0, texel_encoding::srgb);
+  vec4 base = m.base_color_factor * in.color0;
+  if (m.base_color_texture.present()) base *= lookup(s, m.base_color_texture, in, texel_encoding::srgb);
   mp.base_color = vec3(base);
   mp.alpha = base.a;
   mp.metallic = m.metallic_factor;
   mp.roughness = m.roughness_factor;
   if (m.metallic_roughness_texture.present()) {
-    vec4 mr = lookup(s, m.metallic_roughness_texture, uv0, texel_encoding::linear);
+    vec4 mr = lookup(s, m.metallic_roughness_texture, in, texel_encoding::linear);
     mp.roughness *= mr.g;
     mp.metallic *= mr.b;
   }
@@ -33,11 +40,15 @@ material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
   mp.roughness = std::clamp(mp.roughness, 0.0f, 1.0f);
   vec3 emission = m.emissive_factor * m.emissive_strength;
   if (m.emissive_texture.present() && emission != vec3(0.0f))
-    emission *= vec3(lookup(s, m.emissive_texture, uv0, texel_encoding::srgb));
+    emission *= vec3(lookup(s, m.emissive_texture, in, texel_encoding::srgb));
   mp.emission = emission;
   mp.specular_weight = m.specular_factor;
   float r = (m.ior - 1.0f) / (m.ior + 1.0f);
   mp.dielectric_f0 = glm::min(vec3(r * r) * m.specular_color_factor, vec3(1.0f));
+  mp.transmission = m.transmission_factor;
+  if (m.transmission_texture.present() && mp.transmission > 0.0f)
+    mp.transmission *= lookup(s, m.transmission_texture, in, texel_encoding::linear).r;
+  mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
   return mp;
 }
 
@@ -72,7 +83,8 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
   // the Fresnel term); metal: specular only, tinted by base colour.
   vec3 dielectric_fresnel = mp.specular_weight * fresnel_schlick(mp.dielectric_f0, v_dot_h);
   vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
-  vec3 diffuse = mp.base_color / pi;
+  // Transmitted light is traced as refraction, so it leaves the diffuse lobe (glTF's mix).
+  vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) / pi);
   vec3 dielectric = (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
   vec3 metal = metal_fresnel * (distribution * visibility);
   return glm::mix(dielectric, metal, mp.metallic);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "scene/scene.h"
+#include "shade/surface.h"
 
 namespace kiln {
 
@@ -17,8 +18,30 @@ struct material_point {
   vec3 emission{0.0f};     // emitted radiance
   float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
+  float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
 };
 
+// Share of light that the surface passes on through itself: the dielectric part times the
+// transmission factor. The diffuse lobe is scaled by one minus the transmission factor.
+inline float see_through_weight(const material_point& mp) { return (1.0f - mp.metallic) * mp.transmission; }
+
+// The texture coordinate sets and vertex colour at a shading point.
+struct material_inputs {
+  vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};  // TEXCOORD_0, TEXCOORD_1
+  vec4 color0{1.0f};                      // COLOR_0 (multiplies the base colour)
+};
+
+material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
+
+inline material_inputs material_inputs_at(const surface_point& sp) {
+  material_inputs in;
+  in.uv[0] = sp.uv0;
+  in.uv[1] = sp.uv1;
+  in.color0 = sp.color0;
+  return in;
+}
+
+// Only TEXCOORD_0, no vertex colour.
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);
 
 // Reflectance at normal incidence, mixed between dielectric and metal by metallic.

@@ -166,3 +166,46 @@ TEST(lights, directional_light_is_constant_irradiance) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(texture_sampling, texture_transform_scales_rotates_then_offsets) {
+  texture_ref ref;
+  EXPECT_EQ(transform_uv(ref, vec2(0.3f, 0.7f)), vec2(0.3f, 0.7f));  // identity by default
+  ref.uv_scale = vec2(2.0f, 3.0f);
+  ref.offset = vec2(0.5f, -1.0f);
+  vec2 a = transform_uv(ref, vec2(0.25f, 0.5f));
+  EXPECT_NEAR(a.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(a.y, 0.5f, 1e-6f);
+  // A quarter turn counter-clockwise on the image (v points down): +u goes to -v.
+  ref.rotation = pi / 2;
+  vec2 b = transform_uv(ref, vec2(0.5f, 0.0f));  // scaled to (1, 0), rotated to (0, -1)
+  EXPECT_NEAR(b.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(b.y, -2.0f, 1e-6f);
+}
+
+TEST(material_eval, vertex_colour_and_second_uv_set) {
+  scene s;
+  image img;
+  img.width = 2;
+  img.height = 1;
+  img.texels8 = {255, 255, 255, 255, 0, 0, 0, 255};  // white | black
+  s.images.push_back(img);
+  texture tex;
+  tex.sampling = {wrap_mode::clamp_to_edge, wrap_mode::clamp_to_edge, filter_mode::nearest};
+  s.textures.push_back(tex);
+  material m;
+  m.base_color_texture.texture = 0;
+  m.base_color_texture.texcoord = 1;
+  material_inputs in;
+  in.uv[0] = vec2(0.9f, 0.5f);  // black texel: must not be read
+  in.uv[1] = vec2(0.1f, 0.5f);  // white texel
+  in.color0 = vec4(0.5f, 0.25f, 1.0f, 0.5f);
+  material_point mp = evaluate_material(s, m, in);
+  EXPECT_EQ(mp.base_color, vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_EQ(mp.alpha, 0.5f);
+}
+
+}  // namespace
+}  // namespace kiln

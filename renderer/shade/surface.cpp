@@ -47,6 +47,11 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
   }
   if (!m.texcoords0.empty())
     sp.uv0 = interpolate(m.texcoords0[idx[0]], m.texcoords0[idx[1]], m.texcoords0[idx[2]], h.u, h.v);
+  sp.uv1 = m.texcoords1.empty()
+               ? sp.uv0
+               : interpolate(m.texcoords1[idx[0]], m.texcoords1[idx[1]], m.texcoords1[idx[2]], h.u, h.v);
+  if (!m.colors0.empty())
+    sp.color0 = interpolate(m.colors0[idx[0]], m.colors0[idx[1]], m.colors0[idx[2]], h.u, h.v);
 
   // Two-sided shading: both normals face the incoming ray, and the shading normal never points
   // into the surface the geometric normal defines.

@@ -14,6 +14,8 @@ struct surface_point {
   vec3 geometric_normal{0.0f};  // unit, facing the incoming ray
   vec3 shading_normal{0.0f};    // unit, interpolated, on the same side as geometric_normal
   vec2 uv0{0.0f};
+  vec2 uv1{0.0f};        // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
+  vec4 color0{1.0f};     // COLOR_0, white when the mesh has none
   uint32_t material = 0;
   bool front_face = true;  // the ray arrived on glTF's front side
 };

@@ -58,6 +58,15 @@ vec4 fetch(const image& img, int x, int y, texel_encoding encoding) {
 
 }  // namespace
 
+vec2 transform_uv(const texture_ref& ref, vec2 uv) {
+  vec2 scaled = uv * ref.uv_scale;
+  if (ref.rotation == 0.0f) return scaled + ref.offset;
+  // Counter-clockwise as seen on the image, whose v axis points down: u' = c·u + s·v,
+  // v' = -s·u + c·v (checked against the TextureTransformTest sample's green marker).
+  const float c = std::cos(ref.rotation), s = std::sin(ref.rotation);
+  return vec2(c * scaled.x + s * scaled.y, c * scaled.y - s * scaled.x) + ref.offset;
+}
+
 vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding) {
   const image& img = s.images[tex.image];
   if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return vec4(1.0f);

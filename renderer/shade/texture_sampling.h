@@ -13,6 +13,9 @@ enum class texel_encoding { linear, srgb };
 // sRGB decoding applies to RGB, never to alpha, and happens before filtering.
 vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding);
 
+// Applies a texture reference's KHR_texture_transform to uv (identity by default).
+vec2 transform_uv(const texture_ref& ref, vec2 uv);
+
 // Maps an integer texel coordinate into [0, size) by a glTF wrap mode.
 int wrap_texel(int i, int size, wrap_mode mode);
 

@@ -1,10 +1,12 @@
-// Whitted-style shading: emission, direct light from every punctual light with a shadow ray,
-// and recursive Fresnel-weighted mirror reflection for smooth surfaces. Sees the Scene and the
+// Whitted-style shading: emission, direct light from every punctual light with a shadow ray
+// (attenuated through see-through surfaces), recursive Fresnel-weighted mirror reflection for
+// smooth surfaces, and refraction with exact dielectric Fresnel for transmissive materials. Sees the Scene and the
 // accelerator interface only, never a backend.
 #pragma once
 
 #include "accel/accelerator.h"
 #include "scene/scene.h"
+#include "shade/dielectric.h"
 #include "shade/surface.h"
 
 #include <cstdint>
@@ -24,11 +26,15 @@ struct ray_counts {
   uint64_t camera = 0;
   uint64_t shadow = 0;
   uint64_t reflection = 0;
+  uint64_t refraction = 0;
+  uint64_t transparency = 0;  // continuations through BLEND surfaces and culled back faces
 
   ray_counts& operator+=(const ray_counts& o) {
+    transparency += o.transparency;
     camera += o.camera;
     shadow += o.shadow;
     reflection += o.reflection;
+    refraction += o.refraction;
     return *this;
   }
 };
@@ -37,17 +43,32 @@ struct shading_context {
   const scene& world;
   const accelerator& accel;
   const shading_options& options;
+  // Some material lets light through (transmission): occluded shadow rays are then walked hit by
+  // hit to attenuate them; otherwise one occlusion query decides. See scene_has_see_through().
+  bool see_through_shadows = false;
 };
 
+// True when some material can pass light through itself (transmission or alphaMode BLEND), so
+// shadow rays need the walk.
+bool scene_has_see_through(const scene& s);
+
+// The closest hit along r that is visible: back faces of single-sided (doubleSided false), opaque
+// materials are culled, as glTF requires, by continuing the ray past them; r's origin moves with
+// it. Shadow rays do not cull (a single-sided surface still casts a shadow from behind).
+std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts);
+
 // Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
+// media: the closed volumes r travels in (empty for camera rays).
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth, float throughput,
-                   ray_counts& counts);
+                   ray_counts& counts, const medium_stack& media = medium_stack{});
 
 // Radiance arriving along r from the surface at h (the closest hit of r).
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
-               ray_counts& counts);
+               ray_counts& counts, const medium_stack& media = medium_stack{});
 
-// Radiance arriving along r: shade the closest hit, or the environment on a miss.
-vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts);
+// Radiance arriving along r: shade the closest hit, or the environment on a miss; inside an
+// absorbing volume the result is attenuated by Beer-Lambert over the travelled distance.
+vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts,
+                    const medium_stack& media = medium_stack{});
 
 }  // namespace kiln

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "shade/alpha_coverage.h"
 
 #include <embree3/rtcore.h>
 
@@ -48,9 +49,27 @@ struct embree_accelerator::state {
 
 namespace {
 
+// Intersection and occlusion filter for meshes placed with an alphaMode MASK material: a candidate
+// hit where alpha < alphaCutoff is rejected, so the surface is neither seen nor casts a shadow.
+// The mesh's geometry is shared by its instances, so the rule is looked up per hit through the
+// instance id. Never throws (it runs inside Embree).
+void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
+  const auto& s = *static_cast<const scene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned instance_id = RTCHitN_instID(args->hit, args->N, i, 0);
+    const unsigned primitive_id = RTCHitN_primID(args->hit, args->N, i);
+    if (instance_id >= s.instances.size()) continue;
+    if (alpha_masked_out(s, instance_id, primitive_id, RTCHitN_u(args->hit, args->N, i),
+                         RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+
 // Builds the BVH of one mesh in its own object space. Positions are copied into an Embree-owned
 // buffer because Embree reads vertices as 16-byte loads and needs padding past the last one.
-RTCScene build_mesh_scene(RTCDevice device, const mesh& m) {
+// With alpha_filter the mask rule of the instances' materials is applied to every candidate hit.
+RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_filter) {
   RTCScene mesh_scene = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -59,6 +78,11 @@ RTCScene build_mesh_scene(RTCDevice device, const mesh& m) {
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(uint32_t) * 3, m.triangle_count()));
   if (indices) std::memcpy(indices, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  if (alpha_filter) {
+    rtcSetGeometryUserData(geometry, const_cast<scene*>(alpha_filter));
+    rtcSetGeometryIntersectFilterFunction(geometry, &alpha_mask_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, &alpha_mask_filter);
+  }
   rtcCommitGeometry(geometry);
   rtcAttachGeometryByID(mesh_scene, geometry, 0);
   rtcReleaseGeometry(geometry);
@@ -103,9 +127,10 @@ embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique
   std::vector<bool> used(s.meshes.size(), false);
   std::vector<bool> used_quadric(s.quadrics.size(), false);
   for (const instance& inst : s.instances) (inst.kind == shape_kind::quadric ? used_quadric : used)[inst.shape] = true;
+  const std::vector<bool> masked = meshes_needing_alpha_filter(s);
   for (size_t i = 0; i < s.meshes.size(); ++i)
     if (used[i] && s.meshes[i].triangle_count() > 0)
-      state_->mesh_scenes[i] = build_mesh_scene(state_->device, s.meshes[i]);
+      state_->mesh_scenes[i] = build_mesh_scene(state_->device, s.meshes[i], masked[i] ? &s : nullptr);
   state_->throw_if_failed("building mesh BVHs");
   // Each quadric definition is one user-geometry scene, however many nodes place it.
   state_->quadric_scenes.assign(s.quadrics.size(), nullptr);

@@ -190,21 +190,33 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
     }
   }
 
-  if (material_samples_texcoord0(ctx.model, prim.material)) {
-    auto uv = prim.attributes.find("TEXCOORD_0");
+  // UV sets are stored only when the material samples them.
+  for (int set = 0; set < 2; ++set) {
+    if (!material_samples_texcoord(ctx.model, prim.material, set)) continue;
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    auto uv = prim.attributes.find(name);
     if (uv == prim.attributes.end()) {
-      warn_once(ctx, where + ": the material samples TEXCOORD_0 but the primitive has none");
-    } else {
-      const std::vector<float> t =
-          read_finite(ctx, uv->second, pointer_join(attributes, "TEXCOORD_0"), "TEXCOORD_0");
-      m.texcoords0.resize(vertex_count);
-      for (size_t i = 0; i < vertex_count; ++i) m.texcoords0[i] = vec2(t[2 * i], t[2 * i + 1]);
+      warn_once(ctx, where + ": the material samples " + name + " but the primitive has none");
+      continue;
     }
+    const std::vector<float> t = read_finite(ctx, uv->second, pointer_join(attributes, name), name);
+    std::vector<vec2>& out = set == 0 ? m.texcoords0 : m.texcoords1;
+    out.resize(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) out[i] = vec2(t[2 * i], t[2 * i + 1]);
   }
   if (material_samples_other_texcoords(ctx.model, prim.material))
-    warn_once(ctx,
-              pointer("materials", prim.material) +
-                  ": textures on TEXCOORD_1 or higher are not supported; they read TEXCOORD_0 positions");
+    warn_once(ctx, pointer("materials", prim.material) +
+                       ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
+
+  // COLOR_0 always multiplies the base colour, so it is stored whenever present (already linear).
+  auto color = prim.attributes.find("COLOR_0");
+  if (color != prim.attributes.end()) {
+    const std::vector<float> c = read_finite(ctx, color->second, pointer_join(attributes, "COLOR_0"), "COLOR_0");
+    const size_t n = ctx.model.accessors[static_cast<size_t>(color->second)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    m.colors0.resize(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i)
+      m.colors0[i] = vec4(c[n * i], c[n * i + 1], c[n * i + 2], n == 4 ? c[n * i + 3] : 1.0f);
+  }
 
   ctx.out.meshes.push_back(std::move(m));
   return static_cast<int32_t>(ctx.out.meshes.size() - 1);

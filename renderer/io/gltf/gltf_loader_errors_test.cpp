@@ -239,6 +239,28 @@ TEST(GltfLoaderErrors, ReferencesOutOfRange) {
   }
   {
     gltf_builder b = single_triangle();
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["materials"] =
+        json::array({json{{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}}}});
+    expect_error(b, {"/materials/0/extensions/KHR_materials_transmission/transmissionFactor", "in [0"});
+  }
+  {
+    gltf_builder b = single_triangle();
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["materials"] = json::array(
+        {json{{"extensions", {{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 4}}}}}}}}});
+    expect_error(b, {"/materials/0/extensions/KHR_materials_transmission/transmissionTexture/index",
+                     "texture 4 does not exist"});
+  }
+  {
+    gltf_builder b = single_triangle();
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["materials"] =
+        json::array({json{{"extensions", {{"KHR_materials_volume", {{"attenuationColor", {1, 0.5}}}}}}}});
+    expect_error(b, {"/materials/0/extensions/KHR_materials_volume/attenuationColor", "3 numbers"});
+  }
+  {
+    gltf_builder b = single_triangle();
     b.doc["scene"] = 3;
     expect_error(b, {"/scene", "/scenes/3 does not exist (file has 1 scenes)"});
   }

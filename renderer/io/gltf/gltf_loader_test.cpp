@@ -320,7 +320,13 @@ gltf_builder textured_quad(const std::string& png_base64, int texcoord_component
                          {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
                           {"KHR_materials_ior", {{"ior", 1.33}}},
                           {"KHR_materials_specular",
-                           {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}}}}}});
+                           {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}},
+                          {"KHR_materials_transmission",
+                           {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}},
+                          {"KHR_materials_volume",
+                           {{"thicknessFactor", 0.1},
+                            {"attenuationDistance", 2.5},
+                            {"attenuationColor", {0.9, 0.8, 0.7}}}}}}}});
   const int mesh_index =
       b.add_mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}, {"material", 1}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
@@ -350,6 +356,11 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_FLOAT_EQ(m.occlusion_texture.scale, 0.3f);
   EXPECT_FALSE(m.emissive_texture.present());
   EXPECT_FALSE(m.metallic_roughness_texture.present());
+  EXPECT_FLOAT_EQ(m.transmission_factor, 0.8f);
+  EXPECT_EQ(m.transmission_texture.texture, 0);
+  EXPECT_FLOAT_EQ(m.thickness_factor, 0.1f);
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 2.5f);
+  EXPECT_EQ(m.attenuation_color, vec3(0.9f, 0.8f, 0.7f));
 
   ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(s.textures[0].sampling.wrap_s, wrap_mode::clamp_to_edge);
@@ -501,10 +512,45 @@ TEST(GltfLoader, ChoosesSceneFromOptionsOrDefault) {
 TEST(GltfLoader, WarnsAboutUnsupportedUsedExtensions) {
   temp_folder dir;
   gltf_builder b = single_triangle();
-  b.doc["extensionsUsed"] = {"KHR_texture_transform", "KHR_lights_punctual"};
+  b.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_lights_punctual"};
   const scene s = load_gltf(b.write_gltf(dir));
   ASSERT_EQ(s.stats.warnings.size(), 1u);
-  EXPECT_NE(s.stats.warnings[0].find("KHR_texture_transform"), std::string::npos);
+  EXPECT_NE(s.stats.warnings[0].find("KHR_materials_sheen"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
+  temp_folder dir;
+  gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
+  json& prim = b.doc["meshes"][0]["primitives"][0];
+  prim["attributes"]["TEXCOORD_1"] = b.add_data(std::vector<float>{0.5f, 0.5f, 1, 0.5f, 0.5f, 1}, k_float, "VEC2", 2);
+  prim["attributes"]["COLOR_0"] =
+      b.add_data(std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0}, k_ubyte, "VEC4", 4, true);
+  // The base colour texture moves to TEXCOORD_1 through KHR_texture_transform's texCoord.
+  b.doc["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+      {"offset", {0.25, -0.5}}, {"rotation", 0.5}, {"scale", {2, 3}}, {"texCoord", 1}};
+  const scene s = load_gltf(b.write_gltf(dir));
+  const material& m = s.materials.at(0);
+  EXPECT_EQ(m.base_color_texture.texcoord, 1u);
+  EXPECT_EQ(m.base_color_texture.offset, vec2(0.25f, -0.5f));
+  EXPECT_FLOAT_EQ(m.base_color_texture.rotation, 0.5f);
+  EXPECT_EQ(m.base_color_texture.uv_scale, vec2(2.0f, 3.0f));
+  const mesh& mesh0 = s.meshes.at(0);
+  ASSERT_EQ(mesh0.texcoords1.size(), 3u);
+  EXPECT_EQ(mesh0.texcoords1[1], vec2(1.0f, 0.5f));
+  EXPECT_EQ(mesh0.texcoords0.size(), 3u);  // normal and occlusion textures still read TEXCOORD_0
+  ASSERT_EQ(mesh0.colors0.size(), 3u);
+  EXPECT_EQ(mesh0.colors0[0], vec4(1, 0, 0, 1));
+  EXPECT_NEAR(mesh0.colors0[1].a, 128.0f / 255.0f, 1e-6f);
+
+  prim["attributes"]["COLOR_0"] = b.add_data(std::vector<float>{1, 0, 0, 1}, k_float, "VEC2", 2);
+  const std::string message = error_of([&] { load_gltf(b.write_gltf(dir)); });
+  EXPECT_NE(message.find("COLOR_0 must be VEC3/VEC4"), std::string::npos) << message;
 }
 
 }  // namespace

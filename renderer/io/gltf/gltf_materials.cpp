@@ -5,18 +5,56 @@
 #include "io/gltf/gltf_images.h"
 
 #include <cmath>
+#include <limits>
 
 namespace kiln::gltf_internal {
 namespace {
 
-// The (index, texCoord) pairs of the five core texture slots of a material.
+// The KHR_texture_transform object of a textureInfo's extensions, or null.
+const tinygltf::Value* transform_of(const tinygltf::ExtensionMap& extensions) {
+  auto it = extensions.find("KHR_texture_transform");
+  return it == extensions.end() ? nullptr : &it->second;
+}
+
+const tinygltf::Value* transform_of(const tinygltf::Value& info) {
+  if (!info.IsObject() || !info.Has("extensions")) return nullptr;
+  const tinygltf::Value& extensions = info.Get("extensions");
+  if (!extensions.IsObject() || !extensions.Has("KHR_texture_transform")) return nullptr;
+  return &extensions.Get("KHR_texture_transform");
+}
+
+// The UV set a textureInfo reads: KHR_texture_transform's texCoord overrides the textureInfo's.
+int effective_texcoord(const tinygltf::Value* transform, int texcoord) {
+  if (transform && transform->IsObject() && transform->Has("texCoord") && transform->Get("texCoord").IsInt())
+    return transform->Get("texCoord").GetNumberAsInt();
+  return texcoord;
+}
+
+// The textureInfo at key inside a material extension, as (index, texCoord); (-1, 0) when absent or
+// malformed (convert_material reports malformed ones).
+std::pair<int, int> extension_texture_slot(const tinygltf::Material& m, const char* extension, const char* key) {
+  auto it = m.extensions.find(extension);
+  if (it == m.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return {-1, 0};
+  const tinygltf::Value& info = it->second.Get(key);
+  if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) return {-1, 0};
+  const bool has_texcoord = info.Has("texCoord") && info.Get("texCoord").IsInt();
+  return {info.Get("index").GetNumberAsInt(),
+          effective_texcoord(transform_of(info), has_texcoord ? info.Get("texCoord").GetNumberAsInt() : 0)};
+}
+
+// The (index, texCoord) pairs of every texture slot of a material kiln reads.
 std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
-  return {{m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.texCoord},
-          {m.pbrMetallicRoughness.metallicRoughnessTexture.index,
-           m.pbrMetallicRoughness.metallicRoughnessTexture.texCoord},
-          {m.normalTexture.index, m.normalTexture.texCoord},
-          {m.occlusionTexture.index, m.occlusionTexture.texCoord},
-          {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
+  const auto slot = [](int index, int texcoord, const tinygltf::ExtensionMap& extensions) {
+    return std::pair<int, int>{index, effective_texcoord(transform_of(extensions), texcoord)};
+  };
+  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+  return {slot(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions),
+          slot(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+               pbr.metallicRoughnessTexture.extensions),
+          slot(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions),
+          slot(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions),
+          slot(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions),
+          extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
 }
 
 wrap_mode to_wrap(int gl) {
@@ -104,6 +142,106 @@ void require(bool ok, const std::string& file, const std::string& where, const s
   if (!ok) throw input_error(file, where, reason);
 }
 
+// Reads a number member that must lie in [low, high] when present; false when absent.
+bool bounded_number(const tinygltf::Value& object, const char* key, double low, double high, double& out,
+                    const std::string& file, const std::string& where) {
+  if (!object.IsObject() || !object.Has(key)) return false;
+  const tinygltf::Value& v = object.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(v.IsNumber(), file, at, std::string(key) + " must be a number");
+  out = v.GetNumberAsDouble();
+  require(std::isfinite(out) && out >= low && out <= high, file, at,
+          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+  return true;
+}
+
+// Reads a vec2 member ([x, y], finite) of a KHR_texture_transform object when present.
+void transform_pair(const tinygltf::Value& t, const char* key, vec2& out, const std::string& file,
+                    const std::string& where) {
+  if (!t.Has(key)) return;
+  const tinygltf::Value& v = t.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(v.IsArray() && v.ArrayLen() == 2, file, at, std::string(key) + " must have 2 numbers");
+  for (int i = 0; i < 2; ++i) {
+    require(v.Get(i).IsNumber() && std::isfinite(v.Get(i).GetNumberAsDouble()), file, at,
+            std::string(key) + " must be finite numbers");
+    out[i] = static_cast<float>(v.Get(i).GetNumberAsDouble());
+  }
+}
+
+// KHR_texture_transform on a textureInfo (where: the textureInfo's JSON path).
+void apply_texture_transform(const tinygltf::Value* t, texture_ref& ref, const std::string& file,
+                             const std::string& where) {
+  if (!t || !ref.present()) return;
+  const std::string at = pointer_join(pointer_join(where, "extensions"), "KHR_texture_transform");
+  require(t->IsObject(), file, at, "KHR_texture_transform must be an object");
+  transform_pair(*t, "offset", ref.offset, file, at);
+  transform_pair(*t, "scale", ref.uv_scale, file, at);
+  double rotation = 0.0;
+  if (bounded_number(*t, "rotation", -1e6, 1e6, rotation, file, at)) ref.rotation = static_cast<float>(rotation);
+  if (t->Has("texCoord")) {
+    require(t->Get("texCoord").IsInt() && t->Get("texCoord").GetNumberAsInt() >= 0, file,
+            pointer_join(at, "texCoord"), "texCoord must be a non-negative integer");
+    ref.texcoord = static_cast<uint32_t>(t->Get("texCoord").GetNumberAsInt());
+  }
+}
+
+// A textureInfo inside a material extension, validated like the core ones.
+texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Value& ext, const char* key,
+                              texture_remap& remap, scene& out, const std::string& file, const std::string& where) {
+  if (!ext.IsObject() || !ext.Has(key)) return texture_ref{};
+  const tinygltf::Value& info = ext.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(info.IsObject() && info.Has("index") && info.Get("index").IsInt(), file, at,
+          "textureInfo needs an integer index");
+  const int index = info.Get("index").GetNumberAsInt();
+  require(index >= 0 && size_t(index) < model.textures.size(), file, pointer_join(at, "index"),
+          "texture " + std::to_string(index) + " does not exist");
+  int texcoord = 0;
+  if (info.Has("texCoord")) {
+    require(info.Get("texCoord").IsInt() && info.Get("texCoord").GetNumberAsInt() >= 0, file,
+            pointer_join(at, "texCoord"), "texCoord must be a non-negative integer");
+    texcoord = info.Get("texCoord").GetNumberAsInt();
+  }
+  texture_ref ref = make_ref(model, index, texcoord, 1.0, remap, out, file);
+  apply_texture_transform(transform_of(info), ref, file, at);
+  return ref;
+}
+
+// KHR_materials_transmission and KHR_materials_volume.
+void convert_transmission(const tinygltf::Model& model, const tinygltf::Material& src, material& m,
+                          texture_remap& remap, scene& out, const std::string& file, const std::string& ext_where) {
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_transmission")) {
+    const std::string at = pointer_join(ext_where, "KHR_materials_transmission");
+    double factor = 0.0;
+    if (bounded_number(*ext, "transmissionFactor", 0.0, 1.0, factor, file, at))
+      m.transmission_factor = static_cast<float>(factor);
+    m.transmission_texture = extension_texture(model, *ext, "transmissionTexture", remap, out, file, at);
+  }
+  if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_volume")) {
+    const std::string at = pointer_join(ext_where, "KHR_materials_volume");
+    const double largest = std::numeric_limits<double>::max();
+    double value = 0.0;
+    if (bounded_number(*ext, "thicknessFactor", 0.0, largest, value, file, at))
+      m.thickness_factor = static_cast<float>(value);
+    if (bounded_number(*ext, "attenuationDistance", 0.0, largest, value, file, at)) {
+      require(value > 0.0, file, pointer_join(at, "attenuationDistance"), "attenuationDistance must be positive");
+      m.attenuation_distance = static_cast<float>(value);
+    }
+    if (ext->IsObject() && ext->Has("attenuationColor")) {
+      const tinygltf::Value& color = ext->Get("attenuationColor");
+      const std::string color_at = pointer_join(at, "attenuationColor");
+      require(color.IsArray() && color.ArrayLen() == 3, file, color_at, "attenuationColor must have 3 numbers");
+      for (int i = 0; i < 3; ++i) {
+        const tinygltf::Value& c = color.Get(i);
+        require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
+                color_at, "attenuationColor must be finite and not negative");
+        m.attenuation_color[i] = static_cast<float>(c.GetNumberAsDouble());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 texture_remap make_texture_remap(const tinygltf::Model& model) {
@@ -162,6 +300,16 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
                               src.normalTexture.scale, remap, out, file);
   m.occlusion_texture = make_ref(model, src.occlusionTexture.index, src.occlusionTexture.texCoord,
                                  src.occlusionTexture.strength, remap, out, file);
+  apply_texture_transform(transform_of(pbr.baseColorTexture.extensions), m.base_color_texture, file,
+                          pointer_join(pbr_where, "baseColorTexture"));
+  apply_texture_transform(transform_of(pbr.metallicRoughnessTexture.extensions), m.metallic_roughness_texture,
+                          file, pointer_join(pbr_where, "metallicRoughnessTexture"));
+  apply_texture_transform(transform_of(src.emissiveTexture.extensions), m.emissive_texture, file,
+                          pointer_join(where, "emissiveTexture"));
+  apply_texture_transform(transform_of(src.normalTexture.extensions), m.normal_texture, file,
+                          pointer_join(where, "normalTexture"));
+  apply_texture_transform(transform_of(src.occlusionTexture.extensions), m.occlusion_texture, file,
+                          pointer_join(where, "occlusionTexture"));
 
   if (src.alphaMode == "OPAQUE")
     m.alpha = alpha_mode::opaque;
@@ -216,6 +364,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
       }
     }
   }
+  convert_transmission(model, src, m, remap, out, file, ext_where);
   return m;
 }
 
@@ -226,10 +375,17 @@ bool material_samples_texcoord0(const tinygltf::Model& model, int material_index
   return false;
 }
 
+bool material_samples_texcoord(const tinygltf::Model& model, int material_index, int set) {
+  if (material_index < 0) return false;
+  for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
+    if (index >= 0 && texcoord == set) return true;
+  return false;
+}
+
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index) {
   if (material_index < 0) return false;
   for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
-    if (index >= 0 && texcoord > 0) return true;
+    if (index >= 0 && texcoord > 1) return true;
   return false;
 }
 

@@ -32,7 +32,11 @@ material default_material();
 // True when a glTF material samples any texture through TEXCOORD_0.
 bool material_samples_texcoord0(const tinygltf::Model& model, int material_index);
 
-// True when a glTF material samples any texture through a TEXCOORD_n with n > 0.
+// True when a glTF material samples any texture through TEXCOORD_<set> (after
+// KHR_texture_transform's texCoord override).
+bool material_samples_texcoord(const tinygltf::Model& model, int material_index, int set);
+
+// True when a glTF material samples any texture through a TEXCOORD_n with n > 1 (not stored).
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index);
 
 }  // namespace kiln::gltf_internal

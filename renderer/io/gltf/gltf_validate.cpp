@@ -238,13 +238,20 @@ void check_attribute_format(const tinygltf::Accessor& acc, const std::string& na
   if (name == "POSITION" || name == "NORMAL") {
     if (acc.type != TINYGLTF_TYPE_VEC3 || ct != TINYGLTF_COMPONENT_TYPE_FLOAT)
       throw input_error(file, where, name + " must be VEC3 FLOAT" + got);
-  } else if (name == "TEXCOORD_0") {
+  } else if (name == "TEXCOORD_0" || name == "TEXCOORD_1") {
     const bool ok = acc.type == TINYGLTF_TYPE_VEC2 &&
                     (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
                      (acc.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                          ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
     if (!ok)
-      throw input_error(file, where, "TEXCOORD_0 must be VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
+      throw input_error(file, where, name + " must be VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
+  } else if (name == "COLOR_0") {
+    const bool ok = (acc.type == TINYGLTF_TYPE_VEC3 || acc.type == TINYGLTF_TYPE_VEC4) &&
+                    (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                     (acc.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                         ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+    if (!ok)
+      throw input_error(file, where, "COLOR_0 must be VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
   }
 }
 
