@@ -1,7 +1,6 @@
 #include "accel/grid/grid_accelerator.h"
 
 #include "accel/grid/grid_traversal.h"
-#include "accel/grid/mailbox.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
@@ -74,9 +73,7 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
     mailbox tested;
 
     bool operator()(const grid_cell& cell, double t_exit) {
-      for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-        const uint32_t id = self.top_.items[i];
-        if (!tested.first_visit(id)) continue;
+      for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
         const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
@@ -92,7 +89,8 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
             break;
         }
         if (found && closer(h.t, id, h.primitive, best)) best = closest_instance{h.t, id, h};
-      }
+        return false;
+      });
       return done_within(t_exit);
     }
     bool done_within(double t_exit) const { return best.instance != UINT32_MAX && double(best.t) <= t_exit; }
@@ -125,21 +123,17 @@ bool grid_accelerator::occluded(const ray& r) const {
     mailbox tested;
 
     bool operator()(const grid_cell& cell, double) {
-      for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-        const uint32_t id = self.top_.items[i];
-        if (!tested.first_visit(id)) continue;
+      return for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
         const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
         switch (inst.kind) {  // quadrics hook in here too
           case shape_kind::mesh:
-            if (occluded_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin, direction,
-                                   world_ray.tmin, world_ray.tmax, counters))
-              return true;
-            break;
+            return occluded_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin,
+                                      direction, world_ray.tmin, world_ray.tmax, counters);
         }
-      }
-      return false;
+        return false;
+      });
     }
     bool done_within(double) const { return false; }
   };
