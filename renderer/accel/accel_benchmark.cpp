@@ -2,10 +2,6 @@
 // grid and the adaptive grid on generated scenes of ~10k, ~100k and ~1M triangles and on an
 // instanced scene, all measured in one run so the Embree : grid : adaptive-grid ratio is fair.
 // Usage: kiln_accel_benchmark [rays per scene, default 500000]
-#include "accel/embree/embree_accelerator.h"
-#include "accel/grid/grid_accelerator.h"
-#include "accel/grid/synthetic_scenes.h"
-
 #include <unistd.h>
 
 #include <chrono>
@@ -16,6 +12,10 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include "accel/embree/embree_accelerator.h"
+#include "accel/grid/grid_accelerator.h"
+#include "accel/grid/synthetic_scenes.h"
 
 namespace kiln {
 namespace {
@@ -75,16 +75,19 @@ size_t triangles(const scene& s) {
 void run(const std::string& name, const scene& s, size_t ray_count) {
   const std::vector<ray> rays = random_rays(world_bounds(s), ray_count);
   measurement e = measure([&] { return std::make_unique<embree_accelerator>(s); }, rays);
-  measurement g = measure([&] { return std::make_unique<grid_accelerator>(s, uniform_grid_options()); }, rays);
-  measurement a = measure([&] { return std::make_unique<grid_accelerator>(s, adaptive_grid_options()); }, rays);
+  measurement g =
+      measure([&] { return std::make_unique<grid_accelerator>(s, uniform_grid_options()); }, rays);
+  measurement a =
+      measure([&] { return std::make_unique<grid_accelerator>(s, adaptive_grid_options()); }, rays);
   grid_statistics gs = grid_accelerator(s, uniform_grid_options()).statistics();
   grid_statistics as = grid_accelerator(s, adaptive_grid_options()).statistics();
-  std::printf("%-22s %9zu tris %5zu inst | build s: embree %.3f grid %.3f adaptive %.3f | memory MB (RSS delta): "
-              "%.1f %.1f %.1f (grid structure %.1f, adaptive %.1f) | Mrays/s: %.2f %.2f %.2f | ratio 1 : %.2f : %.2f"
-              " | hits %zu %zu %zu\n",
-              name.c_str(), triangles(s), s.instances.size(), e.build_seconds, g.build_seconds, a.build_seconds,
-              e.memory_mb, g.memory_mb, a.memory_mb, gs.memory_bytes / 1e6, as.memory_bytes / 1e6, e.mrays, g.mrays,
-              a.mrays, g.mrays / e.mrays, a.mrays / e.mrays, e.hits, g.hits, a.hits);
+  std::printf(
+      "%-22s %9zu tris %5zu inst | build s: embree %.3f grid %.3f adaptive %.3f | memory MB (RSS delta): "
+      "%.1f %.1f %.1f (grid structure %.1f, adaptive %.1f) | Mrays/s: %.2f %.2f %.2f | ratio 1 : %.2f : %.2f"
+      " | hits %zu %zu %zu\n",
+      name.c_str(), triangles(s), s.instances.size(), e.build_seconds, g.build_seconds, a.build_seconds,
+      e.memory_mb, g.memory_mb, a.memory_mb, gs.memory_bytes / 1e6, as.memory_bytes / 1e6, e.mrays, g.mrays,
+      a.mrays, g.mrays / e.mrays, a.mrays / e.mrays, e.hits, g.hits, a.hits);
   std::fflush(stdout);
 }
 
@@ -94,7 +97,8 @@ void run(const std::string& name, const scene& s, size_t ray_count) {
 int main(int argc, char** argv) {
   using namespace kiln;
   const size_t rays = argc > 1 ? size_t(std::atol(argv[1])) : 500000;
-  std::printf("single thread, %zu random rays per scene (half from inside the bounds, half from outside)\n", rays);
+  std::printf("single thread, %zu random rays per scene (half from inside the bounds, half from outside)\n",
+              rays);
   run("sphere_10k", scene_from_mesh(make_sphere_mesh(50, 100, 1.0f)), rays);
   run("sphere_100k", scene_from_mesh(make_sphere_mesh(158, 316, 1.0f)), rays);
   run("sphere_1M", scene_from_mesh(make_sphere_mesh(500, 1000, 1.0f)), rays);

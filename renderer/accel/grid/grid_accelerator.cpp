@@ -43,7 +43,8 @@ grid_accelerator::grid_accelerator(const scene& s, const grid_options& options) 
     if (used[i]) mesh_grids_[i] = build_mesh_grid(s.meshes[i], options);
 
   object_from_world_.reserve(s.instances.size());
-  for (const instance& inst : s.instances) object_from_world_.push_back(to_float_affine(inst.object_from_world));
+  for (const instance& inst : s.instances)
+    object_from_world_.push_back(to_float_affine(inst.object_from_world));
 
   // The top level holds instance ids by world bounds; an instance is one opaque item there.
   auto bounds = [&s](uint32_t i) {
@@ -139,7 +140,8 @@ bool grid_accelerator::occluded(const ray& r) const {
   };
 
   visitor visit{*this, r, counters, {}};
-  return traverse_grid(top_, 0, dda_ray{dvec3(r.origin), dvec3(r.direction)}, r.tmin, r.tmax, visit, counters);
+  return traverse_grid(top_, 0, dda_ray{dvec3(r.origin), dvec3(r.direction)}, r.tmin, r.tmax, visit,
+                       counters);
 }
 
 grid_statistics grid_accelerator::statistics() const {

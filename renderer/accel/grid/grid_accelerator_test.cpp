@@ -1,7 +1,8 @@
 #include "accel/grid/grid_accelerator.h"
-#include "accel/grid/synthetic_scenes.h"
 
 #include <gtest/gtest.h>
+
+#include "accel/grid/synthetic_scenes.h"
 
 namespace kiln {
 namespace {

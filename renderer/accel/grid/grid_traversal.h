@@ -7,12 +7,12 @@
 // Depends on grid.h only.
 #pragma once
 
-#include "accel/grid/grid.h"
-#include "accel/grid/mailbox.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "accel/grid/grid.h"
+#include "accel/grid/mailbox.h"
 
 namespace kiln {
 

@@ -77,16 +77,16 @@ mesh_grid build_mesh_grid(const mesh& m, const grid_options& options) {
   return mesh_grid{build_grid(uint32_t(m.triangle_count()), bounds, overlaps, options)};
 }
 
-bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                         float tmax, shape_hit& best, traversal_counters& counters) {
+bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                         float tmin, float tmax, shape_hit& best, traversal_counters& counters) {
   if (g.cells.empty()) return false;
   closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, false, {}};
   traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
   return visit.found;
 }
 
-bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                        float tmax, traversal_counters& counters) {
+bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                        float tmin, float tmax, traversal_counters& counters) {
   if (g.cells.empty()) return false;
   any_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, counters, {}};
   return traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
