@@ -4,17 +4,17 @@
 // ../shared/assets exists, on every model there. Zero mismatches beyond the hit's error bound;
 // wherever two backends differ at all (a tie or an edge graze), the brute-force loop over every
 // triangle decides, and the grid must match it exactly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
 #include "accel/compare/hit_comparison.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/grid/brute_force_accelerator.h"
 #include "accel/grid/grid_accelerator.h"
 #include "accel/grid/synthetic_scenes.h"
 #include "io/gltf/gltf_loader.h"
-
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <random>
 
 namespace kiln {
 namespace {
@@ -31,7 +31,8 @@ std::vector<std::string> scene_names() {
   fs::path root(KILN_SHARED_ASSETS);
   std::error_code ec;
   if (fs::is_directory(root, ec))
-    for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); ++it) {
+    for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator();
+         ++it) {
       if (it->path().filename() == "invalid") {
         it.disable_recursion_pending();
         continue;
@@ -44,7 +45,8 @@ std::vector<std::string> scene_names() {
 }
 
 std::optional<scene> load_scene(const std::string& name) {
-  if (name == "synthetic:instanced_spheres") return make_instanced_scene(make_sphere_mesh(24, 48, 1.0f), 4, 21);
+  if (name == "synthetic:instanced_spheres")
+    return make_instanced_scene(make_sphere_mesh(24, 48, 1.0f), 4, 21);
   if (name == "synthetic:soup") return scene_from_mesh(make_triangle_soup(20000, 5, 1.0f, 0.08f));
   try {
     return load_gltf(name);
@@ -86,8 +88,8 @@ std::vector<ray> random_rays(const bounds3& b, int count, uint32_t seed) {
 
 bool identical(const std::optional<hit>& a, const std::optional<hit>& b) {
   if (!a || !b) return !a && !b;
-  return a->instance_id == b->instance_id && a->primitive_id == b->primitive_id && a->t == b->t && a->u == b->u &&
-         a->v == b->v;
+  return a->instance_id == b->instance_id && a->primitive_id == b->primitive_id && a->t == b->t &&
+         a->u == b->u && a->v == b->v;
 }
 
 struct tally {
@@ -128,9 +130,14 @@ TEST_P(crosscheck, grid_adaptive_grid_and_embree_agree) {
       ADD_FAILURE() << "uniform and adaptive grid differ on ray " << i;
     }
     switch (compare_hits(s, r, e, g)) {
-      case hit_verdict::agree: break;
-      case hit_verdict::tie: ++t.ties; break;
-      case hit_verdict::edge: ++t.edges; break;
+      case hit_verdict::agree:
+        break;
+      case hit_verdict::tie:
+        ++t.ties;
+        break;
+      case hit_verdict::edge:
+        ++t.edges;
+        break;
       case hit_verdict::mismatch:
         if (++t.mismatches <= 5)
           ADD_FAILURE() << "ray " << i << ": embree " << (e ? int(e->primitive_id) : -1) << " t "
@@ -138,7 +145,8 @@ TEST_P(crosscheck, grid_adaptive_grid_and_embree_agree) {
                         << (g ? g->t : -1.0f) << " (tolerance " << (e ? hit_t_tolerance(s, r, *e) : 0.0f)
                         << ", u,v embree " << (e ? e->u : -1.0f) << "," << (e ? e->v : -1.0f) << " grid "
                         << (g ? g->u : -1.0f) << "," << (g ? g->v : -1.0f) << ", cos "
-                        << (e ? glm::dot(r.direction, e->geometric_normal) : 0.0f) << ", tmax " << r.tmax << ")";
+                        << (e ? glm::dot(r.direction, e->geometric_normal) : 0.0f) << ", tmax " << r.tmax
+                        << ")";
         break;
     }
     // Wherever Embree and the grid differ at all, the brute-force loop is the tie-breaker.
@@ -159,13 +167,14 @@ TEST_P(crosscheck, grid_adaptive_grid_and_embree_agree) {
   // Edge grazes are legitimate but must stay rare on random rays. Ties are not bounded: an asset
   // may place coincident copies (RecursiveSkeletons ties on nearly every ray).
   EXPECT_LT(t.edges, rays.size() / 100);
-  std::printf("%s: %zu rays, %zu hits, %zu ties, %zu edge cases, %zu brute-force checks\n", GetParam().c_str(),
-              rays.size(), t.hits, t.ties, t.edges, t.brute_force_checks);
+  std::printf("%s: %zu rays, %zu hits, %zu ties, %zu edge cases, %zu brute-force checks\n",
+              GetParam().c_str(), rays.size(), t.hits, t.ties, t.edges, t.brute_force_checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(scenes, crosscheck, ::testing::ValuesIn(scene_names()),
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
-                           std::string name = fs::path(param_info.param).stem().string() + "_" + std::to_string(param_info.index);
+                           std::string name = fs::path(param_info.param).stem().string() + "_" +
+                                              std::to_string(param_info.index);
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;

@@ -1,12 +1,12 @@
 // `kiln compare` and `kiln render --accel` end to end: exit codes, the JSON report's keys and
 // values, and the mismatch mask.
-#include "support/run_kiln.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/run_kiln.h"
 
 namespace kiln {
 namespace {
@@ -42,8 +42,8 @@ TEST(compare_cli, grid_agrees_with_embree_on_the_demo_scene) {
   EXPECT_EQ(report["rays"]["refraction"]["rays"], 0);
   for (const char* kind : {"camera", "shadow", "reflection", "refraction"}) {
     const auto& k = report["rays"][kind];
-    for (const char* key : {"rays", "closest_hit_mismatches", "occlusion_mismatches", "ties", "edge_cases",
-                            "max_relative_dt"})
+    for (const char* key :
+         {"rays", "closest_hit_mismatches", "occlusion_mismatches", "ties", "edge_cases", "max_relative_dt"})
       EXPECT_TRUE(k.contains(key)) << kind << "." << key;
     EXPECT_EQ(k["closest_hit_mismatches"], 0) << kind;
     EXPECT_EQ(k["occlusion_mismatches"], 0) << kind;
@@ -70,8 +70,8 @@ TEST(compare_cli, grid_agrees_with_embree_on_the_demo_scene) {
 }
 
 TEST(compare_cli, adaptive_grid_against_grid_and_bad_backend_names) {
-  auto result = run_kiln({"compare", demo_scene, "--width", "64", "--accel", "adaptive-grid", "--against", "grid",
-                          "-q"});
+  auto result = run_kiln(
+      {"compare", demo_scene, "--width", "64", "--accel", "adaptive-grid", "--against", "grid", "-q"});
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
   result = run_kiln({"compare", demo_scene, "--accel", "octree"});
   EXPECT_EQ(result.exit_code, 2);
@@ -85,7 +85,8 @@ TEST(compare_cli, render_with_grid_backend_matches_embree_image) {
   std::vector<std::vector<float>> images;
   for (const char* accel : {"embree", "grid", "adaptive-grid"}) {
     const std::string out = folder + "/" + accel + ".exr";
-    auto result = run_kiln({"render", demo_scene, "-o", out, "--width", "96", "--accel", accel, "--float", "-q"});
+    auto result =
+        run_kiln({"render", demo_scene, "-o", out, "--width", "96", "--accel", accel, "--float", "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     auto in = OIIO::ImageInput::open(out);
     ASSERT_TRUE(in);

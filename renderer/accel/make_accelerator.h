@@ -2,12 +2,12 @@
 // The only place that knows every backend; shading and rendering see the accelerator interface.
 #pragma once
 
-#include "accel/accelerator.h"
-#include "scene/scene.h"
-
 #include <memory>
 #include <optional>
 #include <string>
+
+#include "accel/accelerator.h"
+#include "scene/scene.h"
 
 namespace kiln {
 

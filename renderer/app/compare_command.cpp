@@ -1,16 +1,15 @@
 #include "app/compare_command.h"
 
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "accel/compare/comparing_accelerator.h"
 #include "accel/make_accelerator.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-
-#include <cmath>
-#include <cstdio>
-#include <fstream>
 
 namespace kiln {
 
@@ -20,7 +19,7 @@ struct image_difference {
   double rmse = 0.0;            // over the RGBA channels of every pixel
   double max_difference = 0.0;  // largest channel difference
   uint64_t differing_pixels = 0;
-  film mask;                    // RGB = 1 where a pixel differs; Z = |Δdepth|
+  film mask;  // RGB = 1 where a pixel differs; Z = |Δdepth|
 };
 
 bool differs(double a, double b, double tolerance) {
@@ -46,7 +45,8 @@ image_difference compare_images(const film& a, const film& b, double tolerance) 
     for (int c = 0; c < 3; ++c) pixel_differs |= differs(a.normal[i][c], b.normal[i][c], tolerance);
     d.differing_pixels += pixel_differs;
     d.mask.color[i] = pixel_differs ? vec4(1.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    d.mask.depth[i] = std::isinf(a.depth[i]) && std::isinf(b.depth[i]) ? 0.0f : std::abs(a.depth[i] - b.depth[i]);
+    d.mask.depth[i] =
+        std::isinf(a.depth[i]) && std::isinf(b.depth[i]) ? 0.0f : std::abs(a.depth[i] - b.depth[i]);
   }
   d.rmse = a.color.empty() ? 0.0 : std::sqrt(sum / (4.0 * double(a.color.size())));
   return d;
@@ -54,13 +54,15 @@ image_difference compare_images(const film& a, const film& b, double tolerance) 
 
 nlohmann::json hit_json(const std::optional<hit>& h) {
   if (!h) return nullptr;
-  return {{"t", h->t}, {"instance", h->instance_id}, {"primitive", h->primitive_id}, {"u", h->u}, {"v", h->v}};
+  return {
+      {"t", h->t}, {"instance", h->instance_id}, {"primitive", h->primitive_id}, {"u", h->u}, {"v", h->v}};
 }
 
-nlohmann::json report_json(const compare_options& o, const view_camera& cam, const comparison_statistics& rays,
-                           const image_difference& image, bool agree) {
+nlohmann::json report_json(const compare_options& o, const view_camera& cam,
+                           const comparison_statistics& rays, const image_difference& image, bool agree) {
   nlohmann::json kinds = nlohmann::json::object();
-  for (ray_kind k : {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction, ray_kind::other}) {
+  for (ray_kind k :
+       {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction, ray_kind::other}) {
     const kind_statistics& s = rays.by_kind[size_t(k)];
     if (k == ray_kind::other && s.rays == 0) continue;
     kinds[ray_kind_name(k)] = {{"rays", s.rays},
@@ -74,14 +76,15 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam, con
   }
   nlohmann::json examples = nlohmann::json::array();
   for (const mismatch_example& e : rays.examples)
-    examples.push_back({{"kind", ray_kind_name(e.query.kind)},
-                        {"origin", {e.query.origin.x, e.query.origin.y, e.query.origin.z}},
-                        {"direction", {e.query.direction.x, e.query.direction.y, e.query.direction.z}},
-                        {"tmin", e.query.tmin},
-                        {"tmax", std::isinf(e.query.tmax) ? nlohmann::json("inf") : nlohmann::json(e.query.tmax)},
-                        {"occlusion", e.occlusion},
-                        {o.accel, e.occlusion ? nlohmann::json(e.primary_occluded) : hit_json(e.primary)},
-                        {o.against, e.occlusion ? nlohmann::json(e.secondary_occluded) : hit_json(e.secondary)}});
+    examples.push_back(
+        {{"kind", ray_kind_name(e.query.kind)},
+         {"origin", {e.query.origin.x, e.query.origin.y, e.query.origin.z}},
+         {"direction", {e.query.direction.x, e.query.direction.y, e.query.direction.z}},
+         {"tmin", e.query.tmin},
+         {"tmax", std::isinf(e.query.tmax) ? nlohmann::json("inf") : nlohmann::json(e.query.tmax)},
+         {"occlusion", e.occlusion},
+         {o.accel, e.occlusion ? nlohmann::json(e.primary_occluded) : hit_json(e.primary)},
+         {o.against, e.occlusion ? nlohmann::json(e.secondary_occluded) : hit_json(e.secondary)}});
   return {{"asset", o.view.input},
           {"accel", o.accel},
           {"against", o.against},
@@ -104,8 +107,8 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam, con
 void print_summary(const compare_options& o, const comparison_statistics& rays, const image_difference& image,
                    bool agree) {
   std::fprintf(stderr, "kiln compare: %s against %s\n", o.accel.c_str(), o.against.c_str());
-  std::fprintf(stderr, "  %-11s %12s %12s %12s %8s %8s %14s\n", "ray kind", "rays", "hit mism.", "occl. mism.", "ties",
-               "edges", "max |dt|/t");
+  std::fprintf(stderr, "  %-11s %12s %12s %12s %8s %8s %14s\n", "ray kind", "rays", "hit mism.",
+               "occl. mism.", "ties", "edges", "max |dt|/t");
   for (ray_kind k : {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction}) {
     const kind_statistics& s = rays.by_kind[size_t(k)];
     std::fprintf(stderr, "  %-11s %12llu %12llu %12llu %8llu %8llu %14.3g\n", ray_kind_name(k),
@@ -125,12 +128,15 @@ void add_compare_options(CLI::App& app, compare_options& o) {
   const auto backends = CLI::IsMember({"embree", "grid", "adaptive-grid"});
   app.add_option("--accel", o.accel, "Backend under test")->check(backends)->capture_default_str();
   app.add_option("--against", o.against, "Reference backend")->check(backends)->capture_default_str();
-  app.add_option("--mask", o.mask, "Write a mismatch-mask EXR (RGB 1 where pixels differ, Z = |depth difference|)");
+  app.add_option("--mask", o.mask,
+                 "Write a mismatch-mask EXR (RGB 1 where pixels differ, Z = |depth difference|)");
   app.add_option("--json", o.json, "Write a JSON report");
-  app.add_option("--pixel-tolerance", o.pixel_tolerance, "Channel difference (relative above 1) counted as differing")
+  app.add_option("--pixel-tolerance", o.pixel_tolerance,
+                 "Channel difference (relative above 1) counted as differing")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--max-mismatches", o.max_mismatches, "Ray mismatches beyond error bounds tolerated before exit 3")
+  app.add_option("--max-mismatches", o.max_mismatches,
+                 "Ray mismatches beyond error bounds tolerated before exit 3")
       ->capture_default_str();
 }
 

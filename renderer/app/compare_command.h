@@ -4,9 +4,9 @@
 // Wires app options to accel/compare; no traversal or shading logic of its own.
 #pragma once
 
-#include "app/render_command.h"
-
 #include <string>
+
+#include "app/render_command.h"
 
 namespace CLI {
 class App;
@@ -16,12 +16,12 @@ namespace kiln {
 
 struct compare_options {
   render_options view;
-  std::string accel = "grid";       // the backend under test (answers the render's queries)
-  std::string against = "embree";   // the reference it is checked against
-  std::string mask;                 // mismatch-mask EXR, optional
-  std::string json;                 // JSON report, optional
-  double pixel_tolerance = 1e-3;    // a pixel differs when a channel differs by more (relative above 1)
-  uint64_t max_mismatches = 0;      // ray mismatches beyond error bounds allowed before exit code 3
+  std::string accel = "grid";      // the backend under test (answers the render's queries)
+  std::string against = "embree";  // the reference it is checked against
+  std::string mask;                // mismatch-mask EXR, optional
+  std::string json;                // JSON report, optional
+  double pixel_tolerance = 1e-3;   // a pixel differs when a channel differs by more (relative above 1)
+  uint64_t max_mismatches = 0;     // ray mismatches beyond error bounds allowed before exit code 3
 };
 
 // Exit code when the backends disagree beyond tolerance.

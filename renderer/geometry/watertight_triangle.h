@@ -5,11 +5,11 @@
 // p = (1-u-v)·p0 + u·p1 + v·p2. Depends on core only: accelerators and tests share it.
 #pragma once
 
-#include "core/float_bits.h"
-#include "core/math.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/float_bits.h"
+#include "core/math.h"
 
 namespace kiln {
 
@@ -45,8 +45,8 @@ struct triangle_hit {
 // Intersects the sheared ray with triangle (p0, p1, p2), both faces, accepting t in (tmin, tmax]
 // exactly as Embree's depth test does (tnear < t <= tfar): a hit at t == tmin, such as a shadow
 // ray whose origin rounds back onto its own surface, is no hit. Returns false on a miss.
-inline bool intersect_watertight(const sheared_ray& r, const vec3& p0, const vec3& p1, const vec3& p2, float tmin,
-                                 float tmax, triangle_hit& out) {
+inline bool intersect_watertight(const sheared_ray& r, const vec3& p0, const vec3& p1, const vec3& p2,
+                                 float tmin, float tmax, triangle_hit& out) {
   const vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
   const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
   const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];

@@ -8,7 +8,8 @@
 namespace kiln {
 namespace {
 
-bool hit_triangle(const vec3& o, const vec3& d, const vec3& p0, const vec3& p1, const vec3& p2, triangle_hit& h) {
+bool hit_triangle(const vec3& o, const vec3& d, const vec3& p0, const vec3& p1, const vec3& p2,
+                  triangle_hit& h) {
   return intersect_watertight(shear_ray(o, d), p0, p1, p2, 0.0f, inf, h);
 }
 
@@ -62,8 +63,9 @@ TEST(watertight_triangle, reconstructed_point_matches_ray_point_on_random_rays) 
 
 // A closed octahedron: rays passing exactly through its shared vertices and through points on
 // its shared edges must hit at least one triangle there, from every direction that is not in the
-// plane of a face and that enter the solid there. Targets and origins are exact in float (dyadic fractions, integer directions,
-// o = target - 4·d), so each ray really passes through the edge point and a miss is a slip.
+// plane of a face and that enter the solid there. Targets and origins are exact in float (dyadic fractions,
+// integer directions, o = target - 4·d), so each ray really passes through the edge point and a miss is a
+// slip.
 TEST(watertight_triangle, no_ray_passes_between_triangles_of_a_closed_mesh) {
   const std::vector<vec3> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const std::vector<std::array<int, 3>> faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
@@ -98,8 +100,8 @@ TEST(watertight_triangle, no_ray_passes_between_triangles_of_a_closed_mesh) {
                 glm::length(o + h.t * d - target) < 1e-5f)
               ++hits;
           }
-          EXPECT_GE(hits, 1) << "slipped through at " << target.x << "," << target.y << "," << target.z << " d=" << dx
-                             << "," << dy << "," << dz;
+          EXPECT_GE(hits, 1) << "slipped through at " << target.x << "," << target.y << "," << target.z
+                             << " d=" << dx << "," << dy << "," << dz;
           ++checked;
         }
   EXPECT_GT(checked, 3000);

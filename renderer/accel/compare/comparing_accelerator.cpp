@@ -16,11 +16,16 @@ constexpr size_t max_examples = 16;
 
 const char* ray_kind_name(ray_kind k) {
   switch (k) {
-    case ray_kind::camera: return "camera";
-    case ray_kind::shadow: return "shadow";
-    case ray_kind::reflection: return "reflection";
-    case ray_kind::refraction: return "refraction";
-    case ray_kind::other: return "other";
+    case ray_kind::camera:
+      return "camera";
+    case ray_kind::shadow:
+      return "shadow";
+    case ray_kind::reflection:
+      return "reflection";
+    case ray_kind::refraction:
+      return "refraction";
+    case ray_kind::other:
+      return "other";
   }
   return "other";
 }
@@ -55,7 +60,8 @@ struct comparing_accelerator::per_thread {
   }
 };
 
-comparing_accelerator::comparing_accelerator(const scene& s, const accelerator& primary, const accelerator& secondary)
+comparing_accelerator::comparing_accelerator(const scene& s, const accelerator& primary,
+                                             const accelerator& secondary)
     : scene_(s), primary_(primary), secondary_(secondary), threads_(std::make_unique<per_thread>()) {}
 
 comparing_accelerator::~comparing_accelerator() = default;
@@ -68,10 +74,15 @@ std::optional<hit> comparing_accelerator::intersect(const ray& r) const {
   ++k.closest_hit_queries;
   switch (compare_hits(scene_, r, a, b)) {
     case hit_verdict::agree:
-      if (a && b && a->t > 0.0f) k.max_relative_dt = std::max(k.max_relative_dt, double(std::abs(a->t - b->t)) / a->t);
+      if (a && b && a->t > 0.0f)
+        k.max_relative_dt = std::max(k.max_relative_dt, double(std::abs(a->t - b->t)) / a->t);
       break;
-    case hit_verdict::tie: ++k.ties; break;
-    case hit_verdict::edge: ++k.edge_cases; break;
+    case hit_verdict::tie:
+      ++k.ties;
+      break;
+    case hit_verdict::edge:
+      ++k.edge_cases;
+      break;
     case hit_verdict::mismatch:
       ++k.closest_hit_mismatches;
       threads_->keep(mismatch_example{r, false, a, b, false, false});

@@ -4,14 +4,14 @@
 // Depends on the accelerator interface and hit_comparison only.
 #pragma once
 
-#include "accel/accelerator.h"
-#include "accel/compare/hit_comparison.h"
-#include "scene/scene.h"
-
 #include <array>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "accel/accelerator.h"
+#include "accel/compare/hit_comparison.h"
+#include "scene/scene.h"
 
 namespace kiln {
 
@@ -20,14 +20,14 @@ const char* ray_kind_name(ray_kind k);
 
 // What one ray kind's queries showed.
 struct kind_statistics {
-  uint64_t rays = 0;                 // closest-hit and occlusion queries
+  uint64_t rays = 0;  // closest-hit and occlusion queries
   uint64_t closest_hit_queries = 0;
   uint64_t occlusion_queries = 0;
   uint64_t closest_hit_mismatches = 0;
   uint64_t occlusion_mismatches = 0;
-  uint64_t ties = 0;                 // different primitives at the same t
-  uint64_t edge_cases = 0;           // edge grazes and hits at the segment's ends
-  double max_relative_dt = 0.0;      // max |Δt|/t over hits on the same primitive
+  uint64_t ties = 0;             // different primitives at the same t
+  uint64_t edge_cases = 0;       // edge grazes and hits at the segment's ends
+  double max_relative_dt = 0.0;  // max |Δt|/t over hits on the same primitive
 
   void merge(const kind_statistics& o);
 };

@@ -1,10 +1,10 @@
 #include "accel/compare/hit_comparison.h"
 
-#include "core/float_bits.h"
-#include "geometry/triangle.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/float_bits.h"
+#include "geometry/triangle.h"
 
 namespace kiln {
 
@@ -25,9 +25,10 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
 
   // World space: the hit point's rounding error and a few ulps of the ray and the placement.
   surface_position p = triangle_hit_position(inst, m, h.primitive_id, h.u, h.v);
-  const float world_error = glm::length(p.error) +
-                            gamma_bound(8) * (max_abs(r.origin) + std::abs(h.t) * max_abs(r.direction) +
-                                              max_abs(vec3(dvec3(inst.world_from_object[3]))) + max_abs(p.point));
+  const float world_error =
+      glm::length(p.error) +
+      gamma_bound(8) * (max_abs(r.origin) + std::abs(h.t) * max_abs(r.direction) +
+                        max_abs(vec3(dvec3(inst.world_from_object[3]))) + max_abs(p.point));
   const float world_cosine = std::abs(glm::dot(r.direction, h.geometric_normal));
   const float world_dt = world_error / std::max(world_cosine, floor * glm::length(r.direction));
 
@@ -42,7 +43,7 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
   const vec3 direction = vec3(transform_vector(inst.object_from_world, dvec3(r.direction)));
   const vec3 normal = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
   const float object_error = gamma_bound(64) * (max_abs(origin) + std::abs(h.t) * max_abs(direction) +
-                                               std::max({max_abs(v[0]), max_abs(v[1]), max_abs(v[2])}));
+                                                std::max({max_abs(v[0]), max_abs(v[1]), max_abs(v[2])}));
   const float object_cosine = std::abs(glm::dot(direction, normal));
   const float object_dt = object_error / std::max(object_cosine, floor * glm::length(direction));
 
@@ -56,7 +57,8 @@ bool hit_on_boundary(const scene& s, const ray& r, const hit& h) {
   return h.t - r.tmin <= tolerance || r.tmax - h.t <= tolerance;
 }
 
-hit_verdict compare_hits(const scene& s, const ray& r, const std::optional<hit>& a, const std::optional<hit>& b) {
+hit_verdict compare_hits(const scene& s, const ray& r, const std::optional<hit>& a,
+                         const std::optional<hit>& b) {
   if (!a && !b) return hit_verdict::agree;
   if (!a || !b) return hit_on_boundary(s, r, a ? *a : *b) ? hit_verdict::edge : hit_verdict::mismatch;
   const float tolerance = std::max(hit_t_tolerance(s, r, *a), hit_t_tolerance(s, r, *b));

@@ -5,10 +5,10 @@
 // real mismatches. Depends on scene and geometry only.
 #pragma once
 
+#include <optional>
+
 #include "core/ray.h"
 #include "scene/scene.h"
-
-#include <optional>
 
 namespace kiln {
 
@@ -28,6 +28,7 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h);
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h);
 
 // Classifies two closest-hit answers for ray r.
-hit_verdict compare_hits(const scene& s, const ray& r, const std::optional<hit>& a, const std::optional<hit>& b);
+hit_verdict compare_hits(const scene& s, const ray& r, const std::optional<hit>& a,
+                         const std::optional<hit>& b);
 
 }  // namespace kiln

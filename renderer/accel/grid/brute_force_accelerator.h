@@ -3,11 +3,11 @@
 // Depends on scene, geometry and the accelerator interface.
 #pragma once
 
+#include <vector>
+
 #include "accel/accelerator.h"
 #include "accel/grid/grid_accelerator.h"
 #include "scene/scene.h"
-
-#include <vector>
 
 namespace kiln {
 

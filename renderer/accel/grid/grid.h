@@ -5,12 +5,12 @@
 // Depends on core only; knows nothing of meshes, instances or Embree.
 #pragma once
 
-#include "core/math.h"
-
 #include <cstdint>
 #include <functional>
 #include <optional>
 #include <vector>
+
+#include "core/math.h"
 
 namespace kiln {
 
@@ -37,9 +37,9 @@ grid_options uniform_grid_options();
 grid_options adaptive_grid_options();
 
 struct grid_cell {
-  uint32_t first = 0;   // index of the cell's first item id in grid.items
-  uint32_t count = 0;   // items in this cell (0 when it has a child)
-  int32_t child = -1;   // node that subdivides this cell, or -1
+  uint32_t first = 0;  // index of the cell's first item id in grid.items
+  uint32_t count = 0;  // items in this cell (0 when it has a child)
+  int32_t child = -1;  // node that subdivides this cell, or -1
 };
 
 struct grid_node {
@@ -73,8 +73,8 @@ using item_overlap_function = std::function<bool(uint32_t, const bounds3&)>;
 // Builds a grid over item_count items. Each item goes into every cell it overlaps; cells are
 // padded by a small margin before the overlap test, so an item touching a cell face is in both
 // neighbours and traversal can never skip it because of rounding.
-grid build_grid(uint32_t item_count, const item_bounds_function& item_bounds, const item_overlap_function& overlaps,
-                const grid_options& options);
+grid build_grid(uint32_t item_count, const item_bounds_function& item_bounds,
+                const item_overlap_function& overlaps, const grid_options& options);
 
 // The grid resolution the heuristic picks for item_count items in box (exposed for tests).
 glm::ivec3 grid_resolution(const bounds3& box, size_t item_count, const grid_options& options);

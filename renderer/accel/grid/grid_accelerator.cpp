@@ -1,7 +1,6 @@
 #include "accel/grid/grid_accelerator.h"
 
 #include "accel/grid/grid_traversal.h"
-#include "accel/grid/mailbox.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
@@ -44,7 +43,8 @@ grid_accelerator::grid_accelerator(const scene& s, const grid_options& options) 
     if (used[i]) mesh_grids_[i] = build_mesh_grid(s.meshes[i], options);
 
   object_from_world_.reserve(s.instances.size());
-  for (const instance& inst : s.instances) object_from_world_.push_back(to_float_affine(inst.object_from_world));
+  for (const instance& inst : s.instances)
+    object_from_world_.push_back(to_float_affine(inst.object_from_world));
 
   // The top level holds instance ids by world bounds; an instance is one opaque item there.
   auto bounds = [&s](uint32_t i) {
@@ -74,9 +74,7 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
     mailbox tested;
 
     bool operator()(const grid_cell& cell, double t_exit) {
-      for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-        const uint32_t id = self.top_.items[i];
-        if (!tested.first_visit(id)) continue;
+      for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
         const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
@@ -92,7 +90,8 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
             break;
         }
         if (found && closer(h.t, id, h.primitive, best)) best = closest_instance{h.t, id, h};
-      }
+        return false;
+      });
       return done_within(t_exit);
     }
     bool done_within(double t_exit) const { return best.instance != UINT32_MAX && double(best.t) <= t_exit; }
@@ -125,27 +124,24 @@ bool grid_accelerator::occluded(const ray& r) const {
     mailbox tested;
 
     bool operator()(const grid_cell& cell, double) {
-      for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-        const uint32_t id = self.top_.items[i];
-        if (!tested.first_visit(id)) continue;
+      return for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
         const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
         switch (inst.kind) {  // quadrics hook in here too
           case shape_kind::mesh:
-            if (occluded_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin, direction,
-                                   world_ray.tmin, world_ray.tmax, counters))
-              return true;
-            break;
+            return occluded_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin,
+                                      direction, world_ray.tmin, world_ray.tmax, counters);
         }
-      }
-      return false;
+        return false;
+      });
     }
     bool done_within(double) const { return false; }
   };
 
   visitor visit{*this, r, counters, {}};
-  return traverse_grid(top_, 0, dda_ray{dvec3(r.origin), dvec3(r.direction)}, r.tmin, r.tmax, visit, counters);
+  return traverse_grid(top_, 0, dda_ray{dvec3(r.origin), dvec3(r.direction)}, r.tmin, r.tmax, visit,
+                       counters);
 }
 
 grid_statistics grid_accelerator::statistics() const {

@@ -7,12 +7,12 @@
 // Depends on scene, geometry and the accelerator interface; never on Embree.
 #pragma once
 
+#include <vector>
+
 #include "accel/accelerator.h"
 #include "accel/grid/grid.h"
 #include "accel/grid/mesh_grid.h"
 #include "scene/scene.h"
-
-#include <vector>
 
 namespace kiln {
 
@@ -44,9 +44,9 @@ class grid_accelerator final : public accelerator {
 
  private:
   const scene& scene_;
-  std::vector<mesh_grid> mesh_grids_;           // one per scene mesh; empty when unused
-  std::vector<float_affine> object_from_world_; // one per instance
-  grid top_;                                    // items are instance ids
+  std::vector<mesh_grid> mesh_grids_;            // one per scene mesh; empty when unused
+  std::vector<float_affine> object_from_world_;  // one per instance
+  grid top_;                                     // items are instance ids
 };
 
 // The object-space ray of an instance: origin and direction through its float transform, the same

@@ -1,9 +1,8 @@
-#include "accel/grid/grid.h"
-
-#include "core/check.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "accel/grid/grid.h"
+#include "core/check.h"
 
 namespace kiln {
 
@@ -48,8 +47,8 @@ struct builder {
 
   // Builds one node over box from candidate items; returns its index. Cells holding too many items
   // become child nodes while depth allows.
-  int32_t build_node(const bounds3& box, const glm::ivec3& resolution, const std::vector<uint32_t>& candidates,
-                     int depth) {
+  int32_t build_node(const bounds3& box, const glm::ivec3& resolution,
+                     const std::vector<uint32_t>& candidates, int depth) {
     grid_node node;
     node.box = box;
     node.resolution = resolution;
@@ -75,7 +74,8 @@ struct builder {
           for (int x = lo.x; x <= hi.x; ++x) {
             glm::ivec3 c(x, y, z);
             // An item whose bounds fit in one cell overlaps it; skip the exact test.
-            if (single || overlaps(item, cell_box(node, c))) pairs.emplace_back(node.cell_index(c) - node.first_cell, item);
+            if (single || overlaps(item, cell_box(node, c)))
+              pairs.emplace_back(node.cell_index(c) - node.first_cell, item);
           }
     }
     std::vector<uint32_t> offsets(cell_count + 1, 0);
@@ -91,11 +91,12 @@ struct builder {
     for (size_t i = 0; i < cell_count; ++i) {
       const uint32_t count = offsets[i + 1] - offsets[i];
       if (depth < options.max_depth && count > uint32_t(options.max_items_per_cell)) {
-        glm::ivec3 c(int(i % resolution.x), int(i / resolution.x % resolution.y), int(i / (size_t(resolution.x) * resolution.y)));
+        glm::ivec3 c(int(i % resolution.x), int(i / resolution.x % resolution.y),
+                     int(i / (size_t(resolution.x) * resolution.y)));
         dvec3 lower = box.lower + dvec3(c) * node.cell_size;
         std::vector<uint32_t> inside(sorted.begin() + offsets[i], sorted.begin() + offsets[i + 1]);
-        int32_t child = build_node(bounds3{lower, lower + node.cell_size}, glm::ivec3(options.child_resolution), inside,
-                                   depth + 1);
+        int32_t child = build_node(bounds3{lower, lower + node.cell_size},
+                                   glm::ivec3(options.child_resolution), inside, depth + 1);
         out.cells[node.first_cell + i].child = child;
         continue;
       }
@@ -141,8 +142,8 @@ glm::ivec3 grid_resolution(const bounds3& box, size_t item_count, const grid_opt
   return res;
 }
 
-grid build_grid(uint32_t item_count, const item_bounds_function& item_bounds, const item_overlap_function& overlaps,
-                const grid_options& options) {
+grid build_grid(uint32_t item_count, const item_bounds_function& item_bounds,
+                const item_overlap_function& overlaps, const grid_options& options) {
   grid out;
   bounds3 all;
   std::vector<uint32_t> candidates;

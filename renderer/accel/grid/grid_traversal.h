@@ -7,11 +7,12 @@
 // Depends on grid.h only.
 #pragma once
 
-#include "accel/grid/grid.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "accel/grid/grid.h"
+#include "accel/grid/mailbox.h"
 
 namespace kiln {
 
@@ -45,6 +46,17 @@ struct traversal_counters {
   uint64_t cells_visited = 0;
   uint64_t items_tested = 0;
 };
+
+// Calls f(item) for every item of the cell this query has not tested yet; returns true as soon
+// as f does (an occlusion query's early exit), false otherwise.
+template <typename function>
+bool for_each_untested(const grid& g, const grid_cell& cell, mailbox& tested, function&& f) {
+  for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
+    const uint32_t item = g.items[i];
+    if (tested.first_visit(item) && f(item)) return true;
+  }
+  return false;
+}
 
 // Visits the leaf cells of node `node_index` crossed by the ray on [t0, t1], in order.
 // visit(cell, t_cell_exit) returns true to stop (closest hit inside this cell, or any hit for

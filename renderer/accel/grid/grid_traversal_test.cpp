@@ -3,14 +3,15 @@
 // grid, rays grazing the grid bounds, and segments ending inside a cell. Every answer must equal
 // the brute-force loop over all triangles exactly, and traversal must stay within its step bound.
 #include "accel/grid/grid_traversal.h"
-#include "accel/grid/mesh_grid.h"
-#include "accel/grid/synthetic_scenes.h"
-#include "geometry/triangle.h"
-#include "geometry/watertight_triangle.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "accel/grid/mesh_grid.h"
+#include "accel/grid/synthetic_scenes.h"
+#include "geometry/triangle.h"
+#include "geometry/watertight_triangle.h"
 
 namespace kiln {
 namespace {
@@ -155,15 +156,17 @@ void check_against_brute_force(const grid_options& options) {
     const bool found = intersect_mesh_grid(g, m, r.origin, r.direction, r.tmin, r.tmax, got, counters);
     max_cells = std::max(max_cells, counters.cells_visited);
     EXPECT_LE(counters.cells_visited, bound) << "ray " << i;
-    const bool same = brute == found && (!brute || (expected.primitive == got.primitive && expected.t == got.t &&
-                                                    expected.u == got.u && expected.v == got.v));
+    const bool same =
+        brute == found && (!brute || (expected.primitive == got.primitive && expected.t == got.t &&
+                                      expected.u == got.u && expected.v == got.v));
     if (!same && ++mismatches <= 10)
-      ADD_FAILURE() << "ray " << i << " o=(" << r.origin.x << "," << r.origin.y << "," << r.origin.z << ") d=("
-                    << r.direction.x << "," << r.direction.y << "," << r.direction.z << ") brute " << brute << " prim "
-                    << expected.primitive << " t " << expected.t << ", grid " << found << " prim " << got.primitive
-                    << " t " << got.t;
+      ADD_FAILURE() << "ray " << i << " o=(" << r.origin.x << "," << r.origin.y << "," << r.origin.z
+                    << ") d=(" << r.direction.x << "," << r.direction.y << "," << r.direction.z << ") brute "
+                    << brute << " prim " << expected.primitive << " t " << expected.t << ", grid " << found
+                    << " prim " << got.primitive << " t " << got.t;
     traversal_counters occlusion_counters;
-    EXPECT_EQ(occluded_mesh_grid(g, m, r.origin, r.direction, r.tmin, r.tmax, occlusion_counters), brute) << i;
+    EXPECT_EQ(occluded_mesh_grid(g, m, r.origin, r.direction, r.tmin, r.tmax, occlusion_counters), brute)
+        << i;
     hits += brute;
   }
   EXPECT_EQ(mismatches, 0u) << "of " << rays.size() << " rays";
@@ -245,7 +248,8 @@ TEST(grid_build, adaptive_grid_splits_crowded_cells_until_depth) {
   EXPECT_GT(adaptive.cells.nodes.size(), 1u);
   size_t largest_uniform = 0, largest_adaptive = 0;
   for (const grid_cell& c : uniform.cells.cells) largest_uniform = std::max<size_t>(largest_uniform, c.count);
-  for (const grid_cell& c : adaptive.cells.cells) largest_adaptive = std::max<size_t>(largest_adaptive, c.count);
+  for (const grid_cell& c : adaptive.cells.cells)
+    largest_adaptive = std::max<size_t>(largest_adaptive, c.count);
   EXPECT_LT(largest_adaptive, largest_uniform);
 }
 

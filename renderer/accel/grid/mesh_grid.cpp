@@ -1,6 +1,5 @@
 #include "accel/grid/mesh_grid.h"
 
-#include "accel/grid/mailbox.h"
 #include "accel/grid/triangle_box.h"
 #include "geometry/triangle.h"
 #include "geometry/watertight_triangle.h"
@@ -23,18 +22,17 @@ struct closest_visitor {
   mailbox tested;
 
   bool operator()(const grid_cell& cell, double t_exit) {
-    for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-      const uint32_t primitive = g.items[i];
-      if (!tested.first_visit(primitive)) continue;
+    for_each_untested(g, cell, tested, [this](uint32_t primitive) {
       ++counters.items_tested;
       auto p = triangle_vertices(m, primitive);
       triangle_hit h;
-      if (!intersect_watertight(sheared, p[0], p[1], p[2], tmin, found ? best.t : tmax, h)) continue;
+      if (!intersect_watertight(sheared, p[0], p[1], p[2], tmin, found ? best.t : tmax, h)) return false;
       // Alpha masks hook in here: a masked-out texel rejects the hit before it becomes `best`.
-      if (found && !(h.t < best.t || (h.t == best.t && primitive < best.primitive))) continue;
+      if (found && !(h.t < best.t || (h.t == best.t && primitive < best.primitive))) return false;
       best = shape_hit{h.t, primitive, h.u, h.v};
       found = true;
-    }
+      return false;
+    });
     return done_within(t_exit);
   }
   bool done_within(double t_exit) const { return found && double(best.t) <= t_exit; }
@@ -51,16 +49,13 @@ struct any_visitor {
   mailbox tested;
 
   bool operator()(const grid_cell& cell, double) {
-    for (uint32_t i = cell.first, end = cell.first + cell.count; i < end; ++i) {
-      const uint32_t primitive = g.items[i];
-      if (!tested.first_visit(primitive)) continue;
+    return for_each_untested(g, cell, tested, [this](uint32_t primitive) {
       ++counters.items_tested;
       auto p = triangle_vertices(m, primitive);
       triangle_hit h;
       // Alpha masks hook in here as well (same rule as for closest hits).
-      if (intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h)) return true;
-    }
-    return false;
+      return intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h);
+    });
   }
   bool done_within(double) const { return false; }
 };
@@ -82,16 +77,16 @@ mesh_grid build_mesh_grid(const mesh& m, const grid_options& options) {
   return mesh_grid{build_grid(uint32_t(m.triangle_count()), bounds, overlaps, options)};
 }
 
-bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                         float tmax, shape_hit& best, traversal_counters& counters) {
+bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                         float tmin, float tmax, shape_hit& best, traversal_counters& counters) {
   if (g.cells.empty()) return false;
   closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, false, {}};
   traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
   return visit.found;
 }
 
-bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                        float tmax, traversal_counters& counters) {
+bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                        float tmin, float tmax, traversal_counters& counters) {
   if (g.cells.empty()) return false;
   any_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, counters, {}};
   return traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);

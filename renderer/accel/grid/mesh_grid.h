@@ -26,11 +26,11 @@ mesh_grid build_mesh_grid(const mesh& m, const grid_options& options);
 
 // Closest triangle of the object-space ray with t in (tmin, tmax]; updates best and returns true
 // when it found one.
-bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                         float tmax, shape_hit& best, traversal_counters& counters);
+bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                         float tmin, float tmax, shape_hit& best, traversal_counters& counters);
 
 // True when any triangle meets the object-space ray with t in (tmin, tmax].
-bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction, float tmin,
-                        float tmax, traversal_counters& counters);
+bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
+                        float tmin, float tmax, traversal_counters& counters);
 
 }  // namespace kiln

@@ -1,7 +1,6 @@
 #include "accel/grid/synthetic_scenes.h"
 
 #include <glm/gtc/matrix_transform.hpp>
-
 #include <random>
 
 namespace kiln {
@@ -24,7 +23,8 @@ mesh make_sphere_mesh(int rings, int segments, float radius) {
     float theta = pi * float(r) / float(rings);
     for (int s = 0; s < segments; ++s) {
       float phi = 2.0f * pi * float(s) / float(segments);
-      m.positions.push_back(radius * vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+      m.positions.push_back(
+          radius * vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
     }
   }
   const uint32_t south = uint32_t(m.positions.size());

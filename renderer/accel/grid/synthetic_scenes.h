@@ -3,9 +3,9 @@
 // Depends on scene only.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <cstdint>
+
+#include "scene/scene.h"
 
 namespace kiln {
 

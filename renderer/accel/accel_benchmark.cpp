@@ -1,0 +1,108 @@
+// Benchmark (not a test): build time, memory and single-thread Mrays/s of Embree, the uniform
+// grid and the adaptive grid on generated scenes of ~10k, ~100k and ~1M triangles and on an
+// instanced scene, all measured in one run so the Embree : grid : adaptive-grid ratio is fair.
+// Usage: kiln_accel_benchmark [rays per scene, default 500000]
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "accel/embree/embree_accelerator.h"
+#include "accel/grid/grid_accelerator.h"
+#include "accel/grid/synthetic_scenes.h"
+
+namespace kiln {
+namespace {
+
+// Resident set size in bytes, from /proc (Embree's allocations are invisible otherwise).
+size_t resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t pages_total = 0, pages_resident = 0;
+  statm >> pages_total >> pages_resident;
+  return pages_resident * size_t(sysconf(_SC_PAGESIZE));
+}
+
+std::vector<ray> random_rays(const bounds3& b, size_t count) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> gauss;
+  const double radius = glm::length(b.diagonal());
+  std::vector<ray> rays(count);
+  for (size_t i = 0; i < count; ++i) {
+    dvec3 target = b.lower + dvec3(unit(rng), unit(rng), unit(rng)) * b.diagonal();
+    dvec3 o = i % 2 ? b.center() + radius * glm::normalize(dvec3(gauss(rng), gauss(rng), gauss(rng)))
+                    : b.lower + dvec3(unit(rng), unit(rng), unit(rng)) * b.diagonal();
+    rays[i].origin = vec3(o);
+    rays[i].direction = vec3(glm::normalize(target - o + dvec3(1e-9)));
+  }
+  return rays;
+}
+
+struct measurement {
+  double build_seconds = 0.0;
+  double memory_mb = 0.0;
+  double mrays = 0.0;
+  size_t hits = 0;
+};
+
+template <typename make>
+measurement measure(const make& build, const std::vector<ray>& rays) {
+  measurement m;
+  const size_t before = resident_bytes();
+  auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<accelerator> accel = build();
+  m.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.memory_mb = double(resident_bytes() - std::min(before, resident_bytes())) / 1e6;
+  start = std::chrono::steady_clock::now();
+  for (const ray& r : rays) m.hits += accel->intersect(r).has_value();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.mrays = double(rays.size()) / seconds / 1e6;
+  return m;
+}
+
+size_t triangles(const scene& s) {
+  size_t n = 0;
+  for (const instance& inst : s.instances) n += s.meshes[inst.shape].triangle_count();
+  return n;
+}
+
+void run(const std::string& name, const scene& s, size_t ray_count) {
+  const std::vector<ray> rays = random_rays(world_bounds(s), ray_count);
+  measurement e = measure([&] { return std::make_unique<embree_accelerator>(s); }, rays);
+  measurement g =
+      measure([&] { return std::make_unique<grid_accelerator>(s, uniform_grid_options()); }, rays);
+  measurement a =
+      measure([&] { return std::make_unique<grid_accelerator>(s, adaptive_grid_options()); }, rays);
+  grid_statistics gs = grid_accelerator(s, uniform_grid_options()).statistics();
+  grid_statistics as = grid_accelerator(s, adaptive_grid_options()).statistics();
+  std::printf(
+      "%-22s %9zu tris %5zu inst | build s: embree %.3f grid %.3f adaptive %.3f | memory MB (RSS delta): "
+      "%.1f %.1f %.1f (grid structure %.1f, adaptive %.1f) | Mrays/s: %.2f %.2f %.2f | ratio 1 : %.2f : %.2f"
+      " | hits %zu %zu %zu\n",
+      name.c_str(), triangles(s), s.instances.size(), e.build_seconds, g.build_seconds, a.build_seconds,
+      e.memory_mb, g.memory_mb, a.memory_mb, gs.memory_bytes / 1e6, as.memory_bytes / 1e6, e.mrays, g.mrays,
+      a.mrays, g.mrays / e.mrays, a.mrays / e.mrays, e.hits, g.hits, a.hits);
+  std::fflush(stdout);
+}
+
+}  // namespace
+}  // namespace kiln
+
+int main(int argc, char** argv) {
+  using namespace kiln;
+  const size_t rays = argc > 1 ? size_t(std::atol(argv[1])) : 500000;
+  std::printf("single thread, %zu random rays per scene (half from inside the bounds, half from outside)\n",
+              rays);
+  run("sphere_10k", scene_from_mesh(make_sphere_mesh(50, 100, 1.0f)), rays);
+  run("sphere_100k", scene_from_mesh(make_sphere_mesh(158, 316, 1.0f)), rays);
+  run("sphere_1M", scene_from_mesh(make_sphere_mesh(500, 1000, 1.0f)), rays);
+  run("soup_100k", scene_from_mesh(make_triangle_soup(100000, 1, 1.0f, 0.02f)), rays);
+  run("instanced_512x10k", make_instanced_scene(make_sphere_mesh(50, 100, 1.0f), 8, 3), rays);
+  return 0;
+}
