@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/float_bits.h"
+#include "geometry/quadric.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
@@ -20,8 +21,17 @@ constexpr float edge_margin = 1e-4f;
 
 float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
   const instance& inst = s.instances[h.instance_id];
+  const float floor = 1e-4f;  // cosine floor: a ray in the surface's plane has no defined t
+  if (inst.kind == shape_kind::quadric) {
+    // Both backends call the same double-precision quadric code; what is left is the hit point's
+    // own error bound and the float rounding of t, seen along the ray.
+    quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
+    const float error = glm::length(w.error) +
+                        gamma_bound(8) * (max_abs(r.origin) + std::abs(h.t) * max_abs(r.direction));
+    const float cosine = std::abs(glm::dot(r.direction, w.normal));
+    return 4.0f * error / std::max(cosine, floor * glm::length(r.direction));
+  }
   const mesh& m = s.meshes[inst.shape];
-  const float floor = 1e-4f;  // cosine floor: a ray in the triangle's plane has no defined t
 
   // World space: the hit point's rounding error and a few ulps of the ray and the placement.
   surface_position p = triangle_hit_position(inst, m, h.primitive_id, h.u, h.v);
@@ -51,8 +61,9 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
 }
 
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h) {
+  // Triangle edges; a quadric's (u, v) are its parametric coordinates and mark no edge.
   const float b0 = 1.0f - h.u - h.v;
-  if (std::min({h.u, h.v, b0}) <= edge_margin) return true;
+  if (s.instances[h.instance_id].kind == shape_kind::mesh && std::min({h.u, h.v, b0}) <= edge_margin) return true;
   const float tolerance = hit_t_tolerance(s, r, h);
   return h.t - r.tmin <= tolerance || r.tmax - h.t <= tolerance;
 }

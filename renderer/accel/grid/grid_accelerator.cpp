@@ -1,6 +1,7 @@
 #include "accel/grid/grid_accelerator.h"
 
 #include "accel/grid/grid_traversal.h"
+#include "accel/grid/instance_shapes.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
@@ -37,7 +38,8 @@ void to_object_space(const float_affine& object_from_world, const ray& r, vec3& 
 grid_accelerator::grid_accelerator(const scene& s, const grid_options& options) : scene_(s) {
   // Unique meshes first, each built once, whatever the number of instances placing it.
   std::vector<bool> used(s.meshes.size(), false);
-  for (const instance& inst : s.instances) used[inst.shape] = true;
+  for (const instance& inst : s.instances)
+    if (inst.kind == shape_kind::mesh) used[inst.shape] = true;
   mesh_grids_.resize(s.meshes.size());
   for (size_t i = 0; i < s.meshes.size(); ++i)
     if (used[i]) mesh_grids_[i] = build_mesh_grid(s.meshes[i], options);
@@ -49,7 +51,7 @@ grid_accelerator::grid_accelerator(const scene& s, const grid_options& options) 
   // The top level holds instance ids by world bounds; an instance is one opaque item there.
   auto bounds = [&s](uint32_t i) {
     const instance& inst = s.instances[i];
-    return transform_bounds(inst.world_from_object, s.meshes[inst.shape].bounds);
+    return transform_bounds(inst.world_from_object, instance_object_bounds(s, inst));
   };
   auto overlaps = [&bounds](uint32_t i, const bounds3& box) {
     bounds3 b = bounds(i);
@@ -75,21 +77,13 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
 
     bool operator()(const grid_cell& cell, double t_exit) {
       for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
-        const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
         const float tmax = best.instance == UINT32_MAX ? world_ray.tmax : best.t;
-        shape_hit h;
-        bool found = false;
-        // The one place a shape kind meets the grid: quadrics add a case calling their
-        // object-space intersection function here.
-        switch (inst.kind) {
-          case shape_kind::mesh:
-            found = intersect_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin,
-                                        direction, world_ray.tmin, tmax, h, counters);
-            break;
-        }
-        if (found && closer(h.t, id, h.primitive, best)) best = closest_instance{h.t, id, h};
+        const mesh_grid* grid = self.mesh_grid_of(id);
+        std::optional<shape_hit> h =
+            intersect_instance_shape(self.scene_, id, world_ray, origin, direction, tmax, grid, counters);
+        if (h && closer(h->t, id, h->primitive, best)) best = closest_instance{h->t, id, *h};
         return false;
       });
       return done_within(t_exit);
@@ -102,15 +96,12 @@ std::optional<hit> grid_accelerator::intersect(const ray& r, traversal_counters&
   if (visit.best.instance == UINT32_MAX) return std::nullopt;
 
   const closest_instance& best = visit.best;
-  const instance& inst = scene_.instances[best.instance];
-  hit h;
-  h.t = best.t;
-  h.instance_id = best.instance;
-  h.primitive_id = best.shape.primitive;
-  h.u = best.shape.u;
-  h.v = best.shape.v;
-  h.geometric_normal = triangle_world_normal(inst, scene_.meshes[inst.shape], h.primitive_id);
-  return h;
+  return finish_hit(scene_, r, best.t, best.instance, best.shape.primitive, best.shape.u, best.shape.v);
+}
+
+const mesh_grid* grid_accelerator::mesh_grid_of(uint32_t instance_id) const {
+  const instance& inst = scene_.instances[instance_id];
+  return inst.kind == shape_kind::mesh ? &mesh_grids_[inst.shape] : nullptr;
 }
 
 bool grid_accelerator::occluded(const ray& r) const {
@@ -125,15 +116,10 @@ bool grid_accelerator::occluded(const ray& r) const {
 
     bool operator()(const grid_cell& cell, double) {
       return for_each_untested(self.top_, cell, tested, [this](uint32_t id) {
-        const instance& inst = self.scene_.instances[id];
         vec3 origin, direction;
         to_object_space(self.object_from_world_[id], world_ray, origin, direction);
-        switch (inst.kind) {  // quadrics hook in here too
-          case shape_kind::mesh:
-            return occluded_mesh_grid(self.mesh_grids_[inst.shape], self.scene_.meshes[inst.shape], origin,
-                                      direction, world_ray.tmin, world_ray.tmax, counters);
-        }
-        return false;
+        return occluded_instance_shape(self.scene_, id, world_ray, origin, direction, self.mesh_grid_of(id),
+                                       counters);
       });
     }
     bool done_within(double) const { return false; }

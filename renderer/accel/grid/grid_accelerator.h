@@ -43,6 +43,9 @@ class grid_accelerator final : public accelerator {
   grid_statistics statistics() const;
 
  private:
+  // The object-level grid of a mesh instance; nullptr for quadric instances.
+  const mesh_grid* mesh_grid_of(uint32_t instance_id) const;
+
   const scene& scene_;
   std::vector<mesh_grid> mesh_grids_;            // one per scene mesh; empty when unused
   std::vector<float_affine> object_from_world_;  // one per instance

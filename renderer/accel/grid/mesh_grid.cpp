@@ -3,6 +3,7 @@
 #include "accel/grid/triangle_box.h"
 #include "geometry/triangle.h"
 #include "geometry/watertight_triangle.h"
+#include "shade/alpha_coverage.h"
 
 namespace kiln {
 
@@ -18,6 +19,7 @@ struct closest_visitor {
   float tmax;
   shape_hit& best;
   traversal_counters& counters;
+  const alpha_filter& alpha;
   bool found = false;
   mailbox tested;
 
@@ -27,7 +29,8 @@ struct closest_visitor {
       auto p = triangle_vertices(m, primitive);
       triangle_hit h;
       if (!intersect_watertight(sheared, p[0], p[1], p[2], tmin, found ? best.t : tmax, h)) return false;
-      // Alpha masks hook in here: a masked-out texel rejects the hit before it becomes `best`.
+      // A masked-out texel rejects the hit before it becomes `best`, as Embree's filter does.
+      if (alpha.rejects(primitive, h.u, h.v)) return false;
       if (found && !(h.t < best.t || (h.t == best.t && primitive < best.primitive))) return false;
       best = shape_hit{h.t, primitive, h.u, h.v};
       found = true;
@@ -46,6 +49,7 @@ struct any_visitor {
   float tmin;
   float tmax;
   traversal_counters& counters;
+  const alpha_filter& alpha;
   mailbox tested;
 
   bool operator()(const grid_cell& cell, double) {
@@ -53,8 +57,7 @@ struct any_visitor {
       ++counters.items_tested;
       auto p = triangle_vertices(m, primitive);
       triangle_hit h;
-      // Alpha masks hook in here as well (same rule as for closest hits).
-      return intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h);
+      return intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h) && !alpha.rejects(primitive, h.u, h.v);
     });
   }
   bool done_within(double) const { return false; }
@@ -63,6 +66,16 @@ struct any_visitor {
 dda_ray to_dda(const vec3& origin, const vec3& direction) { return dda_ray{dvec3(origin), dvec3(direction)}; }
 
 }  // namespace
+
+bool alpha_filter::rejects(uint32_t primitive, float u, float v) const {
+  return world != nullptr && alpha_masked_out(*world, instance, primitive, u, v);
+}
+
+alpha_filter alpha_filter_for(const scene& s, uint32_t instance_id) {
+  const instance& inst = s.instances[instance_id];
+  if (inst.kind != shape_kind::mesh || s.materials[inst.material].alpha != alpha_mode::mask) return {};
+  return alpha_filter{&s, instance_id};
+}
 
 mesh_grid build_mesh_grid(const mesh& m, const grid_options& options) {
   auto bounds = [&m](uint32_t i) {
@@ -78,17 +91,18 @@ mesh_grid build_mesh_grid(const mesh& m, const grid_options& options) {
 }
 
 bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
-                         float tmin, float tmax, shape_hit& best, traversal_counters& counters) {
+                         float tmin, float tmax, shape_hit& best, traversal_counters& counters,
+                         const alpha_filter& alpha) {
   if (g.cells.empty()) return false;
-  closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, false, {}};
+  closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, alpha, false, {}};
   traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
   return visit.found;
 }
 
 bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
-                        float tmin, float tmax, traversal_counters& counters) {
+                        float tmin, float tmax, traversal_counters& counters, const alpha_filter& alpha) {
   if (g.cells.empty()) return false;
-  any_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, counters, {}};
+  any_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, counters, alpha, {}};
   return traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
 }
 

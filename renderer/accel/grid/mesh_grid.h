@@ -22,15 +22,28 @@ struct shape_hit {
   float v = 0.0f;
 };
 
+// The glTF alpha-mask rule for the instance being traversed, applied to every candidate triangle
+// exactly as the Embree backend's filter functions do. world == nullptr: nothing is masked.
+struct alpha_filter {
+  const scene* world = nullptr;
+  uint32_t instance = 0;
+
+  bool rejects(uint32_t primitive, float u, float v) const;
+};
+
+// The filter for an instance: active only when its material uses alphaMode MASK.
+alpha_filter alpha_filter_for(const scene& s, uint32_t instance_id);
+
 mesh_grid build_mesh_grid(const mesh& m, const grid_options& options);
 
 // Closest triangle of the object-space ray with t in (tmin, tmax]; updates best and returns true
 // when it found one.
 bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
-                         float tmin, float tmax, shape_hit& best, traversal_counters& counters);
+                         float tmin, float tmax, shape_hit& best, traversal_counters& counters,
+                         const alpha_filter& alpha = {});
 
 // True when any triangle meets the object-space ray with t in (tmin, tmax].
 bool occluded_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, const vec3& direction,
-                        float tmin, float tmax, traversal_counters& counters);
+                        float tmin, float tmax, traversal_counters& counters, const alpha_filter& alpha = {});
 
 }  // namespace kiln
