@@ -7,7 +7,8 @@ placed with a -90 degree rotation about X (object +Z -> world +Y).
   ground      a disk of radius 12 (kind "disk"), grey
   back row    capped cylinder, capped cone, capped paraboloid, hyperboloid of one sheet,
               hyperboloid of two sheets (capped), left to right
-  front row   glass sphere (KHR_materials_transmission + KHR_materials_ior), mirror torus
+  front row   solid glass sphere (KHR_materials_transmission + KHR_materials_ior + KHR_materials_volume:
+              without a volume glTF treats a transmissive surface as a thin wall), mirror torus
               (metallic 1, roughness 0), a general quadric (a saddle z = x^2 - y^2 clipped to a
               box), and an ellipsoid: the shared sphere definition under a non-uniform scale
   annulus     an upright disk with a hole (inner_radius), mirrored by a negative scale
@@ -78,7 +79,10 @@ def build():
         material("mirror", (0.95, 0.95, 0.95), metallic=1.0, roughness=0.0),
         material("glass", (1.0, 1.0, 1.0), roughness=0.0,
                  extensions={"KHR_materials_transmission": {"transmissionFactor": 1.0},
-                             "KHR_materials_ior": {"ior": 1.5}}),
+                             "KHR_materials_ior": {"ior": 1.5},
+                             "KHR_materials_volume": {"thicknessFactor": 1.0,
+                                                      "attenuationColor": [0.85, 0.95, 0.9],
+                                                      "attenuationDistance": 2.0}}),
         material("orange", (0.9, 0.4, 0.1)),
         material("white", (0.8, 0.8, 0.8)),
     ]
@@ -113,7 +117,8 @@ def build():
     ]
     return {
         "asset": {"version": "2.0", "generator": "kiln tools/make_quadric_showcase.py"},
-        "extensionsUsed": ["KILN_quadric", "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior"],
+        "extensionsUsed": ["KILN_quadric", "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                           "KHR_materials_volume"],
         "extensions": {
             "KILN_quadric": {"primitives": primitives},
             "KHR_lights_punctual": {"lights": [
