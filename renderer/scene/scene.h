@@ -95,6 +95,7 @@ struct mesh {
   std::vector<vec2> texcoords0;   // empty unless a material samples TEXCOORD_0
   std::vector<vec2> texcoords1;   // empty unless a material samples TEXCOORD_1
   std::vector<vec4> colors0;      // COLOR_0 as linear RGBA (alpha 1 for vec3); empty when absent
+  std::vector<vec4> tangents;     // xyz + handedness w; only when a material has a normal texture
   bounds3 bounds;                 // object space
 
   size_t triangle_count() const { return indices.size() / 3; }

@@ -6,6 +6,7 @@
 
 #include "scene/scene.h"
 #include "shade/surface.h"
+#include "shade/texture_sampling.h"
 
 namespace kiln {
 
@@ -40,6 +41,9 @@ inline material_inputs material_inputs_at(const surface_point& sp) {
   in.color0 = sp.color0;
   return in;
 }
+
+// A material's texture (present) at a shading point: its UV set, KHR_texture_transform, sampler.
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding);
 
 // Only TEXCOORD_0, no vertex colour.
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);

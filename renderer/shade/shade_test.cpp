@@ -209,3 +209,44 @@ TEST(material_eval, vertex_colour_and_second_uv_set) {
 
 }  // namespace
 }  // namespace kiln
+
+#include "shade/normal_mapping.h"
+
+namespace kiln {
+namespace {
+
+TEST(normal_mapping, tilts_the_shading_normal_in_the_tangent_frame) {
+  scene s;
+  image img;
+  img.width = img.height = 1;
+  img.texels8 = {255, 128, 128, 255};  // tangent-space normal ≈ (1, 0, 0): along the tangent
+  s.images.push_back(img);
+  s.textures.emplace_back();
+  material m;
+  m.normal_texture.texture = 0;
+  m.normal_texture.scale = 1.0f;
+  surface_point sp;
+  sp.geometric_normal = sp.shading_normal = vec3(0, 0, 1);
+  sp.tangent = vec4(0, 1, 0, 1);  // tangent +y
+  apply_normal_map(s, m, material_inputs{}, sp);
+  // c = (1, 0.0039, 0.0039): almost exactly the tangent, nudged toward +z so it stays above.
+  EXPECT_GT(sp.shading_normal.y, 0.99f);
+  EXPECT_GT(sp.shading_normal.z, 0.0f);
+  // Scale 0 flattens X and Y: the map then returns the interpolated normal.
+  m.normal_texture.scale = 0.0f;
+  sp.shading_normal = vec3(0, 0, 1);
+  apply_normal_map(s, m, material_inputs{}, sp);
+  EXPECT_NEAR(sp.shading_normal.z, 1.0f, 1e-6f);
+  // A back-face hit maps in glTF's frame and flips the result toward the ray.
+  m.normal_texture.scale = 0.5f;
+  surface_point back;
+  back.front_face = false;
+  back.geometric_normal = back.shading_normal = vec3(0, 0, -1);
+  back.tangent = vec4(0, 1, 0, 1);
+  apply_normal_map(s, m, material_inputs{}, back);
+  EXPECT_LT(back.shading_normal.z, 0.0f);
+  EXPECT_LT(back.shading_normal.y, 0.0f);
+}
+
+}  // namespace
+}  // namespace kiln

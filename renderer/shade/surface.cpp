@@ -28,6 +28,12 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
   sp.uv1 = m.texcoords1.empty()
                ? sp.uv0
                : interpolate(m.texcoords1[idx[0]], m.texcoords1[idx[1]], m.texcoords1[idx[2]], h.u, h.v);
+  if (!m.tangents.empty()) {
+    const vec4 t = interpolate(m.tangents[idx[0]], m.tangents[idx[1]], m.tangents[idx[2]], h.u, h.v);
+    // Tangents are directions on the surface: the linear part of world_from_object, not the
+    // normal matrix.
+    sp.tangent = vec4(vec3(dmat3(inst.world_from_object) * dvec3(vec3(t))), t.w < 0.0f ? -1.0f : 1.0f);
+  }
   if (!m.colors0.empty())
     sp.color0 = interpolate(m.colors0[idx[0]], m.colors0[idx[1]], m.colors0[idx[2]], h.u, h.v);
 

@@ -3,6 +3,7 @@
 #include "core/float_bits.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
+#include "shade/normal_mapping.h"
 #include "shade/shadow_transmittance.h"
 
 #include <algorithm>
@@ -203,10 +204,13 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 
 }  // namespace
 
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
                    float throughput, ray_counts& counts, const medium_stack& media) {
-  const material& m = ctx.world.materials[sp.material];
-  material_point mp = evaluate_material(ctx.world, m, material_inputs_at(sp));
+  const material& m = ctx.world.materials[unmapped.material];
+  const material_inputs inputs = material_inputs_at(unmapped);
+  material_point mp = evaluate_material(ctx.world, m, inputs);
+  surface_point sp = unmapped;
+  apply_normal_map(ctx.world, m, inputs, sp);
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
     return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media);
 

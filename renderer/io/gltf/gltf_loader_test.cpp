@@ -555,3 +555,30 @@ TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
 
 }  // namespace
 }  // namespace kiln
+
+#include "io/gltf/mesh_tangents.h"
+
+namespace kiln {
+namespace {
+
+TEST(MeshTangents, FollowUAndTheUpwardImageDirection) {
+  // A quad in the xy plane facing +z, u along +x, glTF v growing along -y (image rows downward):
+  // the tangent is +x and the bitangent cross(n, t)·w = +y points up the image (w = +1).
+  mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.normals.assign(4, vec3(0, 0, 1));
+  m.indices = {0, 1, 2, 0, 2, 3};
+  std::vector<vec4> t = generate_tangents(m, {{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  for (const vec4& v : t) {
+    EXPECT_NEAR(v.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(v.y, 0.0f, 1e-6f);
+    EXPECT_EQ(v.w, 1.0f);
+  }
+  // Mirrored texture (v growing along +y): same tangent, opposite handedness.
+  t = generate_tangents(m, {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  EXPECT_NEAR(t[0].x, 1.0f, 1e-6f);
+  EXPECT_EQ(t[0].w, -1.0f);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -382,6 +382,11 @@ bool material_samples_texcoord(const tinygltf::Model& model, int material_index,
   return false;
 }
 
+int material_normal_texcoord(const tinygltf::Model& model, int material_index) {
+  const tinygltf::NormalTextureInfo& info = model.materials[static_cast<size_t>(material_index)].normalTexture;
+  return effective_texcoord(transform_of(info.extensions), info.texCoord);
+}
+
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index) {
   if (material_index < 0) return false;
   for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
