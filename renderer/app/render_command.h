@@ -30,6 +30,9 @@ struct render_options {
   bool full_float = false;
   vec3 background{0.0f};
   bool show_background = false;
+  std::string environment;  // equirectangular map file; empty: the --background colour
+  double environment_rotation_degrees = 0.0;
+  float environment_intensity = 1.0f;
   int max_depth = 8;
   float min_throughput = 1e-3f;
   bool quiet = false;

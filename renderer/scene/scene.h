@@ -145,9 +145,15 @@ struct camera {
   dmat4 world_from_camera{1.0};
 };
 
-// What rays that leave the scene see: a constant colour (linear RGB radiance).
+// What rays that leave the scene see: a constant colour (linear RGB radiance), or an
+// equirectangular map (an entry of scene.images, linear float radiance) times intensity.
 struct environment {
   vec3 color{0.0f};
+  int32_t map_image = -1;  // index into scene.images; -1: the constant colour
+  float rotation = 0.0f;   // radians about +Y
+  float intensity = 1.0f;
+
+  bool has_map() const { return map_image >= 0; }
 };
 
 // Numbers the loader reports so that users see what was dropped or skipped.

@@ -250,3 +250,40 @@ TEST(normal_mapping, tilts_the_shading_normal_in_the_tangent_frame) {
 
 }  // namespace
 }  // namespace kiln
+
+#include "shade/environment.h"
+
+namespace kiln {
+namespace {
+
+TEST(environment, equirectangular_directions_and_rotation) {
+  vec2 front = environment_uv(vec3(0, 0, -1), 0.0f);
+  EXPECT_NEAR(front.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(front.y, 0.5f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(2, 0, 0), 0.0f).x, 0.75f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(0, 1, 0), 0.0f).y, 0.0f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(0, -1, 0), 0.0f).y, 1.0f, 1e-6f);
+  // A quarter turn counter-clockwise (seen from above) brings the map centre from -Z to +X.
+  EXPECT_NEAR(environment_uv(vec3(1, 0, 0), pi / 2).x, 0.5f, 1e-6f);
+}
+
+TEST(environment, map_radiance_is_scaled_by_intensity_and_constant_colour_otherwise) {
+  scene s;
+  s.env.color = vec3(0.25f);
+  EXPECT_EQ(environment_radiance(s, vec3(0, 0, -1)), vec3(0.25f));
+  image sky;  // 4x2: top row bright, bottom row dark
+  sky.width = 4;
+  sky.height = 2;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) sky.texels32.insert(sky.texels32.end(), {y ? 0.5f : 8.0f, float(x), 0.0f, 1.0f});
+  s.images.push_back(sky);
+  s.env.map_image = 0;
+  s.env.intensity = 2.0f;
+  EXPECT_NEAR(environment_radiance(s, vec3(0, 1, 0)).x, 16.0f, 1e-5f);    // straight up: top row
+  EXPECT_NEAR(environment_radiance(s, vec3(0, -1, 0)).x, 1.0f, 1e-5f);    // straight down: bottom row
+  // Slightly above the horizon along +X: u = 0.75 is the centre of texel column 2.5 -> between 2 and 3.
+  EXPECT_NEAR(environment_radiance(s, vec3(1, 0.05f, 0)).y, 2.0f * 2.5f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -1,6 +1,7 @@
 #include "shade/whitted.h"
 
 #include "core/float_bits.h"
+#include "shade/environment.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/normal_mapping.h"
@@ -241,7 +242,8 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
                     ray_counts& counts, const medium_stack& media) {
   ray r = r_in;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
-  if (media.empty()) return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : ctx.world.env.color;
+  if (media.empty())
+    return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : environment_radiance(ctx.world, r.direction);
 
   // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
   // that leaves the scene from inside (an open mesh, no exit surface) is
@@ -251,7 +253,7 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);
   vec3 arriving = h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media)
-                    : ctx.world.env.color;
+                    : environment_radiance(ctx.world, r.direction);
   return absorption * arriving;
 }
 
