@@ -83,6 +83,8 @@ struct material {
   float attenuation_distance = inf;  // world units; infinite: no absorption
   vec3 attenuation_color{1.0f};      // colour that white light has after attenuation_distance
 
+  bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
+
   bool has_volume() const { return thickness_factor > 0.0f; }
 };
 

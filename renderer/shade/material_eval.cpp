@@ -53,6 +53,7 @@ material_point evaluate_material(const scene& s, const material& m, const materi
   if (m.transmission_texture.present() && mp.transmission > 0.0f)
     mp.transmission *= lookup(s, m.transmission_texture, in, texel_encoding::linear).r;
   mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
+  mp.unlit = m.unlit;
   return mp;
 }
 

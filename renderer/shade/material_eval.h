@@ -20,6 +20,7 @@ struct material_point {
   float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
   float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
+  bool unlit = false;            // KHR_materials_unlit
 };
 
 // Share of light that the surface passes on through itself: the dielectric part times the

@@ -142,6 +142,8 @@ namespace {
 vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
                    const material_point& mp, int depth, float throughput, ray_counts& counts,
                    const medium_stack& media) {
+  // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
+  if (mp.unlit) return mp.base_color;
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
 

@@ -356,6 +356,7 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_FLOAT_EQ(m.occlusion_texture.scale, 0.3f);
   EXPECT_FALSE(m.emissive_texture.present());
   EXPECT_FALSE(m.metallic_roughness_texture.present());
+  EXPECT_FALSE(m.unlit);
   EXPECT_FLOAT_EQ(m.transmission_factor, 0.8f);
   EXPECT_EQ(m.transmission_texture.texture, 0);
   EXPECT_FLOAT_EQ(m.thickness_factor, 0.1f);

@@ -365,6 +365,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
     }
   }
   convert_transmission(model, src, m, remap, out, file, ext_where);
+  m.unlit = find_extension(src, "KHR_materials_unlit") != nullptr;
   return m;
 }
 

@@ -153,7 +153,8 @@ void check_required_extensions_in_json(const uint8_t* text, size_t size, const s
 const std::vector<std::string>& supported_extensions() {
   static const std::vector<std::string> names = {
       "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-      "KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"};
+      "KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform",
+      "KHR_materials_unlit"};
   return names;
 }
 
