@@ -126,3 +126,32 @@ TEST(alpha, single_sided_back_faces_are_culled_double_sided_ones_are_not) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(unlit, radiance_is_the_base_colour_whatever_the_lights) {
+  scene s;
+  material flat;
+  flat.unlit = true;
+  flat.base_color_factor = vec4(0.2f, 0.4f, 0.8f, 1.0f);
+  flat.metallic_factor = 1.0f;
+  flat.roughness_factor = 0.0f;  // a lit material this smooth would mirror the environment
+  s.materials = {flat};
+  s.env.color = vec3(5.0f);
+  testing::add_quad(s, -1, -1, 1, 1, 0, 0);
+  light l;
+  l.position = dvec3(0, 0, 2);
+  l.intensity = 100.0f;
+  s.lights.push_back(l);
+  embree_accelerator accel(s);
+  shading_options options;
+  shading_context ctx{s, accel, options, scene_has_see_through(s)};
+  ray_counts counts;
+  vec3 seen = trace_radiance(ctx, testing::make_ray(vec3(0.1f, 0.2f, 1), vec3(0, 0, -1)), 0, 1.0f, counts);
+  EXPECT_EQ(seen, vec3(0.2f, 0.4f, 0.8f));
+  EXPECT_EQ(counts.shadow + counts.reflection, 0u);
+}
+
+}  // namespace
+}  // namespace kiln

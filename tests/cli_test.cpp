@@ -28,7 +28,8 @@ TEST(cli, help_documents_every_render_option) {
   std::ifstream in(help_file);
   std::string help((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const char* option : {"--output", "--width", "--height", "--spp", "--threads", "--tile-size", "--camera",
-                             "--look-from", "--look-at", "--up", "--fov", "--scene", "--float"})
+                             "--look-from", "--look-at", "--up", "--fov", "--scene", "--float", "--environment",
+                             "--environment-rotation", "--environment-intensity"})
     EXPECT_NE(help.find(option), std::string::npos) << option;
 }
 
@@ -43,6 +44,23 @@ TEST(cli, usage_errors_exit_2_with_one_line) {
     EXPECT_EQ(result.exit_code, 2) << args.back();
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
   }
+}
+
+TEST(cli, glass_showcase_renders_with_its_environment_map) {
+  const std::string scenes = std::string(KILN_SOURCE_DIR) + "/scenes/";
+  std::string out = scratch_folder("showcase") + "/out.exr";
+  auto result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--width", "64", "--height", "48",
+                          "--environment", scenes + "glass_showcase_sky.hdr", "--environment-intensity", "2",
+                          "--show-background", "--threads", "2"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("refraction rays"), std::string::npos) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text.find(" 0 refraction rays"), std::string::npos) << result.stderr_text;
+  // A file OpenImageIO cannot read is bad input naming the option.
+  result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--environment",
+                     scenes + "README.md"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("--environment"), std::string::npos) << result.stderr_text;
+  EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
 }
 
 TEST(cli, impossible_camera_is_bad_input) {

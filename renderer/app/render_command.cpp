@@ -3,6 +3,7 @@
 #include "accel/make_accelerator.h"
 #include "app/interrupt.h"
 #include "core/error.h"
+#include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
@@ -170,6 +171,16 @@ void add_view_options(CLI::App& app, render_options& o) {
         o.background = vec3(c);
       },
       "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)");
+  app.add_option("--environment", o.environment,
+                 "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
+      ->check(CLI::ExistingFile);
+  app.add_option("--environment-rotation", o.environment_rotation_degrees,
+                 "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)")
+      ->check(CLI::Range(-36000.0, 36000.0))
+      ->capture_default_str();
+  app.add_option("--environment-intensity", o.environment_intensity, "Scale of the environment map's radiance")
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->capture_default_str();
   app.add_flag("--show-background", o.show_background,
                "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
   app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")->check(CLI::Range(0, 64))->capture_default_str();
@@ -210,6 +221,12 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_nodes = options.max_nodes;
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
+  if (!options.environment.empty()) {
+    p.world.images.push_back(read_environment_image(options.environment));
+    p.world.env.map_image = int32_t(p.world.images.size() - 1);
+    p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
+    p.world.env.intensity = options.environment_intensity;
+  }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet)
     for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';

@@ -35,6 +35,9 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
+  std::string environment;  // equirectangular map file; empty: the --background colour
+  double environment_rotation_degrees = 0.0;
+  float environment_intensity = 1.0f;
   int max_depth = 8;
   float min_throughput = 1e-3f;
   bool allow_outside_files = false;

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "render/sample_pattern.h"
+#include "shade/environment.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
@@ -45,7 +46,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     std::optional<hit> h = find_visible_hit(ctx, r, counts);
     if (!h) {
       if (settings.show_background) {
-        colour_sum += ctx.world.env.color;
+        colour_sum += environment_radiance(ctx.world, r.direction);
         alpha_sum += 1.0f;
       }
       continue;

@@ -83,6 +83,8 @@ struct material {
   float attenuation_distance = inf;  // world units; infinite: no absorption
   vec3 attenuation_color{1.0f};      // colour that white light has after attenuation_distance
 
+  bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
+
   bool has_volume() const { return thickness_factor > 0.0f; }
 };
 
@@ -95,6 +97,7 @@ struct mesh {
   std::vector<vec2> texcoords0;   // empty unless a material samples TEXCOORD_0
   std::vector<vec2> texcoords1;   // empty unless a material samples TEXCOORD_1
   std::vector<vec4> colors0;      // COLOR_0 as linear RGBA (alpha 1 for vec3); empty when absent
+  std::vector<vec4> tangents;     // xyz + handedness w; only when a material has a normal texture
   bounds3 bounds;                 // object space
 
   size_t triangle_count() const { return indices.size() / 3; }
@@ -176,9 +179,15 @@ struct camera {
   dmat4 world_from_camera{1.0};
 };
 
-// What rays that leave the scene see: a constant colour (linear RGB radiance).
+// What rays that leave the scene see: a constant colour (linear RGB radiance), or an
+// equirectangular map (an entry of scene.images, linear float radiance) times intensity.
 struct environment {
   vec3 color{0.0f};
+  int32_t map_image = -1;  // index into scene.images; -1: the constant colour
+  float rotation = 0.0f;   // radians about +Y
+  float intensity = 1.0f;
+
+  bool has_map() const { return map_image >= 0; }
 };
 
 // Numbers the loader reports so that users see what was dropped or skipped.

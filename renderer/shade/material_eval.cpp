@@ -7,12 +7,16 @@
 
 namespace kiln {
 
-namespace {
-
-vec4 lookup(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
   // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
   vec2 uv = transform_uv(ref, in.uv[ref.texcoord == 1 ? 1 : 0]);
   return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
+}
+
+namespace {
+
+vec4 lookup(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+  return sample_texture_ref(s, ref, in, encoding);
 }
 
 }  // namespace
@@ -49,6 +53,7 @@ material_point evaluate_material(const scene& s, const material& m, const materi
   if (m.transmission_texture.present() && mp.transmission > 0.0f)
     mp.transmission *= lookup(s, m.transmission_texture, in, texel_encoding::linear).r;
   mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
+  mp.unlit = m.unlit;
   return mp;
 }
 

@@ -6,6 +6,7 @@
 
 #include "scene/scene.h"
 #include "shade/surface.h"
+#include "shade/texture_sampling.h"
 
 namespace kiln {
 
@@ -19,6 +20,7 @@ struct material_point {
   float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
   float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
+  bool unlit = false;            // KHR_materials_unlit
 };
 
 // Share of light that the surface passes on through itself: the dielectric part times the
@@ -40,6 +42,9 @@ inline material_inputs material_inputs_at(const surface_point& sp) {
   in.color0 = sp.color0;
   return in;
 }
+
+// A material's texture (present) at a shading point: its UV set, KHR_texture_transform, sampler.
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding);
 
 // Only TEXCOORD_0, no vertex colour.
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);

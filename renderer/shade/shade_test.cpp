@@ -209,3 +209,81 @@ TEST(material_eval, vertex_colour_and_second_uv_set) {
 
 }  // namespace
 }  // namespace kiln
+
+#include "shade/normal_mapping.h"
+
+namespace kiln {
+namespace {
+
+TEST(normal_mapping, tilts_the_shading_normal_in_the_tangent_frame) {
+  scene s;
+  image img;
+  img.width = img.height = 1;
+  img.texels8 = {255, 128, 128, 255};  // tangent-space normal ≈ (1, 0, 0): along the tangent
+  s.images.push_back(img);
+  s.textures.emplace_back();
+  material m;
+  m.normal_texture.texture = 0;
+  m.normal_texture.scale = 1.0f;
+  surface_point sp;
+  sp.geometric_normal = sp.shading_normal = vec3(0, 0, 1);
+  sp.tangent = vec4(0, 1, 0, 1);  // tangent +y
+  apply_normal_map(s, m, material_inputs{}, sp);
+  // c = (1, 0.0039, 0.0039): almost exactly the tangent, nudged toward +z so it stays above.
+  EXPECT_GT(sp.shading_normal.y, 0.99f);
+  EXPECT_GT(sp.shading_normal.z, 0.0f);
+  // Scale 0 flattens X and Y: the map then returns the interpolated normal.
+  m.normal_texture.scale = 0.0f;
+  sp.shading_normal = vec3(0, 0, 1);
+  apply_normal_map(s, m, material_inputs{}, sp);
+  EXPECT_NEAR(sp.shading_normal.z, 1.0f, 1e-6f);
+  // A back-face hit maps in glTF's frame and flips the result toward the ray.
+  m.normal_texture.scale = 0.5f;
+  surface_point back;
+  back.front_face = false;
+  back.geometric_normal = back.shading_normal = vec3(0, 0, -1);
+  back.tangent = vec4(0, 1, 0, 1);
+  apply_normal_map(s, m, material_inputs{}, back);
+  EXPECT_LT(back.shading_normal.z, 0.0f);
+  EXPECT_LT(back.shading_normal.y, 0.0f);
+}
+
+}  // namespace
+}  // namespace kiln
+
+#include "shade/environment.h"
+
+namespace kiln {
+namespace {
+
+TEST(environment, equirectangular_directions_and_rotation) {
+  vec2 front = environment_uv(vec3(0, 0, -1), 0.0f);
+  EXPECT_NEAR(front.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(front.y, 0.5f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(2, 0, 0), 0.0f).x, 0.75f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(0, 1, 0), 0.0f).y, 0.0f, 1e-6f);
+  EXPECT_NEAR(environment_uv(vec3(0, -1, 0), 0.0f).y, 1.0f, 1e-6f);
+  // A quarter turn counter-clockwise (seen from above) brings the map centre from -Z to +X.
+  EXPECT_NEAR(environment_uv(vec3(1, 0, 0), pi / 2).x, 0.5f, 1e-6f);
+}
+
+TEST(environment, map_radiance_is_scaled_by_intensity_and_constant_colour_otherwise) {
+  scene s;
+  s.env.color = vec3(0.25f);
+  EXPECT_EQ(environment_radiance(s, vec3(0, 0, -1)), vec3(0.25f));
+  image sky;  // 4x2: top row bright, bottom row dark
+  sky.width = 4;
+  sky.height = 2;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) sky.texels32.insert(sky.texels32.end(), {y ? 0.5f : 8.0f, float(x), 0.0f, 1.0f});
+  s.images.push_back(sky);
+  s.env.map_image = 0;
+  s.env.intensity = 2.0f;
+  EXPECT_NEAR(environment_radiance(s, vec3(0, 1, 0)).x, 16.0f, 1e-5f);    // straight up: top row
+  EXPECT_NEAR(environment_radiance(s, vec3(0, -1, 0)).x, 1.0f, 1e-5f);    // straight down: bottom row
+  // Slightly above the horizon along +X: u = 0.75 is the centre of texel column 2.5 -> between 2 and 3.
+  EXPECT_NEAR(environment_radiance(s, vec3(1, 0.05f, 0)).y, 2.0f * 2.5f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace kiln

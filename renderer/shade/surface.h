@@ -16,6 +16,7 @@ struct surface_point {
   vec2 uv0{0.0f};
   vec2 uv1{0.0f};        // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
   vec4 color0{1.0f};     // COLOR_0, white when the mesh has none
+  vec4 tangent{0.0f};    // world-space tangent (xyz, unnormalised) and handedness w; 0 when none
   uint32_t material = 0;
   bool front_face = true;  // the ray arrived on glTF's front side
 };

@@ -1,8 +1,10 @@
 #include "shade/whitted.h"
 
 #include "core/float_bits.h"
+#include "shade/environment.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
+#include "shade/normal_mapping.h"
 #include "shade/shadow_transmittance.h"
 
 #include <algorithm>
@@ -141,6 +143,8 @@ namespace {
 vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
                    const material_point& mp, int depth, float throughput, ray_counts& counts,
                    const medium_stack& media) {
+  // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
+  if (mp.unlit) return mp.base_color;
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
 
@@ -206,10 +210,13 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 
 }  // namespace
 
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
                    float throughput, ray_counts& counts, const medium_stack& media) {
-  const material& m = ctx.world.materials[sp.material];
-  material_point mp = evaluate_material(ctx.world, m, material_inputs_at(sp));
+  const material& m = ctx.world.materials[unmapped.material];
+  const material_inputs inputs = material_inputs_at(unmapped);
+  material_point mp = evaluate_material(ctx.world, m, inputs);
+  surface_point sp = unmapped;
+  apply_normal_map(ctx.world, m, inputs, sp);
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
     return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media);
 
@@ -241,7 +248,8 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
                     ray_counts& counts, const medium_stack& media) {
   ray r = r_in;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
-  if (media.empty()) return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : ctx.world.env.color;
+  if (media.empty())
+    return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : environment_radiance(ctx.world, r.direction);
 
   // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
   // that leaves the scene from inside (an open mesh, no exit surface) is
@@ -251,7 +259,7 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);
   vec3 arriving = h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media)
-                    : ctx.world.env.color;
+                    : environment_radiance(ctx.world, r.direction);
   return absorption * arriving;
 }
 

@@ -8,6 +8,7 @@
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_materials.h"
+#include "io/gltf/mesh_tangents.h"
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
@@ -207,6 +208,27 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
   if (material_samples_other_texcoords(ctx.model, prim.material))
     warn_once(ctx, pointer("materials", prim.material) +
                        ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
+
+  // Tangent frames only for normal-mapped materials with smooth normals: the file's TANGENT when it
+  // has one with usable vectors, generated from the normal texture's UV set otherwise.
+  if (prim.material >= 0 && !m.normals.empty()) {
+    const tinygltf::Material& mat = ctx.model.materials[static_cast<size_t>(prim.material)];
+    const std::vector<vec2>& uv = material_normal_texcoord(ctx.model, prim.material) == 1 ? m.texcoords1 : m.texcoords0;
+    if (mat.normalTexture.index >= 0 && uv.size() == vertex_count) {
+      auto tangent = prim.attributes.find("TANGENT");
+      if (tangent != prim.attributes.end()) {
+        const std::vector<float> t = read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
+        m.tangents.resize(vertex_count);
+        for (size_t i = 0; i < vertex_count; ++i) {
+          const vec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
+          const float len = glm::length(v);
+          m.tangents[i] = len > 0.0f ? vec4(v / len, t[4 * i + 3] < 0.0f ? -1.0f : 1.0f) : vec4(0.0f);
+        }
+      } else {
+        m.tangents = generate_tangents(m, uv);
+      }
+    }
+  }
 
   // COLOR_0 always multiplies the base colour, so it is stored whenever present (already linear).
   auto color = prim.attributes.find("COLOR_0");

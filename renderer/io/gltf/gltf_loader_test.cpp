@@ -356,6 +356,7 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_FLOAT_EQ(m.occlusion_texture.scale, 0.3f);
   EXPECT_FALSE(m.emissive_texture.present());
   EXPECT_FALSE(m.metallic_roughness_texture.present());
+  EXPECT_FALSE(m.unlit);
   EXPECT_FLOAT_EQ(m.transmission_factor, 0.8f);
   EXPECT_EQ(m.transmission_texture.texture, 0);
   EXPECT_FLOAT_EQ(m.thickness_factor, 0.1f);
@@ -551,6 +552,33 @@ TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
   prim["attributes"]["COLOR_0"] = b.add_data(std::vector<float>{1, 0, 0, 1}, k_float, "VEC2", 2);
   const std::string message = error_of([&] { load_gltf(b.write_gltf(dir)); });
   EXPECT_NE(message.find("COLOR_0 must be VEC3/VEC4"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace kiln
+
+#include "io/gltf/mesh_tangents.h"
+
+namespace kiln {
+namespace {
+
+TEST(MeshTangents, FollowUAndTheUpwardImageDirection) {
+  // A quad in the xy plane facing +z, u along +x, glTF v growing along -y (image rows downward):
+  // the tangent is +x and the bitangent cross(n, t)·w = +y points up the image (w = +1).
+  mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.normals.assign(4, vec3(0, 0, 1));
+  m.indices = {0, 1, 2, 0, 2, 3};
+  std::vector<vec4> t = generate_tangents(m, {{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  for (const vec4& v : t) {
+    EXPECT_NEAR(v.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(v.y, 0.0f, 1e-6f);
+    EXPECT_EQ(v.w, 1.0f);
+  }
+  // Mirrored texture (v growing along +y): same tangent, opposite handedness.
+  t = generate_tangents(m, {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  EXPECT_NEAR(t[0].x, 1.0f, 1e-6f);
+  EXPECT_EQ(t[0].w, -1.0f);
 }
 
 }  // namespace

@@ -365,6 +365,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
     }
   }
   convert_transmission(model, src, m, remap, out, file, ext_where);
+  m.unlit = find_extension(src, "KHR_materials_unlit") != nullptr;
   return m;
 }
 
@@ -380,6 +381,11 @@ bool material_samples_texcoord(const tinygltf::Model& model, int material_index,
   for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
     if (index >= 0 && texcoord == set) return true;
   return false;
+}
+
+int material_normal_texcoord(const tinygltf::Model& model, int material_index) {
+  const tinygltf::NormalTextureInfo& info = model.materials[static_cast<size_t>(material_index)].normalTexture;
+  return effective_texcoord(transform_of(info.extensions), info.texCoord);
 }
 
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index) {

@@ -36,6 +36,9 @@ bool material_samples_texcoord0(const tinygltf::Model& model, int material_index
 // KHR_texture_transform's texCoord override).
 bool material_samples_texcoord(const tinygltf::Model& model, int material_index, int set);
 
+// The UV set the normal texture reads (after KHR_texture_transform's texCoord override).
+int material_normal_texcoord(const tinygltf::Model& model, int material_index);
+
 // True when a glTF material samples any texture through a TEXCOORD_n with n > 1 (not stored).
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index);
 

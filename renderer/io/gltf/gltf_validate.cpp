@@ -235,7 +235,10 @@ void check_attribute_format(const tinygltf::Accessor& acc, const std::string& na
   const int ct = acc.componentType;
   const auto got = " (got " + type_name(acc.type) + " " + component_type_name(ct) +
                    (acc.normalized ? " normalized" : "") + ")";
-  if (name == "POSITION" || name == "NORMAL") {
+  if (name == "TANGENT") {
+    if (acc.type != TINYGLTF_TYPE_VEC4 || ct != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      throw input_error(file, where, "TANGENT must be VEC4 FLOAT" + got);
+  } else if (name == "POSITION" || name == "NORMAL") {
     if (acc.type != TINYGLTF_TYPE_VEC3 || ct != TINYGLTF_COMPONENT_TYPE_FLOAT)
       throw input_error(file, where, name + " must be VEC3 FLOAT" + got);
   } else if (name == "TEXCOORD_0" || name == "TEXCOORD_1") {

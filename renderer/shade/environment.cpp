@@ -1,0 +1,28 @@
+#include "shade/environment.h"
+
+#include "shade/texture_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kiln {
+
+vec2 environment_uv(const vec3& direction, float rotation_radians) {
+  const vec3 d = glm::normalize(direction);
+  const float phi = std::atan2(d.x, -d.z) - rotation_radians;  // 0 along -Z
+  const float u = 0.5f + phi / (2.0f * pi);
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / pi;
+  return {u - std::floor(u), v};
+}
+
+vec3 environment_radiance(const scene& s, const vec3& direction) {
+  const environment& env = s.env;
+  if (!env.has_map()) return env.color;
+  texture map;
+  map.image = uint32_t(env.map_image);
+  map.sampling = {wrap_mode::repeat, wrap_mode::clamp_to_edge, filter_mode::linear};
+  return vec3(sample_texture(s, map, environment_uv(direction, env.rotation), texel_encoding::linear)) *
+         env.intensity;
+}
+
+}  // namespace kiln

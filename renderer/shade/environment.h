@@ -1,0 +1,18 @@
+// What rays that leave the scene see: the constant environment colour, or an equirectangular map
+// (scaled by its intensity, turned about +Y by its rotation). Depends on scene and texture
+// sampling only.
+#pragma once
+
+#include "scene/scene.h"
+
+namespace kiln {
+
+// Equirectangular coordinates of a world direction (glTF's +Y up): v = 0 straight up, v = 1 straight
+// down; u = 0.5 along -Z, 0.75 along +X, 0 and 1 along +Z. A positive rotation turns the map
+// counter-clockwise seen from above (+Y).
+vec2 environment_uv(const vec3& direction, float rotation_radians);
+
+// Radiance arriving from direction (any length).
+vec3 environment_radiance(const scene& s, const vec3& direction);
+
+}  // namespace kiln
