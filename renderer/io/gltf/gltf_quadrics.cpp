@@ -6,10 +6,18 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace kiln::gltf_internal {
 
 namespace {
+
+// Shortest readable form of a number for messages (-0.5, not -0.500000).
+std::string format_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 // Reads one definition's fields with the JSON path of each for error messages.
 class definition_reader {
@@ -37,7 +45,7 @@ class definition_reader {
   // A required number > 0.
   double positive(const std::string& key) const {
     const double v = number(key);
-    if (!(v > 0.0)) fail(key, "'" + key + "' must be greater than 0, got " + std::to_string(v));
+    if (!(v > 0.0)) fail(key, "'" + key + "' must be greater than 0, got " + format_number(v));
     return v;
   }
 
