@@ -4,14 +4,14 @@
 // cost and failure rate against a brute-force reference (plain and grazing rays, near and far).
 //
 //   build/bench/quadric_bench --benchmark_min_time=0.2
-#include "accel/embree/embree_accelerator.h"
-#include "geometry/quadric.h"
-#include "torus_accuracy.h"
-
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <random>
+
+#include "accel/embree/embree_accelerator.h"
+#include "geometry/quadric.h"
+#include "torus_accuracy.h"
 
 namespace kiln {
 namespace {
@@ -158,16 +158,19 @@ void bm_torus_accuracy(benchmark::State& state) {
   state.counters["failure_rate"] = double(a.missed + a.invented + a.wrong_t) / double(a.rays);
 }
 
-const char* kind_names[] = {"sphere", "cylinder", "cone", "paraboloid", "hyperboloid1", "hyperboloid2",
-                            "disk", "general", "torus"};
+const char* kind_names[] = {"sphere",       "cylinder", "cone",    "paraboloid", "hyperboloid1",
+                            "hyperboloid2", "disk",     "general", "torus"};
 
 void register_all() {
   for (int k = 0; k < 9; ++k) {
-    benchmark::RegisterBenchmark((std::string("embree_quadric/") + kind_names[k]).c_str(), bm_quadric_embree)->Arg(k);
-    benchmark::RegisterBenchmark((std::string("math_only/") + kind_names[k]).c_str(), bm_quadric_math)->Arg(k);
+    benchmark::RegisterBenchmark((std::string("embree_quadric/") + kind_names[k]).c_str(), bm_quadric_embree)
+        ->Arg(k);
+    benchmark::RegisterBenchmark((std::string("math_only/") + kind_names[k]).c_str(), bm_quadric_math)
+        ->Arg(k);
   }
   for (int k : {int(quadric_kind::sphere), int(quadric_kind::cylinder), int(quadric_kind::torus)})
-    benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)->Arg(k);
+    benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)
+        ->Arg(k);
   for (int distance : {3, 1000, 1000000})
     for (int grazing : {0, 1})
       benchmark::RegisterBenchmark("torus_accuracy", bm_torus_accuracy)

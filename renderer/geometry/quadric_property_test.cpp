@@ -3,16 +3,15 @@
 // the normal is the normalised gradient (checked by finite differences of the world-space
 // implicit function), a brute-force double reference finds the same first hit, and a ray leaving
 // a hit from its offset origin never re-hits the same point.
-#include "core/float_bits.h"
-#include "geometry/quadric.h"
-#include "geometry/quadric_test_util.h"
-
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-
 #include <random>
+
+#include "core/float_bits.h"
+#include "geometry/quadric.h"
+#include "geometry/quadric_test_util.h"
 
 namespace kiln {
 namespace {
@@ -114,8 +113,10 @@ std::optional<double> reference_t(const quadric& q, const dvec3& o, const dvec3&
       for (int k = 0; k < 200 && hi - lo > 1e-15 * std::abs(hi); ++k) {
         double mid = 0.5 * (lo + hi);
         double fm = quadric_implicit(q, o + mid * d);
-        if ((fm < 0.0) == (f_lo < 0.0)) lo = mid, f_lo = fm;
-        else hi = mid;
+        if ((fm < 0.0) == (f_lo < 0.0))
+          lo = mid, f_lo = fm;
+        else
+          hi = mid;
       }
       double root = 0.5 * (lo + hi);
       if (in_clip(o + root * d)) {
@@ -168,7 +169,9 @@ TEST_P(quadric_properties, hits_are_on_the_surface_with_gradient_normals_and_nev
         g[axis] = quadric_implicit(q, transform_point(inst.object_from_world, dvec3(w.point) + e)) -
                   quadric_implicit(q, transform_point(inst.object_from_world, dvec3(w.point) - e));
       }
-      if (glm::length(g) > 1e-9) EXPECT_GT(glm::dot(dvec3(w.normal), glm::normalize(g)), 0.9999) << "ray " << i;
+      if (glm::length(g) > 1e-9) {
+        EXPECT_GT(glm::dot(dvec3(w.normal), glm::normalize(g)), 0.9999) << "ray " << i;
+      }
     }
     EXPECT_NEAR(glm::length(w.normal), 1.0f, 1e-5f);
     EXPECT_NEAR(glm::dot(w.normal, w.tangent), 0.0f, 1e-4f);
@@ -185,8 +188,8 @@ TEST_P(quadric_properties, hits_are_on_the_surface_with_gradient_normals_and_nev
       std::optional<quadric_ray_hit> again = intersect_world(inst, q, leaving);
       if (again && again->t < 10.0 * glm::length(w.error)) {
         ++rehits;
-        ADD_FAILURE() << "ray " << i << " side " << side << " re-hit at t = " << again->t
-                      << " (error bound " << glm::length(w.error) << ")";
+        ADD_FAILURE() << "ray " << i << " side " << side << " re-hit at t = " << again->t << " (error bound "
+                      << glm::length(w.error) << ")";
       }
     }
   }

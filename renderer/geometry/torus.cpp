@@ -7,15 +7,15 @@
 // critical points the quartic is monotonic, so a sign change brackets exactly one root, which
 // safeguarded Newton refines to full double precision. A root is missed only where the quartic
 // touches zero without crossing it, i.e. an exactly tangent ray.
+#include <cmath>
+
 #include "geometry/polynomial.h"
 #include "geometry/quadric.h"
 
-#include <cmath>
-
 namespace kiln {
 
-std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o, const dvec3& d,
-                                      double tmin, double tmax) {
+std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o,
+                                      const dvec3& d, double tmin, double tmax) {
   const double outer = major_radius + minor_radius;
   bounds3 box{dvec3(-outer, -outer, -minor_radius), dvec3(outer, outer, minor_radius)};
   // A little padding so that rounding in the slab test never cuts off a silhouette hit.

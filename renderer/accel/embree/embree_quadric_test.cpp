@@ -2,17 +2,16 @@
 // name their instance and part, occluded() consistent with intersect(), outward normals under
 // mirroring, and no self-intersection of secondary rays through the whole pipeline
 // (intersect → shading point → offset origin → intersect).
-#include "accel/embree/embree_accelerator.h"
-#include "core/float_bits.h"
-#include "geometry/quadric_test_util.h"
-#include "shade/surface.h"
-
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-
 #include <random>
+
+#include "accel/embree/embree_accelerator.h"
+#include "core/float_bits.h"
+#include "geometry/quadric_test_util.h"
+#include "shade/surface.h"
 
 namespace kiln {
 namespace {
@@ -30,9 +29,10 @@ TEST(embree_quadrics, instances_share_one_definition_and_report_instance_and_par
   scene s;
   s.quadrics = {testing::make_sphere(1.0), testing::make_axial(quadric_kind::cylinder, 0.5, -1.0, 1.0, true)};
   s.materials.emplace_back();
-  s.instances = {place(0, glm::translate(dmat4(1.0), dvec3(0, 0, -5))),
-                 place(0, glm::scale(glm::translate(dmat4(1.0), dvec3(4, 0, -5)), dvec3(2, 1, -1))),  // mirrored
-                 place(1, glm::translate(dmat4(1.0), dvec3(-4, 0, -5)))};
+  s.instances = {
+      place(0, glm::translate(dmat4(1.0), dvec3(0, 0, -5))),
+      place(0, glm::scale(glm::translate(dmat4(1.0), dvec3(4, 0, -5)), dvec3(2, 1, -1))),  // mirrored
+      place(1, glm::translate(dmat4(1.0), dvec3(-4, 0, -5)))};
   embree_accelerator accel(s);
 
   ray r;
