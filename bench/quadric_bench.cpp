@@ -1,7 +1,9 @@
 // ns per ray for every quadric kind through the Embree backend, against tessellated meshes of
 // comparable visual quality (sagitta below 1e-3 of the radius: a 128×64 sphere, 128-segment
 // cylinder, 128×48 torus), the bare intersection math without Embree, and the torus solver's
-// cost and failure rate against a brute-force reference (plain and grazing rays, near and far).
+// cost and failure rate against a brute-force reference (plain and grazing rays, near and far),
+// for kiln's root-isolating solver (0), a closed-form Ferrari solver (1) and the closed form with
+// Newton polishing (2). torus_accuracy args: distance, grazing, solver.
 //
 //   build/bench/quadric_bench --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
@@ -149,13 +151,23 @@ void bm_torus_accuracy(benchmark::State& state) {
   const double distance = double(state.range(0));
   const bool grazing = state.range(1) != 0;
   bench::torus_accuracy a;
-  for (auto _ : state) a = bench::measure_torus_accuracy(2000, distance, grazing, 11);
+  for (auto _ : state) a = bench::measure_torus_accuracy(2000, distance, grazing, 11, int(state.range(2)));
   state.counters["rays"] = double(a.rays);
   state.counters["ref_hits"] = double(a.reference_hits);
   state.counters["missed"] = double(a.missed);
   state.counters["invented"] = double(a.invented);
   state.counters["wrong_t"] = double(a.wrong_t);
   state.counters["failure_rate"] = double(a.missed + a.invented + a.wrong_t) / double(a.rays);
+}
+
+// ns per torus solve by solver (0 kiln, 1 closed form, 2 closed form + polish), same rays.
+void bm_torus_solver(benchmark::State& state) {
+  const std::vector<ray> rays = make_rays(bounds3{dvec3(-1.3, -1.3, -0.3), dvec3(1.3, 1.3, 0.3)}, 4096);
+  size_t i = 0;
+  for (auto _ : state) {
+    const ray& r = rays[i++ & 4095];
+    benchmark::DoNotOptimize(bench::solve_torus(int(state.range(0)), dvec3(r.origin), dvec3(r.direction)));
+  }
 }
 
 const char* kind_names[] = {"sphere",       "cylinder", "cone",    "paraboloid", "hyperboloid1",
@@ -171,12 +183,14 @@ void register_all() {
   for (int k : {int(quadric_kind::sphere), int(quadric_kind::cylinder), int(quadric_kind::torus)})
     benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)
         ->Arg(k);
-  for (int distance : {3, 1000, 1000000})
-    for (int grazing : {0, 1})
-      benchmark::RegisterBenchmark("torus_accuracy", bm_torus_accuracy)
-          ->Args({distance, grazing})
-          ->Iterations(1)
-          ->Unit(benchmark::kMillisecond);
+  for (int solver : {0, 1, 2}) benchmark::RegisterBenchmark("torus_solver", bm_torus_solver)->Arg(solver);
+  for (int solver : {0, 1, 2})
+    for (int distance : {3, 1000, 1000000})
+      for (int grazing : {0, 1})
+        benchmark::RegisterBenchmark("torus_accuracy", bm_torus_accuracy)
+            ->Args({distance, grazing, solver})
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "geometry/quadric.h"
+#include "torus_closed_form.h"
 
 namespace kiln::bench {
 
@@ -45,7 +46,13 @@ std::optional<double> reference(const dvec3& o, const dvec3& d) {
 
 }  // namespace
 
-torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed) {
+std::optional<double> solve_torus(int solver, const dvec3& o, const dvec3& d) {
+  if (solver == 0) return intersect_torus(major, minor, o, d, 0.0, 1e30);
+  return intersect_torus_closed_form(major, minor, o, d, 0.0, 1e30, solver == 2);
+}
+
+torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed,
+                                      int solver) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   quadric q;
@@ -73,13 +80,13 @@ torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazin
     const dvec3 o = target - distance * d;
     ++out.rays;
     const std::optional<double> ref = reference(o, d);
-    const std::optional<quadric_ray_hit> got = intersect_quadric(q, o, d, 0.0, 1e30);
+    const std::optional<double> got = solve_torus(solver, o, d);
     if (ref) ++out.reference_hits;
     if (ref && !got)
       ++out.missed;
     else if (!ref && got)
       ++out.invented;
-    else if (ref && got && std::abs(got->t - *ref) > 1e-6 * (1.0 + *ref))
+    else if (ref && got && std::abs(*got - *ref) > 1e-6 * (1.0 + *ref))
       ++out.wrong_t;
   }
   return out;

@@ -62,6 +62,16 @@ struct quadric_world_point {
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
                                       uint32_t part);
 
+// The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
+// centre (coefficients[i] multiplies sⁱ; leading coefficient 1).
+struct torus_ray_quartic {
+  double coefficients[5] = {};
+  double t_c = 0.0;
+  double length = 1.0;  // |d|
+};
+torus_ray_quartic make_torus_quartic(double major_radius, double minor_radius, const dvec3& o,
+                                     const dvec3& d);
+
 // Torus: the closest root of the quartic in (tmin, tmax) (see torus.cpp).
 std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o,
                                       const dvec3& d, double tmin, double tmax);
