@@ -1,17 +1,19 @@
 // ns per ray for every quadric kind through the Embree backend, against tessellated meshes of
 // comparable visual quality (sagitta below 1e-3 of the radius: a 128×64 sphere, 128-segment
 // cylinder, 128×48 torus), the bare intersection math without Embree, and the torus solver's
-// cost and failure rate against a brute-force reference (plain and grazing rays, near and far).
+// cost and failure rate against a brute-force reference (plain and grazing rays, near and far),
+// for kiln's root-isolating solver (0), a closed-form Ferrari solver (1) and the closed form with
+// Newton polishing (2). torus_accuracy args: distance, grazing, solver.
 //
 //   build/bench/quadric_bench --benchmark_min_time=0.2
-#include "accel/embree/embree_accelerator.h"
-#include "geometry/quadric.h"
-#include "torus_accuracy.h"
-
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <random>
+
+#include "accel/embree/embree_accelerator.h"
+#include "geometry/quadric.h"
+#include "torus_accuracy.h"
 
 namespace kiln {
 namespace {
@@ -149,7 +151,7 @@ void bm_torus_accuracy(benchmark::State& state) {
   const double distance = double(state.range(0));
   const bool grazing = state.range(1) != 0;
   bench::torus_accuracy a;
-  for (auto _ : state) a = bench::measure_torus_accuracy(2000, distance, grazing, 11);
+  for (auto _ : state) a = bench::measure_torus_accuracy(2000, distance, grazing, 11, int(state.range(2)));
   state.counters["rays"] = double(a.rays);
   state.counters["ref_hits"] = double(a.reference_hits);
   state.counters["missed"] = double(a.missed);
@@ -158,22 +160,37 @@ void bm_torus_accuracy(benchmark::State& state) {
   state.counters["failure_rate"] = double(a.missed + a.invented + a.wrong_t) / double(a.rays);
 }
 
-const char* kind_names[] = {"sphere", "cylinder", "cone", "paraboloid", "hyperboloid1", "hyperboloid2",
-                            "disk", "general", "torus"};
+// ns per torus solve by solver (0 kiln, 1 closed form, 2 closed form + polish), same rays.
+void bm_torus_solver(benchmark::State& state) {
+  const std::vector<ray> rays = make_rays(bounds3{dvec3(-1.3, -1.3, -0.3), dvec3(1.3, 1.3, 0.3)}, 4096);
+  size_t i = 0;
+  for (auto _ : state) {
+    const ray& r = rays[i++ & 4095];
+    benchmark::DoNotOptimize(bench::solve_torus(int(state.range(0)), dvec3(r.origin), dvec3(r.direction)));
+  }
+}
+
+const char* kind_names[] = {"sphere",       "cylinder", "cone",    "paraboloid", "hyperboloid1",
+                            "hyperboloid2", "disk",     "general", "torus"};
 
 void register_all() {
   for (int k = 0; k < 9; ++k) {
-    benchmark::RegisterBenchmark((std::string("embree_quadric/") + kind_names[k]).c_str(), bm_quadric_embree)->Arg(k);
-    benchmark::RegisterBenchmark((std::string("math_only/") + kind_names[k]).c_str(), bm_quadric_math)->Arg(k);
+    benchmark::RegisterBenchmark((std::string("embree_quadric/") + kind_names[k]).c_str(), bm_quadric_embree)
+        ->Arg(k);
+    benchmark::RegisterBenchmark((std::string("math_only/") + kind_names[k]).c_str(), bm_quadric_math)
+        ->Arg(k);
   }
   for (int k : {int(quadric_kind::sphere), int(quadric_kind::cylinder), int(quadric_kind::torus)})
-    benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)->Arg(k);
-  for (int distance : {3, 1000, 1000000})
-    for (int grazing : {0, 1})
-      benchmark::RegisterBenchmark("torus_accuracy", bm_torus_accuracy)
-          ->Args({distance, grazing})
-          ->Iterations(1)
-          ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)
+        ->Arg(k);
+  for (int solver : {0, 1, 2}) benchmark::RegisterBenchmark("torus_solver", bm_torus_solver)->Arg(solver);
+  for (int solver : {0, 1, 2})
+    for (int distance : {3, 1000, 1000000})
+      for (int grazing : {0, 1})
+        benchmark::RegisterBenchmark("torus_accuracy", bm_torus_accuracy)
+            ->Args({distance, grazing, solver})
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace

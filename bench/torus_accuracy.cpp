@@ -1,9 +1,10 @@
 #include "torus_accuracy.h"
 
-#include "geometry/quadric.h"
-
 #include <cmath>
 #include <random>
+
+#include "geometry/quadric.h"
+#include "torus_closed_form.h"
 
 namespace kiln::bench {
 
@@ -31,8 +32,10 @@ std::optional<double> reference(const dvec3& o, const dvec3& d) {
       long double lo = t0 + (t1 - t0) * (long double)(i - 1) / steps, hi = t, f_lo = prev;
       for (int k = 0; k < 100; ++k) {
         const long double mid = 0.5L * (lo + hi), fm = f(mid);
-        if ((fm < 0) == (f_lo < 0)) lo = mid, f_lo = fm;
-        else hi = mid;
+        if ((fm < 0) == (f_lo < 0))
+          lo = mid, f_lo = fm;
+        else
+          hi = mid;
       }
       return double(0.5L * (lo + hi));
     }
@@ -43,7 +46,13 @@ std::optional<double> reference(const dvec3& o, const dvec3& d) {
 
 }  // namespace
 
-torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed) {
+std::optional<double> solve_torus(int solver, const dvec3& o, const dvec3& d) {
+  if (solver == 0) return intersect_torus(major, minor, o, d, 0.0, 1e30);
+  return intersect_torus_closed_form(major, minor, o, d, 0.0, 1e30, solver == 2);
+}
+
+torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed,
+                                      int solver) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   quadric q;
@@ -57,8 +66,8 @@ torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazin
     if (grazing) {
       // A surface point, and a direction in its tangent plane tilted by less than 1e-3.
       const double phi = 3.14159265 * u(rng), theta = 3.14159265 * u(rng);
-      target = dvec3((major + minor * std::cos(theta)) * std::cos(phi), (major + minor * std::cos(theta)) * std::sin(phi),
-                     minor * std::sin(theta));
+      target = dvec3((major + minor * std::cos(theta)) * std::cos(phi),
+                     (major + minor * std::cos(theta)) * std::sin(phi), minor * std::sin(theta));
       const dvec3 n = glm::normalize(quadric_gradient(q, target));
       dvec3 t = glm::normalize(glm::cross(n, dvec3(u(rng), u(rng), u(rng))));
       // Tilts of 1e-4..1e-3 keep every chord longer than the reference's sampling step.
@@ -71,11 +80,14 @@ torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazin
     const dvec3 o = target - distance * d;
     ++out.rays;
     const std::optional<double> ref = reference(o, d);
-    const std::optional<quadric_ray_hit> got = intersect_quadric(q, o, d, 0.0, 1e30);
+    const std::optional<double> got = solve_torus(solver, o, d);
     if (ref) ++out.reference_hits;
-    if (ref && !got) ++out.missed;
-    else if (!ref && got) ++out.invented;
-    else if (ref && got && std::abs(got->t - *ref) > 1e-6 * (1.0 + *ref)) ++out.wrong_t;
+    if (ref && !got)
+      ++out.missed;
+    else if (!ref && got)
+      ++out.invented;
+    else if (ref && got && std::abs(*got - *ref) > 1e-6 * (1.0 + *ref))
+      ++out.wrong_t;
   }
   return out;
 }

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+
+#include "core/math.h"
 
 namespace kiln::bench {
 
@@ -15,6 +18,11 @@ struct torus_accuracy {
 
 // Rays from `distance` away; grazing = aimed along the tangent plane of a random surface point
 // with a normal component of 1e-4 to 1e-3 (the hard case for quartic solvers).
-torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed);
+// solver: 0 kiln's root isolation, 1 closed form (Ferrari), 2 closed form + Newton polishing.
+torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed,
+                                      int solver = 0);
+
+// One torus solve (major 1, minor 0.3) with the chosen solver.
+std::optional<double> solve_torus(int solver, const dvec3& o, const dvec3& d);
 
 }  // namespace kiln::bench

@@ -1,16 +1,16 @@
 // Image tests on analytic primitives: the quadric showcase (every kind) renders with no NaN, each
 // primitive covers pixels, and 1 and N threads give identical bytes; a sphere's silhouette covers
 // exactly the analytic disk area, within one pixel row.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
-
-#include <gtest/gtest.h>
-
-#include <cmath>
-#include <cstring>
 
 namespace kiln {
 namespace {
@@ -47,7 +47,8 @@ TEST(quadric_image, showcase_has_every_kind_no_nan_and_is_thread_independent) {
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x)
       if (auto h = accel.intersect(generate_camera_ray(cam, x + 0.5, y + 0.5))) ++pixels[h->instance_id];
-  for (size_t i = 0; i < pixels.size(); ++i) EXPECT_GT(pixels[i], 30) << "instance " << i << " (node " << world.instances[i].node << ")";
+  for (size_t i = 0; i < pixels.size(); ++i)
+    EXPECT_GT(pixels[i], 30) << "instance " << i << " (node " << world.instances[i].node << ")";
 }
 
 // A sphere of radius r at distance D on the optical axis subtends the half-angle asin(r/D); on the
@@ -72,7 +73,8 @@ TEST(quadric_image, sphere_coverage_equals_the_analytic_disk_area) {
     const double radius_px =
         0.5 * size * std::tan(std::asin(scale / distance)) / std::tan(glm::radians(fov) / 2.0);
     const double expected = pi * radius_px * radius_px;
-    EXPECT_NEAR(covered, expected, 2.0 * radius_px) << "scale " << scale << ", disk radius " << radius_px << " px";
+    EXPECT_NEAR(covered, expected, 2.0 * radius_px)
+        << "scale " << scale << ", disk radius " << radius_px << " px";
     EXPECT_GT(radius_px, 40.0);
   }
 }

@@ -30,11 +30,13 @@ inline bool is_valid(const ray& r) {
 }
 
 // The closest intersection of a ray with the scene, identical across backends.
-// (u, v) follow Embree's convention: p = (1-u-v)·p0 + u·p1 + v·p2 for triangles.
+// (u, v) follow Embree's convention: p = (1-u-v)·p0 + u·p1 + v·p2 for triangles. For quadric
+// instances primitive_id is the part (0 side or disk, 1 cap at zmin, 2 cap at zmax) and (u, v) the
+// parametric UV of docs/quadrics.md.
 struct hit {
   float t = inf;
   uint32_t instance_id = 0;   // index into scene.instances
-  uint32_t primitive_id = 0;  // triangle index within the instance's mesh
+  uint32_t primitive_id = 0;  // triangle index within the instance's mesh, or quadric part
   float u = 0.0f;
   float v = 0.0f;
   vec3 geometric_normal{0.0f};  // world space, unit length, front face by glTF winding

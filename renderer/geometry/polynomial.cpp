@@ -28,7 +28,8 @@ namespace {
 
 // The root of p in [lo, hi] where p(lo) and p(hi) have opposite signs: Newton steps that stay
 // inside the shrinking bracket, bisection otherwise (Numerical Recipes' rtsafe).
-double refine_bracketed_root(const double* p, const double* dp, int degree, double lo, double hi, double f_lo) {
+double refine_bracketed_root(const double* p, const double* dp, int degree, double lo, double hi,
+                             double f_lo) {
   double t = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100; ++iteration) {
     const double f = evaluate_polynomial(p, degree, t);
@@ -41,7 +42,8 @@ double refine_bracketed_root(const double* p, const double* dp, int degree, doub
     double next = slope != 0.0 ? t - f / slope : lo - 1.0;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     // Converged when the step no longer changes t in double precision.
-    if (next == t || hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(lo), std::abs(hi)))
+    if (next == t ||
+        hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(lo), std::abs(hi)))
       return next;
     t = next;
   }

@@ -7,10 +7,10 @@
 // after that all coefficients are of the primitive's size and only a truly grazing ray cancels.
 #include "geometry/quadric.h"
 
-#include "geometry/polynomial.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "geometry/polynomial.h"
 
 namespace kiln {
 
@@ -48,7 +48,7 @@ implicit_form implicit_of(const quadric& q) {
       f.a = dmat3(dvec3(1, 0, 0), dvec3(0, 1, 0), dvec3(0.0));
       f.b = dvec3(0, 0, -0.5 * r2 / q.zmax);
       break;
-    case quadric_kind::hyperboloid_one_sheet:  // x² + y² − (r/c)²z² − r²
+    case quadric_kind::hyperboloid_one_sheet:     // x² + y² − (r/c)²z² − r²
     case quadric_kind::hyperboloid_two_sheets: {  // x² + y² − (r/c)²z² + r²
       const double k2 = r2 / (q.c * q.c);
       f.a = dmat3(dvec3(1, 0, 0), dvec3(0, 1, 0), dvec3(0, 0, -k2));
@@ -196,8 +196,8 @@ bool clip_ray_to_box(const bounds3& box, const dvec3& o, const dvec3& d, double&
   return true;
 }
 
-std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d, double tmin,
-                                                 double tmax) {
+std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,
+                                                 double tmin, double tmax) {
   // Slab-test a slightly padded box first: it rejects most misses cheaply, and bounds the torus'
   // root search. The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
   const bounds3 bounds = quadric_bounds(q);

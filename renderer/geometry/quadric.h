@@ -5,10 +5,10 @@
 // Depends on core and scene only. See docs/quadrics.md for each kind's parameterisation.
 #pragma once
 
+#include <optional>
+
 #include "core/ray.h"
 #include "scene/scene.h"
-
-#include <optional>
 
 namespace kiln {
 
@@ -28,8 +28,8 @@ bounds3 quadric_bounds(const quadric& q);
 
 // The closest hit of o + t·d with t in (tmin, tmax), in object space and double precision, or
 // empty. d need not be unit length; t is in units of d, so it is the world t of the same ray.
-std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d, double tmin,
-                                                 double tmax);
+std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,
+                                                 double tmin, double tmax);
 
 // The implicit function F of the side surface (F < 0 inside, F = 0 on the surface), and its gradient.
 double quadric_implicit(const quadric& q, const dvec3& p);
@@ -37,10 +37,10 @@ dvec3 quadric_gradient(const quadric& q, const dvec3& p);
 
 // The object-space surface at a hit.
 struct quadric_surface {
-  dvec3 point{0.0};   // projected onto the surface of `part`
-  dvec3 normal{0.0};  // unit; normalised gradient of F (outward), or ±z on caps and disks
-  dvec3 dpdu{0.0};    // unit tangent along u, perpendicular to normal
-  dvec2 uv{0.0};      // parametric UV in [0,1]² (see docs/quadrics.md)
+  dvec3 point{0.0};    // projected onto the surface of `part`
+  dvec3 normal{0.0};   // unit; normalised gradient of F (outward), or ±z on caps and disks
+  dvec3 dpdu{0.0};     // unit tangent along u, perpendicular to normal
+  dvec2 uv{0.0};       // parametric UV in [0,1]² (see docs/quadrics.md)
   double error = 0.0;  // bound on the distance of `point` from the exact surface, object units
 };
 
@@ -59,11 +59,22 @@ struct quadric_world_point {
 
 // Reconstructs the hit of world ray r at parameter t on `part` of instance `inst` of q: the ray
 // moves to object space in double, the point is projected onto the surface, then moves back.
-quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
+quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
+                                      uint32_t part);
+
+// The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
+// centre (coefficients[i] multiplies sⁱ; leading coefficient 1).
+struct torus_ray_quartic {
+  double coefficients[5] = {};
+  double t_c = 0.0;
+  double length = 1.0;  // |d|
+};
+torus_ray_quartic make_torus_quartic(double major_radius, double minor_radius, const dvec3& o,
+                                     const dvec3& d);
 
 // Torus: the closest root of the quartic in (tmin, tmax) (see torus.cpp).
-std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o, const dvec3& d,
-                                      double tmin, double tmax);
+std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o,
+                                      const dvec3& d, double tmin, double tmax);
 
 // Radius of an axial kind's cross-section at height z (the cap radius at zmin/zmax).
 double quadric_radius_at(const quadric& q, double z);

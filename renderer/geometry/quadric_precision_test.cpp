@@ -4,14 +4,14 @@
 // The textbook solver (b² − 4ac) fails that bound at every distance in float and from 1e2 in double
 // (at 1e7 it is off the sphere by ~0.04 in double, by more than the radius in float),
 // which shows the test can fail.
-#include "geometry/quadric.h"
-#include "geometry/quadric_test_util.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
+
+#include "geometry/quadric.h"
+#include "geometry/quadric_test_util.h"
 
 namespace kiln {
 namespace {
@@ -36,7 +36,9 @@ long double reference_t(const dvec3& o, const dvec3& d) {
   return tc - std::sqrt(1.0L - (px * px + py * py + pz * pz));
 }
 
-double surface_error(const dvec3& o, const dvec3& d, double t) { return std::abs(glm::length(o + t * d) - 1.0); }
+double surface_error(const dvec3& o, const dvec3& d, double t) {
+  return std::abs(glm::length(o + t * d) - 1.0);
+}
 
 struct sweep_result {
   double worst_kiln = 0.0, worst_kiln_t = 0.0, worst_float = 0.0, worst_double = 0.0;
@@ -63,7 +65,8 @@ sweep_result sweep(double distance) {
     const double t_ref = double(reference_t(o, d));
     r.worst_kiln = std::max(r.worst_kiln, surface_error(o, d, h->t) / (eps * distance));
     r.worst_kiln_t = std::max(r.worst_kiln_t, std::abs(h->t - t_ref) / (eps * distance));
-    r.worst_float = std::max(r.worst_float, surface_error(o, d, double(naive_sphere_t<float>(o, d))) / (eps * distance));
+    r.worst_float =
+        std::max(r.worst_float, surface_error(o, d, double(naive_sphere_t<float>(o, d))) / (eps * distance));
     r.worst_double =
         std::max(r.worst_double, surface_error(o, d, naive_sphere_t<double>(o, d)) / (eps * distance));
   }

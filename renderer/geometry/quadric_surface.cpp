@@ -3,12 +3,12 @@
 // Projecting the point (instead of trusting o + t·d) makes the hit point's error independent of
 // how t was found and of how far the ray travelled, which is what lets secondary rays start
 // at an offset of a few ulps (pbrt-v4 reprojects its sphere hits for the same reason).
-#include "core/float_bits.h"
-#include "geometry/quadric.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "core/float_bits.h"
+#include "geometry/quadric.h"
 
 namespace kiln {
 
@@ -49,8 +49,8 @@ dvec2 side_uv(const quadric& q, const dvec3& p) {
       return dvec2(azimuth_u(p), theta / two_pi);
     }
     case quadric_kind::disk:
-      return dvec2(azimuth_u(p),
-                   clamp01((std::sqrt(p.x * p.x + p.y * p.y) - q.inner_radius) / (q.radius - q.inner_radius)));
+      return dvec2(azimuth_u(p), clamp01((std::sqrt(p.x * p.x + p.y * p.y) - q.inner_radius) /
+                                         (q.radius - q.inner_radius)));
     case quadric_kind::general: {
       const dvec3 extent = q.box.diagonal();
       return dvec2(extent.x > 0.0 ? clamp01((p.x - q.box.lower.x) / extent.x) : 0.0,
@@ -127,9 +127,9 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
   const dvec3 world = transform_point(inst.world_from_object, s.point);
   // Object-space error (distance from the surface, any direction) carried by |M|, plus the
   // rounding of the double transform, then the rounding of the result to float.
-  const dvec3 world_error = abs_linear * dvec3(s.error) +
-                            8.0 * double_epsilon *
-                                (abs_linear * glm::abs(s.point) + glm::abs(dvec3(inst.world_from_object[3])));
+  const dvec3 world_error =
+      abs_linear * dvec3(s.error) +
+      8.0 * double_epsilon * (abs_linear * glm::abs(s.point) + glm::abs(dvec3(inst.world_from_object[3])));
 
   quadric_world_point w;
   w.point = vec3(world);

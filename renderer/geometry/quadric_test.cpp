@@ -1,16 +1,18 @@
 // Analytic ray-quadric cases for every kind: through the centre, tangent, starting inside,
 // parallel to the axis, cap edges, the cone apex, hits near tmin and tmax, clipped parts.
 #include "geometry/quadric.h"
-#include "geometry/quadric_test_util.h"
 
 #include <gtest/gtest.h>
+
+#include "geometry/quadric_test_util.h"
 
 namespace kiln {
 namespace {
 
 using namespace kiln::testing;
 
-std::optional<quadric_ray_hit> shoot(const quadric& q, dvec3 o, dvec3 d, double tmin = 0.0, double tmax = 1e30) {
+std::optional<quadric_ray_hit> shoot(const quadric& q, dvec3 o, dvec3 d, double tmin = 0.0,
+                                     double tmax = 1e30) {
   return intersect_quadric(q, o, d, tmin, tmax);
 }
 
@@ -35,6 +37,8 @@ TEST(quadric_sphere, centre_tangent_inside_and_extent) {
   expect_hit(shoot(s, {0, 0, -5}, {0, 0, 1}, 0.0, 4.001), 4.0, quadric_side);
   expect_hit(shoot(s, {0, 0, -5}, {0, 0, 1}, 4.001), 6.0, quadric_side);
   EXPECT_FALSE(shoot(s, {0, 0, -5}, {0, 0, -1}).has_value());  // pointing away
+  // A hit 1e-7 ahead of the origin is found to full precision, not lost to an epsilon.
+  expect_hit(shoot(s, {0, 0, -1.0 - 1e-7}, {0, 0, 1}), 1e-7, quadric_side, 1e-15);
 }
 
 TEST(quadric_cylinder, sides_caps_axis_parallel_and_clipping) {
@@ -141,7 +145,8 @@ TEST(quadric_bounds, tight_for_every_kind) {
   bounds3 cone = quadric_bounds(make_axial(quadric_kind::cone, 1.0, 0.5, 1.5, false, 2.0));
   EXPECT_DOUBLE_EQ(cone.upper.x, 0.75);  // radius at zmin = 0.5
   EXPECT_DOUBLE_EQ(cone.lower.z, 0.5);
-  bounds3 hyper = quadric_bounds(make_axial(quadric_kind::hyperboloid_one_sheet, 0.5, -1.0, 2.0, false, 1.0, 1.0));
+  bounds3 hyper =
+      quadric_bounds(make_axial(quadric_kind::hyperboloid_one_sheet, 0.5, -1.0, 2.0, false, 1.0, 1.0));
   EXPECT_DOUBLE_EQ(hyper.upper.x, 0.5 * std::sqrt(5.0));
   bounds3 torus = quadric_bounds(make_torus(1.0, 0.25));
   EXPECT_EQ(torus.upper, dvec3(1.25, 1.25, 0.25));

@@ -1,9 +1,9 @@
 // Test helpers: quadric definitions of every kind with bounds filled, as the loader makes them.
 #pragma once
 
-#include "geometry/quadric.h"
-
 #include <vector>
+
+#include "geometry/quadric.h"
 
 namespace kiln::testing {
 
@@ -19,8 +19,8 @@ inline quadric make_sphere(double r) {
   return finish(q);
 }
 
-inline quadric make_axial(quadric_kind kind, double r, double zmin, double zmax, bool caps, double height = 1.0,
-                          double c = 1.0) {
+inline quadric make_axial(quadric_kind kind, double r, double zmin, double zmax, bool caps,
+                          double height = 1.0, double c = 1.0) {
   quadric q;
   q.kind = kind;
   q.radius = r;

@@ -7,15 +7,39 @@
 // critical points the quartic is monotonic, so a sign change brackets exactly one root, which
 // safeguarded Newton refines to full double precision. A root is missed only where the quartic
 // touches zero without crossing it, i.e. an exactly tangent ray.
+#include <cmath>
+
 #include "geometry/polynomial.h"
 #include "geometry/quadric.h"
 
-#include <cmath>
-
 namespace kiln {
 
-std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o, const dvec3& d,
-                                      double tmin, double tmax) {
+torus_ray_quartic make_torus_quartic(double major_radius, double minor_radius, const dvec3& o,
+                                     const dvec3& d) {
+  // Unit direction and re-centred origin: s is the distance from oc, t = t_c + s / |d|.
+  torus_ray_quartic out;
+  out.length = glm::length(d);
+  const dvec3 dn = d / out.length;
+  out.t_c = -glm::dot(o, d) / (out.length * out.length);
+  const dvec3 oc = o + out.t_c * d;
+
+  const double big = major_radius * major_radius;
+  const double od = glm::dot(oc, dn);
+  const double k = glm::dot(oc, oc) + big - minor_radius * minor_radius;
+  const double dxy = dn.x * dn.x + dn.y * dn.y;
+  const double oxy_d = oc.x * dn.x + oc.y * dn.y;
+  const double oxy = oc.x * oc.x + oc.y * oc.y;
+  // (s² + 2·od·s + k)² − 4R²(dxy·s² + 2·oxy_d·s + oxy), with |dn| = 1.
+  out.coefficients[0] = k * k - 4.0 * big * oxy;
+  out.coefficients[1] = 4.0 * od * k - 8.0 * big * oxy_d;
+  out.coefficients[2] = 4.0 * od * od + 2.0 * k - 4.0 * big * dxy;
+  out.coefficients[3] = 4.0 * od;
+  out.coefficients[4] = 1.0;
+  return out;
+}
+
+std::optional<double> intersect_torus(double major_radius, double minor_radius, const dvec3& o,
+                                      const dvec3& d, double tmin, double tmax) {
   const double outer = major_radius + minor_radius;
   bounds3 box{dvec3(-outer, -outer, -minor_radius), dvec3(outer, outer, minor_radius)};
   // A little padding so that rounding in the slab test never cuts off a silhouette hit.
@@ -25,25 +49,12 @@ std::optional<double> intersect_torus(double major_radius, double minor_radius, 
   double t_enter = tmin, t_exit = tmax;
   if (!clip_ray_to_box(box, o, d, t_enter, t_exit)) return std::nullopt;
 
-  // Unit direction and re-centred origin: s is the distance from oc, t = t_c + s / |d|.
-  const double length = glm::length(d);
-  const dvec3 dn = d / length;
-  const double t_c = -glm::dot(o, d) / (length * length);
-  const dvec3 oc = o + t_c * d;
-
-  const double big = major_radius * major_radius;
-  const double od = glm::dot(oc, dn);
-  const double k = glm::dot(oc, oc) + big - minor_radius * minor_radius;
-  const double dxy = dn.x * dn.x + dn.y * dn.y;
-  const double oxy_d = oc.x * dn.x + oc.y * dn.y;
-  const double oxy = oc.x * oc.x + oc.y * oc.y;
-  // (s² + 2·od·s + k)² − 4R²(dxy·s² + 2·oxy_d·s + oxy), with |dn| = 1.
-  const double coefficients[5] = {k * k - 4.0 * big * oxy, 4.0 * od * k - 8.0 * big * oxy_d,
-                                  4.0 * od * od + 2.0 * k - 4.0 * big * dxy, 4.0 * od, 1.0};
-  const double s_lo = (t_enter - t_c) * length, s_hi = (t_exit - t_c) * length;
-  const polynomial_roots roots = polynomial_roots_in(coefficients, 4, s_lo, s_hi);
+  const torus_ray_quartic quartic = make_torus_quartic(major_radius, minor_radius, o, d);
+  const double s_lo = (t_enter - quartic.t_c) * quartic.length,
+               s_hi = (t_exit - quartic.t_c) * quartic.length;
+  const polynomial_roots roots = polynomial_roots_in(quartic.coefficients, 4, s_lo, s_hi);
   for (int i = 0; i < roots.count; ++i) {
-    const double t = t_c + roots.values[size_t(i)] / length;
+    const double t = quartic.t_c + roots.values[size_t(i)] / quartic.length;
     if (t > tmin && t < tmax) return t;
   }
   return std::nullopt;

@@ -2,17 +2,16 @@
 // name their instance and part, occluded() consistent with intersect(), outward normals under
 // mirroring, and no self-intersection of secondary rays through the whole pipeline
 // (intersect → shading point → offset origin → intersect).
-#include "accel/embree/embree_accelerator.h"
-#include "core/float_bits.h"
-#include "geometry/quadric_test_util.h"
-#include "shade/surface.h"
-
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-
 #include <random>
+
+#include "accel/embree/embree_accelerator.h"
+#include "core/float_bits.h"
+#include "geometry/quadric_test_util.h"
+#include "shade/surface.h"
 
 namespace kiln {
 namespace {
@@ -30,9 +29,10 @@ TEST(embree_quadrics, instances_share_one_definition_and_report_instance_and_par
   scene s;
   s.quadrics = {testing::make_sphere(1.0), testing::make_axial(quadric_kind::cylinder, 0.5, -1.0, 1.0, true)};
   s.materials.emplace_back();
-  s.instances = {place(0, glm::translate(dmat4(1.0), dvec3(0, 0, -5))),
-                 place(0, glm::scale(glm::translate(dmat4(1.0), dvec3(4, 0, -5)), dvec3(2, 1, -1))),  // mirrored
-                 place(1, glm::translate(dmat4(1.0), dvec3(-4, 0, -5)))};
+  s.instances = {
+      place(0, glm::translate(dmat4(1.0), dvec3(0, 0, -5))),
+      place(0, glm::scale(glm::translate(dmat4(1.0), dvec3(4, 0, -5)), dvec3(2, 1, -1))),  // mirrored
+      place(1, glm::translate(dmat4(1.0), dvec3(-4, 0, -5)))};
   embree_accelerator accel(s);
 
   ray r;
@@ -89,7 +89,7 @@ TEST(embree_quadrics, secondary_rays_from_every_kind_never_self_intersect) {
     s.instances.push_back(place(k, m));
   }
   embree_accelerator accel(s);
-  int hits = 0, self_hits = 0, disagreements = 0;
+  int hits = 0, self_hits = 0, wrong_side = 0, disagreements = 0;
   for (int i = 0; i < 20000; ++i) {
     const instance& target = s.instances[size_t(i) % s.instances.size()];
     const bounds3& b = s.quadrics[target.shape].bounds;
@@ -103,12 +103,22 @@ TEST(embree_quadrics, secondary_rays_from_every_kind_never_self_intersect) {
     if (!h) continue;
     ++hits;
     surface_point sp = make_surface_point(s, *h, r);
+    const instance& inst = s.instances[h->instance_id];
+    const quadric& q = s.quadrics[inst.shape];
     for (int side = 0; side < 2; ++side) {
       vec3 dir = vec3(unit());
       if ((glm::dot(dir, sp.geometric_normal) > 0.0f) != (side == 0)) dir = -dir;
       ray next;
       next.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, dir);
       next.direction = dir;
+      // The invariant that rules out self-intersection: the offset origin lies strictly on the
+      // side of the surface the ray leaves to (exact sign of the implicit function in double).
+      const dvec3 o = transform_point(inst.object_from_world, dvec3(next.origin));
+      double f = quadric_implicit(q, o);  // side and disk (F = z)
+      if (h->primitive_id == quadric_cap_zmin) f = q.zmin - o.z;
+      if (h->primitive_id == quadric_cap_zmax) f = o.z - q.zmax;
+      const vec3 outward = sp.front_face ? sp.geometric_normal : -sp.geometric_normal;
+      if (f == 0.0 || (f > 0.0) != (glm::dot(dir, outward) > 0.0f)) ++wrong_side;
       auto again = accel.intersect(next);
       if (again && again->instance_id == h->instance_id && again->t < 10.0f * glm::length(sp.position_error))
         ++self_hits;
@@ -116,6 +126,7 @@ TEST(embree_quadrics, secondary_rays_from_every_kind_never_self_intersect) {
   }
   EXPECT_GT(hits, 5000);
   EXPECT_EQ(self_hits, 0);
+  EXPECT_EQ(wrong_side, 0);
   EXPECT_EQ(disagreements, 0);
 }
 

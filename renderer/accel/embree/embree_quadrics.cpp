@@ -1,9 +1,9 @@
 #include "accel/embree/embree_quadrics.h"
 
+#include <optional>
+
 #include "core/float_bits.h"
 #include "geometry/quadric.h"
-
-#include <optional>
 
 namespace kiln {
 
@@ -35,7 +35,8 @@ void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   // kiln traces single rays (rtcIntersect1), so N is 1.
   if (args->N != 1 || !args->valid[0]) return;
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  std::optional<quadric_ray_hit> h = query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar);
+  std::optional<quadric_ray_hit> h =
+      query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar);
   if (!h) return;
   rayhit->ray.tfar = float(h->t);
   // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.

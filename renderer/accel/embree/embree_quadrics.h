@@ -3,10 +3,10 @@
 // geometry/quadric.h. Internal to accel/embree, the only module that includes Embree.
 #pragma once
 
+#include <embree3/rtcore.h>
+
 #include "core/ray.h"
 #include "scene/scene.h"
-
-#include <embree3/rtcore.h>
 
 namespace kiln {
 

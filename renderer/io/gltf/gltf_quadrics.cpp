@@ -1,15 +1,23 @@
 #include "io/gltf/gltf_quadrics.h"
 
+#include <cmath>
+#include <map>
+#include <sstream>
+
 #include "core/error.h"
 #include "geometry/quadric.h"
 #include "io/gltf/gltf_common.h"
 
-#include <cmath>
-#include <map>
-
 namespace kiln::gltf_internal {
 
 namespace {
+
+// Shortest readable form of a number for messages (-0.5, not -0.500000).
+std::string format_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 // Reads one definition's fields with the JSON path of each for error messages.
 class definition_reader {
@@ -37,7 +45,7 @@ class definition_reader {
   // A required number > 0.
   double positive(const std::string& key) const {
     const double v = number(key);
-    if (!(v > 0.0)) fail(key, "'" + key + "' must be greater than 0, got " + std::to_string(v));
+    if (!(v > 0.0)) fail(key, "'" + key + "' must be greater than 0, got " + format_number(v));
     return v;
   }
 
@@ -66,7 +74,8 @@ class definition_reader {
  private:
   double checked_number(const std::string& key) const {
     const tinygltf::Value& v = value_.Get(key);
-    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(key, "'" + key + "' must be a finite number");
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
+      fail(key, "'" + key + "' must be a finite number");
     return v.GetNumberAsDouble();
   }
 
@@ -154,7 +163,8 @@ quadric read_definition(const tinygltf::Value& value, const std::string& where, 
       q.radius = in.positive("radius");
       q.height = in.positive("height");
       read_z_range(in, q, 0.0, q.height);
-      if (q.zmin < 0.0 || q.zmax > q.height) in.fail("zmax", "the cone is clipped to 0 <= zmin < zmax <= height");
+      if (q.zmin < 0.0 || q.zmax > q.height)
+        in.fail("zmax", "the cone is clipped to 0 <= zmin < zmax <= height");
       q.caps = in.flag("caps");
       break;
     case quadric_kind::paraboloid:
@@ -197,7 +207,8 @@ std::string users_of(const tinygltf::Model& model, size_t definition) {
   std::string users;
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     auto ext = model.nodes[n].extensions.find(quadric_extension);
-    if (ext == model.nodes[n].extensions.end() || !ext->second.IsObject() || !ext->second.Has("primitive")) continue;
+    if (ext == model.nodes[n].extensions.end() || !ext->second.IsObject() || !ext->second.Has("primitive"))
+      continue;
     const tinygltf::Value& index = ext->second.Get("primitive");
     if (!index.IsInt() || index.GetNumberAsInt() != int(definition)) continue;
     users += (users.empty() ? "" : ", ") + pointer("nodes", int64_t(n));
@@ -219,7 +230,8 @@ std::vector<quadric> read_quadric_definitions(const tinygltf::Model& model, cons
   const tinygltf::Value& list = root.Get("primitives");
   for (size_t i = 0; i < list.ArrayLen(); ++i) {
     try {
-      out.push_back(read_definition(list.Get(int(i)), pointer_join(pointer_join(where, "primitives"), int64_t(i)), file));
+      out.push_back(read_definition(list.Get(int(i)),
+                                    pointer_join(pointer_join(where, "primitives"), int64_t(i)), file));
     } catch (const error& e) {
       throw input_error(file, e.location(), e.reason() + users_of(model, i));
     }
@@ -232,7 +244,8 @@ std::optional<quadric_placement> read_quadric_placement(const tinygltf::Model& m
   const tinygltf::Node& node = model.nodes[size_t(node_index)];
   auto ext = node.extensions.find(quadric_extension);
   if (ext == node.extensions.end()) return std::nullopt;
-  const std::string where = pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension);
+  const std::string where =
+      pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension);
   const tinygltf::Value& value = ext->second;
   if (!value.IsObject() || !value.Has("primitive") || !value.Get("primitive").IsInt())
     throw input_error(file, where, "expected an object with an integer 'primitive'");
@@ -246,9 +259,9 @@ std::optional<quadric_placement> read_quadric_placement(const tinygltf::Model& m
   if (value.Has("material")) {
     const tinygltf::Value& m = value.Get("material");
     if (!m.IsInt() || m.GetNumberAsInt() < 0 || size_t(m.GetNumberAsInt()) >= model.materials.size())
-      throw input_error(file, pointer_join(where, "material"),
-                        "material must index /materials (the file has " + std::to_string(model.materials.size()) +
-                            ")");
+      throw input_error(
+          file, pointer_join(where, "material"),
+          "material must index /materials (the file has " + std::to_string(model.materials.size()) + ")");
     placement.material = m.GetNumberAsInt();
   }
   return placement;

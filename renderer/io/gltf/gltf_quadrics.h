@@ -4,13 +4,13 @@
 // kiln::error (input) naming the JSON path, e.g. /nodes/3/extensions/KILN_quadric/primitive.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <tiny_gltf.h>
 
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace kiln::gltf_internal {
 
