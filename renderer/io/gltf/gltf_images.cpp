@@ -83,6 +83,31 @@ class silenced_stderr {
   int saved_ = -1;
 };
 
+uint32_t read_be32(const uint8_t* p) {
+  return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
+}
+
+// Walks a PNG's chunk list (length, type, data, CRC) and returns why it is cut short or broken,
+// or an empty string when every chunk fits and the list ends with IEND. A truncated PNG must be
+// refused before libpng sees it: libpng reports a short read by longjmp-ing out of OpenImageIO's
+// read callback, past C++ destructors, which leaks memory on every broken image.
+std::string png_structure_problem(const std::vector<uint8_t>& bytes) {
+  size_t pos = 8;  // after the signature
+  bool first = true;
+  while (true) {
+    if (bytes.size() - pos < 12) return "PNG data is truncated (it ends before the IEND chunk)";
+    const uint64_t length = read_be32(bytes.data() + pos);
+    const uint8_t* type = bytes.data() + pos + 4;
+    if (length > 0x7fffffffu) return "PNG chunk length is out of range";
+    if (uint64_t(bytes.size() - pos) < 12 + length)
+      return "PNG data is truncated (a chunk runs past the end of the data)";
+    if (first && std::memcmp(type, "IHDR", 4) != 0) return "PNG does not start with an IHDR chunk";
+    first = false;
+    pos += 12 + static_cast<size_t>(length);
+    if (std::memcmp(type, "IEND", 4) == 0) return "";
+  }
+}
+
 // OpenImageIO's messages may span lines; kiln's error is one line.
 std::string one_line(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
@@ -97,6 +122,10 @@ image decode_image(const std::vector<uint8_t>& encoded, const std::string& name,
   auto fail = [&](const std::string& reason) { return input_error(file, where, reason); };
   const std::string pseudo_name = name_from_magic(encoded);
   if (pseudo_name.empty()) throw fail("image data is not PNG, JPEG, WebP, GIF or BMP");
+  if (pseudo_name == "image.png") {
+    const std::string problem = png_structure_problem(encoded);
+    if (!problem.empty()) throw fail("cannot decode image: " + problem);
+  }
 
   OIIO::Filesystem::IOMemReader proxy(encoded.data(), encoded.size());
   OIIO::ImageSpec config;
