@@ -83,8 +83,14 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
   size_t covered = 0;
   for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
     const float* p = &pixels[i * spec.nchannels];
-    for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(p[c])) << "pixel " << i;
-    if (p[3] > 0.0f) ++covered;
+    // R G B A and N.X N.Y N.Z are always finite; Z is finite where something was hit, +inf elsewhere.
+    ASSERT_EQ(spec.nchannels, 8);
+    for (int c : {0, 1, 2, 3, 5, 6, 7}) ASSERT_TRUE(std::isfinite(p[c])) << "pixel " << i << " channel " << c;
+    ASSERT_FALSE(std::isnan(p[4])) << "pixel " << i;
+    if (p[3] > 0.0f) {
+      ++covered;
+      ASSERT_TRUE(std::isfinite(p[4]) && p[4] > 0.0f) << "pixel " << i << " depth " << p[4];
+    }
   }
   EXPECT_GT(covered, 0u) << "no geometry in view";
 }

@@ -8,6 +8,12 @@ tools/install_dependencies.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --target kiln
 mkdir -p out
+# A second run renders again only when the binary or the scene changed since the last render.
+if [[ out/cornell_box.png -nt out/cornell_box.exr && out/cornell_box.exr -nt build/renderer/app/kiln &&
+      out/cornell_box.exr -nt scenes/cornell_box.gltf ]]; then
+  echo "kiln: out/cornell_box.exr is up to date (preview: out/cornell_box.png)"
+  exit 0
+fi
 build/renderer/app/kiln render scenes/cornell_box.gltf -o out/cornell_box.exr --spp 4
 python3 tools/exr_to_png.py out/cornell_box.exr out/cornell_box.png
 echo "kiln: wrote out/cornell_box.exr (preview: out/cornell_box.png)"

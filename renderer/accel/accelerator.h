@@ -3,9 +3,9 @@
 // for the same ray, which is what makes one a correctness reference for the other.
 #pragma once
 
-#include "core/ray.h"
-
 #include <optional>
+
+#include "core/ray.h"
 
 namespace kiln {
 
@@ -19,6 +19,10 @@ class accelerator {
 
   // True when anything blocks the segment (r.tmin, r.tmax]. Invalid rays report not occluded.
   virtual bool occluded(const ray& r) const = 0;
+
+  // Throws kiln::error (render) when the backend recorded a failure while answering queries; a
+  // backend that reports errors through callbacks (Embree) cannot throw from inside a query.
+  virtual void throw_if_failed() const {}
 };
 
 }  // namespace kiln

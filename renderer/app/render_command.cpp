@@ -89,8 +89,12 @@ view_camera choose_view(const render_options& options, const scene& world, std::
   }
   if (!options.camera.empty() || !world.cameras.empty()) {
     const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
+    // An orthographic camera's view is xmag by ymag, so that is the aspect of a size left open.
+    float aspect = c.aspect_ratio;
+    if (c.kind == projection::orthographic && c.xmag != 0.0f && c.ymag != 0.0f)
+      aspect = std::abs(c.xmag / c.ymag);
     int width = 0, height = 0;
-    resolve_image_size(options, c.aspect_ratio, width, height);
+    resolve_image_size(options, aspect, width, height);
     description = c.name.empty() ? "glTF camera" : c.name;
     try {
       return make_gltf_camera(c, width, height);
@@ -228,8 +232,12 @@ prepared_scene prepare_scene(const render_options& options) {
     p.world.env.intensity = options.environment_intensity;
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-  if (!options.quiet)
+  if (!options.quiet) {
     for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+    if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
+      std::cerr << "kiln: warning: dropped " << dropped << " degenerate triangle" << (dropped == 1 ? "" : "s")
+                << " (repeated vertices or zero area)\n";
+  }
 
   p.cam = choose_view(options, p.world, p.camera_description);
   if (p.world.lights.empty()) {
@@ -269,6 +277,7 @@ void run_render(const render_options& options) {
   film image;
   try {
     image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet));
+    accel->throw_if_failed();  // an error Embree reported during traversal fails the render
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
     if (::isatty(STDERR_FILENO) && !options.quiet) std::fprintf(stderr, "\n");  // end the progress line

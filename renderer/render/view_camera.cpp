@@ -93,8 +93,12 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
     centre = scene_bounds.center();
     radius = std::max(0.5 * glm::length(scene_bounds.diagonal()), 1e-6);
   }
+  // The bounding sphere fits in the narrower of the two half-angles, so a portrait image frames
+  // the scene as well as a landscape one.
   const double yfov = 45.0;
-  double distance = radius / std::sin(glm::radians(0.5 * yfov));
+  const double half_vertical = glm::radians(0.5 * yfov);
+  const double half_horizontal = std::atan(std::tan(half_vertical) * double(width) / double(height));
+  double distance = radius / std::sin(std::min(half_vertical, half_horizontal));
   return make_look_at_camera(centre + dvec3(0, 0, distance), centre, dvec3(0, 1, 0), yfov, width, height);
 }
 

@@ -1,10 +1,10 @@
 #include "render/view_camera.h"
 
-#include "core/error.h"
-
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
 
 namespace kiln {
 namespace {
@@ -36,6 +36,7 @@ TEST(view_camera, camera_rays_match_the_lecture_formula) {
       EXPECT_NEAR(r.direction.y, expected.y, 1e-6);
       EXPECT_NEAR(r.direction.z, expected.z, 1e-6);
       EXPECT_NEAR(r.origin.x, eye.x, 1e-6);
+      EXPECT_NEAR(r.origin.y, eye.y, 1e-6);
       EXPECT_NEAR(r.origin.z, eye.z, 1e-6);
     }
 }
@@ -53,7 +54,8 @@ TEST(view_camera, image_corners_span_the_field_of_view) {
 TEST(view_camera, gltf_camera_looks_down_its_negative_z) {
   camera c;
   c.yfov = 0.5f;
-  c.world_from_camera = glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
+  c.world_from_camera =
+      glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
   view_camera cam = make_gltf_camera(c, 32, 32);
   ray r = generate_camera_ray(cam, 16.0, 16.0);
   // Rotating -Z by +90° about Y gives -X.
@@ -74,6 +76,29 @@ TEST(view_camera, orthographic_rays_are_parallel_and_spread_over_the_window) {
   EXPECT_NEAR(a.origin.y, 2.0f, 1e-6f);
   EXPECT_NEAR(b.origin.x, 2.0f, 1e-6f);
   EXPECT_NEAR(b.origin.y, -2.0f, 1e-6f);
+}
+
+TEST(view_camera, default_camera_frames_every_corner_of_the_scene_bounds) {
+  bounds3 box;
+  box.extend(dvec3(-3, -1, -2));
+  box.extend(dvec3(5, 2, 1));
+  for (int w : {64, 32}) {  // landscape and portrait-ish images
+    const int h = 48;
+    view_camera cam = make_default_camera(box, w, h);
+    const dmat4 ndc = world_to_ndc(cam);
+    for (int corner = 0; corner < 8; ++corner) {
+      dvec3 p((corner & 1) ? box.upper.x : box.lower.x, (corner & 2) ? box.upper.y : box.lower.y,
+              (corner & 4) ? box.upper.z : box.lower.z);
+      dvec4 clip = ndc * dvec4(p, 1.0);
+      ASSERT_GT(clip.w, 0.0) << "corner " << corner << " is behind the camera";
+      EXPECT_LE(std::abs(clip.x / clip.w), 1.0) << "corner " << corner << " leaves the image sideways";
+      EXPECT_LE(std::abs(clip.y / clip.w), 1.0) << "corner " << corner << " leaves the image vertically";
+    }
+    // It looks at the centre: the centre pixel's ray passes through the box centre.
+    ray r = generate_camera_ray(cam, 0.5 * w, 0.5 * h);
+    dvec3 to_centre = glm::normalize(box.center() - dvec3(r.origin));
+    EXPECT_NEAR(glm::dot(dvec3(r.direction), to_centre), 1.0, 1e-6);
+  }
 }
 
 TEST(view_camera, impossible_cameras_are_input_errors) {

@@ -7,12 +7,13 @@ namespace kiln {
 
 namespace {
 
-// glTF's recommended range window: smooth to zero at range, identity far inside it.
+// KHR_lights_punctual's recommended range window, clamp(1 - (d/range)^4, 0, 1), applied on top of
+// the inverse-square law: zero at the range, about 1 well inside it. (Some engines square the
+// window; the specification's recommendation does not.)
 float range_window(float distance, float range) {
   if (range <= 0.0f) return 1.0f;
   float ratio = distance / range;
-  float window = std::clamp(1.0f - ratio * ratio * ratio * ratio, 0.0f, 1.0f);
-  return window * window;
+  return std::clamp(1.0f - ratio * ratio * ratio * ratio, 0.0f, 1.0f);
 }
 
 // glTF's spot attenuation: smoothstep-like in cos angle between the inner and outer cones.

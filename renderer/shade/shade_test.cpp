@@ -1,12 +1,12 @@
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "geometry/triangle.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/surface.h"
 #include "shade/texture_sampling.h"
-
-#include <gtest/gtest.h>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 namespace kiln {
 namespace {
@@ -48,6 +48,24 @@ TEST(surface, barycentric_interpolation_follows_embree_convention) {
   EXPECT_TRUE(sp.front_face);
 }
 
+TEST(surface, missing_normals_shade_with_the_flat_geometric_normal) {
+  // glTF: without NORMAL, a primitive is flat shaded.
+  scene s = one_triangle(glm::rotate(dmat4(1.0), 0.5, dvec3(1, 0, 0)));
+  s.meshes[0].normals.clear();
+  // The accelerator reports the world-space face normal: +z rotated 0.5 rad about x.
+  const vec3 expected = glm::normalize(vec3(0, -std::sin(0.5f), std::cos(0.5f)));
+  hit h;
+  h.u = 0.3f;
+  h.v = 0.3f;
+  h.geometric_normal = expected;
+  ray r;
+  r.origin = {0.6f, 1.2f, 5.0f};
+  r.direction = glm::normalize(vec3(0, 0.2f, -1));
+  surface_point sp = make_surface_point(s, h, r);
+  EXPECT_NEAR(glm::dot(sp.shading_normal, expected), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(sp.geometric_normal, expected), 1.0f, 1e-6f);
+}
+
 TEST(surface, back_face_hit_flips_both_normals_toward_the_ray) {
   scene s = one_triangle(dmat4(1.0));
   hit h;
@@ -68,7 +86,8 @@ TEST(surface, hit_position_error_bound_contains_the_exact_point) {
     for (float v : {0.05f, 0.2f}) {
       surface_position pos = triangle_hit_position(s.instances[0], s.meshes[0], 0, u, v);
       dvec3 exact = transform_point(m, dvec3(2.0 * u, 4.0 * double(v), 0.0));
-      for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(double(pos.point[a]) - exact[a]), double(pos.error[a]) + 1e-12);
+      for (int a = 0; a < 3; ++a)
+        EXPECT_LE(std::abs(double(pos.point[a]) - exact[a]), double(pos.error[a]) + 1e-12);
     }
 }
 
@@ -139,6 +158,16 @@ TEST(lights, point_light_follows_inverse_square) {
   EXPECT_EQ(sample_light(l, vec3(0)).irradiance, vec3(0.0f));
 }
 
+TEST(lights, range_window_is_the_specifications_recommendation) {
+  light l;
+  l.position = dvec3(0, 0, 2);
+  l.intensity = 8.0f;
+  l.range = 4.0f;  // d/range = 1/2: window 1 - 1/16, on top of 8/2²
+  EXPECT_NEAR(sample_light(l, vec3(0)).irradiance.x, 2.0f * (1.0f - 1.0f / 16.0f), 1e-6f);
+  l.range = 2.0f;  // exactly at the range: nothing
+  EXPECT_EQ(sample_light(l, vec3(0)).irradiance, vec3(0.0f));
+}
+
 TEST(lights, spot_cone_is_full_inside_inner_and_zero_outside_outer) {
   light l;
   l.kind = light_kind::spot;
@@ -148,9 +177,12 @@ TEST(lights, spot_cone_is_full_inside_inner_and_zero_outside_outer) {
   l.outer_cone_angle = 0.4f;
   EXPECT_NEAR(sample_light(l, vec3(0, 0, 0)).irradiance.x, 1.0f, 1e-6f);
   EXPECT_EQ(sample_light(l, vec3(std::tan(0.5f), 0, 0)).irradiance, vec3(0.0f));
-  float mid = sample_light(l, vec3(std::tan(0.3f), 0, 0)).irradiance.x;
-  EXPECT_GT(mid, 0.0f);
-  EXPECT_LT(mid, 1.0f);
+  // Between the cones glTF interpolates linearly in cos(angle), then squares. The point at
+  // tan(0.3) lies at 0.3 rad off the axis, at distance 1/cos(0.3).
+  const float cos_angle = std::cos(0.3f), cos_inner = std::cos(0.2f), cos_outer = std::cos(0.4f);
+  const float t = (cos_angle - cos_outer) / (cos_inner - cos_outer);
+  const float expected = t * t * cos_angle * cos_angle;  // times the inverse square of 1/cos(0.3)
+  EXPECT_NEAR(sample_light(l, vec3(std::tan(0.3f), 0, 0)).irradiance.x, expected, 1e-5f);
 }
 
 TEST(lights, directional_light_is_constant_irradiance) {
@@ -275,12 +307,13 @@ TEST(environment, map_radiance_is_scaled_by_intensity_and_constant_colour_otherw
   sky.width = 4;
   sky.height = 2;
   for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 4; ++x) sky.texels32.insert(sky.texels32.end(), {y ? 0.5f : 8.0f, float(x), 0.0f, 1.0f});
+    for (int x = 0; x < 4; ++x)
+      sky.texels32.insert(sky.texels32.end(), {y ? 0.5f : 8.0f, float(x), 0.0f, 1.0f});
   s.images.push_back(sky);
   s.env.map_image = 0;
   s.env.intensity = 2.0f;
-  EXPECT_NEAR(environment_radiance(s, vec3(0, 1, 0)).x, 16.0f, 1e-5f);    // straight up: top row
-  EXPECT_NEAR(environment_radiance(s, vec3(0, -1, 0)).x, 1.0f, 1e-5f);    // straight down: bottom row
+  EXPECT_NEAR(environment_radiance(s, vec3(0, 1, 0)).x, 16.0f, 1e-5f);  // straight up: top row
+  EXPECT_NEAR(environment_radiance(s, vec3(0, -1, 0)).x, 1.0f, 1e-5f);  // straight down: bottom row
   // Slightly above the horizon along +X: u = 0.75 is the centre of texel column 2.5 -> between 2 and 3.
   EXPECT_NEAR(environment_radiance(s, vec3(1, 0.05f, 0)).y, 2.0f * 2.5f, 1e-3f);
 }

@@ -54,6 +54,10 @@ class comparing_accelerator final : public accelerator {
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  void throw_if_failed() const override {
+    primary_.throw_if_failed();
+    secondary_.throw_if_failed();
+  }
 
   // Merged statistics of every query so far (call when no query is running).
   comparison_statistics statistics() const;

@@ -1,5 +1,6 @@
 #include "accel/embree/embree_accelerator.h"
 
+#include "accel/embree/embree_error_log.h"
 #include "accel/embree/embree_quadrics.h"
 #include "core/error.h"
 #include "geometry/quadric.h"
@@ -9,33 +10,21 @@
 #include <embree3/rtcore.h>
 
 #include <cstring>
-#include <mutex>
 #include <string>
 #include <vector>
 
 namespace kiln {
 
-// Embree reports errors through a C callback; it records the first message here and the
-// constructor throws after the Embree call has returned.
+// Embree reports errors through a C callback; the log records the first message and kiln throws
+// after the Embree call has returned: after each build stage, and after rendering.
 struct embree_accelerator::state {
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::vector<RTCScene> mesh_scenes;
   std::vector<RTCScene> quadric_scenes;  // one user-geometry scene per used quadric definition
-  std::mutex error_mutex;
-  std::string first_error;
+  embree_error_log errors;
 
-  static void on_error(void* user, RTCError code, const char* message) {
-    auto* self = static_cast<state*>(user);
-    std::lock_guard<std::mutex> lock(self->error_mutex);
-    if (self->first_error.empty())
-      self->first_error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
-  }
-
-  void throw_if_failed(const std::string& during) {
-    std::lock_guard<std::mutex> lock(error_mutex);
-    if (!first_error.empty()) throw error(error_kind::render, "", "", first_error + " (while " + during + ")");
-  }
+  void throw_if_failed(const std::string& during) const { errors.throw_if_any(during); }
 
   ~state() {
     if (top) rtcReleaseScene(top);
@@ -120,7 +109,7 @@ embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique
   if (!state_->device)
     throw error(error_kind::render, "", "", "cannot create Embree device (error " +
                                                 std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-  rtcSetDeviceErrorFunction(state_->device, &state::on_error, state_.get());
+  state_->errors.attach(state_->device);
 
   // Unique meshes first, built once, however many instances place them.
   state_->mesh_scenes.assign(s.meshes.size(), nullptr);
@@ -157,6 +146,8 @@ embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique
 }
 
 embree_accelerator::~embree_accelerator() = default;
+
+void embree_accelerator::throw_if_failed() const { state_->throw_if_failed("tracing rays"); }
 
 std::optional<hit> embree_accelerator::intersect(const ray& r) const {
   if (!is_valid(r)) return std::nullopt;

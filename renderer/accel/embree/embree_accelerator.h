@@ -4,10 +4,10 @@
 // The only module that includes <embree3/rtcore.h>; errors never throw through Embree's callbacks.
 #pragma once
 
+#include <memory>
+
 #include "accel/accelerator.h"
 #include "scene/scene.h"
-
-#include <memory>
 
 namespace kiln {
 
@@ -21,6 +21,7 @@ class embree_accelerator final : public accelerator {
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  void throw_if_failed() const override;
 
  private:
   struct state;

@@ -1,9 +1,11 @@
 #include "accel/embree/embree_accelerator.h"
-#include "geometry/triangle.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "accel/embree/embree_error_log.h"
+#include "geometry/triangle.h"
 
 namespace kiln {
 namespace {
@@ -100,6 +102,41 @@ TEST(embree_accelerator, misses_outside_geometry) {
   r.origin = {3.0f, 0.0f, 0.0f};
   r.direction = {0, 0, -1};
   EXPECT_FALSE(accel.intersect(r));
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(embree_error_log, records_the_first_device_error_and_throws_it_as_a_render_error) {
+  RTCDevice device = rtcNewDevice("verbose=0");
+  ASSERT_NE(device, nullptr);
+  embree_error_log log;
+  log.attach(device);
+  EXPECT_NO_THROW(log.throw_if_any("building"));
+  // An invalid geometry type makes Embree call the error callback instead of returning an error.
+  RTCGeometry geometry = rtcNewGeometry(device, RTCGeometryType(999));
+  EXPECT_EQ(geometry, nullptr);
+  try {
+    log.throw_if_any("tracing rays");
+    ADD_FAILURE() << "the recorded Embree error was not thrown";
+  } catch (const error& e) {
+    EXPECT_EQ(e.kind(), error_kind::render);
+    EXPECT_NE(std::string(e.what()).find("Embree error"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("while tracing rays"), std::string::npos) << e.what();
+  }
+  rtcReleaseDevice(device);
+}
+
+TEST(embree_accelerator, a_healthy_scene_reports_no_traversal_error) {
+  scene s = two_instances();
+  embree_accelerator accel(s);
+  ray r;
+  r.direction = {0, 0, -1};
+  EXPECT_TRUE(accel.intersect(r));
+  EXPECT_NO_THROW(accel.throw_if_failed());
 }
 
 }  // namespace
