@@ -1,6 +1,7 @@
 // kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
 // 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render).
+#include "app/bench_command.h"
 #include "app/compare_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
@@ -47,6 +48,13 @@ int main(int argc, char** argv) {
       app.add_subcommand("compare", "Trace one view with two backends and report where their answers differ");
   kiln::add_compare_options(*compare_command, compare);
 
+  kiln::bench_options bench;
+  bench.view.command_line = render.command_line;
+  bench.view.quiet = false;
+  CLI::App* bench_command = app.add_subcommand(
+      "bench", "Time one view and replay its rays through a bare Embree loop (JSON and CSV reports)");
+  kiln::add_bench_options(*bench_command, bench);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -60,6 +68,7 @@ int main(int argc, char** argv) {
   try {
     if (render_command->parsed()) kiln::run_render(render);
     if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
+    if (bench_command->parsed()) kiln::run_bench_command(bench);
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';

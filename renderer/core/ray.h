@@ -10,6 +10,7 @@ namespace kiln {
 
 // Why a ray was traced. Accelerators ignore it; `kiln compare` reports its statistics per kind.
 enum class ray_kind : uint8_t { camera, shadow, reflection, refraction, other };
+constexpr int ray_kind_count = int(ray_kind::other) + 1;
 
 // A ray segment o + t·d for t in [tmin, tmax]. Direction need not be unit length for
 // accelerators, but kiln's own rays keep it unit so t is a distance.

@@ -15,7 +15,6 @@
 
 namespace kiln {
 
-constexpr int ray_kind_count = 5;
 const char* ray_kind_name(ray_kind k);
 
 // What one ray kind's queries showed.

@@ -194,3 +194,34 @@ bool embree_accelerator::occluded(const ray& r) const {
 }
 
 }  // namespace kiln
+
+namespace kiln {
+
+std::string embree_version() { return RTC_VERSION_STRING; }
+
+size_t embree_accelerator::trace_bare(const ray* rays, size_t count, bool occlusion) const {
+  kiln_intersect_context context;
+  context.world = &scene_;
+  size_t hits = 0;
+  for (size_t i = 0; i < count; ++i) {
+    // A fresh context per ray, as Embree requires: an occlusion query that stops inside an instance
+    // leaves the context's instance stack behind.
+    rtcInitIntersectContext(&context.embree);
+    context.world_ray = &rays[i];  // quadric user geometry reads the double-precision world ray
+    if (occlusion) {
+      RTCRay query = to_embree(rays[i]);
+      rtcOccluded1(state_->top, &context.embree, &query);
+      hits += query.tfar < 0.0f;
+    } else {
+      RTCRayHit query{};
+      query.ray = to_embree(rays[i]);
+      query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(state_->top, &context.embree, &query);
+      hits += query.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+  return hits;
+}
+
+}  // namespace kiln

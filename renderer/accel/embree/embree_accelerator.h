@@ -5,11 +5,15 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "accel/accelerator.h"
 #include "scene/scene.h"
 
 namespace kiln {
+
+// The Embree library's version, e.g. "3.13.5".
+std::string embree_version();
 
 class embree_accelerator final : public accelerator {
  public:
@@ -21,6 +25,11 @@ class embree_accelerator final : public accelerator {
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+
+  // Bare traversal for benchmarks: rtcIntersect1 (or rtcOccluded1 when occlusion) on each ray with
+  // this accelerator's BVH and intersect context, and nothing else: no hit record, no shading.
+  // Returns how many rays hit (or were blocked). The yardstick kiln's own queries are measured by.
+  size_t trace_bare(const ray* rays, size_t count, bool occlusion) const;
   void throw_if_failed() const override;
 
  private:

@@ -1,0 +1,178 @@
+#include "app/bench_command.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "accel/embree/embree_accelerator.h"
+#include "app/text_output.h"
+#include "bench/bench_run.h"
+#include "io/exr/exr_writer.h"
+
+namespace kiln {
+
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown";
+}
+
+std::string host_name() {
+  char name[256] = {};
+  return ::gethostname(name, sizeof(name) - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
+double mrays(size_t rays, double seconds) { return seconds > 0.0 ? double(rays) / seconds / 1e6 : 0.0; }
+
+// The headline ratio: kiln's whole render (shading included) against the bare loop over the same
+// rays, both as rays per second.
+struct totals {
+  size_t rays = 0;
+  double bare_seconds = 0.0;
+  double kiln_seconds = 0.0;
+};
+
+totals sum_kinds(const bench_measurement& m, bool camera_and_shadow_only) {
+  totals t;
+  for (const kind_measurement& k : m.kinds) {
+    if (camera_and_shadow_only && k.kind != "camera" && k.kind != "shadow") continue;
+    t.rays += k.rays;
+    t.bare_seconds += k.bare_seconds;
+    t.kiln_seconds += k.kiln_seconds;
+  }
+  return t;
+}
+
+nlohmann::json report_json(const bench_options& o, const prepared_scene& p, const bench_measurement& m,
+                           const std::string& label) {
+  nlohmann::json kinds = nlohmann::json::array();
+  for (const kind_measurement& k : m.kinds)
+    kinds.push_back({{"kind", k.kind},
+                     {"query", k.query},
+                     {"rays", k.rays},
+                     {"bare_embree_mrays_per_s", mrays(k.rays, k.bare_seconds)},
+                     {"kiln_query_mrays_per_s", mrays(k.rays, k.kiln_seconds)},
+                     {"kiln_query_over_bare", k.kiln_seconds > 0 ? k.bare_seconds / k.kiln_seconds : 0.0},
+                     {"hits", k.kiln_hits}});
+  const totals all = sum_kinds(m, false);
+  const size_t traced = all.rays;
+  return {{"label", label},
+          {"scene_file", o.view.input},
+          {"kiln_version", KILN_VERSION},
+          {"embree_version", embree_version()},
+          {"machine",
+           {{"hostname", host_name()},
+            {"cpu", cpu_model()},
+            {"logical_cores", std::thread::hardware_concurrency()}}},
+          {"threads", m.threads},
+          {"accel", o.accel},
+          {"camera", p.camera_description},
+          {"width", p.cam.width},
+          {"height", p.cam.height},
+          {"samples_per_pixel", o.view.samples_per_pixel},
+          {"repeats", o.repeats},
+          {"triangles", {{"unique", m.unique_triangles}, {"placed", m.placed_triangles}}},
+          {"instances", m.instances},
+          {"load_seconds", p.load_seconds},
+          {"build_seconds", m.build_seconds},
+          {"first_pixel_seconds", p.load_seconds + m.build_seconds},
+          {"render_seconds", m.render_seconds},
+          {"peak_rss_bytes",
+           {{"after_build", m.peak_rss_after_build}, {"after_render", m.peak_rss_after_render}}},
+          {"rays",
+           {{"camera", m.rays.camera},
+            {"shadow", m.rays.shadow},
+            {"reflection", m.rays.reflection},
+            {"refraction", m.rays.refraction},
+            {"transparency", m.rays.transparency},
+            {"queries", traced}}},
+          {"render_mrays_per_s", mrays(traced, m.render_seconds)},
+          {"bare_embree_mrays_per_s", mrays(traced, all.bare_seconds)},
+          {"render_over_bare", m.render_seconds > 0 ? all.bare_seconds / m.render_seconds : 0.0},
+          {"kinds", kinds}};
+}
+
+std::string report_csv(const nlohmann::json& r) {
+  std::ostringstream out;
+  out << "label,accel,threads,width,height,spp,kind,query,rays,bare_embree_mrays_per_s,kiln_mrays_per_s,"
+         "kiln_over_bare,load_s,build_s,render_s,peak_rss_mb\n";
+  auto row = [&](const std::string& kind, const std::string& query, const nlohmann::json& rays,
+                 const nlohmann::json& bare, const nlohmann::json& kiln, const nlohmann::json& ratio) {
+    out << r["label"].get<std::string>() << ',' << r["accel"].get<std::string>() << ',' << r["threads"] << ','
+        << r["width"] << ',' << r["height"] << ',' << r["samples_per_pixel"] << ',' << kind << ',' << query
+        << ',' << rays << ',' << bare << ',' << kiln << ',' << ratio << ',' << r["load_seconds"] << ','
+        << r["build_seconds"] << ',' << r["render_seconds"] << ','
+        << double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6 << '\n';
+  };
+  for (const auto& k : r["kinds"])
+    row(k["kind"], k["query"], k["rays"], k["bare_embree_mrays_per_s"], k["kiln_query_mrays_per_s"],
+        k["kiln_query_over_bare"]);
+  row("render", "all", r["rays"]["queries"], r["bare_embree_mrays_per_s"], r["render_mrays_per_s"],
+      r["render_over_bare"]);
+  return out.str();
+}
+
+void print_summary(const nlohmann::json& r) {
+  std::printf(
+      "%s: %dx%d, %d spp, %d threads, %s | load %.3f s, build %.3f s, render %.3f s | peak RSS %.1f MB\n",
+      r["label"].get<std::string>().c_str(), r["width"].get<int>(), r["height"].get<int>(),
+      r["samples_per_pixel"].get<int>(), r["threads"].get<int>(), r["accel"].get<std::string>().c_str(),
+      r["load_seconds"].get<double>(), r["build_seconds"].get<double>(), r["render_seconds"].get<double>(),
+      double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6);
+  std::printf("  %-12s %-9s %10s %14s %14s %8s\n", "kind", "query", "rays", "bare Mrays/s", "kiln Mrays/s",
+              "ratio");
+  for (const auto& k : r["kinds"])
+    std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f\n", k["kind"].get<std::string>().c_str(),
+                k["query"].get<std::string>().c_str(), k["rays"].get<size_t>(),
+                k["bare_embree_mrays_per_s"].get<double>(), k["kiln_query_mrays_per_s"].get<double>(),
+                k["kiln_query_over_bare"].get<double>());
+  std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (whole render, shading included)\n", "render", "all",
+              r["rays"]["queries"].get<size_t>(), r["bare_embree_mrays_per_s"].get<double>(),
+              r["render_mrays_per_s"].get<double>(), r["render_over_bare"].get<double>());
+}
+
+}  // namespace
+
+void add_bench_options(CLI::App& app, bench_options& o) {
+  add_view_options(app, o.view);
+  app.add_option("--accel", o.accel, "Backend of the timed render (the bare loop is always Embree)")
+      ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
+      ->capture_default_str();
+  app.add_option("--repeat", o.repeats, "Timed renders and replays; the fastest is reported")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  app.add_option("--json", o.json, "Write the measurements as JSON");
+  app.add_option("--csv", o.csv,
+                 "Write the measurements as CSV (one row per ray kind, plus the whole render)");
+  app.add_option("--label", o.label, "Name of this case in the reports (default: the asset's file name)");
+}
+
+void run_bench_command(const bench_options& o) {
+  if (!o.json.empty()) check_output_writable(o.json);
+  if (!o.csv.empty()) check_output_writable(o.csv);
+  prepared_scene prepared = prepare_scene(o.view);
+  bench_settings settings;
+  settings.accel = o.accel;
+  settings.repeats = o.repeats;
+  const bench_measurement m = run_bench(prepared.world, prepared.cam, make_render_settings(o.view), settings);
+  const std::string label =
+      o.label.empty() ? std::filesystem::path(o.view.input).filename().string() : o.label;
+  const nlohmann::json report = report_json(o, prepared, m, label);
+  if (!o.json.empty()) write_text_atomically(o.json, report.dump(2) + "\n");
+  if (!o.csv.empty()) write_text_atomically(o.csv, report_csv(report));
+  if (!o.view.quiet) print_summary(report);
+}
+
+}  // namespace kiln

@@ -1,0 +1,141 @@
+#include "bench/bench_run.h"
+
+#include <sys/resource.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+
+#include "accel/embree/embree_accelerator.h"
+#include "accel/make_accelerator.h"
+#include "bench/ray_recorder.h"
+#include "core/error.h"
+
+namespace kiln {
+
+namespace {
+
+const char* const kind_names[ray_kind_count] = {"camera", "shadow", "reflection", "refraction", "other"};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Rays Embree may be handed: the bare loop has no validity check, so both loops get only these.
+std::vector<ray> valid_only(const std::vector<ray>& rays) {
+  std::vector<ray> out;
+  out.reserve(rays.size());
+  for (const ray& r : rays)
+    if (is_valid(r)) out.push_back(r);
+  return out;
+}
+
+// Runs trace(begin, count) over the rays in chunks on the arena's threads; returns the wall time
+// and the hit count.
+template <typename trace_chunk>
+std::pair<double, size_t> time_replay(tbb::task_arena& arena, const std::vector<ray>& rays,
+                                      const trace_chunk& trace) {
+  constexpr size_t chunk = 1024;
+  std::atomic<size_t> hits{0};
+  auto start = std::chrono::steady_clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, rays.size(), chunk),
+        [&](const tbb::blocked_range<size_t>& r) { hits += trace(rays.data() + r.begin(), r.size()); });
+  });
+  return {seconds_since(start), hits.load()};
+}
+
+// Times both loops over the same rays, alternating them so drift in machine load hits both alike,
+// after one untimed warm-up pass each; keeps the best time of each.
+template <typename bare_chunk, typename kiln_chunk>
+void time_both(kind_measurement& km, const std::vector<ray>& rays, int threads, int repeats,
+               const bare_chunk& bare, const kiln_chunk& kiln) {
+  tbb::task_arena arena(threads);
+  time_replay(arena, rays, bare);
+  time_replay(arena, rays, kiln);
+  for (int rep = 0; rep < repeats; ++rep) {
+    auto [kiln_seconds, kiln_hits] = time_replay(arena, rays, kiln);
+    auto [bare_seconds, bare_hits] = time_replay(arena, rays, bare);
+    if (rep == 0 || bare_seconds < km.bare_seconds) km.bare_seconds = bare_seconds;
+    if (rep == 0 || kiln_seconds < km.kiln_seconds) km.kiln_seconds = kiln_seconds;
+    km.bare_hits = bare_hits;
+    km.kiln_hits = kiln_hits;
+  }
+}
+
+}  // namespace
+
+size_t peak_resident_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return size_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+bench_measurement run_bench(const scene& world, const view_camera& cam, const render_settings& render,
+                            const bench_settings& settings) {
+  const std::optional<accel_kind> kind = parse_accel_kind(settings.accel);
+  if (!kind) throw error(error_kind::input, "", "--accel", "unknown backend '" + settings.accel + "'");
+  bench_measurement m;
+  m.instances = world.instances.size();
+  for (const mesh& me : world.meshes) m.unique_triangles += me.triangle_count();
+  for (const instance& inst : world.instances)
+    if (inst.kind == shape_kind::mesh) m.placed_triangles += world.meshes[inst.shape].triangle_count();
+
+  auto build_start = std::chrono::steady_clock::now();
+  std::unique_ptr<accelerator> accel = make_accelerator(world, *kind);
+  m.build_seconds = seconds_since(build_start);
+  m.peak_rss_after_build = peak_resident_bytes();
+
+  const int repeats = std::max(1, settings.repeats);
+  for (int rep = 0; rep < repeats; ++rep) {
+    render_statistics stats;
+    render_image(world, *accel, cam, render, &stats);
+    accel->throw_if_failed();
+    if (rep == 0 || stats.seconds < m.render_seconds) m.render_seconds = stats.seconds;
+    m.rays = stats.rays;
+    m.threads = stats.threads_used;
+  }
+  m.peak_rss_after_render = peak_resident_bytes();
+
+  // One more render, through the recorder, gives the exact rays the timed renders traced.
+  ray_recorder recorder(*accel);
+  render_image(world, recorder, cam, render);
+  const recorded_rays recorded = recorder.rays();
+
+  // The bare loop always runs on Embree: against the timed backend when that is Embree, otherwise
+  // on an Embree build of the same scene (so a grid run reports grid : Embree).
+  std::unique_ptr<embree_accelerator> own_embree;
+  const auto* embree = dynamic_cast<const embree_accelerator*>(accel.get());
+  if (!embree) {
+    own_embree = std::make_unique<embree_accelerator>(world);
+    embree = own_embree.get();
+  }
+  for (int q = 0; q < 2; ++q) {
+    const bool occlusion = q == 1;
+    for (size_t k = 0; k < size_t(ray_kind_count); ++k) {
+      const std::vector<ray> rays = valid_only(occlusion ? recorded.occluded[k] : recorded.intersect[k]);
+      if (rays.empty()) continue;
+      kind_measurement km;
+      km.kind = kind_names[k];
+      km.query = occlusion ? "occluded" : "intersect";
+      km.rays = rays.size();
+      time_both(
+          km, rays, m.threads, repeats,
+          [&](const ray* r, size_t n) { return embree->trace_bare(r, n, occlusion); },
+          [&](const ray* r, size_t n) {
+            size_t hits = 0;
+            for (size_t i = 0; i < n; ++i)
+              hits += occlusion ? accel->occluded(r[i]) : accel->intersect(r[i]).has_value();
+            return hits;
+          });
+      m.kinds.push_back(km);
+    }
+  }
+  return m;
+}
+
+}  // namespace kiln

@@ -1,0 +1,55 @@
+// `kiln bench` measurements: load, build, render and peak memory of one scene and view, plus the
+// very rays that render traced replayed through a bare Embree loop (rtcIntersect1/rtcOccluded1, no
+// shading) and through kiln's accelerator interface, all in one run, so kiln's overhead is a
+// measured ratio. Depends on render, shade and the accelerators; knows nothing of files or the CLI.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "render/tile_renderer.h"
+#include "render/view_camera.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+// One ray kind and query type (closest hit or occlusion) of the recorded render.
+struct kind_measurement {
+  std::string kind;   // camera, shadow, reflection, refraction, other
+  std::string query;  // intersect or occluded
+  size_t rays = 0;
+  double bare_seconds = 0.0;  // bare Embree loop over these rays
+  double kiln_seconds = 0.0;  // the same rays through kiln's accelerator (hit record included)
+  size_t bare_hits = 0;
+  size_t kiln_hits = 0;
+};
+
+struct bench_measurement {
+  double build_seconds = 0.0;
+  double render_seconds = 0.0;       // best of the repeats
+  double first_pixel_seconds = 0.0;  // load + build: how long until tracing starts
+  size_t peak_rss_after_build = 0;   // bytes (getrusage maximum resident set size)
+  size_t peak_rss_after_render = 0;
+  size_t unique_triangles = 0;  // stored once per mesh
+  size_t placed_triangles = 0;  // summed over instances
+  size_t instances = 0;
+  ray_counts rays;  // traced by the timed render
+  int threads = 0;
+  std::vector<kind_measurement> kinds;
+};
+
+struct bench_settings {
+  std::string accel = "embree";  // backend of the timed render (the bare loop is always Embree)
+  int repeats = 3;               // timed renders and replays; the best is reported
+};
+
+// Builds the backend, renders `repeats` times, records one more render's rays and replays them.
+// Throws kiln::error on render failure.
+bench_measurement run_bench(const scene& world, const view_camera& cam, const render_settings& render,
+                            const bench_settings& settings);
+
+// Peak resident set size of this process so far, in bytes.
+size_t peak_resident_bytes();
+
+}  // namespace kiln
