@@ -60,7 +60,8 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
   const std::set<std::string> supported = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
                                            "KHR_materials_ior",          "KHR_materials_specular",
                                            "KHR_materials_transmission", "KHR_materials_volume",
-                                           "KHR_texture_transform",      "KHR_materials_unlit"};
+                                           "KHR_texture_transform",      "KHR_materials_unlit",
+                                           "KHR_mesh_quantization",      "EXT_mesh_gpu_instancing"};
   std::string unsupported;
   for (const std::string& e : required_extensions(file))
     if (!supported.count(e)) unsupported = e;
