@@ -435,9 +435,8 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
 
   scene out;
   out.source = path;
-  build_context ctx{
-      model, path, options.limits.max_instances, uses_extension(model, quantization_extension), out, {},
-      {},    {}};
+  const bool quantized = uses_extension(model, quantization_extension);
+  build_context ctx{model, path, options.limits.max_instances, quantized, out, {}, {}, {}};
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
   // were refused while parsing).
