@@ -202,6 +202,11 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--max-nodes", o.max_nodes, "Refuse glTF files with more nodes than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option(
+         "--max-instances", o.max_instances,
+         "Refuse glTF files whose EXT_mesh_gpu_instancing takes the scene past this many mesh instances")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -223,6 +228,7 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_json_bytes = options.max_json_bytes;
   load_options.limits.max_json_depth = options.max_json_depth;
   load_options.limits.max_nodes = options.max_nodes;
+  load_options.limits.max_instances = options.max_instances;
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {

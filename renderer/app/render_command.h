@@ -45,6 +45,7 @@ struct render_options {
   size_t max_json_bytes = size_t(512) << 20;
   size_t max_json_depth = 512;
   size_t max_nodes = 1000000;
+  size_t max_instances = 1000000;
   bool quiet = false;
   std::string command_line;
 };
