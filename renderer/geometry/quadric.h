@@ -41,6 +41,9 @@ struct quadric_surface {
   dvec3 normal{0.0};   // unit; normalised gradient of F (outward), or ±z on caps and disks
   dvec3 dpdu{0.0};     // unit tangent along u, perpendicular to normal
   dvec2 uv{0.0};       // parametric UV in [0,1]² (see docs/quadrics.md)
+  // glTF tangent w: cross(normal, dpdu)·handedness points along −dp/dv, the image's "up" (glTF's
+  // v grows downward), as the mesh tangent generator makes it.
+  double handedness = 1.0;
   double error = 0.0;  // bound on the distance of `point` from the exact surface, object units
 };
 
@@ -54,6 +57,7 @@ struct quadric_world_point {
   vec3 error{0.0f};
   vec3 normal{0.0f};   // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
   vec3 tangent{0.0f};  // unit, world dp/du
+  float handedness = 1.0f;  // glTF tangent w in world space (object w times the sign of det M)
   vec2 uv{0.0f};
 };
 
