@@ -37,10 +37,10 @@ dvec3 quadric_gradient(const quadric& q, const dvec3& p);
 
 // The object-space surface at a hit.
 struct quadric_surface {
-  dvec3 point{0.0};    // projected onto the surface of `part`
-  dvec3 normal{0.0};   // unit; normalised gradient of F (outward), or ±z on caps and disks
-  dvec3 dpdu{0.0};     // unit tangent along u, perpendicular to normal
-  dvec2 uv{0.0};       // parametric UV in [0,1]² (see docs/quadrics.md)
+  dvec3 point{0.0};   // projected onto the surface of `part`
+  dvec3 normal{0.0};  // unit; normalised gradient of F (outward), or ±z on caps and disks
+  dvec3 dpdu{0.0};    // unit tangent along u, perpendicular to normal
+  dvec2 uv{0.0};      // parametric UV in [0,1]² (see docs/quadrics.md)
   // glTF tangent w: cross(normal, dpdu)·handedness points along −dp/dv, the image's "up" (glTF's
   // v grows downward), as the mesh tangent generator makes it.
   double handedness = 1.0;
@@ -55,8 +55,8 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
 struct quadric_world_point {
   vec3 point{0.0f};
   vec3 error{0.0f};
-  vec3 normal{0.0f};   // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
-  vec3 tangent{0.0f};  // unit, world dp/du
+  vec3 normal{0.0f};        // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
+  vec3 tangent{0.0f};       // unit, world dp/du
   float handedness = 1.0f;  // glTF tangent w in world space (object w times the sign of det M)
   vec2 uv{0.0f};
 };

@@ -57,7 +57,8 @@ TEST(tangent_frame, quadric_handedness_matches_the_mesh_generator_for_every_kind
       std::map<uint32_t, int> compared;  // per part
       int mismatches = 0;
       for (int i = 0; i < 3000; ++i) {
-        const dvec3 aim_object = q.bounds.center() + 0.5 * q.bounds.diagonal() * dvec3(u(rng), u(rng), u(rng));
+        const dvec3 aim_object =
+            q.bounds.center() + 0.5 * q.bounds.diagonal() * dvec3(u(rng), u(rng), u(rng));
         const dvec3 aim = transform_point(inst.world_from_object, aim_object);
         ray r;
         r.origin = vec3(aim + unit() * 10.0);
@@ -98,7 +99,8 @@ TEST(tangent_frame, quadric_handedness_matches_the_mesh_generator_for_every_kind
             ADD_FAILURE() << "kind " << int(q.kind) << (mirrored ? " mirrored" : "") << " part "
                           << h->primitive_id << " uv (" << uv[0].x << ", " << uv[0].y << "): w "
                           << sp.tangent.w << " vs mesh " << expected.w << " tangent dot "
-                          << glm::dot(vec3(expected), glm::normalize(vec3(sp.tangent))) << " z " << pts[0].point.z;
+                          << glm::dot(vec3(expected), glm::normalize(vec3(sp.tangent))) << " z "
+                          << pts[0].point.z;
         }
       }
       EXPECT_EQ(mismatches, 0) << "kind " << int(q.kind) << (mirrored ? " mirrored" : "");
