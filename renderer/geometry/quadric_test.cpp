@@ -155,6 +155,80 @@ TEST(quadric_bounds, tight_for_every_kind) {
   EXPECT_EQ(torus.upper, dvec3(1.25, 1.25, 0.25));
 }
 
+// Every surface point a dense sweep of axis-parallel rays finds (all hits along each ray, from all
+// six sides) lies inside the bounds, and every face of the bounds is touched by some point to
+// within 1e-3 of the primitive's size: the bounds contain the primitive and are tight.
+TEST(quadric_bounds, contain_every_swept_surface_point_and_touch_every_face) {
+  const int n = 301;  // odd: the grid includes the centre lines
+  for (const quadric& q : every_kind()) {
+    SCOPED_TRACE("kind " + std::to_string(int(q.kind)));
+    const bounds3 b = quadric_bounds(q);
+    const dvec3 ext = b.diagonal();
+    const double size = glm::length(ext);
+    dvec3 seen_lo(1e30), seen_hi(-1e30);
+    int hits = 0, outside = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+      for (double dir : {1.0, -1.0}) {
+        dvec3 d(0.0);
+        d[axis] = dir;
+        for (int i = 0; i < n; ++i) {
+          for (int j = 0; j < n; ++j) {
+            dvec3 o;
+            o[a1] = b.lower[a1] + ext[a1] * i / (n - 1);
+            o[a2] = b.lower[a2] + ext[a2] * j / (n - 1);
+            o[axis] = dir > 0.0 ? b.lower[axis] - 1.0 : b.upper[axis] + 1.0;
+            double tmin = 0.0;
+            for (int k = 0; k < 8; ++k) {
+              const auto h = shoot(q, o, d, tmin);
+              if (!h) break;
+              const dvec3 p = o + h->t * d;
+              ++hits;
+              seen_lo = glm::min(seen_lo, p);
+              seen_hi = glm::max(seen_hi, p);
+              const double slack = 1e-9 * size;
+              if (glm::any(glm::lessThan(p, b.lower - slack)) ||
+                  glm::any(glm::greaterThan(p, b.upper + slack)))
+                ++outside;
+              tmin = h->t;
+            }
+          }
+        }
+      }
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_EQ(outside, 0);
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_LE(seen_lo[axis] - b.lower[axis], 1e-3 * size) << "axis " << axis << " lower face untouched";
+      EXPECT_LE(b.upper[axis] - seen_hi[axis], 1e-3 * size) << "axis " << axis << " upper face untouched";
+    }
+  }
+}
+
+TEST(quadric_bounds, general_ellipsoid_is_cut_to_its_analytic_extent) {
+  // Centre (0.3, 0, 0), semi-axes 2, 1, 0.5, in the box [−2, 2.5]×[−1.5, 1.5]×[−1, 0.2].
+  const bounds3 b = quadric_bounds(make_general_ellipsoid());
+  EXPECT_NEAR(b.lower.x, -1.7, 1e-12);
+  EXPECT_NEAR(b.upper.x, 2.3, 1e-12);
+  EXPECT_NEAR(b.lower.y, -1.0, 1e-12);
+  EXPECT_NEAR(b.upper.y, 1.0, 1e-12);
+  EXPECT_NEAR(b.lower.z, -0.5, 1e-12);
+  EXPECT_EQ(b.upper.z, 0.2);  // the clip plane
+  // The same ellipsoid with all signs flipped (F > 0 inside) has the same extent.
+  quadric flipped = make_general_ellipsoid();
+  for (double& k : flipped.coefficients) k = -k;
+  const bounds3 f = quadric_bounds(flipped);
+  EXPECT_NEAR(f.lower.x, -1.7, 1e-12);
+  EXPECT_NEAR(f.upper.y, 1.0, 1e-12);
+  // An unbounded general quadric (the cylinder x² + y² = 1) keeps its clip box.
+  quadric cylinder = make_general_ellipsoid();
+  const double k[10] = {1, 1, 0, 0, 0, 0, 0, 0, 0, -1};
+  std::copy(k, k + 10, cylinder.coefficients);
+  const bounds3 c = quadric_bounds(cylinder);
+  EXPECT_EQ(c.lower, cylinder.box.lower);
+  EXPECT_EQ(c.upper, cylinder.box.upper);
+}
+
 // One analytic ray case: the ray, its t range and the expected closest hit (or a miss).
 struct ray_case {
   std::string name;
