@@ -72,7 +72,8 @@ void revolve(mesh& m, const std::vector<double>& vs, F meridian) {
   }
   for (size_t j = 0; j + 1 < vs.size(); ++j)
     for (int i = 0; i < around; ++i) {
-      const uint32_t a = first + uint32_t(j * around + i), b = first + uint32_t(j * around + (i + 1) % around);
+      const uint32_t a = first + uint32_t(j * around + i),
+                     b = first + uint32_t(j * around + (i + 1) % around);
       const uint32_t c = a + uint32_t(around), d = b + uint32_t(around);
       m.indices.insert(m.indices.end(), {a, b, d, a, d, c});
     }
@@ -118,7 +119,8 @@ void add_fan(mesh& m, double z, double radius) {
     m.positions.push_back(vec3(dvec3(radius * std::cos(u), radius * std::sin(u), z)));
   }
   for (int i = 0; i < around; ++i)
-    m.indices.insert(m.indices.end(), {centre, centre + 1 + uint32_t(i), centre + 1 + uint32_t((i + 1) % around)});
+    m.indices.insert(m.indices.end(),
+                     {centre, centre + 1 + uint32_t(i), centre + 1 + uint32_t((i + 1) % around)});
 }
 
 dvec2 sphere_meridian(double v) { return dvec2(std::sin(two_pi / 2.0 * v), -std::cos(two_pi / 2.0 * v)); }

@@ -229,7 +229,7 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
                                                  double tmin, double tmax) {
   // Slab-test a slightly padded box first: it rejects most misses cheaply, and bounds the torus'
   // root search. The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
-  const bounds3 bounds = quadric_bounds(q);
+  const bounds3 bounds = stored_quadric_bounds(q);
   const dvec3 pad = 1e-9 * (glm::abs(bounds.lower) + glm::abs(bounds.upper)) + 1e-300;
   bounds3 padded{bounds.lower - pad, bounds.upper + pad};
   double t_enter = tmin, t_exit = tmax;

@@ -26,6 +26,12 @@ struct quadric_ray_hit {
 // Tight object-space bounds of a primitive (its clipped extent, caps included).
 bounds3 quadric_bounds(const quadric& q);
 
+// q.bounds where filled (the loader does), else quadric_bounds(q): per-ray code reads the stored
+// box instead of recomputing it (the general quadric's costs a 3×3 inverse).
+inline bounds3 stored_quadric_bounds(const quadric& q) {
+  return q.bounds.empty() ? quadric_bounds(q) : q.bounds;
+}
+
 // The closest hit of o + t·d with t in (tmin, tmax), in object space and double precision, or
 // empty. d need not be unit length; t is in units of d, so it is the world t of the same ray.
 std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,

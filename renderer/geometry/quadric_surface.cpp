@@ -85,7 +85,7 @@ dvec3 project_to_side(const quadric& q, dvec3 p) {
 
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point) {
   quadric_surface s;
-  const double size = glm::length(quadric_bounds(q).diagonal());
+  const double size = glm::length(stored_quadric_bounds(q).diagonal());
   if (part == quadric_cap_zmin || part == quadric_cap_zmax) {
     const double z0 = part == quadric_cap_zmin ? q.zmin : q.zmax;
     s.point = dvec3(approx_point.x, approx_point.y, z0);
