@@ -1,6 +1,7 @@
 // Shading on quadrics through the real pipeline (Embree backend, Whitted shading, tile renderer):
 // a quadric sphere casts a shadow, a lat-long texture on a sphere reads upright (the texel at a
-// known UV), and the depth AOV of a quadric is the analytic distance.
+// known UV), a normal map tilts toward the image top on plain and mirrored placements, and the
+// depth AOV of a quadric is the analytic distance.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -8,6 +9,7 @@
 #include "accel/embree/embree_accelerator.h"
 #include "geometry/quadric_test_util.h"
 #include "render/tile_renderer.h"
+#include "shade/normal_mapping.h"
 #include "shade/whitted.h"
 #include "support/shadow_probe.h"
 #include "support/test_scenes.h"
@@ -92,6 +94,40 @@ TEST(quadric_shading, a_lat_long_texture_on_a_sphere_shows_the_texel_at_the_hit_
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(colour[c], expected[c], 1e-6f)
           << "azimuth " << p.azimuth_deg << ", latitude " << p.latitude_deg;
+    }
+  }
+}
+
+// A normal map whose texels tilt the normal 45° toward the image's top (+Y, green) tilts a quadric's
+// shading normal toward +z (north on the sphere, up the cylinder and the outside of the torus),
+// also on mirrored instances: the tangent frame's handedness is right for every placement.
+TEST(quadric_shading, a_normal_map_tilts_quadric_normals_toward_the_image_top_also_when_mirrored) {
+  const std::vector<quadric> shapes = {testing::make_sphere(1.0),
+                                       testing::make_axial(quadric_kind::cylinder, 1.0, -1.0, 1.0, true),
+                                       testing::make_torus(0.7, 0.3)};
+  for (const quadric& q : shapes) {
+    for (double mirror : {1.0, -1.0}) {
+      scene s;
+      image img;
+      img.width = img.height = 1;
+      img.texels8 = {128, 218, 218, 255};  // tangent-space (0.004, 0.71, 0.71)
+      s.images.push_back(img);
+      s.textures.emplace_back();
+      material m = diffuse();
+      m.normal_texture.texture = 0;
+      s.materials = {m};
+      place_quadric(s, q, glm::scale(dmat4(1.0), dvec3(mirror, 1.0, 1.0)), 0);
+      embree_accelerator accel(s);
+      for (double azimuth : {0.3, 2.0, 4.0}) {
+        const vec3 outward(float(std::cos(azimuth)), float(std::sin(azimuth)), 0.0f);
+        const auto h = accel.intersect(testing::make_ray(5.0f * outward, -outward));
+        ASSERT_TRUE(h.has_value());
+        surface_point sp = make_surface_point(s, *h, testing::make_ray(5.0f * outward, -outward));
+        apply_normal_map(s, m, material_inputs_at(sp), sp);
+        EXPECT_NEAR(sp.shading_normal.z, std::sqrt(0.5f), 0.01f)
+            << "kind " << int(q.kind) << (mirror < 0.0 ? " mirrored" : "") << ", azimuth " << azimuth;
+        EXPECT_NEAR(glm::dot(sp.shading_normal, sp.geometric_normal), std::sqrt(0.5f), 0.01f);
+      }
     }
   }
 }
