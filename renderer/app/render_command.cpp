@@ -223,10 +223,15 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--max-nodes", o.max_nodes, "Refuse glTF files with more nodes than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  app.add_option("--grid-density", o.grid.density,
-                 "Grid backends: aim for density x N cells for N items (the resolution heuristic)")
-      ->check(CLI::Range(1e-3, 1e3))
-      ->capture_default_str();
+  // A function, not CLI::Range: Range lets NaN through (every comparison with it is false).
+  app.add_option_function<double>(
+      "--grid-density",
+      [&o](double density) {
+        if (!(density >= 1e-3 && density <= 1e3))
+          throw CLI::ValidationError("--grid-density", "expects a number from 0.001 to 1000");
+        o.grid.density = density;
+      },
+      "Grid backends: aim for density x N cells for N items (the resolution heuristic; default 2)");
   app.add_option_function<std::string>(
       "--grid-resolution", [&o](const std::string& s) { o.grid.resolution = parse_grid_resolution(s); },
       "Grid backends: N or X,Y,Z cells per axis for every grid, instead of the heuristic");
