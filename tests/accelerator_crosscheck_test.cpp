@@ -14,6 +14,7 @@
 #include "accel/grid/brute_force_accelerator.h"
 #include "accel/grid/grid_accelerator.h"
 #include "accel/grid/synthetic_scenes.h"
+#include "geometry/triangle.h"
 #include "io/gltf/gltf_loader.h"
 
 namespace kiln {
@@ -110,7 +111,7 @@ bool identical(const std::optional<hit>& a, const std::optional<hit>& b) {
 
 struct tally {
   size_t hits = 0, mismatches = 0, ties = 0, edges = 0, occlusion_mismatches = 0, brute_force_checks = 0,
-         barycentric_mismatches = 0;
+         barycentric_mismatches = 0, widened_barycentric_bounds = 0;
   float max_barycentric_difference = 0.0f;
 };
 
@@ -120,6 +121,23 @@ bool occlusion_agrees(const scene& s, const ray& r, bool a, bool b, const std::o
   if (a == b) return true;
   const std::optional<hit>& blocker = a ? a_hit : b_hit;
   return blocker && hit_on_boundary(s, r, *blocker);
+}
+
+// How far the grid's (u, v) may stray from Embree's on the same triangle. The two backends put the
+// hit at slightly different t (a few ulps of t, more on grazing rays: t ≈ 90 on the instanced
+// spheres), and that slide of |Δt|·|d| along the ray moves u (v) by at most the slide over the
+// height of p1 (p2) above the opposite edge. So: max_barycentric_difference plus twice the slide
+// over the smaller height (twice: each backend's own rounding of u, v comes on top, measured at
+// up to 1.8x the slide term). A swap of u and v, or another convention, shows at any Δt.
+float barycentric_tolerance(const scene& s, const ray& r, const hit& e, const hit& g) {
+  const instance& inst = s.instances[e.instance_id];
+  auto p = triangle_vertices(s.meshes[inst.shape], e.primitive_id);
+  dvec3 w[3];
+  for (int i = 0; i < 3; ++i) w[i] = transform_point(inst.world_from_object, dvec3(p[i]));
+  const double twice_area = glm::length(glm::cross(w[1] - w[0], w[2] - w[0]));
+  const double height = twice_area / std::max(glm::length(w[2] - w[0]), glm::length(w[1] - w[0]));
+  const double slide = std::abs(double(e.t) - double(g.t)) * glm::length(dvec3(r.direction));
+  return max_barycentric_difference + (height > 0.0 ? float(2.0 * slide / height) : inf);
 }
 
 class crosscheck : public ::testing::TestWithParam<std::string> {};
@@ -156,10 +174,13 @@ TEST_P(crosscheck, grid_adaptive_grid_and_embree_agree) {
             s.instances[e->instance_id].kind == shape_kind::mesh) {
           const float du = std::abs(e->u - g->u), dv = std::abs(e->v - g->v);
           t.max_barycentric_difference = std::max({t.max_barycentric_difference, du, dv});
-          if ((du >= max_barycentric_difference || dv >= max_barycentric_difference) &&
-              ++t.barycentric_mismatches <= 5)
+          const float bound = barycentric_tolerance(s, r, *e, *g);
+          t.widened_barycentric_bounds +=
+              (du >= max_barycentric_difference || dv >= max_barycentric_difference);
+          if ((du >= bound || dv >= bound) && ++t.barycentric_mismatches <= 5)
             ADD_FAILURE() << "ray " << i << ": u,v embree " << e->u << "," << e->v << " grid " << g->u << ","
-                          << g->v;
+                          << g->v << " (bound " << bound << ", cos "
+                          << glm::dot(glm::normalize(r.direction), e->geometric_normal) << ")";
         }
         break;
       case hit_verdict::tie:
@@ -201,9 +222,9 @@ TEST_P(crosscheck, grid_adaptive_grid_and_embree_agree) {
   EXPECT_LT(t.edges, rays.size() / 100);
   std::printf(
       "%s: %zu rays, %zu hits, %zu ties, %zu edge cases, %zu brute-force checks (cap %zu), "
-      "max |du|,|dv| %.2g\n",
+      "max |du|,|dv| %.2g (%zu above %.0e, explained by their |dt|)\n",
       GetParam().c_str(), rays.size(), t.hits, t.ties, t.edges, t.brute_force_checks, max_brute_force_checks,
-      double(t.max_barycentric_difference));
+      double(t.max_barycentric_difference), t.widened_barycentric_bounds, double(max_barycentric_difference));
 }
 
 INSTANTIATE_TEST_SUITE_P(scenes, crosscheck, ::testing::ValuesIn(scene_names()),
