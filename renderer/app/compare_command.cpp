@@ -126,9 +126,16 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam, con
           {"agree", agree}};
 }
 
-void print_summary(const compare_options& o, const comparison_statistics& rays, const image_difference& image,
-                   bool agree) {
+void print_summary(const compare_options& o, const accelerator& tested, const accelerator& reference,
+                   const comparison_statistics& rays, const image_difference& image, bool agree) {
   std::fprintf(stderr, "kiln compare: %s against %s\n", o.accel.c_str(), o.against.c_str());
+  auto print_structure = [](const std::string& name, const accelerator& accel) {
+    if (std::optional<grid_statistics> g = accelerator_grid_statistics(accel))
+      std::fprintf(stderr, "  %s: %zu nodes, %zu cells, %zu item references, %.1f MB\n", name.c_str(),
+                   g->nodes, g->cells, g->item_references, double(g->memory_bytes) / 1e6);
+  };
+  print_structure(o.accel, tested);
+  print_structure(o.against, reference);
   std::fprintf(stderr, "  %-11s %12s %12s %12s %8s %8s %14s\n", "ray kind", "rays", "hit mism.",
                "occl. mism.", "ties", "edges", "max |dt|/t");
   for (ray_kind k : {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction}) {
@@ -191,7 +198,7 @@ int run_compare(const compare_options& o) {
     out << report_json(o, prepared.cam, *tested, *reference, rays, image, agree).dump(2) << '\n';
     if (!out) throw io_error(o.json, "cannot write the JSON report");
   }
-  if (!o.view.quiet) print_summary(o, rays, image, agree);
+  if (!o.view.quiet) print_summary(o, *tested, *reference, rays, image, agree);
   return agree ? 0 : exit_backends_disagree;
 }
 
