@@ -26,6 +26,10 @@ namespace {
 constexpr int default_width = 640;
 constexpr int default_height = 480;
 constexpr int max_image_side = 65536;
+// Bounds of the --grid-* options: beyond them a grid's memory explodes (256³ cells per grid, 8^depth
+// children per crowded cell) long before traversal gets faster.
+constexpr int max_grid_resolution = 256;
+constexpr int max_grid_depth = 6;
 
 // Parses "X,Y,Z" into three finite numbers; CLI11 reports a ValidationError as a usage error.
 dvec3 parse_triple(const std::string& text, const std::string& option) {
@@ -36,6 +40,27 @@ dvec3 parse_triple(const std::string& text, const std::string& option) {
       !(in >> std::ws).eof() || !is_finite(value))
     throw CLI::ValidationError(option, "expects three finite numbers X,Y,Z, got '" + text + "'");
   return value;
+}
+
+// Parses "N" (N cells on every axis) or "X,Y,Z" for --grid-resolution.
+glm::ivec3 parse_grid_resolution(const std::string& text) {
+  std::istringstream in(text);
+  glm::ivec3 r;
+  char comma1 = 0, comma2 = 0;
+  bool ok = bool(in >> r.x);
+  if (ok && (in >> std::ws).eof()) {
+    r = glm::ivec3(r.x);
+  } else {
+    in.clear();
+    ok = ok && (in >> comma1 >> r.y >> comma2 >> r.z) && comma1 == ',' && comma2 == ',' &&
+         (in >> std::ws).eof();
+  }
+  if (!ok || glm::any(glm::lessThan(r, glm::ivec3(1))) ||
+      glm::any(glm::greaterThan(r, glm::ivec3(max_grid_resolution))))
+    throw CLI::ValidationError("--grid-resolution", "expects N or X,Y,Z cells per axis, each 1 to " +
+                                                        std::to_string(max_grid_resolution) + ", got '" +
+                                                        text + "'");
+  return r;
 }
 
 // Finds the camera named or numbered by the --camera argument.
@@ -207,6 +232,26 @@ void add_view_options(CLI::App& app, render_options& o) {
          "Refuse glTF files whose EXT_mesh_gpu_instancing takes the scene past this many mesh instances")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  // A function, not CLI::Range: Range lets NaN through (every comparison with it is false).
+  app.add_option_function<double>(
+      "--grid-density",
+      [&o](double density) {
+        if (!(density >= 1e-3 && density <= 1e3))
+          throw CLI::ValidationError("--grid-density", "expects a number from 0.001 to 1000");
+        o.grid.density = density;
+      },
+      "Grid backends: aim for density x N cells for N items (the resolution heuristic; default 2)");
+  app.add_option_function<std::string>(
+      "--grid-resolution", [&o](const std::string& s) { o.grid.resolution = parse_grid_resolution(s); },
+      "Grid backends: N or X,Y,Z cells per axis for every grid, instead of the heuristic");
+  app.add_option("--grid-max-items", o.grid.max_items_per_cell,
+                 "Adaptive grid: a cell holding more items than this is subdivided")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  app.add_option("--grid-max-depth", o.grid.max_depth,
+                 "Adaptive grid: levels of subdivision below the top grid")
+      ->check(CLI::Range(0, max_grid_depth))
+      ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -275,7 +320,8 @@ void run_render(const render_options& options) {
   const double load_seconds = prepared.load_seconds;
 
   auto build_start = std::chrono::steady_clock::now();
-  std::unique_ptr<accelerator> accel = make_accelerator(world, *parse_accel_kind(options.accel));
+  std::unique_ptr<accelerator> accel =
+      make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
   double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);

@@ -2,14 +2,15 @@
 // tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "accel/grid/grid.h"
 #include "core/math.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
-
-#include <cstddef>
-#include <optional>
-#include <string>
 
 namespace CLI {
 class App;
@@ -35,6 +36,7 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
+  grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   std::string environment;  // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
@@ -51,7 +53,7 @@ struct render_options {
 };
 
 // Declares the options every subcommand that renders shares (asset, image size, camera, samples,
-// shading limits, threads), writing into options. `kiln compare` reuses them.
+// shading limits, threads, grid settings), writing into options. `kiln compare` reuses them.
 void add_view_options(CLI::App& app, render_options& options);
 
 // Declares the render subcommand's options on app: the view options plus output and backend.
