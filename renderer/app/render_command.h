@@ -2,14 +2,14 @@
 // tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+
 #include "core/math.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
-
-#include <cstddef>
-#include <optional>
-#include <string>
 
 namespace CLI {
 class App;
@@ -23,6 +23,10 @@ struct render_options {
   std::optional<int> width;
   std::optional<int> height;
   int samples_per_pixel = 1;
+  std::string filter = "box";          // box | tent | gaussian | blackman-harris
+  std::optional<float> filter_radius;  // empty: the filter's default radius
+  float adaptive_threshold = 0.0f;     // > 0: Whitted's adaptive supersampling instead of --spp
+  int adaptive_depth = 2;
   int threads = 0;
   int tile_size = 32;
   std::string camera;  // glTF camera name or index; empty: the first camera, else a default view
@@ -35,7 +39,7 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
-  std::string environment;  // equirectangular map file; empty: the --background colour
+  std::string environment;       // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
   int max_depth = 8;

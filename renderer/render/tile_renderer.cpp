@@ -1,10 +1,7 @@
 #include "render/tile_renderer.h"
 
-#include "core/error.h"
-#include "render/sample_pattern.h"
-#include "shade/environment.h"
-
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -14,6 +11,12 @@
 #include <chrono>
 #include <mutex>
 #include <vector>
+
+#include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/sample_pattern.h"
+#include "render/splat_film.h"
 
 namespace kiln {
 
@@ -26,41 +29,29 @@ struct tile {
 std::vector<tile> make_tiles(int width, int height, int size) {
   std::vector<tile> tiles;
   for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size) tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+    for (int x = 0; x < width; x += size)
+      tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
   return tiles;
 }
 
-// Renders every sample of one pixel and writes the pixel. The nearest sample decides depth and
-// normal (never averaged, so Z and N stay valid for compositing).
-void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x, int y,
-                  film& out, ray_counts& counts) {
+// Renders every stratified sample of one pixel and splats it through the filter. The nearest
+// sample decides depth and normal (never filtered, so Z and N stay valid for compositing).
+void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
+                  int y, splat_tile& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
-  vec3 colour_sum(0.0f);
-  float alpha_sum = 0.0f;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
   for (int s = 0; s < spp; ++s) {
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
-    ++counts.camera;
-    std::optional<hit> h = find_visible_hit(ctx, r, counts);
-    if (!h) {
-      if (settings.show_background) {
-        colour_sum += environment_radiance(ctx.world, r.direction);
-        alpha_sum += 1.0f;
-      }
-      continue;
-    }
-    surface_point sp = make_surface_point(ctx.world, *h, r);
-    colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts);
-    alpha_sum += 1.0f;
-    if (h->t < nearest) {
-      nearest = h->t;
-      nearest_normal = sp.shading_normal;
+    camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
+                                           y + double(offset.y), counts);
+    splat_sample(splats, settings.filter, x, y, offset, cs.rgba);
+    if (cs.depth < nearest) {
+      nearest = cs.depth;
+      nearest_normal = cs.normal;
     }
   }
   size_t i = out.index(x, y);
-  out.color[i] = vec4(colour_sum, alpha_sum) / float(spp);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
 }
@@ -68,35 +59,82 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
 }  // namespace
 
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
-                  const render_settings& settings, render_statistics* stats, const progress_callback& progress) {
+                  const render_settings& settings, render_statistics* stats,
+                  const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
   film out(cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
+  const bool adaptive = settings.adaptive.threshold > 0.0f;
+  const int reach = filter_reach(settings.filter);
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
-  auto cancelled = [&settings] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
+  ordered_tile_merge splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, adaptive ? 0 : tiles.size());
+  auto cancelled = [&settings] {
+    return settings.cancel && settings.cancel->load(std::memory_order_relaxed);
+  };
+  auto trace = [&](double px, double py, ray_counts& counts) {
+    return trace_camera_sample(ctx, cam, settings.show_background, px, py, counts);
+  };
+
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t t = range.begin(); t != range.end(); ++t) {
-        const tile& tl = tiles[t];
+    // Adaptive sampling starts from the (W+1)×(H+1) pixel corners, each traced once.
+    std::vector<camera_sample> corners;
+    const size_t corner_row = size_t(cam.width) + 1;
+    if (adaptive) {
+      corners.resize(corner_row * (size_t(cam.height) + 1));
+      tbb::parallel_for(0, cam.height + 1, [&](int y) {
+        if (cancelled()) return;
         ray_counts counts;
-        for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-          for (int x = tl.x0; x < tl.x1; ++x) render_pixel(ctx, cam, settings, x, y, out, counts);
+        for (int x = 0; x <= cam.width; ++x) corners[y * corner_row + x] = trace(x, y, counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
-        size_t done = ++tiles_done;
-        if (progress) progress(done, tiles.size());
-      }
-    });
+      });
+    }
+    tbb::enumerable_thread_specific<adaptive_scratch> scratch;
+
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t t = range.begin(); t != range.end(); ++t) {
+            const tile& tl = tiles[t];
+            ray_counts counts;
+            splat_tile tile_splats;
+            if (adaptive) {
+              adaptive_scratch& local = scratch.local();
+              sample_tracer tracer = [&](double px, double py) { return trace(px, py, counts); };
+              for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
+                for (int x = tl.x0; x < tl.x1; ++x) {
+                  const size_t c = y * corner_row + x;
+                  const camera_sample pixel_corners[4] = {corners[c], corners[c + 1], corners[c + corner_row],
+                                                          corners[c + corner_row + 1]};
+                  adaptive_pixel p = refine_pixel(x, y, pixel_corners, settings.adaptive, tracer, local);
+                  size_t i = out.index(x, y);
+                  out.color[i] = p.rgba;
+                  out.depth[i] = p.depth;
+                  out.normal[i] = p.normal;
+                }
+            } else {
+              tile_splats = make_splat_tile(tl.x0, tl.y0, tl.x1, tl.y1, reach);
+              for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
+                for (int x = tl.x0; x < tl.x1; ++x)
+                  render_pixel(ctx, cam, settings, x, y, tile_splats, out, counts);
+            }
+            std::lock_guard<std::mutex> lock(merge_mutex);
+            if (!adaptive) splats.add(t, std::move(tile_splats));
+            total_counts += counts;
+            size_t done = ++tiles_done;
+            if (progress) progress(done, tiles.size());
+          }
+        });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");
+  if (!adaptive) splats.resolve(out);
 
   if (stats) {
     stats->rays = total_counts;
