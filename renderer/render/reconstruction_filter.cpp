@@ -66,6 +66,6 @@ float filter_weight_1d(const reconstruction_filter& f, float d) {
   return 0.0f;
 }
 
-int filter_reach(const reconstruction_filter& f) { return std::max(0, int(std::ceil(f.radius))); }
+int filter_reach(const reconstruction_filter& f) { return std::max(0, int(std::ceil(f.radius - 0.5f))); }
 
 }  // namespace kiln

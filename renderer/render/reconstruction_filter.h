@@ -34,7 +34,9 @@ inline float filter_weight(const reconstruction_filter& f, float dx, float dy) {
   return filter_weight_1d(f, dx) * filter_weight_1d(f, dy);
 }
 
-// How many pixels beyond its own a sample can reach: ceil(radius).
+// How many pixels beyond its own a sample's weight can reach: those whose centre lies within the
+// radius of some point of the pixel, ceil(radius - 0.5). Box 0.5 reaches none, tent 1 and
+// gaussian 1.5 one, blackman-harris 2 two.
 int filter_reach(const reconstruction_filter& f);
 
 }  // namespace kiln

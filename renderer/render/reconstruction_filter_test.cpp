@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -77,68 +78,82 @@ TEST(reconstruction_filter, integer_shifts_of_the_tent_sum_to_one) {
   }
 }
 
-TEST(splat_film, box_half_pixel_puts_each_sample_in_its_own_pixel_only) {
-  reconstruction_filter box = default_filter(filter_kind::box);
-  splat_tile t = make_splat_tile(4, 4, 6, 6, filter_reach(box));
-  ASSERT_EQ(t.width, 4);
-  // Offsets at both ends of [0, 1), where rounding could push a sample into a neighbour.
-  for (vec2 o : {vec2(0.0f), vec2(0.99999994f), vec2(1e-9f, 0.5f)}) splat_sample(t, box, 4, 5, o, vec4(1.0f));
-  for (int y = 0; y < t.height; ++y)
-    for (int x = 0; x < t.width; ++x) {
-      bool own = t.x0 + x == 4 && t.y0 + y == 5;
-      EXPECT_EQ(t.weight[size_t(y) * t.width + x], own ? 3.0f : 0.0f) << x << "," << y;
+TEST(reconstruction_filter, reach_covers_every_pixel_with_weight) {
+  EXPECT_EQ(filter_reach(default_filter(filter_kind::box)), 0);
+  EXPECT_EQ(filter_reach(default_filter(filter_kind::tent)), 1);
+  EXPECT_EQ(filter_reach(default_filter(filter_kind::gaussian)), 1);
+  EXPECT_EQ(filter_reach(default_filter(filter_kind::blackman_harris)), 2);
+  // A sample anywhere in its pixel has no weight at a centre beyond the reach.
+  for (filter_kind k : all_kinds)
+    for (float r : {0.3f, 0.5f, 0.75f, 1.0f, 1.5f, 2.0f, 2.6f}) {
+      reconstruction_filter f{k, r};
+      const float beyond = float(filter_reach(f) + 1);
+      for (float o : {0.0f, 0.25f, 0.5f, 0.9375f}) {  // exact in float, so d is not rounded
+        EXPECT_EQ(filter_weight_1d(f, (o - 0.5f) - beyond), 0.0f) << filter_name(k) << " " << r;
+        EXPECT_EQ(filter_weight_1d(f, (o - 0.5f) + beyond), 0.0f) << filter_name(k) << " " << r;
+      }
     }
+}
+
+TEST(splat_film, box_half_pixel_puts_each_sample_in_its_own_pixel_only) {
+  reconstruction_filter box{filter_kind::box, 0.5f};
+  pixel_splat splat(1);  // look one pixel further than box 0.5 reaches
+  // Offsets at both ends of [0, 1), where rounding could push a sample into a neighbour.
+  for (vec2 o : {vec2(0.0f), vec2(0.99999994f), vec2(1e-9f, 0.5f)}) splat.add(box, o, vec4(1.0f));
+  for (size_t k = 0; k < 9; ++k) EXPECT_EQ(splat.weight[k], k == 4 ? 3.0f : 0.0f) << k;
+}
+
+// Splats a fixed field of samples over a w×h image rendered in tiles of tile_size, visiting the
+// tiles in `reverse` order or not, pixels in raster order inside each tile (as the renderer does).
+film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bool reverse, bool constant) {
+  splat_film splats(w, h, tile_size, f);
+  std::vector<std::pair<int, int>> tiles;
+  for (int ty = 0; ty < h; ty += tile_size)
+    for (int tx = 0; tx < w; tx += tile_size) tiles.push_back({tx, ty});
+  if (reverse) std::reverse(tiles.begin(), tiles.end());
+  pixel_splat splat(splats.reach());
+  for (auto [tx, ty] : tiles)
+    for (int y = ty; y < std::min(ty + tile_size, h); ++y)
+      for (int x = tx; x < std::min(tx + tile_size, w); ++x) {
+        splat.clear();
+        for (int s = 0; s < 4; ++s) {
+          float v = constant ? 0.7f : std::sin(float(x * 13 + y * 7 + s * 3)) + 1.5f;
+          vec2 o(0.1f + 0.27f * s, 0.8f - 0.21f * s);
+          splat.add(f, o, vec4(v, v * v, 1.0f / v, 1.0f));
+        }
+        splats.add(x, y, splat);
+      }
+  film out(w, h);
+  splats.resolve(out);
+  return out;
 }
 
 TEST(splat_film, constant_radiance_stays_constant_under_every_filter) {
   for (filter_kind k : all_kinds) {
-    reconstruction_filter f = default_filter(k);
-    film out(6, 5);
-    ordered_tile_merge merge(6, 5, 1);
-    splat_tile t = make_splat_tile(0, 0, 6, 5, filter_reach(f));
-    for (int y = 0; y < 5; ++y)
-      for (int x = 0; x < 6; ++x)
-        for (int s = 0; s < 4; ++s)
-          splat_sample(t, f, x, y, vec2(0.25f + 0.5f * (s % 2), 0.25f + 0.5f * (s / 2)),
-                       vec4(0.7f, 0.2f, 3.0f, 1.0f));
-    merge.add(0, std::move(t));
-    merge.resolve(out);
-    for (const vec4& c : out.color) {  // within a few float ulps (sums of ~100 weighted terms)
-      EXPECT_NEAR(c.r, 0.7f, 1e-6f) << filter_name(k);
-      EXPECT_NEAR(c.b, 3.0f, 3e-6f) << filter_name(k);
-      EXPECT_NEAR(c.a, 1.0f, 1e-6f) << filter_name(k);
+    film out = splat_field(default_filter(k), 7, 5, 3, false, true);
+    for (const vec4& c : out.color) {  // within a few float ulps (sums of up to 100 weighted terms)
+      EXPECT_NEAR(c.r, 0.7f, 2e-6f) << filter_name(k);
+      EXPECT_NEAR(c.g, 0.49f, 2e-6f) << filter_name(k);
+      EXPECT_NEAR(c.a, 1.0f, 2e-6f) << filter_name(k);
     }
   }
 }
 
-// Splats a pseudo-random field through tiles of a 9×7 image, then merges them in `order`.
-film merge_in_order(const std::vector<size_t>& order) {
-  reconstruction_filter f = default_filter(filter_kind::gaussian);
-  std::vector<splat_tile> tiles;
-  for (int ty = 0; ty < 7; ty += 4)
-    for (int tx = 0; tx < 9; tx += 3) {
-      splat_tile t = make_splat_tile(tx, ty, std::min(tx + 3, 9), std::min(ty + 4, 7), filter_reach(f));
-      for (int y = ty; y < std::min(ty + 4, 7); ++y)
-        for (int x = tx; x < std::min(tx + 3, 9); ++x)
-          for (int s = 0; s < 3; ++s) {
-            float v = std::sin(float(x * 13 + y * 7 + s * 3)) + 1.5f;
-            splat_sample(t, f, x, y, vec2(0.1f + 0.3f * s, 0.8f - 0.25f * s), vec4(v, v * v, 1.0f / v, 1.0f));
-          }
-      tiles.push_back(std::move(t));
+TEST(splat_film, bytes_do_not_depend_on_tile_size_or_tile_order) {
+  for (filter_kind k : all_kinds) {
+    reconstruction_filter f = default_filter(k);
+    film reference = splat_field(f, 11, 9, 100, false, false);
+    for (int tile_size : {1, 2, 3, 4, 5, 8}) {
+      for (bool reverse : {false, true}) {
+        film other = splat_field(f, 11, 9, tile_size, reverse, false);
+        EXPECT_EQ(
+            std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)), 0)
+            << filter_name(k) << " tiles of " << tile_size << (reverse ? " reversed" : "");
+      }
     }
-  film out(9, 7);
-  ordered_tile_merge merge(9, 7, tiles.size());
-  for (size_t i : order) merge.add(i, tiles[i]);
-  merge.resolve(out);
-  return out;
-}
-
-TEST(splat_film, merge_result_does_not_depend_on_arrival_order) {
-  film a = merge_in_order({0, 1, 2, 3, 4, 5});
-  film b = merge_in_order({5, 3, 4, 1, 0, 2});
-  EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(vec4)), 0);
-  // The field is not constant, so a wrong order would show.
-  EXPECT_NE(a.color[0].r, a.color[40].r);
+    // The field is not constant, so a wrong order would show.
+    EXPECT_NE(reference.color[0].r, reference.color[40].r);
+  }
 }
 
 }  // namespace

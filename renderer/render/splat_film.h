@@ -1,9 +1,12 @@
-// Filtered reconstruction without races: each tile splats its samples into its own buffer (the
-// tile grown by the filter's reach, an apron), and the buffers are summed into the image in tile
-// index order, so each pixel's float additions happen in one order for any thread count or
-// schedule. Depends on core and render only.
+// Filtered reconstruction whose bytes do not depend on threads or tile size. Each pixel's value is
+// a left fold, in raster order of the source pixels within the filter's reach, of what each source
+// pixel's samples contribute to it (P(q→p), summed in sample order). A pixel whose reach lies in
+// one tile is folded by that tile as it renders (it visits the sources in raster order); a pixel
+// near a tile border keeps one slot per source and is folded after the parallel loop. Float
+// additions therefore happen in one order for any schedule. Depends on core and render only.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "render/film.h"
@@ -11,43 +14,40 @@
 
 namespace kiln {
 
-// One tile's weighted sums, over the tile plus an apron of `reach` pixels on each side.
-struct splat_tile {
-  int x0 = 0, y0 = 0;  // image position of the buffer's first pixel (negative in the apron)
-  int width = 0, height = 0;
-  std::vector<vec4> sum;      // Σ w·(premultiplied colour, alpha)
+// One source pixel's contributions to the (2·reach+1)² pixels around it, rows top to bottom.
+struct pixel_splat {
+  int reach = 0;
+  std::vector<vec4> sum;      // Σ w·(premultiplied colour, alpha) over the source's samples
   std::vector<float> weight;  // Σ w
+
+  explicit pixel_splat(int r = 0);
+  void clear();
+  // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel.
+  void add(const reconstruction_filter& f, vec2 offset, const vec4& value);
 };
 
-// An empty buffer for the tile covering pixels [x0, x1) × [y0, y1).
-splat_tile make_splat_tile(int x0, int y0, int x1, int y1, int reach);
-
-// Adds value, sampled at offset (each coordinate in [0, 1)) inside pixel (px, py), to every
-// pixel of t whose centre lies within the filter's support. The pixel must belong to t's tile.
-void splat_sample(splat_tile& t, const reconstruction_filter& f, int px, int py, vec2 offset,
-                  const vec4& value);
-
-// Sums finished tiles into the image in index order, whatever order they arrive in; a tile's
-// buffer is freed once merged. Not thread-safe: callers serialise add().
-class ordered_tile_merge {
+class splat_film {
  public:
-  ordered_tile_merge(int width, int height, size_t tile_count);
+  splat_film(int width, int height, int tile_size, const reconstruction_filter& f);
 
-  // Takes tile `index`; merges it and every waiting successor once all earlier tiles are in.
-  void add(size_t index, splat_tile tile);
+  int reach() const { return reach_; }
+
+  // Hands over source pixel (x, y)'s contributions. Within a tile, call in raster order; pixels of
+  // different tiles may be added concurrently.
+  void add(int x, int y, const pixel_splat& splat);
 
   // Writes colour = Σ w·L / Σ w into out (0 where no sample has weight). Call after every add().
   void resolve(film& out) const;
 
  private:
-  void merge(const splat_tile& t);
+  bool within_one_tile(int x, int y) const;
 
-  int width_, height_;
-  std::vector<vec4> sum_;
+  int width_, height_, tile_size_, reach_, window_;
+  std::vector<vec4> sum_;  // pixels folded by their own tile
   std::vector<float> weight_;
-  std::vector<splat_tile> waiting_;
-  std::vector<bool> arrived_;
-  size_t next_ = 0;
+  std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere
+  std::vector<vec4> slot_sum_;    // per border pixel, one slot per source, raster order
+  std::vector<float> slot_weight_;
 };
 
 }  // namespace kiln

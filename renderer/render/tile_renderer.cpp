@@ -37,20 +37,22 @@ std::vector<tile> make_tiles(int width, int height, int size) {
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
 // sample decides depth and normal (never filtered, so Z and N stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
-                  int y, splat_tile& splats, film& out, ray_counts& counts) {
+                  int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
+  splat.clear();
   for (int s = 0; s < spp; ++s) {
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), counts);
-    splat_sample(splats, settings.filter, x, y, offset, cs.rgba);
+    splat.add(settings.filter, offset, cs.rgba);
     if (cs.depth < nearest) {
       nearest = cs.depth;
       nearest_normal = cs.normal;
     }
   }
+  splats.add(x, y, splat);
   size_t i = out.index(x, y);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
@@ -68,12 +70,11 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
   const bool adaptive = settings.adaptive.threshold > 0.0f;
-  const int reach = filter_reach(settings.filter);
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
-  ordered_tile_merge splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, adaptive ? 0 : tiles.size());
+  splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
   auto cancelled = [&settings] {
     return settings.cancel && settings.cancel->load(std::memory_order_relaxed);
   };
@@ -103,7 +104,6 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
           for (size_t t = range.begin(); t != range.end(); ++t) {
             const tile& tl = tiles[t];
             ray_counts counts;
-            splat_tile tile_splats;
             if (adaptive) {
               adaptive_scratch& local = scratch.local();
               sample_tracer tracer = [&](double px, double py) { return trace(px, py, counts); };
@@ -119,13 +119,12 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                   out.normal[i] = p.normal;
                 }
             } else {
-              tile_splats = make_splat_tile(tl.x0, tl.y0, tl.x1, tl.y1, reach);
+              pixel_splat splat(splats.reach());
               for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
                 for (int x = tl.x0; x < tl.x1; ++x)
-                  render_pixel(ctx, cam, settings, x, y, tile_splats, out, counts);
+                  render_pixel(ctx, cam, settings, x, y, splat, splats, out, counts);
             }
             std::lock_guard<std::mutex> lock(merge_mutex);
-            if (!adaptive) splats.add(t, std::move(tile_splats));
             total_counts += counts;
             size_t done = ++tiles_done;
             if (progress) progress(done, tiles.size());

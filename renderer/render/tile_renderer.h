@@ -1,7 +1,7 @@
 // The tile scheduler: splits the image into tiles, renders them on a TBB task arena with the
 // requested thread count, and fills the film. Each pixel is computed by exactly one task in a
-// fixed sample order, and filtered samples that reach into other tiles are summed in tile order,
-// so the result does not depend on scheduling.
+// fixed sample order, and filtered samples that reach into other tiles are summed in source
+// pixel order (see splat_film.h), so the result does not depend on scheduling or tile size.
 // Depends on shade (through the accelerator interface) and render; never on a backend.
 #pragma once
 
