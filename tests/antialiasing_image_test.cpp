@@ -1,18 +1,18 @@
 // Reconstruction filters and adaptive supersampling on whole renders: pictures made of unlit
 // polygons placed in image space (a plane facing a pinhole camera maps lines to lines), so every
 // pixel's exact coverage is known and alpha must follow it.
-#include <gtest/gtest.h>
-#include <unistd.h>
-
-#include <cstring>
-#include <filesystem>
-
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/sample_pattern.h"
 #include "render/tile_renderer.h"
 #include "shade/environment.h"
 #include "support/gltf_builder.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
 
 namespace kiln {
 namespace {

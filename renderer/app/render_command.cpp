@@ -1,14 +1,5 @@
 #include "app/render_command.h"
 
-#include <unistd.h>
-
-#include <CLI/CLI.hpp>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <iostream>
-#include <sstream>
-
 #include "accel/make_accelerator.h"
 #include "app/interrupt.h"
 #include "core/error.h"
@@ -17,6 +8,16 @@
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
 
 namespace kiln {
 
@@ -44,9 +45,8 @@ const camera& select_camera(const scene& world, const std::string& which) {
   long index = std::strtol(which.c_str(), &end, 10);
   if (!which.empty() && end && *end == '\0') {
     if (index < 0 || size_t(index) >= world.cameras.size())
-      throw input_error(world.source, "--camera",
-                        "camera index " + which + " out of range (file has " +
-                            std::to_string(world.cameras.size()) + " cameras)");
+      throw input_error(world.source, "--camera", "camera index " + which + " out of range (file has " +
+                                                      std::to_string(world.cameras.size()) + " cameras)");
     return world.cameras[size_t(index)];
   }
   std::string names;
@@ -85,8 +85,7 @@ view_camera choose_view(const render_options& options, const scene& world, std::
     int width = 0, height = 0;
     resolve_image_size(options, 0.0f, width, height);
     description = "look-at";
-    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width,
-                               height);
+    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width, height);
   }
   if (!options.camera.empty() || !world.cameras.empty()) {
     const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
@@ -151,41 +150,36 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
 
 void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
-  app.add_option("--width", o.width,
-                 "Image width in pixels (default 640, or from --height and the camera's aspect)")
+  app.add_option("--width", o.width, "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--height", o.height,
-                 "Image height in pixels (default 480, or from the camera's aspect ratio)")
+  app.add_option("--height", o.height, "Image height in pixels (default 480, or from the camera's aspect ratio)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--spp", o.samples_per_pixel,
-                 "Samples per pixel, stratified and jittered (1 = pixel centre)")
+  app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
-  app.add_option(
-         "--filter", o.filter,
-         "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
-         "1.5 with sigma radius/3, blackman-harris 2)")
+  app.add_option("--filter", o.filter,
+                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+                 "1.5 with sigma radius/3, blackman-harris 2)")
       ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
       ->capture_default_str();
-  app.add_option("--filter-radius", o.filter_radius, "Filter radius in pixels (default: the filter's own)")
-      ->check(CLI::PositiveNumber & CLI::Range(0.0f, 16.0f));
-  app.add_option(
-         "--adaptive-threshold", o.adaptive_threshold,
-         "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
-         "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+  app.add_option_function<float>(
+      "--filter-radius",
+      [&o](float r) {
+        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        o.filter_radius = r;
+      },
+      "Filter radius in pixels, in (0, 16] (default: the filter's own)");
+  app.add_option("--adaptive-threshold", o.adaptive_threshold,
+                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
       ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")
-      ->check(CLI::Range(1, 4096))
-      ->capture_default_str();
-  app.add_option("--camera", o.camera,
-                 "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
   app.add_option_function<std::string>(
       "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
@@ -193,8 +187,7 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--look-at", [&o](const std::string& s) { o.look_at = parse_triple(s, "--look-at"); },
       "Look-at camera target X,Y,Z");
   app.add_option_function<std::string>(
-      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); },
-      "Look-at camera up vector X,Y,Z (default 0,1,0)");
+      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); }, "Look-at camera up vector X,Y,Z (default 0,1,0)");
   app.add_option("--fov", o.fov_degrees, "Look-at camera vertical field of view in degrees")
       ->check(CLI::Range(1e-3, 179.999))
       ->capture_default_str();
@@ -204,29 +197,23 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--background",
       [&o](const std::string& s) {
         dvec3 c = parse_triple(s, "--background");
-        if (c.x < 0 || c.y < 0 || c.z < 0)
-          throw CLI::ValidationError("--background", "colour must be non-negative");
+        if (c.x < 0 || c.y < 0 || c.z < 0) throw CLI::ValidationError("--background", "colour must be non-negative");
         o.background = vec3(c);
       },
       "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)");
-  app.add_option(
-         "--environment", o.environment,
-         "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
+  app.add_option("--environment", o.environment,
+                 "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
       ->check(CLI::ExistingFile);
   app.add_option("--environment-rotation", o.environment_rotation_degrees,
                  "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)")
       ->check(CLI::Range(-36000.0, 36000.0))
       ->capture_default_str();
-  app.add_option("--environment-intensity", o.environment_intensity,
-                 "Scale of the environment map's radiance")
+  app.add_option("--environment-intensity", o.environment_intensity, "Scale of the environment map's radiance")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
-  app.add_flag(
-      "--show-background", o.show_background,
-      "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
-  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")
-      ->check(CLI::Range(0, 64))
-      ->capture_default_str();
+  app.add_flag("--show-background", o.show_background,
+               "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
+  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")->check(CLI::Range(0, 64))->capture_default_str();
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
@@ -247,8 +234,7 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
-  app.add_flag("--float", o.full_float,
-               "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -273,8 +259,7 @@ prepared_scene prepare_scene(const render_options& options) {
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet)
-    for (const std::string& warning : p.world.stats.warnings)
-      std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
 
   p.cam = choose_view(options, p.world, p.camera_description);
   if (p.world.lights.empty()) {
@@ -295,8 +280,7 @@ render_settings make_render_settings(const render_options& options) {
   if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
     throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
-    throw input_error("", "--adaptive-threshold",
-                      "adaptive supersampling averages over the pixel; drop --filter");
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -317,8 +301,7 @@ void run_render(const render_options& options) {
 
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel = make_accelerator(world, *parse_accel_kind(options.accel));
-  double build_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
   render_statistics stats;
@@ -348,15 +331,14 @@ void run_render(const render_options& options) {
       {"kiln/command_line", options.command_line},
   };
   // A signal that arrives after the last pixel still stops the run before anything is written.
-  if (interrupt_requested())
-    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  if (interrupt_requested()) throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
-    const std::string sampling = settings.adaptive.threshold > 0.0f
-                                     ? "adaptive " + sampling_description(settings, true)
-                                     : std::to_string(options.samples_per_pixel) + " spp, " +
-                                           sampling_description(settings, false) + " filter";
+    const std::string sampling =
+        settings.adaptive.threshold > 0.0f
+            ? "adaptive " + sampling_description(settings, true)
+            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
                  "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",

@@ -6,10 +6,10 @@
 // Depends on core and render only; the tracing is a callback.
 #pragma once
 
+#include "render/camera_sample.h"
+
 #include <functional>
 #include <vector>
-
-#include "render/camera_sample.h"
 
 namespace kiln {
 

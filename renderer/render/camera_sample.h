@@ -3,10 +3,10 @@
 // Depends on shade and render; never on a backend.
 #pragma once
 
-#include <cstdint>
-
 #include "render/view_camera.h"
 #include "shade/whitted.h"
+
+#include <cstdint>
 
 namespace kiln {
 

@@ -2,9 +2,9 @@
 // Depends on core only. Colour is premultiplied linear Rec.709 RGBA.
 #pragma once
 
-#include <vector>
-
 #include "core/math.h"
+
+#include <vector>
 
 namespace kiln {
 
@@ -17,10 +17,7 @@ struct film {
 
   film() = default;
   film(int w, int h)
-      : width(w),
-        height(h),
-        color(size_t(w) * h, vec4(0.0f)),
-        depth(size_t(w) * h, inf),
+      : width(w), height(h), color(size_t(w) * h, vec4(0.0f)), depth(size_t(w) * h, inf),
         normal(size_t(w) * h, vec3(0.0f)) {}
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }

@@ -1,5 +1,11 @@
 #include "render/tile_renderer.h"
 
+#include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/sample_pattern.h"
+#include "render/splat_film.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -12,12 +18,6 @@
 #include <mutex>
 #include <vector>
 
-#include "core/error.h"
-#include "render/adaptive_sampling.h"
-#include "render/camera_sample.h"
-#include "render/sample_pattern.h"
-#include "render/splat_film.h"
-
 namespace kiln {
 
 namespace {
@@ -29,8 +29,7 @@ struct tile {
 std::vector<tile> make_tiles(int width, int height, int size) {
   std::vector<tile> tiles;
   for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size)
-      tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+    for (int x = 0; x < width; x += size) tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
   return tiles;
 }
 
@@ -58,11 +57,51 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   out.normal[i] = nearest_normal;
 }
 
+bool cancel_requested(const render_settings& s) {
+  return s.cancel && s.cancel->load(std::memory_order_relaxed);
+}
+
+// What every tile task reads (and the outputs it writes its own pixels of).
+struct tile_job {
+  const shading_context& ctx;
+  const view_camera& cam;
+  const render_settings& settings;
+  film& out;
+  splat_film& splats;
+  const std::vector<camera_sample>& corners;  // adaptive only: (W+1)×(H+1) pixel corners
+};
+
+// Stratified samples, splatted through the reconstruction filter.
+void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
+  pixel_splat splat(job.splats.reach());
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+    for (int x = tl.x0; x < tl.x1; ++x)
+      render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+}
+
+// Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
+void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
+  const size_t row = size_t(job.cam.width) + 1;
+  sample_tracer trace = [&](double px, double py) {
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, counts);
+  };
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+    for (int x = tl.x0; x < tl.x1; ++x) {
+      const size_t c = y * row + x;
+      const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
+                                        job.corners[c + row + 1]};
+      adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
+      size_t i = job.out.index(x, y);
+      job.out.color[i] = p.rgba;
+      job.out.depth[i] = p.depth;
+      job.out.normal[i] = p.normal;
+    }
+}
+
 }  // namespace
 
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
-                  const render_settings& settings, render_statistics* stats,
-                  const progress_callback& progress) {
+                  const render_settings& settings, render_statistics* stats, const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
   film out(cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
@@ -70,66 +109,43 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
   const bool adaptive = settings.adaptive.threshold > 0.0f;
+  splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
+  std::vector<camera_sample> corners;
+  const tile_job job{ctx, cam, settings, out, splats, corners};
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
-  splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
-  auto cancelled = [&settings] {
-    return settings.cancel && settings.cancel->load(std::memory_order_relaxed);
-  };
-  auto trace = [&](double px, double py, ray_counts& counts) {
-    return trace_camera_sample(ctx, cam, settings.show_background, px, py, counts);
-  };
-
+  auto cancelled = [&settings] { return cancel_requested(settings); };
   tbb::task_arena arena(threads);
   arena.execute([&] {
     // Adaptive sampling starts from the (W+1)×(H+1) pixel corners, each traced once.
-    std::vector<camera_sample> corners;
-    const size_t corner_row = size_t(cam.width) + 1;
     if (adaptive) {
-      corners.resize(corner_row * (size_t(cam.height) + 1));
+      const size_t row = size_t(cam.width) + 1;
+      corners.resize(row * (size_t(cam.height) + 1));
       tbb::parallel_for(0, cam.height + 1, [&](int y) {
-        if (cancelled()) return;
         ray_counts counts;
-        for (int x = 0; x <= cam.width; ++x) corners[y * corner_row + x] = trace(x, y, counts);
+        for (int x = 0; x <= cam.width && !cancelled(); ++x)
+          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
-
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-          for (size_t t = range.begin(); t != range.end(); ++t) {
-            const tile& tl = tiles[t];
-            ray_counts counts;
-            if (adaptive) {
-              adaptive_scratch& local = scratch.local();
-              sample_tracer tracer = [&](double px, double py) { return trace(px, py, counts); };
-              for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-                for (int x = tl.x0; x < tl.x1; ++x) {
-                  const size_t c = y * corner_row + x;
-                  const camera_sample pixel_corners[4] = {corners[c], corners[c + 1], corners[c + corner_row],
-                                                          corners[c + corner_row + 1]};
-                  adaptive_pixel p = refine_pixel(x, y, pixel_corners, settings.adaptive, tracer, local);
-                  size_t i = out.index(x, y);
-                  out.color[i] = p.rgba;
-                  out.depth[i] = p.depth;
-                  out.normal[i] = p.normal;
-                }
-            } else {
-              pixel_splat splat(splats.reach());
-              for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-                for (int x = tl.x0; x < tl.x1; ++x)
-                  render_pixel(ctx, cam, settings, x, y, splat, splats, out, counts);
-            }
-            std::lock_guard<std::mutex> lock(merge_mutex);
-            total_counts += counts;
-            size_t done = ++tiles_done;
-            if (progress) progress(done, tiles.size());
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t t = range.begin(); t != range.end(); ++t) {
+        const tile& tl = tiles[t];
+        ray_counts counts;
+        if (adaptive)
+          render_adaptive_tile(job, tl, scratch.local(), counts);
+        else
+          render_filtered_tile(job, tl, counts);
+        std::lock_guard<std::mutex> lock(merge_mutex);
+        total_counts += counts;
+        size_t done = ++tiles_done;
+        if (progress) progress(done, tiles.size());
+      }
+    });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");

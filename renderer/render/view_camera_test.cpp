@@ -1,10 +1,10 @@
 #include "render/view_camera.h"
 
+#include "core/error.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-
-#include "core/error.h"
 
 namespace kiln {
 namespace {
@@ -53,8 +53,7 @@ TEST(view_camera, image_corners_span_the_field_of_view) {
 TEST(view_camera, gltf_camera_looks_down_its_negative_z) {
   camera c;
   c.yfov = 0.5f;
-  c.world_from_camera =
-      glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
+  c.world_from_camera = glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
   view_camera cam = make_gltf_camera(c, 32, 32);
   ray r = generate_camera_ray(cam, 16.0, 16.0);
   // Rotating -Z by +90° about Y gives -X.
