@@ -165,6 +165,16 @@ std::string format_vec(const vec3& v) {
   return out.str();
 }
 
+// "gaussian 1.5" (the filter and its radius), or "threshold 0.1, depth 2" for adaptive sampling.
+std::string sampling_description(const render_settings& s, bool adaptive) {
+  std::ostringstream out;
+  if (adaptive)
+    out << "threshold " << s.adaptive.threshold << ", depth " << s.adaptive.max_depth;
+  else
+    out << filter_name(s.filter.kind) << ' ' << s.filter.radius;
+  return out.str();
+}
+
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
@@ -175,6 +185,26 @@ void add_view_options(CLI::App& app, render_options& o) {
       ->check(CLI::Range(1, max_image_side));
   app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  app.add_option("--filter", o.filter,
+                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+                 "1.5 with sigma radius/3, blackman-harris 2)")
+      ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
+      ->capture_default_str();
+  app.add_option_function<float>(
+      "--filter-radius",
+      [&o](float r) {
+        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        o.filter_radius = r;
+      },
+      "Filter radius in pixels, in (0, 16] (default: the filter's own)");
+  app.add_option("--adaptive-threshold", o.adaptive_threshold,
+                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->capture_default_str();
+  app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
+      ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
   app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
   app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
@@ -301,6 +331,15 @@ prepared_scene prepare_scene(const render_options& options) {
 render_settings make_render_settings(const render_options& options) {
   render_settings settings;
   settings.samples_per_pixel = options.samples_per_pixel;
+  settings.filter.kind = parse_filter_kind(options.filter).value_or(filter_kind::box);
+  settings.filter.radius = options.filter_radius.value_or(default_filter_radius(settings.filter.kind));
+  settings.adaptive.threshold = options.adaptive_threshold;
+  settings.adaptive.max_depth = options.adaptive_depth;
+  // Adaptive sampling places its own samples and averages them over the pixel's square.
+  if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
+  if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -344,6 +383,8 @@ void run_render(const render_options& options) {
       {"kiln/camera", camera_description},
       {"kiln/accelerator", options.accel},
       {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
+      {"kiln/filter", sampling_description(settings, false)},
+      {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},
       {"kiln/depth", "ray distance"},
@@ -355,10 +396,14 @@ void run_render(const render_options& options) {
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
+    const std::string sampling =
+        settings.adaptive.threshold > 0.0f
+            ? "adaptive " + sampling_description(settings, true)
+            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
-                 "kiln: %dx%d, %d spp, %d threads: load %.3f s, build %.3f s, render %.3f s "
+                 "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",
-                 cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds, build_seconds,
+                 cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
                  options.output.c_str());

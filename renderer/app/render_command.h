@@ -24,6 +24,10 @@ struct render_options {
   std::optional<int> width;
   std::optional<int> height;
   int samples_per_pixel = 1;
+  std::string filter = "box";          // box | tent | gaussian | blackman-harris
+  std::optional<float> filter_radius;  // empty: the filter's default radius
+  float adaptive_threshold = 0.0f;     // > 0: Whitted's adaptive supersampling instead of --spp
+  int adaptive_depth = 2;
   int threads = 0;
   int tile_size = 32;
   std::string camera;  // glTF camera name or index; empty: the first camera, else a default view
