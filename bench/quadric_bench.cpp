@@ -1,6 +1,6 @@
 // ns per ray for every quadric kind through the Embree backend, against tessellated meshes of
-// comparable visual quality (sagitta below 1e-3 of the radius: a 128×64 sphere, 128-segment
-// cylinder, 128×48 torus), the bare intersection math without Embree, and the torus solver's
+// comparable visual quality (every kind, caps included; chord sagitta below 1e-3 of the local
+// radius of curvature, see tessellated()), the bare intersection math without Embree, and the torus solver's
 // cost and failure rate against a brute-force reference (plain and grazing rays, near and far),
 // for kiln's root-isolating solver (0), a closed-form Ferrari solver (1) and the closed form with
 // Newton polishing (2). torus_accuracy args: distance, grazing, solver.
@@ -8,6 +8,7 @@
 //   build/bench/quadric_bench --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -49,38 +50,140 @@ quadric make(quadric_kind kind) {
   return q;
 }
 
-// Triangulated surface of revolution: ring i at parameter v_i, point(u, v) given.
+// Meshes of comparable visual quality, one criterion for all: every chord's sagitta is below
+// 1e-3 of the local radius of curvature of the curve it cuts. Around the axis that is 72
+// segments (1 − cos(π/72) = 9.5e-4 of the ring radius); along a curved meridian, rings placed so
+// each segment turns the tangent by at most 2π/72 (sagitta ≈ θ²/8 = 9.5e-4 of the curvature
+// radius); straight meridians (cylinder, cone) get one segment. Caps are fans of 72 triangles.
+constexpr int around = 72;
+constexpr double two_pi = 6.283185307179586;
+constexpr double max_turn = two_pi / around;
+
+// Rings at meridian parameters vs ∈ [0, 1] of the curve meridian(v) = (ρ, z), revolved about z.
 template <typename F>
-mesh revolve(int segments, int rings, F point) {
-  mesh m;
-  for (int j = 0; j <= rings; ++j)
-    for (int i = 0; i < segments; ++i) {
-      const dvec3 p = point(6.283185307 * i / segments, double(j) / rings);
-      m.positions.push_back(vec3(p));
-      m.bounds.extend(p);
+void revolve(mesh& m, const std::vector<double>& vs, F meridian) {
+  const uint32_t first = uint32_t(m.positions.size());
+  for (double v : vs) {
+    const dvec2 rz = meridian(v);
+    for (int i = 0; i < around; ++i) {
+      const double u = two_pi * i / around;
+      m.positions.push_back(vec3(dvec3(rz.x * std::cos(u), rz.x * std::sin(u), rz.y)));
     }
-  for (int j = 0; j < rings; ++j)
-    for (int i = 0; i < segments; ++i) {
-      const uint32_t a = uint32_t(j * segments + i), b = uint32_t(j * segments + (i + 1) % segments);
-      const uint32_t c = a + uint32_t(segments), d = b + uint32_t(segments);
+  }
+  for (size_t j = 0; j + 1 < vs.size(); ++j)
+    for (int i = 0; i < around; ++i) {
+      const uint32_t a = first + uint32_t(j * around + i),
+                     b = first + uint32_t(j * around + (i + 1) % around);
+      const uint32_t c = a + uint32_t(around), d = b + uint32_t(around);
       m.indices.insert(m.indices.end(), {a, b, d, a, d, c});
     }
-  return m;
 }
 
+// Ring parameters along meridian(v) such that each segment turns its tangent by at most
+// max_turn (the tangent angle is tracked on a fine sampling of v).
+template <typename F>
+std::vector<double> rings_for(F meridian) {
+  const int fine = 20000;
+  std::vector<double> turned(fine + 1, 0.0);
+  double previous = 0.0;
+  for (int k = 0; k < fine; ++k) {
+    const dvec2 step = meridian(double(k + 1) / fine) - meridian(double(k) / fine);
+    const double angle = std::atan2(step.y, step.x);
+    double delta = k == 0 ? 0.0 : std::abs(angle - previous);
+    if (delta > two_pi / 2.0) delta = two_pi - delta;
+    turned[size_t(k) + 1] = turned[size_t(k)] + delta;
+    previous = angle;
+  }
+  const int segments = std::max(1, int(std::ceil(turned[fine] / max_turn - 1e-9)));
+  std::vector<double> vs{0.0};
+  size_t k = 0;
+  for (int j = 1; j < segments; ++j) {
+    while (turned[k] < turned[fine] * j / segments) ++k;
+    vs.push_back(double(k) / fine);
+  }
+  vs.push_back(1.0);
+  return vs;
+}
+
+template <typename F>
+void revolve_curve(mesh& m, F meridian) {
+  revolve(m, rings_for(meridian), meridian);
+}
+
+// A disk at height z of the given radius: a fan around its centre.
+void add_fan(mesh& m, double z, double radius) {
+  const uint32_t centre = uint32_t(m.positions.size());
+  m.positions.push_back(vec3(0.0f, 0.0f, float(z)));
+  for (int i = 0; i < around; ++i) {
+    const double u = two_pi * i / around;
+    m.positions.push_back(vec3(dvec3(radius * std::cos(u), radius * std::sin(u), z)));
+  }
+  for (int i = 0; i < around; ++i)
+    m.indices.insert(m.indices.end(),
+                     {centre, centre + 1 + uint32_t(i), centre + 1 + uint32_t((i + 1) % around)});
+}
+
+dvec2 sphere_meridian(double v) { return dvec2(std::sin(two_pi / 2.0 * v), -std::cos(two_pi / 2.0 * v)); }
+
+// The mesh counterpart of make(kind), caps included where the quadric has them.
 mesh tessellated(quadric_kind kind) {
-  if (kind == quadric_kind::sphere)
-    return revolve(128, 64, [](double u, double v) {
-      const double th = 3.14159265 * v;
-      return dvec3(std::sin(th) * std::cos(u), std::sin(th) * std::sin(u), -std::cos(th));
-    });
-  if (kind == quadric_kind::cylinder)
-    return revolve(128, 1, [](double u, double v) { return dvec3(std::cos(u), std::sin(u), 2.0 * v - 1.0); });
-  return revolve(128, 48, [](double u, double v) {
-    const double th = 6.283185307 * v;
-    return dvec3((0.75 + 0.25 * std::cos(th)) * std::cos(u), (0.75 + 0.25 * std::cos(th)) * std::sin(u),
-                 0.25 * std::sin(th));
-  });
+  const quadric q = make(kind);
+  mesh m;
+  auto caps = [&] {
+    for (double z : {q.zmin, q.zmax})
+      if (quadric_radius_at(q, z) > 0.0) add_fan(m, z, quadric_radius_at(q, z));
+  };
+  switch (kind) {
+    case quadric_kind::sphere:
+      revolve_curve(m, sphere_meridian);
+      break;
+    case quadric_kind::general:  // x² + 2y² + 4z² = 1: the sphere mesh scaled by (1, 1/√2, 1/2)
+      revolve_curve(m, sphere_meridian);
+      for (vec3& p : m.positions) p *= vec3(1.0f, float(1.0 / std::sqrt(2.0)), 0.5f);
+      break;
+    case quadric_kind::cylinder:
+      revolve_curve(m, [&](double v) { return dvec2(q.radius, q.zmin + (q.zmax - q.zmin) * v); });
+      caps();
+      break;
+    case quadric_kind::cone:
+      revolve_curve(m, [&](double v) {
+        const double z = q.zmin + (q.zmax - q.zmin) * v;
+        return dvec2(quadric_radius_at(q, z), z);
+      });
+      caps();
+      break;
+    case quadric_kind::paraboloid:  // by radius: z = zmax·(ρ/r)²
+      revolve_curve(m, [&](double v) { return dvec2(q.radius * v, q.zmax * v * v); });
+      caps();
+      break;
+    case quadric_kind::hyperboloid_one_sheet:
+      revolve_curve(m, [&](double v) {
+        const double z = q.zmin + (q.zmax - q.zmin) * v;
+        return dvec2(quadric_radius_at(q, z), z);
+      });
+      caps();
+      break;
+    case quadric_kind::hyperboloid_two_sheets: {  // each sheet by radius, from its vertex to the rim
+      const double rim = quadric_radius_at(q, q.zmax);
+      for (double sheet : {1.0, -1.0})
+        revolve_curve(m, [&](double v) {
+          const double rho = rim * v;
+          return dvec2(rho, sheet * q.c * std::sqrt(1.0 + rho * rho / (q.radius * q.radius)));
+        });
+      caps();
+      break;
+    }
+    case quadric_kind::disk:
+      add_fan(m, 0.0, q.radius);
+      break;
+    case quadric_kind::torus:
+      revolve_curve(m, [&](double v) {
+        return dvec2(q.major_radius + q.radius * std::cos(two_pi * v), q.radius * std::sin(two_pi * v));
+      });
+      break;
+  }
+  for (const vec3& p : m.positions) m.bounds.extend(dvec3(p));
+  return m;
 }
 
 // Rays from 5 units away aimed into the bounds: a realistic mix of hits and misses.
@@ -180,7 +283,7 @@ void register_all() {
     benchmark::RegisterBenchmark((std::string("math_only/") + kind_names[k]).c_str(), bm_quadric_math)
         ->Arg(k);
   }
-  for (int k : {int(quadric_kind::sphere), int(quadric_kind::cylinder), int(quadric_kind::torus)})
+  for (int k = 0; k < 9; ++k)
     benchmark::RegisterBenchmark((std::string("embree_mesh/") + kind_names[k]).c_str(), bm_mesh_embree)
         ->Arg(k);
   for (int solver : {0, 1, 2}) benchmark::RegisterBenchmark("torus_solver", bm_torus_solver)->Arg(solver);

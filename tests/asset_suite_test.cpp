@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -60,7 +62,8 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
   const std::set<std::string> supported = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
                                            "KHR_materials_ior",          "KHR_materials_specular",
                                            "KHR_materials_transmission", "KHR_materials_volume",
-                                           "KHR_texture_transform",      "KHR_materials_unlit"};
+                                           "KHR_texture_transform",      "KHR_materials_unlit",
+                                           "KHR_mesh_quantization",      "EXT_mesh_gpu_instancing"};
   std::string unsupported;
   for (const std::string& e : required_extensions(file))
     if (!supported.count(e)) unsupported = e;
@@ -93,6 +96,47 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
     }
   }
   EXPECT_GT(covered, 0u) << "no geometry in view";
+}
+
+// RGB of a rendered EXR, or empty when it cannot be read.
+std::vector<float> read_rgb(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> rgb(size_t(spec.width) * spec.height * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data())) return {};
+  return rgb;
+}
+
+// KHR_mesh_quantization: the quantized Duck (integer positions, normals and UVs dequantized by
+// its node transform and KHR_texture_transform) renders like the float Duck from the same camera,
+// up to a few silhouette pixels where a vertex moved by less than one quantization step.
+TEST(asset_renders, quantized_duck_renders_like_the_float_duck) {
+  fs::path root(KILN_SHARED_ASSETS);
+  if (!fs::exists(root / "Duck/glTF-Quantized/Duck.gltf")) GTEST_SKIP() << "../shared/assets is absent";
+  const std::string folder = testing::scratch_folder("quantized_duck");
+  std::vector<float> images[2];
+  const char* files[2] = {"Duck/glTF-Binary/Duck.glb", "Duck/glTF-Quantized/Duck.gltf"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string out = folder + "/duck" + std::to_string(i) + ".exr";
+    auto result = testing::run_kiln({"render", (root / files[i]).string(), "-o", out, "--width", "128", "--height",
+                                     "128", "--threads", "2", "-q"});
+    ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+    images[i] = read_rgb(out);
+    ASSERT_EQ(images[i].size(), size_t(128) * 128 * 3);
+  }
+  size_t differing = 0, lit = 0;
+  double total = 0.0;
+  for (size_t p = 0; p < images[0].size() / 3; ++p) {
+    float worst = 0.0f;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(images[0][3 * p + c] - images[1][3 * p + c]));
+    differing += worst > 0.02f;
+    lit += images[0][3 * p] + images[0][3 * p + 1] + images[0][3 * p + 2] > 0.0f;
+    total += worst;
+  }
+  EXPECT_GT(lit, 1000u);  // the duck fills a good part of the frame
+  EXPECT_LE(differing, 10u);
+  EXPECT_LT(total / double(images[0].size() / 3), 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(shared_assets, asset_suite, ::testing::ValuesIn(asset_files()),

@@ -29,7 +29,8 @@ TEST(cli, help_documents_every_render_option) {
   std::string help((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const char* option : {"--output", "--width", "--height", "--spp", "--threads", "--tile-size", "--camera",
                              "--look-from", "--look-at", "--up", "--fov", "--scene", "--float", "--environment",
-                             "--environment-rotation", "--environment-intensity"})
+                             "--environment-rotation", "--environment-intensity", "--filter", "--filter-radius",
+                             "--adaptive-threshold", "--adaptive-depth"})
     EXPECT_NE(help.find(option), std::string::npos) << option;
 }
 
@@ -39,7 +40,16 @@ TEST(cli, usage_errors_exit_2_with_one_line) {
                                              {"render", demo_scene},
                                              {"render", demo_scene, "-o", "x.exr", "--spp", "0"},
                                              {"render", demo_scene, "-o", "x.exr", "--look-from", "1,2"},
-                                             {"render", demo_scene, "-o", "x.exr", "--width", "-5"}}) {
+                                             {"render", demo_scene, "-o", "x.exr", "--width", "-5"},
+                                             {"render", demo_scene, "-o", "x.exr", "--filter", "lanczos"},
+                                             {"render", demo_scene, "-o", "x.exr", "--filter-radius", "0"},
+                                             {"render", demo_scene, "-o", "x.exr", "--filter-radius", "-1"},
+                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "-1"},
+                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-depth", "99"},
+                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1",
+                                              "--spp", "4"},
+                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1",
+                                              "--filter", "tent"}}) {
     auto result = run_kiln(args);
     EXPECT_EQ(result.exit_code, 2) << args.back();
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
@@ -61,6 +71,38 @@ TEST(cli, glass_showcase_renders_with_its_environment_map) {
   EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("--environment"), std::string::npos) << result.stderr_text;
   EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+}
+
+// The header attribute `name` of an EXR file, or "" when it has none.
+std::string exr_attribute(const std::string& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path);
+  return in ? in->spec().get_string_attribute(name) : "";
+}
+
+TEST(cli, filter_and_adaptive_sampling_are_recorded_and_reported) {
+  std::string dir = scratch_folder("filter");
+  auto result = run_kiln({"render", demo_scene, "-o", dir + "/g.exr", "--width", "32", "--spp", "4",
+                          "--filter", "gaussian", "--filter-radius", "1.25"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(exr_attribute(dir + "/g.exr", "kiln/filter"), "gaussian 1.25");
+  EXPECT_EQ(exr_attribute(dir + "/g.exr", "kiln/adaptive"), "off");
+  EXPECT_NE(result.stderr_text.find("4 spp, gaussian 1.25 filter"), std::string::npos) << result.stderr_text;
+  // The default radius of the named filter.
+  result = run_kiln(
+      {"render", demo_scene, "-o", dir + "/b.exr", "--width", "32", "--filter", "blackman-harris", "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(exr_attribute(dir + "/b.exr", "kiln/filter"), "blackman-harris 2");
+  result = run_kiln({"render", demo_scene, "-o", dir + "/a.exr", "--width", "32", "--height", "24",
+                     "--adaptive-threshold", "0.05", "--adaptive-depth", "3"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(exr_attribute(dir + "/a.exr", "kiln/adaptive"), "threshold 0.05, depth 3");
+  EXPECT_NE(result.stderr_text.find("adaptive threshold 0.05, depth 3"), std::string::npos)
+      << result.stderr_text;
+  // At least the 33×25 pixel corners, and more where edges split pixels.
+  size_t at = result.stderr_text.find(" camera,");
+  ASSERT_NE(at, std::string::npos) << result.stderr_text;
+  size_t start = result.stderr_text.rfind('(', at);
+  EXPECT_GT(std::stoull(result.stderr_text.substr(start + 1, at - start - 1)), 33ull * 25);
 }
 
 TEST(cli, impossible_camera_is_bad_input) {

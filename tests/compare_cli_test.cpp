@@ -79,6 +79,59 @@ TEST(compare_cli, adaptive_grid_against_grid_and_bad_backend_names) {
   EXPECT_EQ(result.exit_code, 2);
 }
 
+// --grid-* reach the grid backends: the JSON report's structure sizes follow them, and the
+// adaptive grid, however it is subdivided, still agrees with the uniform grid.
+TEST(compare_cli, grid_options_shape_the_grids_and_keep_agreement) {
+  const std::string folder = scratch_folder("compare_grid_options");
+  auto structure = [&](const std::vector<std::string>& grid_arguments, nlohmann::json& report) {
+    const std::string json = folder + "/report.json";
+    std::vector<std::string> arguments = {
+        "compare",   demo_scene, "--width", "48", "--accel", "adaptive-grid",
+        "--against", "grid",     "--json",  json, "-q"};
+    arguments.insert(arguments.end(), grid_arguments.begin(), grid_arguments.end());
+    auto result = run_kiln(arguments);
+    EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+    report = read_json(json);
+    EXPECT_EQ(report["mismatches"], 0);
+  };
+  nlohmann::json flat, deep, fixed;
+  structure({"--grid-max-depth", "0"}, flat);
+  structure({"--grid-max-depth", "3", "--grid-max-items", "1"}, deep);
+  structure({"--grid-resolution", "4", "--grid-max-depth", "2"}, fixed);
+
+  // Depth 0: the adaptive grid is the uniform one, one node per grid.
+  EXPECT_EQ(flat["grid_options"]["max_depth"], 0);
+  EXPECT_EQ(flat["structure"]["accel"]["nodes"], flat["structure"]["against"]["nodes"]);
+  EXPECT_EQ(flat["structure"]["accel"]["cells"], flat["structure"]["against"]["cells"]);
+  // Depth 3 with cells of at most one item: many child nodes; the uniform grid ignores the depth.
+  EXPECT_EQ(deep["grid_options"]["max_items"], 1);
+  EXPECT_EQ(deep["structure"]["against"]["nodes"], flat["structure"]["against"]["nodes"]);
+  EXPECT_GT(deep["structure"]["accel"]["nodes"].get<uint64_t>(),
+            2 * deep["structure"]["against"]["nodes"].get<uint64_t>());
+  // A fixed 4³ resolution for every grid: the uniform grids have exactly 64 cells per node.
+  EXPECT_EQ(fixed["grid_options"]["resolution"], nlohmann::json::array({4, 4, 4}));
+  EXPECT_EQ(fixed["structure"]["against"]["cells"].get<uint64_t>(),
+            64 * fixed["structure"]["against"]["nodes"].get<uint64_t>());
+  EXPECT_TRUE(fixed["structure"]["accel"].is_object());
+}
+
+TEST(compare_cli, bad_grid_options_exit_2_with_one_line) {
+  const std::vector<std::vector<std::string>> bad = {
+      {"--grid-max-depth", "7"},    {"--grid-max-depth", "-1"},   {"--grid-max-items", "0"},
+      {"--grid-density", "0"},      {"--grid-density", "nan"},    {"--grid-resolution", "0"},
+      {"--grid-resolution", "300"}, {"--grid-resolution", "2,3"}, {"--grid-resolution", "4,4,x"}};
+  const std::string unused = scratch_folder("bad_grid_options") + "/unused.exr";
+  for (const char* command : {"render", "compare"})
+    for (const auto& option : bad) {
+      std::vector<std::string> arguments = {command, demo_scene, "-q", option[0], option[1]};
+      if (std::string(command) == "render") arguments.insert(arguments.end(), {"-o", unused});
+      auto result = run_kiln(arguments);
+      EXPECT_EQ(result.exit_code, 2) << command << " " << option[0] << " " << option[1];
+      EXPECT_EQ(testing::lines(result.stderr_text).size(), 1u) << result.stderr_text;
+      EXPECT_NE(result.stderr_text.find(option[0]), std::string::npos) << result.stderr_text;
+    }
+}
+
 // The grid-rendered image matches the Embree-rendered one almost everywhere.
 TEST(compare_cli, render_with_grid_backend_matches_embree_image) {
   const std::string folder = scratch_folder("render_accel");

@@ -65,5 +65,20 @@ TEST(determinism, cli_thread_count_does_not_change_pixels) {
   EXPECT_TRUE(same_bytes(pa, pb));
 }
 
+TEST(determinism, cli_gaussian_filter_gives_identical_bytes_for_any_threads_and_tiles) {
+  std::string dir = testing::scratch_folder("determinism_filter");
+  std::vector<std::vector<float>> images;
+  for (auto [threads, tile] : {std::pair{"1", "32"}, {"4", "5"}, {"4", "13"}}) {
+    std::string out = dir + "/g" + threads + "_" + tile + ".exr";
+    auto r = testing::run_kiln({"render", demo_scene, "-o", out, "--width", "64", "--spp", "3", "--filter",
+                                "gaussian", "--threads", threads, "--tile-size", tile, "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    images.push_back(read_pixels(out));
+    ASSERT_FALSE(images.back().empty());
+  }
+  EXPECT_TRUE(same_bytes(images[0], images[1]));
+  EXPECT_TRUE(same_bytes(images[0], images[2]));
+}
+
 }  // namespace
 }  // namespace kiln

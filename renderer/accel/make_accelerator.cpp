@@ -23,16 +23,20 @@ std::optional<accel_kind> parse_accel_kind(const std::string& name) {
   return std::nullopt;
 }
 
-std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind) {
-  switch (kind) {
-    case accel_kind::embree:
-      return std::make_unique<embree_accelerator>(s);
-    case accel_kind::grid:
-      return std::make_unique<grid_accelerator>(s, uniform_grid_options());
-    case accel_kind::adaptive_grid:
-      return std::make_unique<grid_accelerator>(s, adaptive_grid_options());
-  }
-  return std::make_unique<embree_accelerator>(s);
+grid_options grid_options_for(accel_kind kind, const grid_options& grid) {
+  grid_options o = grid;
+  if (kind == accel_kind::grid) o.max_depth = 0;
+  return o;
+}
+
+std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind, const grid_options& grid) {
+  if (kind == accel_kind::embree) return std::make_unique<embree_accelerator>(s);
+  return std::make_unique<grid_accelerator>(s, grid_options_for(kind, grid));
+}
+
+std::optional<grid_statistics> accelerator_grid_statistics(const accelerator& accel) {
+  if (const auto* g = dynamic_cast<const grid_accelerator*>(&accel)) return g->statistics();
+  return std::nullopt;
 }
 
 }  // namespace kiln

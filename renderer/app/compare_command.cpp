@@ -58,8 +58,28 @@ nlohmann::json hit_json(const std::optional<hit>& h) {
       {"t", h->t}, {"instance", h->instance_id}, {"primitive", h->primitive_id}, {"u", h->u}, {"v", h->v}};
 }
 
-nlohmann::json report_json(const compare_options& o, const view_camera& cam,
-                           const comparison_statistics& rays, const image_difference& image, bool agree) {
+// Sizes of a grid backend's structure (null for Embree), so a report shows what --grid-* built.
+nlohmann::json structure_json(const accelerator& accel) {
+  std::optional<grid_statistics> g = accelerator_grid_statistics(accel);
+  if (!g) return nullptr;
+  return {{"nodes", g->nodes},
+          {"cells", g->cells},
+          {"item_references", g->item_references},
+          {"memory_bytes", g->memory_bytes}};
+}
+
+nlohmann::json grid_options_json(const grid_options& g) {
+  nlohmann::json resolution = nullptr;
+  if (g.resolution) resolution = {g.resolution->x, g.resolution->y, g.resolution->z};
+  return {{"density", g.density},
+          {"resolution", resolution},
+          {"max_items", g.max_items_per_cell},
+          {"max_depth", g.max_depth}};
+}
+
+nlohmann::json report_json(const compare_options& o, const view_camera& cam, const accelerator& tested,
+                           const accelerator& reference, const comparison_statistics& rays,
+                           const image_difference& image, bool agree) {
   nlohmann::json kinds = nlohmann::json::object();
   for (ray_kind k :
        {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction, ray_kind::other}) {
@@ -91,6 +111,8 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam,
           {"width", cam.width},
           {"height", cam.height},
           {"samples_per_pixel", o.view.samples_per_pixel},
+          {"grid_options", grid_options_json(o.view.grid)},
+          {"structure", {{"accel", structure_json(tested)}, {"against", structure_json(reference)}}},
           {"rays", kinds},
           {"mismatches", rays.mismatches()},
           {"max_mismatches", o.max_mismatches},
@@ -104,9 +126,16 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam,
           {"agree", agree}};
 }
 
-void print_summary(const compare_options& o, const comparison_statistics& rays, const image_difference& image,
-                   bool agree) {
+void print_summary(const compare_options& o, const accelerator& tested, const accelerator& reference,
+                   const comparison_statistics& rays, const image_difference& image, bool agree) {
   std::fprintf(stderr, "kiln compare: %s against %s\n", o.accel.c_str(), o.against.c_str());
+  auto print_structure = [](const std::string& name, const accelerator& accel) {
+    if (std::optional<grid_statistics> g = accelerator_grid_statistics(accel))
+      std::fprintf(stderr, "  %s: %zu nodes, %zu cells, %zu item references, %.1f MB\n", name.c_str(),
+                   g->nodes, g->cells, g->item_references, double(g->memory_bytes) / 1e6);
+  };
+  print_structure(o.accel, tested);
+  print_structure(o.against, reference);
   std::fprintf(stderr, "  %-11s %12s %12s %12s %8s %8s %14s\n", "ray kind", "rays", "hit mism.",
                "occl. mism.", "ties", "edges", "max |dt|/t");
   for (ray_kind k : {ray_kind::camera, ray_kind::shadow, ray_kind::reflection, ray_kind::refraction}) {
@@ -145,8 +174,8 @@ int run_compare(const compare_options& o) {
   if (!o.json.empty()) check_output_writable(o.json);
   prepared_scene prepared = prepare_scene(o.view);
   const scene& world = prepared.world;
-  std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel));
-  std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against));
+  std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid);
+  std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against), o.view.grid);
   const render_settings settings = make_render_settings(o.view);
 
   // One render asks both backends every query; a second renders the reference image alone.
@@ -155,7 +184,7 @@ int run_compare(const compare_options& o) {
   const film reference_image = render_image(world, *reference, prepared.cam, settings);
   const comparison_statistics rays = both.statistics();
   const image_difference image = compare_images(tested_image, reference_image, o.pixel_tolerance);
-  const bool agree = rays.mismatches() <= o.max_mismatches;
+  const bool agree = backends_agree(rays, o.max_mismatches);
 
   if (!o.mask.empty()) {
     exr_metadata metadata;
@@ -166,10 +195,10 @@ int run_compare(const compare_options& o) {
   }
   if (!o.json.empty()) {
     std::ofstream out(o.json);
-    out << report_json(o, prepared.cam, rays, image, agree).dump(2) << '\n';
+    out << report_json(o, prepared.cam, *tested, *reference, rays, image, agree).dump(2) << '\n';
     if (!out) throw io_error(o.json, "cannot write the JSON report");
   }
-  if (!o.view.quiet) print_summary(o, rays, image, agree);
+  if (!o.view.quiet) print_summary(o, *tested, *reference, rays, image, agree);
   return agree ? 0 : exit_backends_disagree;
 }
 

@@ -26,6 +26,10 @@ namespace {
 constexpr int default_width = 640;
 constexpr int default_height = 480;
 constexpr int max_image_side = 65536;
+// Bounds of the --grid-* options: beyond them a grid's memory explodes (256³ cells per grid, 8^depth
+// children per crowded cell) long before traversal gets faster.
+constexpr int max_grid_resolution = 256;
+constexpr int max_grid_depth = 6;
 
 // Parses "X,Y,Z" into three finite numbers; CLI11 reports a ValidationError as a usage error.
 dvec3 parse_triple(const std::string& text, const std::string& option) {
@@ -36,6 +40,27 @@ dvec3 parse_triple(const std::string& text, const std::string& option) {
       !(in >> std::ws).eof() || !is_finite(value))
     throw CLI::ValidationError(option, "expects three finite numbers X,Y,Z, got '" + text + "'");
   return value;
+}
+
+// Parses "N" (N cells on every axis) or "X,Y,Z" for --grid-resolution.
+glm::ivec3 parse_grid_resolution(const std::string& text) {
+  std::istringstream in(text);
+  glm::ivec3 r;
+  char comma1 = 0, comma2 = 0;
+  bool ok = bool(in >> r.x);
+  if (ok && (in >> std::ws).eof()) {
+    r = glm::ivec3(r.x);
+  } else {
+    in.clear();
+    ok = ok && (in >> comma1 >> r.y >> comma2 >> r.z) && comma1 == ',' && comma2 == ',' &&
+         (in >> std::ws).eof();
+  }
+  if (!ok || glm::any(glm::lessThan(r, glm::ivec3(1))) ||
+      glm::any(glm::greaterThan(r, glm::ivec3(max_grid_resolution))))
+    throw CLI::ValidationError("--grid-resolution", "expects N or X,Y,Z cells per axis, each 1 to " +
+                                                        std::to_string(max_grid_resolution) + ", got '" +
+                                                        text + "'");
+  return r;
 }
 
 // Finds the camera named or numbered by the --camera argument.
@@ -140,6 +165,16 @@ std::string format_vec(const vec3& v) {
   return out.str();
 }
 
+// "gaussian 1.5" (the filter and its radius), or "threshold 0.1, depth 2" for adaptive sampling.
+std::string sampling_description(const render_settings& s, bool adaptive) {
+  std::ostringstream out;
+  if (adaptive)
+    out << "threshold " << s.adaptive.threshold << ", depth " << s.adaptive.max_depth;
+  else
+    out << filter_name(s.filter.kind) << ' ' << s.filter.radius;
+  return out.str();
+}
+
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
@@ -150,6 +185,26 @@ void add_view_options(CLI::App& app, render_options& o) {
       ->check(CLI::Range(1, max_image_side));
   app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  app.add_option("--filter", o.filter,
+                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+                 "1.5 with sigma radius/3, blackman-harris 2)")
+      ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
+      ->capture_default_str();
+  app.add_option_function<float>(
+      "--filter-radius",
+      [&o](float r) {
+        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        o.filter_radius = r;
+      },
+      "Filter radius in pixels, in (0, 16] (default: the filter's own)");
+  app.add_option("--adaptive-threshold", o.adaptive_threshold,
+                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->capture_default_str();
+  app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
+      ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
   app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
   app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
@@ -202,6 +257,31 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--max-nodes", o.max_nodes, "Refuse glTF files with more nodes than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option(
+         "--max-instances", o.max_instances,
+         "Refuse glTF files whose EXT_mesh_gpu_instancing takes the scene past this many mesh instances")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // A function, not CLI::Range: Range lets NaN through (every comparison with it is false).
+  app.add_option_function<double>(
+      "--grid-density",
+      [&o](double density) {
+        if (!(density >= 1e-3 && density <= 1e3))
+          throw CLI::ValidationError("--grid-density", "expects a number from 0.001 to 1000");
+        o.grid.density = density;
+      },
+      "Grid backends: aim for density x N cells for N items (the resolution heuristic; default 2)");
+  app.add_option_function<std::string>(
+      "--grid-resolution", [&o](const std::string& s) { o.grid.resolution = parse_grid_resolution(s); },
+      "Grid backends: N or X,Y,Z cells per axis for every grid, instead of the heuristic");
+  app.add_option("--grid-max-items", o.grid.max_items_per_cell,
+                 "Adaptive grid: a cell holding more items than this is subdivided")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  app.add_option("--grid-max-depth", o.grid.max_depth,
+                 "Adaptive grid: levels of subdivision below the top grid")
+      ->check(CLI::Range(0, max_grid_depth))
+      ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -223,6 +303,7 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_json_bytes = options.max_json_bytes;
   load_options.limits.max_json_depth = options.max_json_depth;
   load_options.limits.max_nodes = options.max_nodes;
+  load_options.limits.max_instances = options.max_instances;
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
@@ -250,6 +331,15 @@ prepared_scene prepare_scene(const render_options& options) {
 render_settings make_render_settings(const render_options& options) {
   render_settings settings;
   settings.samples_per_pixel = options.samples_per_pixel;
+  settings.filter.kind = parse_filter_kind(options.filter).value_or(filter_kind::box);
+  settings.filter.radius = options.filter_radius.value_or(default_filter_radius(settings.filter.kind));
+  settings.adaptive.threshold = options.adaptive_threshold;
+  settings.adaptive.max_depth = options.adaptive_depth;
+  // Adaptive sampling places its own samples and averages them over the pixel's square.
+  if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
+  if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -269,7 +359,8 @@ void run_render(const render_options& options) {
   const double load_seconds = prepared.load_seconds;
 
   auto build_start = std::chrono::steady_clock::now();
-  std::unique_ptr<accelerator> accel = make_accelerator(world, *parse_accel_kind(options.accel));
+  std::unique_ptr<accelerator> accel =
+      make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
   double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
@@ -292,6 +383,8 @@ void run_render(const render_options& options) {
       {"kiln/camera", camera_description},
       {"kiln/accelerator", options.accel},
       {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
+      {"kiln/filter", sampling_description(settings, false)},
+      {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},
       {"kiln/depth", "ray distance"},
@@ -303,10 +396,14 @@ void run_render(const render_options& options) {
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
+    const std::string sampling =
+        settings.adaptive.threshold > 0.0f
+            ? "adaptive " + sampling_description(settings, true)
+            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
-                 "kiln: %dx%d, %d spp, %d threads: load %.3f s, build %.3f s, render %.3f s "
+                 "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",
-                 cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds, build_seconds,
+                 cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
                  options.output.c_str());

@@ -2,14 +2,15 @@
 // tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "accel/grid/grid.h"
 #include "core/math.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
-
-#include <cstddef>
-#include <optional>
-#include <string>
 
 namespace CLI {
 class App;
@@ -23,6 +24,10 @@ struct render_options {
   std::optional<int> width;
   std::optional<int> height;
   int samples_per_pixel = 1;
+  std::string filter = "box";          // box | tent | gaussian | blackman-harris
+  std::optional<float> filter_radius;  // empty: the filter's default radius
+  float adaptive_threshold = 0.0f;     // > 0: Whitted's adaptive supersampling instead of --spp
+  int adaptive_depth = 2;
   int threads = 0;
   int tile_size = 32;
   std::string camera;  // glTF camera name or index; empty: the first camera, else a default view
@@ -35,6 +40,7 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
+  grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   std::string environment;  // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
@@ -45,12 +51,13 @@ struct render_options {
   size_t max_json_bytes = size_t(512) << 20;
   size_t max_json_depth = 512;
   size_t max_nodes = 1000000;
+  size_t max_instances = 1000000;
   bool quiet = false;
   std::string command_line;
 };
 
 // Declares the options every subcommand that renders shares (asset, image size, camera, samples,
-// shading limits, threads), writing into options. `kiln compare` reuses them.
+// shading limits, threads, grid settings), writing into options. `kiln compare` reuses them.
 void add_view_options(CLI::App& app, render_options& options);
 
 // Declares the render subcommand's options on app: the view options plus output and backend.

@@ -122,6 +122,35 @@ void intersect_disk(const dvec3& oc, const dvec3& d, double t_offset, double z0,
   if (rho2 <= outer * outer && rho2 >= inner * inner) keep_closest(best, t, part);
 }
 
+// The clip box of a general quadric, shrunk to the quadric's own extent where that is bounded:
+// an ellipsoid (A definite). With c' = b·A⁻¹b − c, F = (p − p0)ᵀA(p − p0) − c' about the centre
+// p0 = −A⁻¹b, and the ellipsoid's half-width along axis i is √(c'·(A⁻¹)ᵢᵢ). For a box that cuts
+// the ellipsoid the result is still conservative (the intersection of the two boxes), just not
+// always tight; unbounded kinds (cylinders, cones, hyperboloids, paraboloids) keep the clip box.
+bounds3 general_bounds(const quadric& q) {
+  implicit_form f = implicit_of(q);
+  const dmat3& a = f.a;
+  const double minor2 = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+  const double det = glm::determinant(a);
+  const double sign = a[0][0] > 0.0 && minor2 > 0.0 && det > 0.0   ? 1.0
+                      : a[0][0] < 0.0 && minor2 > 0.0 && det < 0.0 ? -1.0
+                                                                   : 0.0;
+  if (sign == 0.0) return q.box;  // not definite: unbounded (or degenerate)
+  const dmat3 inv = glm::inverse(sign * a);
+  const dvec3 b = sign * f.b;
+  const dvec3 center = -(inv * b);
+  const double k = glm::dot(b, inv * b) - sign * f.c;
+  if (!(k > 0.0) || !is_finite(center)) return q.box;  // empty or a single point
+  bounds3 out;
+  for (int i = 0; i < 3; ++i) {
+    const double half = std::sqrt(k * inv[i][i]);
+    out.lower[i] = std::max(q.box.lower[i], center[i] - half);
+    out.upper[i] = std::min(q.box.upper[i], center[i] + half);
+    if (!(out.lower[i] <= out.upper[i])) return q.box;  // the ellipsoid lies outside the box
+  }
+  return out;
+}
+
 }  // namespace
 
 double quadric_implicit(const quadric& q, const dvec3& p) {
@@ -164,7 +193,7 @@ bounds3 quadric_bounds(const quadric& q) {
       break;
     }
     case quadric_kind::general:
-      b = q.box;
+      b = general_bounds(q);
       break;
     default: {
       // Axial kinds: the widest cross-section is at an end of [zmin, zmax] (the hyperboloid of
@@ -200,7 +229,7 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
                                                  double tmin, double tmax) {
   // Slab-test a slightly padded box first: it rejects most misses cheaply, and bounds the torus'
   // root search. The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
-  const bounds3 bounds = quadric_bounds(q);
+  const bounds3 bounds = stored_quadric_bounds(q);
   const dvec3 pad = 1e-9 * (glm::abs(bounds.lower) + glm::abs(bounds.upper)) + 1e-300;
   bounds3 padded{bounds.lower - pad, bounds.upper + pad};
   double t_enter = tmin, t_exit = tmax;

@@ -26,6 +26,12 @@ struct quadric_ray_hit {
 // Tight object-space bounds of a primitive (its clipped extent, caps included).
 bounds3 quadric_bounds(const quadric& q);
 
+// q.bounds where filled (the loader does), else quadric_bounds(q): per-ray code reads the stored
+// box instead of recomputing it (the general quadric's costs a 3×3 inverse).
+inline bounds3 stored_quadric_bounds(const quadric& q) {
+  return q.bounds.empty() ? quadric_bounds(q) : q.bounds;
+}
+
 // The closest hit of o + t·d with t in (tmin, tmax), in object space and double precision, or
 // empty. d need not be unit length; t is in units of d, so it is the world t of the same ray.
 std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,
@@ -37,10 +43,13 @@ dvec3 quadric_gradient(const quadric& q, const dvec3& p);
 
 // The object-space surface at a hit.
 struct quadric_surface {
-  dvec3 point{0.0};    // projected onto the surface of `part`
-  dvec3 normal{0.0};   // unit; normalised gradient of F (outward), or ±z on caps and disks
-  dvec3 dpdu{0.0};     // unit tangent along u, perpendicular to normal
-  dvec2 uv{0.0};       // parametric UV in [0,1]² (see docs/quadrics.md)
+  dvec3 point{0.0};   // projected onto the surface of `part`
+  dvec3 normal{0.0};  // unit; normalised gradient of F (outward), or ±z on caps and disks
+  dvec3 dpdu{0.0};    // unit tangent along u, perpendicular to normal
+  dvec2 uv{0.0};      // parametric UV in [0,1]² (see docs/quadrics.md)
+  // glTF tangent w: cross(normal, dpdu)·handedness points along −dp/dv, the image's "up" (glTF's
+  // v grows downward), as the mesh tangent generator makes it.
+  double handedness = 1.0;
   double error = 0.0;  // bound on the distance of `point` from the exact surface, object units
 };
 
@@ -52,8 +61,9 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
 struct quadric_world_point {
   vec3 point{0.0f};
   vec3 error{0.0f};
-  vec3 normal{0.0f};   // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
-  vec3 tangent{0.0f};  // unit, world dp/du
+  vec3 normal{0.0f};        // unit, outward (gradient through the normal matrix, so mirrors keep it outward)
+  vec3 tangent{0.0f};       // unit, world dp/du
+  float handedness = 1.0f;  // glTF tangent w in world space (object w times the sign of det M)
   vec2 uv{0.0f};
 };
 

@@ -130,6 +130,23 @@ std::optional<double> reference_t(const quadric& q, const dvec3& o, const dvec3&
   return best;
 }
 
+bool same_answer(const std::optional<double>& a, const std::optional<double>& b) {
+  return a.has_value() == b.has_value() && (!a || std::abs(*a - *b) <= 1e-6 * (1.0 + std::abs(*a)));
+}
+
+// A ray is grazing when its first hit is discontinuous within `radius` of it: moving the origin
+// that far across the ray (four directions) changes the reference's answer. That is the ray
+// passing that close to a silhouette, a rim or a clip edge, or so nearly tangent that its chord
+// is shorter than the reference's march step. radius is in object units (the shapes are ~1).
+constexpr double grazing_radius = 1e-7;
+bool is_grazing(const quadric& q, const dvec3& o, const dvec3& d, const std::optional<double>& ref) {
+  vec3 a, b;
+  orthonormal_basis(vec3(glm::normalize(d)), a, b);
+  for (const dvec3& e : {dvec3(a), -dvec3(a), dvec3(b), -dvec3(b)})
+    if (!same_answer(reference_t(q, o + grazing_radius * e, d), ref)) return true;
+  return false;
+}
+
 // The side of the part's surface an object-space point is on: > 0 outside (along the outward normal).
 double side_of(const quadric& q, uint32_t part, const dvec3& p) {
   if (part == quadric_cap_zmin) return q.zmin - p.z;
@@ -147,19 +164,27 @@ TEST_P(quadric_properties, hits_are_on_the_surface_with_gradient_normals_and_nev
   const bool near = reach < 100.0;
   const quadric q = every_kind()[size_t(kind)];
   rng_helper rng(1234 + uint64_t(kind) + (near ? 0 : 100));
-  int hits = 0, reference_mismatches = 0, rehits = 0, wrong_side = 0;
+  int hits = 0, reference_mismatches = 0, grazing_mismatches = 0, rehits = 0, wrong_side = 0;
   const int rays = 3000;
   for (int i = 0; i < rays; ++i) {
     const instance inst = random_instance(rng, reach);
     const ray r = random_ray(rng, inst, q);
     std::optional<quadric_ray_hit> h = intersect_world(inst, q, r);
 
-    // Reference agreement (rays grazing within 1e-7 of the silhouette may legitimately differ).
+    // Reference agreement: only rays within grazing_radius of a discontinuity may differ.
     const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
     const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
     std::optional<double> ref = reference_t(q, o, d);
-    if (h.has_value() != ref.has_value() || (h && std::abs(h->t - *ref) > 1e-6 * (1.0 + h->t)))
-      ++reference_mismatches;
+    const std::optional<double> found = h ? std::optional<double>(h->t) : std::nullopt;
+    if (!same_answer(found, ref)) {
+      if (is_grazing(q, o, d, ref)) {
+        ++grazing_mismatches;
+      } else {
+        ++reference_mismatches;
+        ADD_FAILURE() << "ray " << i << ": t " << (h ? h->t : -1.0) << " vs reference " << (ref ? *ref : -1.0)
+                      << ", not grazing";
+      }
+    }
     if (!h) continue;
     ++hits;
 
@@ -216,7 +241,32 @@ TEST_P(quadric_properties, hits_are_on_the_surface_with_gradient_normals_and_nev
   EXPECT_EQ(rehits, 0);
   EXPECT_EQ(wrong_side, 0);
   EXPECT_GT(hits, rays / 10);  // the test really exercised hits
-  EXPECT_LE(reference_mismatches, rays / 200) << "out of " << rays;
+  EXPECT_EQ(reference_mismatches, 0) << "out of " << rays;
+  // Grazing rays are rare (a 1e-7 band around edges of shapes of size ~1): a handful at most.
+  EXPECT_LE(grazing_mismatches, 3) << "out of " << rays;
+}
+
+// The grazing classifier itself: rays 1e-9 from a silhouette, a cap rim and the tube top of a
+// torus are grazing; rays through the middle of each are not.
+TEST(quadric_reference, grazing_rays_are_recognised_and_central_ones_are_not) {
+  struct probe {
+    quadric q;
+    dvec3 o, d;
+    bool grazing;
+  };
+  const quadric cyl = make_axial(quadric_kind::cylinder, 0.7, -1.0, 1.5, true);
+  const std::vector<probe> probes = {
+      {make_sphere(1.0), {1.0 - 1e-9, 0, -5}, {0, 0, 1}, true},
+      {make_sphere(1.0), {0.3, 0.2, -5}, {0, 0, 1}, false},
+      {cyl, {0.7 - 1e-9, 0, -5}, {0, 0, 1}, true},
+      {cyl, {0.1, 0, -5}, {0, 0, 1}, false},
+      {make_torus(1.0, 0.3), {-5, 0, 0.3 - 1e-9}, {1, 0, 0}, true},
+      {make_torus(1.0, 0.3), {-5, 0, 0.1}, {1, 0, 0}, false},
+  };
+  for (const probe& p : probes) {
+    EXPECT_EQ(is_grazing(p.q, p.o, p.d, reference_t(p.q, p.o, p.d)), p.grazing)
+        << "kind " << int(p.q.kind) << " origin " << p.o.x << ", " << p.o.z;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(every_kind, quadric_properties,

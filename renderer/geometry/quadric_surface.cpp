@@ -42,9 +42,10 @@ double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
 dvec2 side_uv(const quadric& q, const dvec3& p) {
   switch (q.kind) {
     case quadric_kind::sphere:
-      return dvec2(azimuth_u(p), std::acos(std::clamp(-p.z / q.radius, -1.0, 1.0)) / (two_pi / 2.0));
+      return dvec2(azimuth_u(p), std::acos(std::clamp(p.z / q.radius, -1.0, 1.0)) / (two_pi / 2.0));
     case quadric_kind::torus: {
-      double theta = std::atan2(p.z, std::sqrt(p.x * p.x + p.y * p.y) - q.major_radius);
+      // Tube angle measured downward on the outside, so +z is the image's up there too.
+      double theta = std::atan2(-p.z, std::sqrt(p.x * p.x + p.y * p.y) - q.major_radius);
       if (theta < 0.0) theta += two_pi;
       return dvec2(azimuth_u(p), theta / two_pi);
     }
@@ -54,10 +55,10 @@ dvec2 side_uv(const quadric& q, const dvec3& p) {
     case quadric_kind::general: {
       const dvec3 extent = q.box.diagonal();
       return dvec2(extent.x > 0.0 ? clamp01((p.x - q.box.lower.x) / extent.x) : 0.0,
-                   extent.y > 0.0 ? clamp01((p.y - q.box.lower.y) / extent.y) : 0.0);
+                   extent.y > 0.0 ? clamp01((q.box.upper.y - p.y) / extent.y) : 0.0);
     }
-    default:  // axial kinds: around the axis, then up it
-      return dvec2(azimuth_u(p), clamp01((p.z - q.zmin) / (q.zmax - q.zmin)));
+    default:  // axial kinds: around the axis, then down it from zmax (the image's top)
+      return dvec2(azimuth_u(p), clamp01((q.zmax - p.z) / (q.zmax - q.zmin)));
   }
 }
 
@@ -84,7 +85,7 @@ dvec3 project_to_side(const quadric& q, dvec3 p) {
 
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point) {
   quadric_surface s;
-  const double size = glm::length(quadric_bounds(q).diagonal());
+  const double size = glm::length(stored_quadric_bounds(q).diagonal());
   if (part == quadric_cap_zmin || part == quadric_cap_zmax) {
     const double z0 = part == quadric_cap_zmin ? q.zmin : q.zmax;
     s.point = dvec3(approx_point.x, approx_point.y, z0);
@@ -93,6 +94,9 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
     const double rho = std::sqrt(s.point.x * s.point.x + s.point.y * s.point.y);
     s.uv = dvec2(azimuth_u(s.point), cap_radius > 0.0 ? clamp01(rho / cap_radius) : 0.0);
     s.dpdu = azimuthal_tangent(s.point, s.normal);
+    // Seen from outside, the zmin cap's u runs clockwise (it continues the side's u across the
+    // rim), so its frame is mirrored: v grows outward and normal × dpdu points outward too.
+    s.handedness = part == quadric_cap_zmin ? -1.0 : 1.0;
     s.error = 4.0 * double_epsilon * (glm::length(s.point) + size);
     return s;
   }
@@ -103,9 +107,18 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
   s.normal = g_len > 0.0 && std::isfinite(g_len) ? g / g_len : dvec3(0.0, 0.0, 1.0);
   s.uv = side_uv(q, s.point);
   if (q.kind == quadric_kind::general) {
-    dvec3 t = dvec3(1.0, 0.0, 0.0) - s.normal.x * s.normal;
-    s.dpdu = glm::length(t) > 1e-6 ? glm::normalize(t) : azimuthal_tangent(dvec3(0.0, 1.0, 0.0), s.normal);
+    // The box projection's dp/du ∝ (1, 0, −n_x/n_z) (y held fixed on the surface). Where the
+    // surface turns vertical (n_z → 0) it degenerates; take x projected onto the tangent plane.
+    const dvec3& n = s.normal;
+    dvec3 t = n.z < 0.0 ? dvec3(-n.z, 0.0, n.x) : dvec3(n.z, 0.0, -n.x);
+    if (!(glm::length(t) > 1e-6)) t = dvec3(1.0, 0.0, 0.0) - n.x * n;
+    s.dpdu = glm::length(t) > 1e-6 ? glm::normalize(t) : azimuthal_tangent(dvec3(0.0, 1.0, 0.0), n);
+    // The projection reads upright from +z: dp/du × (−dp/dv) ∝ n / n_z, so the frame is
+    // right-handed where the surface faces +z and mirrored where it faces −z.
+    s.handedness = s.normal.z < 0.0 ? -1.0 : 1.0;
   } else {
+    // Every other kind: u runs counter-clockwise seen from outside and v away from +z (sphere,
+    // axial kinds, outside of the torus) or outward (disk), so normal × dpdu is −dp/dv.
     s.dpdu = azimuthal_tangent(s.point, s.normal);
   }
   // Distance to the exact surface to first order: |F| / |∇F| after projection, doubled for the
@@ -136,6 +149,9 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
   w.error = vec3(world_error) + glm::abs(w.point) * (2.0f * machine_epsilon);
   w.normal = vec3(glm::normalize(inst.world_from_object_normal * s.normal));
   w.tangent = vec3(glm::normalize(linear * s.dpdu));
+  // The normal matrix keeps the normal outward while M carries dpdu and dp/dv, so under a mirror
+  // cross(normal, tangent) turns against M·(−dp/dv): det M < 0 flips the handedness.
+  w.handedness = float(glm::determinant(linear) < 0.0 ? -s.handedness : s.handedness);
   w.uv = vec2(s.uv);
   return w;
 }

@@ -25,6 +25,14 @@ TEST(watertight_triangle, barycentrics_follow_embree_convention) {
   EXPECT_FLOAT_EQ(h.t, 2.0f);
   EXPECT_FLOAT_EQ(h.u, 0.25f);
   EXPECT_FLOAT_EQ(h.v, 0.25f);
+  // u != v, so a swap of the two weights cannot pass: x = 0.2 -> u = 0.1, y = 3 -> v = 0.75.
+  ASSERT_TRUE(hit_triangle({0.2f, 3.0f, 1.0f}, {0, 0, -1}, p0, p1, p2, h));
+  EXPECT_FLOAT_EQ(h.u, 0.1f);
+  EXPECT_FLOAT_EQ(h.v, 0.75f);
+  // Winding does not matter to the convention: with p1 and p2 exchanged, so are u and v.
+  ASSERT_TRUE(hit_triangle({0.2f, 3.0f, 1.0f}, {0, 0, -1}, p0, p2, p1, h));
+  EXPECT_FLOAT_EQ(h.u, 0.75f);
+  EXPECT_FLOAT_EQ(h.v, 0.1f);
 }
 
 TEST(watertight_triangle, accepts_t_in_half_open_tmin_tmax_and_misses_outside) {

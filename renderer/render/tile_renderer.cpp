@@ -1,10 +1,13 @@
 #include "render/tile_renderer.h"
 
 #include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
 #include "render/sample_pattern.h"
-#include "shade/environment.h"
+#include "render/splat_film.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -30,39 +33,69 @@ std::vector<tile> make_tiles(int width, int height, int size) {
   return tiles;
 }
 
-// Renders every sample of one pixel and writes the pixel. The nearest sample decides depth and
-// normal (never averaged, so Z and N stay valid for compositing).
-void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x, int y,
-                  film& out, ray_counts& counts) {
+// Renders every stratified sample of one pixel and splats it through the filter. The nearest
+// sample decides depth and normal (never filtered, so Z and N stay valid for compositing).
+void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
+                  int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
-  vec3 colour_sum(0.0f);
-  float alpha_sum = 0.0f;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
+  splat.clear();
   for (int s = 0; s < spp; ++s) {
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
-    ++counts.camera;
-    std::optional<hit> h = find_visible_hit(ctx, r, counts);
-    if (!h) {
-      if (settings.show_background) {
-        colour_sum += environment_radiance(ctx.world, r.direction);
-        alpha_sum += 1.0f;
-      }
-      continue;
-    }
-    surface_point sp = make_surface_point(ctx.world, *h, r);
-    colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts);
-    alpha_sum += 1.0f;
-    if (h->t < nearest) {
-      nearest = h->t;
-      nearest_normal = sp.shading_normal;
+    camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
+                                           y + double(offset.y), counts);
+    splat.add(settings.filter, offset, cs.rgba);
+    if (cs.depth < nearest) {
+      nearest = cs.depth;
+      nearest_normal = cs.normal;
     }
   }
+  splats.add(x, y, splat);
   size_t i = out.index(x, y);
-  out.color[i] = vec4(colour_sum, alpha_sum) / float(spp);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
+}
+
+bool cancel_requested(const render_settings& s) {
+  return s.cancel && s.cancel->load(std::memory_order_relaxed);
+}
+
+// What every tile task reads (and the outputs it writes its own pixels of).
+struct tile_job {
+  const shading_context& ctx;
+  const view_camera& cam;
+  const render_settings& settings;
+  film& out;
+  splat_film& splats;
+  const std::vector<camera_sample>& corners;  // adaptive only: (W+1)×(H+1) pixel corners
+};
+
+// Stratified samples, splatted through the reconstruction filter.
+void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
+  pixel_splat splat(job.splats.reach());
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+    for (int x = tl.x0; x < tl.x1; ++x)
+      render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+}
+
+// Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
+void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
+  const size_t row = size_t(job.cam.width) + 1;
+  sample_tracer trace = [&](double px, double py) {
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, counts);
+  };
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+    for (int x = tl.x0; x < tl.x1; ++x) {
+      const size_t c = y * row + x;
+      const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
+                                        job.corners[c + row + 1]};
+      adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
+      size_t i = job.out.index(x, y);
+      job.out.color[i] = p.rgba;
+      job.out.depth[i] = p.depth;
+      job.out.normal[i] = p.normal;
+    }
 }
 
 }  // namespace
@@ -75,19 +108,38 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
+  const bool adaptive = settings.adaptive.threshold > 0.0f;
+  splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
+  std::vector<camera_sample> corners;
+  const tile_job job{ctx, cam, settings, out, splats, corners};
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
-  auto cancelled = [&settings] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
+  auto cancelled = [&settings] { return cancel_requested(settings); };
   tbb::task_arena arena(threads);
   arena.execute([&] {
+    // Adaptive sampling starts from the (W+1)×(H+1) pixel corners, each traced once.
+    if (adaptive) {
+      const size_t row = size_t(cam.width) + 1;
+      corners.resize(row * (size_t(cam.height) + 1));
+      tbb::parallel_for(0, cam.height + 1, [&](int y) {
+        ray_counts counts;
+        for (int x = 0; x <= cam.width && !cancelled(); ++x)
+          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, counts);
+        std::lock_guard<std::mutex> lock(merge_mutex);
+        total_counts += counts;
+      });
+    }
+    tbb::enumerable_thread_specific<adaptive_scratch> scratch;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t t = range.begin(); t != range.end(); ++t) {
         const tile& tl = tiles[t];
         ray_counts counts;
-        for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-          for (int x = tl.x0; x < tl.x1; ++x) render_pixel(ctx, cam, settings, x, y, out, counts);
+        if (adaptive)
+          render_adaptive_tile(job, tl, scratch.local(), counts);
+        else
+          render_filtered_tile(job, tl, counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
         size_t done = ++tiles_done;
@@ -97,6 +149,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");
+  if (!adaptive) splats.resolve(out);
 
   if (stats) {
     stats->rays = total_counts;

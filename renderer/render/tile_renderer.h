@@ -1,10 +1,13 @@
 // The tile scheduler: splits the image into tiles, renders them on a TBB task arena with the
 // requested thread count, and fills the film. Each pixel is computed by exactly one task in a
-// fixed sample order, so the result does not depend on scheduling.
+// fixed sample order, and filtered samples that reach into other tiles are summed in source
+// pixel order (see splat_film.h), so the result does not depend on scheduling or tile size.
 // Depends on shade (through the accelerator interface) and render; never on a backend.
 #pragma once
 
+#include "render/adaptive_sampling.h"
 #include "render/film.h"
+#include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
 #include "shade/whitted.h"
 
@@ -17,6 +20,8 @@ struct render_settings {
   int samples_per_pixel = 1;
   int threads = 0;      // 0: all cores
   int tile_size = 32;   // pixels per tile side
+  reconstruction_filter filter;  // how stratified samples become pixels (box 0.5: the pixel's mean)
+  adaptive_options adaptive;      // threshold > 0: Whitted's adaptive corner sampling instead of spp
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel

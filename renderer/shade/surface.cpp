@@ -17,8 +17,8 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   sp.material = inst.material;
   sp.uv0 = w.uv;
   sp.uv1 = w.uv;  // a quadric has one parameterisation, used for every UV set
-  // dp/du for normal mapping; handedness +1 (bitangent = normal × tangent, see docs/quadrics.md).
-  sp.tangent = vec4(w.tangent, 1.0f);
+  // dp/du for normal mapping, with the glTF handedness of the part (docs/quadrics.md).
+  sp.tangent = vec4(w.tangent, w.handedness);
   // Two-sided: the normal faces the incoming ray; front = arrived from outside (F > 0).
   sp.front_face = glm::dot(w.normal, r.direction) < 0.0f;
   sp.geometric_normal = sp.front_face ? w.normal : -w.normal;
@@ -56,8 +56,11 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
   if (!m.tangents.empty()) {
     const vec4 t = interpolate(m.tangents[idx[0]], m.tangents[idx[1]], m.tangents[idx[2]], h.u, h.v);
     // Tangents are directions on the surface: the linear part of world_from_object, not the
-    // normal matrix.
-    sp.tangent = vec4(vec3(dmat3(inst.world_from_object) * dvec3(vec3(t))), t.w < 0.0f ? -1.0f : 1.0f);
+    // normal matrix. A mirroring transform flips cross(normal, tangent) against the transformed
+    // bitangent, so it flips w as well.
+    const dmat3 linear(inst.world_from_object);
+    const bool mirrored = glm::determinant(linear) < 0.0;
+    sp.tangent = vec4(vec3(linear * dvec3(vec3(t))), (t.w < 0.0f) != mirrored ? -1.0f : 1.0f);
   }
   if (!m.colors0.empty())
     sp.color0 = interpolate(m.colors0[idx[0]], m.colors0[idx[1]], m.colors0[idx[2]], h.u, h.v);

@@ -47,6 +47,10 @@ uint64_t comparison_statistics::mismatches() const {
   return total;
 }
 
+bool backends_agree(const comparison_statistics& s, uint64_t max_mismatches) {
+  return s.mismatches() <= max_mismatches;
+}
+
 // Counters live per thread (no contention on the render's hot path); examples are rare and
 // share one list behind a mutex.
 struct comparing_accelerator::per_thread {

@@ -46,6 +46,10 @@ struct comparison_statistics {
   uint64_t mismatches() const;
 };
 
+// The verdict of `kiln compare`: true when the closest-hit and occlusion mismatches (ties and edge
+// cases are not mismatches) number at most max_mismatches.
+bool backends_agree(const comparison_statistics& s, uint64_t max_mismatches);
+
 class comparing_accelerator final : public accelerator {
  public:
   comparing_accelerator(const scene& s, const accelerator& primary, const accelerator& secondary);

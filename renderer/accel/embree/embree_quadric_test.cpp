@@ -42,7 +42,7 @@ TEST(embree_quadrics, instances_share_one_definition_and_report_instance_and_par
   EXPECT_EQ(a->instance_id, 0u);
   EXPECT_NEAR(a->t, 4.0f, 1e-6f);
   EXPECT_NEAR(a->geometric_normal.z, 1.0f, 1e-6f);
-  EXPECT_NEAR(a->v, 1.0f, 1e-6f);  // the north pole (object +z) faces the camera
+  EXPECT_NEAR(a->v, 0.0f, 1e-6f);  // the north pole (object +z, v = 0) faces the camera
 
   // The mirrored ellipsoid: its outward normal still points at the ray origin.
   r.origin = {5.0f, 0.0f, 0.0f};

@@ -36,6 +36,15 @@ struct grid_options {
 grid_options uniform_grid_options();
 grid_options adaptive_grid_options();
 
+// Sizes of a built structure (one grid, or all the grids of a scene), for benchmarks and
+// `kiln compare`'s report.
+struct grid_statistics {
+  size_t nodes = 0;
+  size_t cells = 0;
+  size_t item_references = 0;
+  size_t memory_bytes = 0;
+};
+
 struct grid_cell {
   uint32_t first = 0;  // index of the cell's first item id in grid.items
   uint32_t count = 0;  // items in this cell (0 when it has a child)

@@ -16,14 +16,6 @@
 
 namespace kiln {
 
-// Sizes of the built structure, for benchmarks and `kiln compare`'s report.
-struct grid_statistics {
-  size_t nodes = 0;
-  size_t cells = 0;
-  size_t item_references = 0;
-  size_t memory_bytes = 0;
-};
-
 // An instance's ray transform in float, as Embree stores it (3x4, column major).
 struct float_affine {
   mat3 linear{1.0f};

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -50,6 +52,9 @@ TEST(GltfAssets, SampleModelsLoadWithExpectedTriangleCounts) {
       {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", 7724, 3884},
       {"2CylinderEngine/glTF-Binary/2CylinderEngine.glb", 121496, 75730},
       {"ToyCar/glTF/ToyCar.gltf", 108936, 108936},
+      {"SimpleInstancing/glTF-Binary/SimpleInstancing.glb", 1500, 12},
+      {"Duck/glTF-Binary/Duck.glb", 4212, 4212},
+      {"Duck/glTF-Quantized/Duck.gltf", 4212, 4212},
   };
   for (const asset_case& c : cases) {
     SCOPED_TRACE(c.file);
@@ -102,6 +107,72 @@ TEST(GltfAssets, SampleModelDetails) {
   const scene box = load_gltf((assets / "Box/glTF-Binary/Box.glb").string());
   ASSERT_EQ(box.instances.size(), 1u);
   EXPECT_NE(box.instances[0].world_from_object, dmat4(1.0));
+}
+
+TEST(GltfAssets, SimpleInstancingIsOneMeshPlacedPerInstance) {
+  const fs::path path = assets / "SimpleInstancing/glTF-Binary/SimpleInstancing.glb";
+  if (!fs::exists(path)) GTEST_SKIP() << "no sample assets at " << assets;
+  const scene s = load_gltf(path.string());
+  EXPECT_EQ(s.meshes.size(), 1u);
+  ASSERT_EQ(s.instances.size(), 125u);  // the README's 5 x 5 x 5 grid
+  EXPECT_TRUE(s.stats.warnings.empty()) << s.stats.warnings.front();
+  // TRANSLATION spans 0..10 on each axis; SCALE 1..2 and ROTATION turn the unit cubes around it.
+  const bounds3 world = world_bounds(s);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_GT(world.upper[axis], 10.0);
+    EXPECT_LT(world.upper[axis], 10.0 + 2.0 * std::sqrt(3.0));
+    EXPECT_LT(world.lower[axis], 0.5);
+  }
+}
+
+// KHR_mesh_quantization: the quantized Duck (SHORT positions under a dequantizing node scale,
+// BYTE normals, UNSIGNED_SHORT UVs dequantized by KHR_texture_transform) matches the float Duck.
+TEST(GltfAssets, QuantizedDuckMatchesTheFloatDuck) {
+  const fs::path quantized_path = assets / "Duck/glTF-Quantized/Duck.gltf";
+  if (!fs::exists(quantized_path)) GTEST_SKIP() << "no sample assets at " << assets;
+  const scene plain = load_gltf((assets / "Duck/glTF-Binary/Duck.glb").string());
+  const scene quantized = load_gltf(quantized_path.string());
+  ASSERT_EQ(plain.instances.size(), 1u);
+  ASSERT_EQ(quantized.instances.size(), 1u);
+  // One position step is the quantized node's scale (1.01e-4 in world units).
+  const double step = quantized.instances[0].world_from_object[0][0];
+  EXPECT_NEAR(step, 0.000101006161, 1e-9);
+  const bounds3 a = world_bounds(plain), b = world_bounds(quantized);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(a.lower[axis], b.lower[axis], step) << axis;
+    EXPECT_NEAR(a.upper[axis], b.upper[axis], step) << axis;
+  }
+
+  // The two files order their vertices differently, so pair each quantized vertex with the float
+  // vertices at the same world position (within a step) and compare the UVs the renderer samples
+  // (KHR_texture_transform applied) with the closest of them.
+  const mesh& pm = plain.meshes.at(0);
+  const mesh& qm = quantized.meshes.at(0);
+  const texture_ref& qref = quantized.materials.at(quantized.instances[0].material).base_color_texture;
+  const texture_ref& pref = plain.materials.at(plain.instances[0].material).base_color_texture;
+  ASSERT_EQ(qm.texcoords0.size(), qm.positions.size());
+  ASSERT_EQ(pm.texcoords0.size(), pm.positions.size());
+  ASSERT_EQ(qref.rotation, 0.0f);
+  ASSERT_EQ(pref.uv_scale, vec2(1.0f));
+  const float uv_step = std::max(qref.uv_scale.x, qref.uv_scale.y);  // 2.3e-4
+  double worst_uv = 0.0;
+  size_t unmatched = 0;
+  for (size_t i = 0; i < qm.positions.size(); ++i) {
+    const dvec3 qp = transform_point(quantized.instances[0].world_from_object, dvec3(qm.positions[i]));
+    const vec2 quv = qm.texcoords0[i] * qref.uv_scale + qref.offset;
+    double best = 1e9;
+    for (size_t j = 0; j < pm.positions.size(); ++j) {
+      const dvec3 pp = transform_point(plain.instances[0].world_from_object, dvec3(pm.positions[j]));
+      if (glm::length(pp - qp) > 1.5 * step) continue;
+      best = std::min(best, double(glm::length(quv - (pm.texcoords0[j] + pref.offset))));
+    }
+    if (best == 1e9) ++unmatched;
+    else worst_uv = std::max(worst_uv, best);
+  }
+  EXPECT_EQ(unmatched, 0u);
+  EXPECT_LT(worst_uv, uv_step);
+  // Normals: normalized BYTE decodes to unit vectors.
+  for (const vec3& n : qm.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-5f);
 }
 
 TEST(GltfAssets, DracoBoxNamesTheExtension) {

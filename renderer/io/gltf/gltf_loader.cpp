@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
 #include "io/gltf/mesh_tangents.h"
 #include "io/gltf/gltf_parse.h"
@@ -27,6 +28,8 @@ using namespace gltf_internal;
 struct build_context {
   const tinygltf::Model& model;
   const std::string& file;
+  size_t max_instances;  // gltf_limits::max_instances
+  bool quantized;        // the file uses KHR_mesh_quantization
   scene& out;
   std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
   std::vector<int> instance_gltf_material;            // per scene instance; -1: default material
@@ -37,17 +40,6 @@ void warn_once(build_context& ctx, const std::string& message) {
   if (ctx.warned.insert(message).second) ctx.out.stats.warnings.push_back(message);
 }
 
-// Column-major rotation matrix of the unit quaternion (x, y, z, w), glTF's component order.
-dmat4 rotation_matrix(double x, double y, double z, double w) {
-  const double len = std::sqrt(x * x + y * y + z * z + w * w);  // validation refused len == 0
-  x /= len, y /= len, z /= len, w /= len;
-  dmat4 r(1.0);
-  r[0] = dvec4(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0);
-  r[1] = dvec4(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0);
-  r[2] = dvec4(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0);
-  return r;
-}
-
 // A node's parent_from_node: its matrix (column-major), or T * R * S.
 dmat4 local_transform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -56,19 +48,12 @@ dmat4 local_transform(const tinygltf::Node& node) {
       for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<size_t>(c * 4 + r)];
     return m;
   }
-  dmat4 t(1.0);
-  if (node.translation.size() == 3)
-    t[3] = dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
-  dmat4 r(1.0);
-  if (node.rotation.size() == 4)
-    r = rotation_matrix(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
-  dmat4 s(1.0);
-  if (node.scale.size() == 3) {
-    s[0][0] = node.scale[0];
-    s[1][1] = node.scale[1];
-    s[2][2] = node.scale[2];
-  }
-  return t * r * s;
+  const auto& t = node.translation;
+  const auto& r = node.rotation;  // validation refused a zero quaternion
+  const auto& s = node.scale;
+  return trs_matrix(t.size() == 3 ? dvec3(t[0], t[1], t[2]) : dvec3(0.0),
+                    r.size() == 4 ? dvec4(r[0], r[1], r[2], r[3]) : dvec4(0, 0, 0, 1),
+                    s.size() == 3 ? dvec3(s[0], s[1], s[2]) : dvec3(1.0));
 }
 
 std::string primitive_pointer(int mesh_index, int prim_index) {
@@ -209,14 +194,15 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
     warn_once(ctx, pointer("materials", prim.material) +
                        ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
 
-  // Tangent frames only for normal-mapped materials with smooth normals: the file's TANGENT when it
-  // has one with usable vectors, generated from the normal texture's UV set otherwise.
-  if (prim.material >= 0 && !m.normals.empty()) {
+  // Tangent frames only for normal-mapped materials: the file's TANGENT when it has one and
+  // smooth normals, generated from the normal texture's UV set otherwise. Without NORMAL the mesh
+  // is flat-shaded and glTF says to ignore TANGENT; generated tangents then follow the faces.
+  if (prim.material >= 0) {
     const tinygltf::Material& mat = ctx.model.materials[static_cast<size_t>(prim.material)];
     const std::vector<vec2>& uv = material_normal_texcoord(ctx.model, prim.material) == 1 ? m.texcoords1 : m.texcoords0;
     if (mat.normalTexture.index >= 0 && uv.size() == vertex_count) {
       auto tangent = prim.attributes.find("TANGENT");
-      if (tangent != prim.attributes.end()) {
+      if (tangent != prim.attributes.end() && !m.normals.empty()) {
         const std::vector<float> t = read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
         m.tangents.resize(vertex_count);
         for (size_t i = 0; i < vertex_count; ++i) {
@@ -253,26 +239,49 @@ int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
   return built;
 }
 
-void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
+// Places every primitive of the node's mesh at `world`; false (nothing placed) when `world` is
+// singular. Primitives are built first, so their data is checked even when nothing is placed.
+bool place_primitives(build_context& ctx, int node_index, const dmat4& world) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
   const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(node.mesh)];
+  instance inst;
+  inst.kind = shape_kind::mesh;
+  inst.node = static_cast<uint32_t>(node_index);
+  inst.world_from_object = world;
+  finish_instance_transform(inst);
+  const bool singular = !is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0;
   for (size_t p = 0; p < src.primitives.size(); ++p) {
     const int32_t shape = mesh_for(ctx, node.mesh, static_cast<int>(p));
-    if (shape < 0) continue;
-    instance inst;
-    inst.kind = shape_kind::mesh;
+    if (shape < 0 || singular) continue;
     inst.shape = static_cast<uint32_t>(shape);
-    inst.node = static_cast<uint32_t>(node_index);
-    inst.world_from_object = world;
-    finish_instance_transform(inst);
-    if (!is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0) {
-      warn_once(ctx,
-                pointer("nodes", node_index) + ": singular transform (zero scale); its mesh is not placed");
-      return;
-    }
     ctx.out.instances.push_back(inst);
     ctx.instance_gltf_material.push_back(src.primitives[p].material);
   }
+  return !singular;
+}
+
+// A node's mesh: placed once, or once per EXT_mesh_gpu_instancing instance at
+// world * node_from_instance (the node's transform is the instances' parent).
+void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
+  const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  const instance_budget budget{ctx.out.instances.size(),
+                               ctx.model.meshes[static_cast<size_t>(node.mesh)].primitives.size(),
+                               ctx.max_instances};
+  const auto instances = read_gpu_instances(ctx.model, node_index, ctx.quantized, budget, ctx.file);
+  if (!instances) {
+    if (!place_primitives(ctx, node_index, world))
+      warn_once(ctx,
+                pointer("nodes", node_index) + ": singular transform (zero scale); its mesh is not placed");
+    return;
+  }
+  size_t singular = 0;
+  for (const dmat4& node_from_instance : *instances)
+    singular += !place_primitives(ctx, node_index, world * node_from_instance);
+  if (singular != 0)
+    warn_once(ctx, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"),
+                                gpu_instancing_extension) +
+                       ": " + std::to_string(singular) +
+                       " instances have a singular transform (zero scale); they are not placed");
 }
 
 // A KILN_quadric placement: one instance of a shared definition. Unlike a mesh, a quadric
@@ -426,12 +435,22 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
 
   scene out;
   out.source = path;
-  build_context ctx{model, path, out, {}, {}, {}};
+  const bool quantized = uses_extension(model, quantization_extension);
+  build_context ctx{model, path, options.limits.max_instances, quantized, out, {}, {}, {}};
 
+  // Optional extensions kiln does not know are ignored, all named on one line (required ones
+  // were refused while parsing).
   const auto& supported = supported_extensions();
+  std::vector<std::string> unsupported;
   for (const std::string& name : model.extensionsUsed)
-    if (std::find(supported.begin(), supported.end(), name) == supported.end())
-      warn_once(ctx, "extension " + name + " is not supported; it is ignored");
+    if (std::find(supported.begin(), supported.end(), name) == supported.end()) unsupported.push_back(name);
+  if (unsupported.size() == 1)
+    warn_once(ctx, "extension " + unsupported[0] + " is not supported; it is ignored");
+  if (unsupported.size() > 1) {
+    std::string names = unsupported[0];
+    for (size_t i = 1; i < unsupported.size(); ++i) names += ", " + unsupported[i];
+    warn_once(ctx, "extensions " + names + " are not supported; they are ignored");
+  }
   if (!model.skins.empty() || !model.animations.empty())
     warn_once(ctx, "skins and animations are ignored; meshes are rendered in their rest pose");
 

@@ -18,6 +18,7 @@ struct gltf_limits {
   size_t max_json_bytes = size_t(512) << 20;  // the JSON text (GLB: its JSON chunk)
   size_t max_json_depth = 512;                // nesting of arrays and objects; glTF itself needs < 10
   size_t max_nodes = 1000000;                 // entries in "nodes"
+  size_t max_instances = 1000000;             // scene instances once EXT_mesh_gpu_instancing adds its own
 };
 
 struct gltf_load_options {

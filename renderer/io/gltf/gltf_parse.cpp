@@ -242,7 +242,7 @@ const std::vector<std::string>& supported_extensions() {
   static const std::vector<std::string> names = {
       "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
       "KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform",
-      "KHR_materials_unlit",        "KILN_quadric"};
+      "KHR_materials_unlit",        "KHR_mesh_quantization", "EXT_mesh_gpu_instancing", "KILN_quadric"};
   return names;
 }
 

@@ -4,6 +4,7 @@
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -230,24 +231,50 @@ void validate_materials(const tinygltf::Model& model, const std::string& file) {
 
 // ---- meshes --------------------------------------------------------------------------------
 
-void check_attribute_format(const tinygltf::Accessor& acc, const std::string& name, const std::string& file,
-                            const std::string& where) {
+bool is_integer_8_16(int ct) {
+  return ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+         ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+}
+
+bool is_signed_normalized_8_16(const tinygltf::Accessor& acc) {
+  return acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                            acc.componentType == TINYGLTF_COMPONENT_TYPE_SHORT);
+}
+
+// glTF 2.0's attribute formats; with KHR_mesh_quantization (`quantized`) also its integer ones:
+// POSITION any 8/16-bit type, normalized or not; NORMAL and TANGENT normalized BYTE/SHORT;
+// TEXCOORD any 8/16-bit type, normalized or not. The decoder turns all of them into floats.
+void check_attribute_format(const tinygltf::Accessor& acc, const std::string& name, bool quantized,
+                            const std::string& file, const std::string& where) {
   const int ct = acc.componentType;
+  const bool is_float = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
   const auto got = " (got " + type_name(acc.type) + " " + component_type_name(ct) +
                    (acc.normalized ? " normalized" : "") + ")";
-  if (name == "TANGENT") {
-    if (acc.type != TINYGLTF_TYPE_VEC4 || ct != TINYGLTF_COMPONENT_TYPE_FLOAT)
-      throw input_error(file, where, "TANGENT must be VEC4 FLOAT" + got);
-  } else if (name == "POSITION" || name == "NORMAL") {
-    if (acc.type != TINYGLTF_TYPE_VEC3 || ct != TINYGLTF_COMPONENT_TYPE_FLOAT)
-      throw input_error(file, where, name + " must be VEC3 FLOAT" + got);
+  const std::string hint = quantized || is_float ? "" : "; integer formats need KHR_mesh_quantization";
+  if (name == "TANGENT" || name == "NORMAL") {
+    const bool tangent = name == "TANGENT";
+    if (acc.type != (tangent ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3) ||
+        !(is_float || (quantized && is_signed_normalized_8_16(acc))))
+      throw input_error(file, where,
+                        name + (tangent ? " must be VEC4 FLOAT" : " must be VEC3 FLOAT") +
+                            (quantized ? " or normalized BYTE/SHORT" : "") + got + hint);
+  } else if (name == "POSITION") {
+    if (acc.type != TINYGLTF_TYPE_VEC3 || !(is_float || (quantized && is_integer_8_16(ct))))
+      throw input_error(file, where,
+                        std::string("POSITION must be VEC3 FLOAT") +
+                            (quantized ? ", BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT" : "") + got + hint);
   } else if (name == "TEXCOORD_0" || name == "TEXCOORD_1") {
     const bool ok = acc.type == TINYGLTF_TYPE_VEC2 &&
-                    (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                    (is_float ||
                      (acc.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                         ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+                                         ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) ||
+                     (quantized && is_integer_8_16(ct)));
     if (!ok)
-      throw input_error(file, where, name + " must be VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
+      throw input_error(file, where,
+                        name +
+                            (quantized ? " must be VEC2 FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
+                                       : " must be VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT") +
+                            got);
   } else if (name == "COLOR_0") {
     const bool ok = (acc.type == TINYGLTF_TYPE_VEC3 || acc.type == TINYGLTF_TYPE_VEC4) &&
                     (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
@@ -259,6 +286,7 @@ void check_attribute_format(const tinygltf::Accessor& acc, const std::string& na
 }
 
 void validate_meshes(const tinygltf::Model& model, const std::string& file) {
+  const bool quantized = uses_extension(model, quantization_extension);
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const tinygltf::Mesh& mesh = model.meshes[m];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -282,7 +310,7 @@ void validate_meshes(const tinygltf::Model& model, const std::string& file) {
       for (const auto& [name, index] : prim.attributes) {
         check_ref(index, model.accessors.size(), false, "accessors", file, pointer_join(attributes, name));
         const tinygltf::Accessor& acc = model.accessors[static_cast<size_t>(index)];
-        check_attribute_format(acc, name, file, pointer_join(attributes, name));
+        check_attribute_format(acc, name, quantized, file, pointer_join(attributes, name));
         if (acc.count != vertex_count)
           throw input_error(file, pointer_join(attributes, name),
                             "accessor has " + std::to_string(acc.count) + " elements but POSITION has " +
@@ -512,6 +540,11 @@ void validate_model(const tinygltf::Model& model, const std::string& file) {
   validate_cameras(model, file);
   validate_lights(model, file);
   validate_skins_and_animations(model, file);
+}
+
+bool uses_extension(const tinygltf::Model& model, const std::string& name) {
+  return std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) !=
+         model.extensionsUsed.end();
 }
 
 int node_light_index(const tinygltf::Node& node) {

@@ -11,8 +11,13 @@
 
 namespace kiln::gltf_internal {
 
+constexpr const char* quantization_extension = "KHR_mesh_quantization";
+
 // Throws kiln::error (input) with the file, the JSON pointer of the first problem and a reason.
 void validate_model(const tinygltf::Model& model, const std::string& file);
+
+// True when the file lists `name` in extensionsUsed.
+bool uses_extension(const tinygltf::Model& model, const std::string& name);
 
 // The KHR_lights_punctual light a node places, or -1. Only meaningful after validate_model,
 // which guarantees the index is in range.

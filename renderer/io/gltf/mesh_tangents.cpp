@@ -12,6 +12,28 @@ vec3 any_perpendicular(const vec3& n) {
   return glm::normalize(glm::cross(axis, n));
 }
 
+// The mesh's normals, or for a flat-shaded mesh (no normals) the area-weighted mean of the
+// face normals around each vertex: shading projects the interpolated tangent onto each face's
+// own plane, so this is exact wherever a vertex's faces are coplanar.
+std::vector<dvec3> vertex_normals(const mesh& m) {
+  std::vector<dvec3> normals(m.positions.size(), dvec3(0.0));
+  if (!m.normals.empty()) {
+    for (size_t i = 0; i < normals.size(); ++i) normals[i] = dvec3(m.normals[i]);
+    return normals;
+  }
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
+    const dvec3 p0(m.positions[i0]);
+    const dvec3 face = glm::cross(dvec3(m.positions[i1]) - p0, dvec3(m.positions[i2]) - p0);
+    for (uint32_t i : {i0, i1, i2}) normals[i] += face;
+  }
+  for (dvec3& normal : normals) {
+    const double len = glm::length(normal);
+    normal = len > 0.0 && std::isfinite(len) ? normal / len : dvec3(0, 0, 1);
+  }
+  return normals;
+}
+
 }  // namespace
 
 std::vector<vec4> generate_tangents(const mesh& m, const std::vector<vec2>& uv) {
@@ -38,9 +60,10 @@ std::vector<vec4> generate_tangents(const mesh& m, const std::vector<vec2>& uv) 
       dv[i] += t_v / lv * area;
     }
   }
+  const std::vector<dvec3> normals = vertex_normals(m);
   std::vector<vec4> tangents(n);
   for (size_t i = 0; i < n; ++i) {
-    const dvec3 normal = m.normals.empty() ? dvec3(0, 0, 1) : dvec3(m.normals[i]);
+    const dvec3& normal = normals[i];
     dvec3 t = du[i] - normal * glm::dot(normal, du[i]);
     const double len = glm::length(t);
     if (!(len > 1e-12) || !std::isfinite(len)) {

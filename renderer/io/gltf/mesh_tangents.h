@@ -15,7 +15,8 @@
 namespace kiln {
 
 // One tangent per vertex: xyz unit, w = ±1 handedness. uv has one entry per vertex. Vertices no
-// triangle gives a usable UV derivative get a tangent perpendicular to their normal.
+// triangle gives a usable UV derivative get a tangent perpendicular to their normal. A mesh
+// without normals (flat shading) uses the mean face normal around each vertex instead.
 std::vector<vec4> generate_tangents(const mesh& m, const std::vector<vec2>& uv);
 
 }  // namespace kiln

@@ -1,0 +1,104 @@
+#include "render/splat_film.h"
+
+#include <algorithm>
+
+namespace kiln {
+
+pixel_splat::pixel_splat(int r) : reach(r), sum(size_t(2 * r + 1) * (2 * r + 1)), weight(sum.size()) {
+  clear();
+}
+
+void pixel_splat::clear() {
+  std::fill(sum.begin(), sum.end(), vec4(0.0f));
+  std::fill(weight.begin(), weight.end(), 0.0f);
+}
+
+void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& value) {
+  constexpr int max_reach = 32;
+  const int r = std::min(reach, max_reach);
+  const int n = 2 * r + 1;
+  // Separable kernel: one weight per column and per row. The distance to a pixel centre is the
+  // in-pixel offset minus 0.5 minus a small integer, so box 0.5 keeps every sample in its own
+  // pixel (offset - 0.5 ∈ [-0.5, 0.5)).
+  float wx[2 * max_reach + 1], wy[2 * max_reach + 1];
+  for (int k = -r; k <= r; ++k) {
+    wx[k + r] = filter_weight_1d(f, (offset.x - 0.5f) - float(k));
+    wy[k + r] = filter_weight_1d(f, (offset.y - 0.5f) - float(k));
+  }
+  for (int j = 0; j < n; ++j) {
+    if (wy[j] == 0.0f) continue;
+    for (int i = 0; i < n; ++i) {
+      const float w = wx[i] * wy[j];
+      if (w == 0.0f) continue;
+      sum[size_t(j) * n + i] += value * w;
+      weight[size_t(j) * n + i] += w;
+    }
+  }
+}
+
+splat_film::splat_film(int width, int height, int tile_size, const reconstruction_filter& f)
+    : width_(width),
+      height_(height),
+      tile_size_(std::max(1, tile_size)),
+      reach_(filter_reach(f)),
+      window_((2 * reach_ + 1) * (2 * reach_ + 1)),
+      sum_(size_t(width) * height, vec4(0.0f)),
+      weight_(size_t(width) * height, 0.0f),
+      slot_of_(size_t(width) * height, -1) {
+  int64_t slots = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (!within_one_tile(x, y)) {
+        slot_of_[size_t(y) * width + x] = slots;
+        slots += window_;
+      }
+  slot_sum_.assign(size_t(slots), vec4(0.0f));
+  slot_weight_.assign(size_t(slots), 0.0f);
+}
+
+// True when every pixel within reach of (x, y) (inside the image) belongs to (x, y)'s tile.
+bool splat_film::within_one_tile(int x, int y) const {
+  auto same = [this](int a, int b) { return a / tile_size_ == b / tile_size_; };
+  return same(std::max(0, x - reach_), std::min(width_ - 1, x + reach_)) &&
+         same(std::max(0, y - reach_), std::min(height_ - 1, y + reach_));
+}
+
+void splat_film::add(int x, int y, const pixel_splat& splat) {
+  const int n = 2 * reach_ + 1;
+  for (int j = -reach_; j <= reach_; ++j) {
+    const int py = y + j;
+    if (py < 0 || py >= height_) continue;
+    for (int i = -reach_; i <= reach_; ++i) {
+      const int px = x + i;
+      if (px < 0 || px >= width_) continue;
+      const size_t from = size_t(j + reach_) * n + size_t(i + reach_);
+      const size_t p = size_t(py) * width_ + px;
+      const int64_t slot = slot_of_[p];
+      if (slot < 0) {
+        // The tile renders its pixels in raster order, so this fold follows the source order.
+        sum_[p] += splat.sum[from];
+        weight_[p] += splat.weight[from];
+      } else {
+        // The source sits at (-i, -j) from the destination; slots run in source raster order.
+        const size_t to = size_t(slot) + size_t(reach_ - j) * n + size_t(reach_ - i);
+        slot_sum_[to] = splat.sum[from];
+        slot_weight_[to] = splat.weight[from];
+      }
+    }
+  }
+}
+
+void splat_film::resolve(film& out) const {
+  for (size_t p = 0; p < sum_.size(); ++p) {
+    vec4 sum = sum_[p];
+    float weight = weight_[p];
+    if (slot_of_[p] >= 0)
+      for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k) {
+        sum += slot_sum_[k];
+        weight += slot_weight_[k];
+      }
+    out.color[p] = weight > 0.0f ? sum / weight : vec4(0.0f);
+  }
+}
+
+}  // namespace kiln

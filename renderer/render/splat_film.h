@@ -1,0 +1,53 @@
+// Filtered reconstruction whose bytes do not depend on threads or tile size. Each pixel's value is
+// a left fold, in raster order of the source pixels within the filter's reach, of what each source
+// pixel's samples contribute to it (P(q→p), summed in sample order). A pixel whose reach lies in
+// one tile is folded by that tile as it renders (it visits the sources in raster order); a pixel
+// near a tile border keeps one slot per source and is folded after the parallel loop. Float
+// additions therefore happen in one order for any schedule. Depends on core and render only.
+#pragma once
+
+#include "render/film.h"
+#include "render/reconstruction_filter.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace kiln {
+
+// One source pixel's contributions to the (2·reach+1)² pixels around it, rows top to bottom.
+struct pixel_splat {
+  int reach = 0;
+  std::vector<vec4> sum;      // Σ w·(premultiplied colour, alpha) over the source's samples
+  std::vector<float> weight;  // Σ w
+
+  explicit pixel_splat(int r = 0);
+  void clear();
+  // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel.
+  void add(const reconstruction_filter& f, vec2 offset, const vec4& value);
+};
+
+class splat_film {
+ public:
+  splat_film(int width, int height, int tile_size, const reconstruction_filter& f);
+
+  int reach() const { return reach_; }
+
+  // Hands over source pixel (x, y)'s contributions. Within a tile, call in raster order; pixels of
+  // different tiles may be added concurrently.
+  void add(int x, int y, const pixel_splat& splat);
+
+  // Writes colour = Σ w·L / Σ w into out (0 where no sample has weight). Call after every add().
+  void resolve(film& out) const;
+
+ private:
+  bool within_one_tile(int x, int y) const;
+
+  int width_, height_, tile_size_, reach_, window_;
+  std::vector<vec4> sum_;  // pixels folded by their own tile
+  std::vector<float> weight_;
+  std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere
+  std::vector<vec4> slot_sum_;    // per border pixel, one slot per source, raster order
+  std::vector<float> slot_weight_;
+};
+
+}  // namespace kiln
