@@ -186,6 +186,11 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
+  app.add_option("--sampler", o.sampler,
+                 "Sample positions inside a pixel: jittered strata, or independent uniform samples (the "
+                 "baseline stratification is measured against)")
+      ->check(CLI::IsMember({"stratified", "random"}))
+      ->capture_default_str();
   app.add_option("--filter", o.filter,
                  "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
                  "1.5 with sigma radius/3, blackman-harris 2)")
@@ -331,6 +336,7 @@ prepared_scene prepare_scene(const render_options& options) {
 render_settings make_render_settings(const render_options& options) {
   render_settings settings;
   settings.samples_per_pixel = options.samples_per_pixel;
+  settings.random_samples = options.sampler == "random";
   settings.filter.kind = parse_filter_kind(options.filter).value_or(filter_kind::box);
   settings.filter.radius = options.filter_radius.value_or(default_filter_radius(settings.filter.kind));
   settings.adaptive.threshold = options.adaptive_threshold;
@@ -383,6 +389,7 @@ void run_render(const render_options& options) {
       {"kiln/camera", camera_description},
       {"kiln/accelerator", options.accel},
       {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
+      {"kiln/sampler", options.sampler},
       {"kiln/filter", sampling_description(settings, false)},
       {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},

@@ -25,6 +25,7 @@ struct render_options {
   std::optional<int> height;
   int samples_per_pixel = 1;
   std::string filter = "box";          // box | tent | gaussian | blackman-harris
+  std::string sampler = "stratified";  // stratified | random (sample positions inside a pixel)
   std::optional<float> filter_radius;  // empty: the filter's default radius
   float adaptive_threshold = 0.0f;     // > 0: Whitted's adaptive supersampling instead of --spp
   int adaptive_depth = 2;

@@ -41,4 +41,12 @@ inline vec2 sample_offset(uint32_t x, uint32_t y, uint32_t s, uint32_t spp) {
   return vec2((cx + jx) / float(columns), (cy + jy) / float(rows));
 }
 
+// Offset of sample s inside pixel (x, y) drawn independently and uniformly, without strata: the
+// baseline stratification is measured against (`--sampler random`). Also a function of
+// (pixel, sample) alone.
+inline vec2 random_sample_offset(uint32_t x, uint32_t y, uint32_t s) {
+  uint32_t pixel = hash_u32(x * 0x9E3779B1U + hash_u32(y));
+  return vec2(hash_to_unit(pixel, s, 0x1B873593U), hash_to_unit(pixel, s, 0xCC9E2D51U));
+}
+
 }  // namespace kiln

@@ -36,3 +36,41 @@ TEST(sample_pattern, samples_are_stratified_one_per_cell) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(sample_pattern, random_samples_are_uniform_unstratified_and_reproducible) {
+  // Reproducible: a function of (pixel, sample) only.
+  EXPECT_EQ(random_sample_offset(7, 3, 5), random_sample_offset(7, 3, 5));
+  EXPECT_NE(random_sample_offset(7, 3, 5), random_sample_offset(7, 3, 6));
+  // Uniform over the pixel: the mean of many samples is the centre, the quadrants fill evenly.
+  const int n = 4096;
+  vec2 sum(0.0f);
+  int quadrant[4] = {0, 0, 0, 0};
+  for (int s = 0; s < n; ++s) {
+    vec2 o = random_sample_offset(11, 19, uint32_t(s));
+    ASSERT_GE(o.x, 0.0f);
+    ASSERT_LT(o.x, 1.0f);
+    ASSERT_GE(o.y, 0.0f);
+    ASSERT_LT(o.y, 1.0f);
+    sum += o;
+    ++quadrant[(o.x >= 0.5f) + 2 * (o.y >= 0.5f)];
+  }
+  EXPECT_NEAR(sum.x / n, 0.5f, 0.02f);
+  EXPECT_NEAR(sum.y / n, 0.5f, 0.02f);
+  for (int q : quadrant) EXPECT_NEAR(q, n / 4, n / 16);
+  // Not stratified: with 4 samples, some pixel puts two in one quadrant (strata never do).
+  bool clumped = false;
+  for (uint32_t px = 0; px < 64 && !clumped; ++px) {
+    int seen[4] = {0, 0, 0, 0};
+    for (uint32_t s = 0; s < 4; ++s) {
+      vec2 o = random_sample_offset(px, 0, s);
+      if (++seen[(o.x >= 0.5f) + 2 * (o.y >= 0.5f)] > 1) clumped = true;
+    }
+  }
+  EXPECT_TRUE(clumped);
+}
+
+}  // namespace
+}  // namespace kiln

@@ -42,7 +42,8 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   vec3 nearest_normal(0.0f);
   splat.clear();
   for (int s = 0; s < spp; ++s) {
-    vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
+    vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
+                                          : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), counts);
     splat.add(settings.filter, offset, cs.rgba);

@@ -18,6 +18,7 @@ namespace kiln {
 
 struct render_settings {
   int samples_per_pixel = 1;
+  bool random_samples = false;  // independent uniform samples instead of jittered strata
   int threads = 0;      // 0: all cores
   int tile_size = 32;   // pixels per tile side
   reconstruction_filter filter;  // how stratified samples become pixels (box 0.5: the pixel's mean)
