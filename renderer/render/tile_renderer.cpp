@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -30,18 +32,28 @@ std::vector<tile> make_tiles(int width, int height, int size) {
   return tiles;
 }
 
+// The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
+// stands for a sub-pixel), no narrower than 1/8 pixel (as pbrt-v4 scales its camera differentials).
+ray_cone sample_cone(const view_camera& cam, int spp) {
+  const pixel_cone pixel = camera_pixel_cone(cam);
+  const double scale = std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1))));
+  return {float(pixel.width * scale), float(pixel.spread * scale)};
+}
+
 // Renders every sample of one pixel and writes the pixel. The nearest sample decides depth and
 // normal (never averaged, so Z and N stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x, int y,
                   film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
+  const ray_cone cone = sample_cone(cam, spp);
   vec3 colour_sum(0.0f);
   float alpha_sum = 0.0f;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
   for (int s = 0; s < spp; ++s) {
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
+    const ray start = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
+    ray r = start;
     ++counts.camera;
     std::optional<hit> h = find_visible_hit(ctx, r, counts);
     if (!h) {
@@ -51,8 +63,9 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
       }
       continue;
     }
-    surface_point sp = make_surface_point(ctx.world, *h, r);
-    colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts);
+    const ray_cone at_hit = cone_at(cone, distance_to_hit(start, r, *h));
+    surface_point sp = make_surface_point(ctx.world, *h, r, at_hit.width);
+    colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit);
     alpha_sum += 1.0f;
     if (h->t < nearest) {
       nearest = h->t;
@@ -74,7 +87,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
+  std::unique_ptr<texture_filter> textures;
+  if (scene_needs_texture_filter(world)) textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
+  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
 
   std::mutex merge_mutex;
   ray_counts total_counts;

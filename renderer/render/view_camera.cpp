@@ -116,6 +116,12 @@ ray generate_camera_ray(const view_camera& cam, double px, double py) {
   return r;
 }
 
+pixel_cone camera_pixel_cone(const view_camera& cam) {
+  const double pixel = (cam.top - cam.bottom) / cam.height;  // window units per pixel
+  if (cam.kind == projection::orthographic) return {pixel, 0.0};
+  return {0.0, pixel / cam.distance};
+}
+
 dmat4 world_to_camera(const view_camera& cam) {
   dmat4 camera_to_world(1.0);
   camera_to_world[0] = dvec4(cam.right, 0.0);

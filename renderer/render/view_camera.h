@@ -39,6 +39,15 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
 // and (width, height) at the bottom-right; pixel (i, j) has its centre at (i + 0.5, j + 0.5).
 ray generate_camera_ray(const view_camera& cam, double px, double py);
 
+// A pixel's ray cone (Akenine-Möller et al., Ray Tracing Gems ch. 20): perspective rays start with
+// width 0 and spread by the pixel angle, window height / (d · image height); orthographic rays are
+// one pixel wide and do not spread.
+struct pixel_cone {
+  double width = 0.0;   // world units at the ray origin
+  double spread = 0.0;  // radians
+};
+pixel_cone camera_pixel_cone(const view_camera& cam);
+
 // World to camera space (+X right, +Y up, looking along -Z): OpenEXR's worldToCamera.
 dmat4 world_to_camera(const view_camera& cam);
 

@@ -25,12 +25,18 @@ struct image {
 
 enum class wrap_mode { repeat, clamp_to_edge, mirrored_repeat };
 enum class filter_mode { nearest, linear };
+// How minification moves between mip levels: none (level 0 only), the nearest level, or a blend of
+// the two nearest levels.
+enum class mip_mode { none, nearest, linear };
 
-// glTF sampler: wrap per axis and magnification filter.
+// glTF sampler: wrap per axis, magnification filter, and the minification filter split into its
+// texel filter and its mip mode (glTF's minFilter absent means LINEAR_MIPMAP_LINEAR here).
 struct sampler {
   wrap_mode wrap_s = wrap_mode::repeat;
   wrap_mode wrap_t = wrap_mode::repeat;
-  filter_mode filter = filter_mode::linear;
+  filter_mode filter = filter_mode::linear;  // magFilter
+  filter_mode min_filter = filter_mode::linear;
+  mip_mode mipmap = mip_mode::linear;
 };
 
 struct texture {

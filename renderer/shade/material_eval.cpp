@@ -9,8 +9,12 @@ namespace kiln {
 
 vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
   // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
-  vec2 uv = transform_uv(ref, in.uv[ref.texcoord == 1 ? 1 : 0]);
-  return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
+  const int set = ref.texcoord == 1 ? 1 : 0;
+  const vec2 uv = transform_uv(ref, in.uv[set]);
+  const uv_footprint& f = in.footprint[set];
+  if (f.empty()) return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
+  const uv_footprint transformed{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
+  return sample_texture(s, in.filter, uint32_t(ref.texture), uv, transformed, encoding);
 }
 
 namespace {

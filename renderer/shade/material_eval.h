@@ -31,6 +31,8 @@ inline float see_through_weight(const material_point& mp) { return (1.0f - mp.me
 struct material_inputs {
   vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};  // TEXCOORD_0, TEXCOORD_1
   vec4 color0{1.0f};                      // COLOR_0 (multiplies the base colour)
+  uv_footprint footprint[2];              // ray-cone footprint per UV set; empty: point samples
+  const texture_filter* filter = nullptr; // mip-mapped minification; null: level 0 only
 };
 
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
@@ -40,6 +42,8 @@ inline material_inputs material_inputs_at(const surface_point& sp) {
   in.uv[0] = sp.uv0;
   in.uv[1] = sp.uv1;
   in.color0 = sp.color0;
+  in.footprint[0] = sp.footprint0;
+  in.footprint[1] = sp.footprint1;
   return in;
 }
 

@@ -57,6 +57,14 @@ std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
           extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
 }
 
+// glTF minFilter (OpenGL enums): NEAREST 9728, LINEAR 9729, {NEAREST,LINEAR}_MIPMAP_NEAREST 9984/9985,
+// {NEAREST,LINEAR}_MIPMAP_LINEAR 9986/9987; absent (-1) keeps the sampler's trilinear default.
+void set_min_filter(int gl, sampler& out) {
+  if (gl < 0) return;
+  out.min_filter = (gl == 9728 || gl == 9984 || gl == 9986) ? filter_mode::nearest : filter_mode::linear;
+  out.mipmap = gl <= 9729 ? mip_mode::none : (gl <= 9985 ? mip_mode::nearest : mip_mode::linear);
+}
+
 wrap_mode to_wrap(int gl) {
   switch (gl) {
     case 33071: return wrap_mode::clamp_to_edge;
@@ -109,6 +117,7 @@ int32_t resolve_texture(const tinygltf::Model& model, int gltf_texture, texture_
     result.sampling.wrap_s = to_wrap(s.wrapS);
     result.sampling.wrap_t = to_wrap(s.wrapT);
     result.sampling.filter = s.magFilter == 9728 ? filter_mode::nearest : filter_mode::linear;
+    set_min_filter(s.minFilter, result.sampling);
   }
   out.textures.push_back(result);
   remap.textures[t] = static_cast<int32_t>(out.textures.size() - 1);
