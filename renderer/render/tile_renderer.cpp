@@ -1,9 +1,5 @@
 #include "render/tile_renderer.h"
 
-#include "core/error.h"
-#include "render/sample_pattern.h"
-#include "shade/environment.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -17,6 +13,10 @@
 #include <mutex>
 #include <vector>
 
+#include "core/error.h"
+#include "render/sample_pattern.h"
+#include "shade/environment.h"
+
 namespace kiln {
 
 namespace {
@@ -28,7 +28,8 @@ struct tile {
 std::vector<tile> make_tiles(int width, int height, int size) {
   std::vector<tile> tiles;
   for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size) tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+    for (int x = 0; x < width; x += size)
+      tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
   return tiles;
 }
 
@@ -42,8 +43,8 @@ ray_cone sample_cone(const view_camera& cam, int spp) {
 
 // Renders every sample of one pixel and writes the pixel. The nearest sample decides depth and
 // normal (never averaged, so Z and N stay valid for compositing).
-void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x, int y,
-                  film& out, ray_counts& counts) {
+void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
+                  int y, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   const ray_cone cone = sample_cone(cam, spp);
   vec3 colour_sum(0.0f);
@@ -81,34 +82,40 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
 }  // namespace
 
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
-                  const render_settings& settings, render_statistics* stats, const progress_callback& progress) {
+                  const render_settings& settings, render_statistics* stats,
+                  const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
   film out(cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   std::unique_ptr<texture_filter> textures;
-  if (scene_needs_texture_filter(world)) textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
+  if (scene_needs_texture_filter(world))
+    textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
-  auto cancelled = [&settings] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
+  auto cancelled = [&settings] {
+    return settings.cancel && settings.cancel->load(std::memory_order_relaxed);
+  };
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t t = range.begin(); t != range.end(); ++t) {
-        const tile& tl = tiles[t];
-        ray_counts counts;
-        for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-          for (int x = tl.x0; x < tl.x1; ++x) render_pixel(ctx, cam, settings, x, y, out, counts);
-        std::lock_guard<std::mutex> lock(merge_mutex);
-        total_counts += counts;
-        size_t done = ++tiles_done;
-        if (progress) progress(done, tiles.size());
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t t = range.begin(); t != range.end(); ++t) {
+                          const tile& tl = tiles[t];
+                          ray_counts counts;
+                          for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
+                            for (int x = tl.x0; x < tl.x1; ++x)
+                              render_pixel(ctx, cam, settings, x, y, out, counts);
+                          std::lock_guard<std::mutex> lock(merge_mutex);
+                          total_counts += counts;
+                          size_t done = ++tiles_done;
+                          if (progress) progress(done, tiles.size());
+                        }
+                      });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");

@@ -4,19 +4,19 @@
 // Depends on shade (through the accelerator interface) and render; never on a backend.
 #pragma once
 
+#include <atomic>
+#include <functional>
+
 #include "render/film.h"
 #include "render/view_camera.h"
 #include "shade/whitted.h"
-
-#include <atomic>
-#include <functional>
 
 namespace kiln {
 
 struct render_settings {
   int samples_per_pixel = 1;
-  int threads = 0;      // 0: all cores
-  int tile_size = 32;   // pixels per tile side
+  int threads = 0;               // 0: all cores
+  int tile_size = 32;            // pixels per tile side
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures

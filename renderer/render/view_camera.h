@@ -3,22 +3,22 @@
 // O = C + d·v + l·x + b·u. Depends on core and scene (for glTF cameras).
 #pragma once
 
-#include "core/ray.h"
-#include "scene/scene.h"
-
 #include <optional>
 #include <string>
+
+#include "core/ray.h"
+#include "scene/scene.h"
 
 namespace kiln {
 
 struct view_camera {
   projection kind = projection::perspective;
-  dvec3 eye{0.0};               // C
-  dvec3 view{0.0, 0.0, -1.0};   // v, unit
-  dvec3 up{0.0, 1.0, 0.0};      // u, unit, orthogonal to v
-  dvec3 right{1.0, 0.0, 0.0};   // x = v × u
+  dvec3 eye{0.0};                                                  // C
+  dvec3 view{0.0, 0.0, -1.0};                                      // v, unit
+  dvec3 up{0.0, 1.0, 0.0};                                         // u, unit, orthogonal to v
+  dvec3 right{1.0, 0.0, 0.0};                                      // x = v × u
   double left = -1.0, right_edge = 1.0, bottom = -1.0, top = 1.0;  // window l, r, b, t
-  double distance = 1.0;        // d
+  double distance = 1.0;                                           // d
   int width = 1;
   int height = 1;
 };

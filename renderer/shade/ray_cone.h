@@ -4,10 +4,10 @@
 // never need it. Depends on core/math only.
 #pragma once
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/math.h"
 
 namespace kiln {
 
@@ -22,7 +22,9 @@ struct ray_cone {
 };
 
 // The cone after travelling `distance` along its ray.
-inline ray_cone cone_at(const ray_cone& c, float distance) { return {c.width + c.spread * distance, c.spread}; }
+inline ray_cone cone_at(const ray_cone& c, float distance) {
+  return {c.width + c.spread * distance, c.spread};
+}
 
 // The cone leaving a planar mirror: width and spread continue unchanged, so the footprint behind the
 // mirror equals that of the unfolded straight ray (no curvature term: normals of curved surfaces

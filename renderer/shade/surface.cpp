@@ -1,15 +1,15 @@
 #include "shade/surface.h"
 
-#include "geometry/quadric.h"
-#include "geometry/triangle.h"
-
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/quadric.h"
+#include "geometry/triangle.h"
+
 namespace kiln {
 
-uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n, const vec3& direction,
-                                     float cone_width) {
+uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n,
+                                     const vec3& direction, float cone_width) {
   uv_footprint fp;
   if (!(cone_width > 0.0f)) return fp;
   // The ellipse's axes on the tangent plane: along the projected ray direction (stretched by
@@ -139,8 +139,9 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
     const vec3 direction = glm::normalize(r.direction);
     if (!m.texcoords0.empty())
       sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);
-    sp.footprint1 = m.texcoords1.empty() ? sp.footprint0
-                                         : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
+    sp.footprint1 = m.texcoords1.empty()
+                        ? sp.footprint0
+                        : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
   }
   return sp;
 }

@@ -59,10 +59,13 @@ OIIO::ImageInput* create_memory_input() { return new memory_image_input; }
 
 OIIO::TextureOpt::Wrap to_oiio(wrap_mode mode) {
   switch (mode) {
-    case wrap_mode::clamp_to_edge: return OIIO::TextureOpt::WrapClamp;
-    case wrap_mode::mirrored_repeat: return OIIO::TextureOpt::WrapMirror;
+    case wrap_mode::clamp_to_edge:
+      return OIIO::TextureOpt::WrapClamp;
+    case wrap_mode::mirrored_repeat:
+      return OIIO::TextureOpt::WrapMirror;
     case wrap_mode::repeat:
-    default: return OIIO::TextureOpt::WrapPeriodic;
+    default:
+      return OIIO::TextureOpt::WrapPeriodic;
   }
 }
 
@@ -124,9 +127,10 @@ texture_filter::texture_filter(const scene& s, float cache_mb) : impl_(std::make
       l.options.swrap = to_oiio(tex.sampling.wrap_s);
       l.options.twrap = to_oiio(tex.sampling.wrap_t);
       l.options.mipmode = tex.sampling.mipmap == mip_mode::nearest ? OIIO::TextureOpt::MipModeOneLevel
-                                                                     : OIIO::TextureOpt::MipModeAniso;
-      l.options.interpmode = tex.sampling.min_filter == filter_mode::nearest ? OIIO::TextureOpt::InterpClosest
-                                                                             : OIIO::TextureOpt::InterpBilinear;
+                                                                   : OIIO::TextureOpt::MipModeAniso;
+      l.options.interpmode = tex.sampling.min_filter == filter_mode::nearest
+                                 ? OIIO::TextureOpt::InterpClosest
+                                 : OIIO::TextureOpt::InterpBilinear;
     }
   }
 }

@@ -5,10 +5,10 @@
 // Depends on scene (and OpenImageIO, hidden in the .cpp); never on a backend.
 #pragma once
 
+#include <memory>
+
 #include "scene/scene.h"
 #include "shade/texture_sampling.h"
-
-#include <memory>
 
 namespace kiln {
 
@@ -24,7 +24,8 @@ class texture_filter {
   // Filtered RGBA of scene texture `texture_index` over the footprint around uv (glTF UVs, (0,0)
   // at the top-left): trilinear-anisotropic (mip_mode::linear) or one level (mip_mode::nearest),
   // texels read by the sampler's minFilter, wrapped by its wrap modes.
-  vec4 minified(uint32_t texture_index, texel_encoding encoding, vec2 uv, const uv_footprint& footprint) const;
+  vec4 minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
+                const uv_footprint& footprint) const;
 
  private:
   struct impl;

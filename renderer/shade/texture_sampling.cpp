@@ -1,16 +1,14 @@
 #include "shade/texture_sampling.h"
 
-#include "shade/texture_filter.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "shade/texture_filter.h"
+
 namespace kiln {
 
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 int wrap_texel(int i, int size, wrap_mode mode) {
   switch (mode) {
@@ -64,7 +62,8 @@ vec4 fetch_texel(const image& img, int x, int y, texel_encoding encoding) {
 namespace {
 
 // Level 0 with one texel filter: nearest or bilinear.
-vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv, texel_encoding encoding) {
+vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv,
+                   texel_encoding encoding) {
   // Texel centres sit at half-integers; keep the coordinate bounded before converting to int.
   float fx = std::fmod(uv.x, 65536.0f) * img.width - 0.5f;
   float fy = std::fmod(uv.y, 65536.0f) * img.height - 0.5f;
@@ -117,7 +116,8 @@ vec4 sample_texture(const scene& s, const texture_filter* filter, uint32_t textu
   // OpenGL's rule: the scale factor ρ is the footprint's longest axis in texels; ρ ≤ 1 magnifies.
   const vec2 texels(img.width, img.height);
   const float rho = std::max(glm::length(footprint.dx * texels), glm::length(footprint.dy * texels));
-  if (!(rho > 1.0f) || !std::isfinite(rho)) return sample_level0(img, tex.sampling, tex.sampling.filter, uv, encoding);
+  if (!(rho > 1.0f) || !std::isfinite(rho))
+    return sample_level0(img, tex.sampling, tex.sampling.filter, uv, encoding);
   if (tex.sampling.mipmap == mip_mode::none || !filter)
     return sample_level0(img, tex.sampling, tex.sampling.min_filter, uv, encoding);
   return filter->minified(texture_index, encoding, uv, footprint);

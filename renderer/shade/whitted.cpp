@@ -1,13 +1,13 @@
 #include "shade/whitted.h"
 
+#include <algorithm>
+
 #include "core/float_bits.h"
 #include "shade/environment.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/normal_mapping.h"
 #include "shade/shadow_transmittance.h"
-
-#include <algorithm>
 
 namespace kiln {
 
@@ -184,11 +184,12 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
         refracted.direction = *direction;
         refracted.kind = ray_kind::refraction;
         ++counts.refraction;
-        const ray_cone bent = crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
-                                                               glm::dot(*direction, sp.geometric_normal))
-                                             : cone;
-        radiance += weight * trace_radiance(ctx, refracted, depth + 1, next_throughput, counts, crossing.beyond,
-                                            bent);
+        const ray_cone bent =
+            crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
+                                            glm::dot(*direction, sp.geometric_normal))
+                           : cone;
+        radiance += weight *
+                    trace_radiance(ctx, refracted, depth + 1, next_throughput, counts, crossing.beyond, bent);
       }
     }
   }
@@ -206,8 +207,8 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
     reflected.kind = ray_kind::reflection;
     ++counts.reflection;
     // A reflected ray stays in the medium it came from.
-    radiance += reflect_weight *
-                trace_radiance(ctx, reflected, depth + 1, next_throughput, counts, media, reflected_cone(cone));
+    radiance += reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput, counts, media,
+                                                reflected_cone(cone));
   }
   return radiance;
 }
@@ -247,8 +248,8 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
 
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
                ray_counts& counts, const medium_stack& media, const ray_cone& cone) {
-  return shade_surface(ctx, r, make_surface_point(ctx.world, h, r, cone.width), depth, throughput, counts, media,
-                       cone);
+  return shade_surface(ctx, r, make_surface_point(ctx.world, h, r, cone.width), depth, throughput, counts,
+                       media, cone);
 }
 
 float distance_to_hit(const ray& start, const ray& r, const hit& h) {
@@ -271,8 +272,9 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
   const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);
-  vec3 arriving = h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone)
-                    : environment_radiance(ctx.world, r.direction);
+  vec3 arriving =
+      h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone)
+        : environment_radiance(ctx.world, r.direction);
   return absorption * arriving;
 }
 

@@ -1,8 +1,10 @@
 // Whitted-style shading: emission, direct light from every punctual light with a shadow ray
 // (attenuated through see-through surfaces), recursive Fresnel-weighted mirror reflection for
-// smooth surfaces, and refraction with exact dielectric Fresnel for transmissive materials. Sees the Scene and the
-// accelerator interface only, never a backend.
+// smooth surfaces, and refraction with exact dielectric Fresnel for transmissive materials. Sees the Scene
+// and the accelerator interface only, never a backend.
 #pragma once
+
+#include <cstdint>
 
 #include "accel/accelerator.h"
 #include "scene/scene.h"
@@ -10,8 +12,6 @@
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_filter.h"
-
-#include <cstdint>
 
 namespace kiln {
 
@@ -68,8 +68,9 @@ float distance_to_hit(const ray& start, const ray& r, const hit& h);
 // Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
 // media: the closed volumes r travels in (empty for camera rays). cone: r's ray cone at the hit
 // (the width sp's footprints were built with); reflected, refracted and continued rays carry it on.
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth, float throughput,
-                   ray_counts& counts, const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
+                   float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
+                   const ray_cone& cone = {});
 
 // Radiance arriving along r from the surface at h (the closest hit of r); cone is r's at the hit.
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,

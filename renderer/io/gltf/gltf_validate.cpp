@@ -1,13 +1,13 @@
 #include "io/gltf/gltf_validate.h"
 
-#include "core/error.h"
-#include "io/gltf/gltf_accessors.h"
-#include "io/gltf/gltf_common.h"
-
 #include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <vector>
+
+#include "core/error.h"
+#include "io/gltf/gltf_accessors.h"
+#include "io/gltf/gltf_common.h"
 
 namespace kiln::gltf_internal {
 namespace {
@@ -259,7 +259,8 @@ void check_attribute_format(const tinygltf::Accessor& acc, const std::string& na
                      (acc.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                          ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
     if (!ok)
-      throw input_error(file, where, "COLOR_0 must be VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
+      throw input_error(file, where,
+                        "COLOR_0 must be VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
   }
 }
 
