@@ -1,5 +1,14 @@
 #include "app/render_command.h"
 
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
 #include "accel/make_accelerator.h"
 #include "app/interrupt.h"
 #include "core/error.h"
@@ -8,16 +17,6 @@
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
-
-#include <CLI/CLI.hpp>
-
-#include <unistd.h>
-
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <iostream>
-#include <sstream>
 
 namespace kiln {
 
@@ -45,8 +44,9 @@ const camera& select_camera(const scene& world, const std::string& which) {
   long index = std::strtol(which.c_str(), &end, 10);
   if (!which.empty() && end && *end == '\0') {
     if (index < 0 || size_t(index) >= world.cameras.size())
-      throw input_error(world.source, "--camera", "camera index " + which + " out of range (file has " +
-                                                      std::to_string(world.cameras.size()) + " cameras)");
+      throw input_error(world.source, "--camera",
+                        "camera index " + which + " out of range (file has " +
+                            std::to_string(world.cameras.size()) + " cameras)");
     return world.cameras[size_t(index)];
   }
   std::string names;
@@ -85,7 +85,8 @@ view_camera choose_view(const render_options& options, const scene& world, std::
     int width = 0, height = 0;
     resolve_image_size(options, 0.0f, width, height);
     description = "look-at";
-    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width, height);
+    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width,
+                               height);
   }
   if (!options.camera.empty() || !world.cameras.empty()) {
     const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
@@ -140,16 +141,24 @@ std::string format_vec(const vec3& v) {
 
 void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
-  app.add_option("--width", o.width, "Image width in pixels (default 640, or from --height and the camera's aspect)")
+  app.add_option("--width", o.width,
+                 "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--height", o.height, "Image height in pixels (default 480, or from the camera's aspect ratio)")
+  app.add_option("--height", o.height,
+                 "Image height in pixels (default 480, or from the camera's aspect ratio)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
+  app.add_option("--spp", o.samples_per_pixel,
+                 "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
-  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--camera", o.camera,
+                 "glTF camera by name or index (default: the first camera in the file)");
   app.add_option_function<std::string>(
       "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
@@ -157,7 +166,8 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--look-at", [&o](const std::string& s) { o.look_at = parse_triple(s, "--look-at"); },
       "Look-at camera target X,Y,Z");
   app.add_option_function<std::string>(
-      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); }, "Look-at camera up vector X,Y,Z (default 0,1,0)");
+      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); },
+      "Look-at camera up vector X,Y,Z (default 0,1,0)");
   app.add_option("--fov", o.fov_degrees, "Look-at camera vertical field of view in degrees")
       ->check(CLI::Range(1e-3, 179.999))
       ->capture_default_str();
@@ -167,25 +177,35 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--background",
       [&o](const std::string& s) {
         dvec3 c = parse_triple(s, "--background");
-        if (c.x < 0 || c.y < 0 || c.z < 0) throw CLI::ValidationError("--background", "colour must be non-negative");
+        if (c.x < 0 || c.y < 0 || c.z < 0)
+          throw CLI::ValidationError("--background", "colour must be non-negative");
         o.background = vec3(c);
       },
       "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)");
-  app.add_option("--environment", o.environment,
-                 "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
+  app.add_option(
+         "--environment", o.environment,
+         "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
       ->check(CLI::ExistingFile);
   app.add_option("--environment-rotation", o.environment_rotation_degrees,
                  "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)")
       ->check(CLI::Range(-36000.0, 36000.0))
       ->capture_default_str();
-  app.add_option("--environment-intensity", o.environment_intensity, "Scale of the environment map's radiance")
+  app.add_option("--environment-intensity", o.environment_intensity,
+                 "Scale of the environment map's radiance")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
-  app.add_flag("--show-background", o.show_background,
-               "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
-  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_flag(
+      "--show-background", o.show_background,
+      "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
+  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--texture-cache-mb", o.texture_cache_mb,
+                 "Memory for mip-mapped texture tiles (MB; grows to twice the largest texture's float size)")
+      ->check(CLI::Range(1.0f, 1e6f))
       ->capture_default_str();
   app.add_flag("--allow-outside-files", o.allow_outside_files,
                "Let buffer and image URIs name files outside the asset's folder (absolute paths, '..')");
@@ -204,7 +224,8 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
-  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+  app.add_flag("--float", o.full_float,
+               "Write RGBA and N as 32-bit float instead of half (Z is always float)");
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -229,7 +250,8 @@ prepared_scene prepare_scene(const render_options& options) {
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet)
-    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings)
+      std::cerr << "kiln: warning: " << warning << '\n';
 
   p.cam = choose_view(options, p.world, p.camera_description);
   if (p.world.lights.empty()) {
@@ -247,6 +269,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.show_background = options.show_background;
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
+  settings.texture_cache_mb = options.texture_cache_mb;
   settings.cancel = &interrupt_requested();
   return settings;
 }
@@ -262,7 +285,8 @@ void run_render(const render_options& options) {
 
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel = make_accelerator(world, *parse_accel_kind(options.accel));
-  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  double build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
   render_statistics stats;
@@ -290,17 +314,18 @@ void run_render(const render_options& options) {
       {"kiln/command_line", options.command_line},
   };
   // A signal that arrives after the last pixel still stops the run before anything is written.
-  if (interrupt_requested()) throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  if (interrupt_requested())
+    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
     std::fprintf(stderr,
                  "kiln: %dx%d, %d spp, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",
-                 cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds, build_seconds,
-                 stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
-                 (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
-                 options.output.c_str());
+                 cam.width, cam.height, options.samples_per_pixel, stats.threads_used, load_seconds,
+                 build_seconds, stats.seconds, (unsigned long long)stats.rays.camera,
+                 (unsigned long long)stats.rays.shadow, (unsigned long long)stats.rays.reflection,
+                 (unsigned long long)stats.rays.refraction, options.output.c_str());
   }
 }
 

@@ -2,14 +2,14 @@
 // tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+
 #include "core/math.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
-
-#include <cstddef>
-#include <optional>
-#include <string>
 
 namespace CLI {
 class App;
@@ -35,11 +35,12 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
-  std::string environment;  // equirectangular map file; empty: the --background colour
+  std::string environment;       // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
   int max_depth = 8;
   float min_throughput = 1e-3f;
+  float texture_cache_mb = 256.0f;  // OpenImageIO tile cache for mip-mapped texture lookups
   bool allow_outside_files = false;
   // Loader limits (see gltf_limits for what each guards against).
   size_t max_json_bytes = size_t(512) << 20;

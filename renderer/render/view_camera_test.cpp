@@ -1,10 +1,10 @@
 #include "render/view_camera.h"
 
-#include "core/error.h"
-
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
 
 namespace kiln {
 namespace {
@@ -53,7 +53,8 @@ TEST(view_camera, image_corners_span_the_field_of_view) {
 TEST(view_camera, gltf_camera_looks_down_its_negative_z) {
   camera c;
   c.yfov = 0.5f;
-  c.world_from_camera = glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
+  c.world_from_camera =
+      glm::rotate(glm::translate(dmat4(1.0), dvec3(0, 0, 10)), glm::radians(90.0), dvec3(0, 1, 0));
   view_camera cam = make_gltf_camera(c, 32, 32);
   ray r = generate_camera_ray(cam, 16.0, 16.0);
   // Rotating -Z by +90° about Y gives -X.
@@ -93,6 +94,26 @@ TEST(view_camera, world_to_ndc_maps_window_corners_to_unit_square) {
   EXPECT_NEAR(p.y / p.w, 1.0, 1e-5);
   dvec4 q = world_to_camera(cam) * dvec4(0, 0, 0, 1);
   EXPECT_NEAR(q.z, -5.0, 1e-12);
+}
+
+// The perspective pixel cone spreads by the angle between neighbouring pixel centres at the image
+// centre; an orthographic one is a pixel wide and does not spread.
+TEST(view_camera, pixel_cone_is_one_pixel) {
+  const int w = 64, h = 48;
+  const view_camera cam = make_look_at_camera(dvec3(0.0), dvec3(0, 0, -1), dvec3(0, 1, 0), 50.0, w, h);
+  const vec3 a = generate_camera_ray(cam, 0.5 * w, 0.5 * h).direction;
+  const vec3 b = generate_camera_ray(cam, 0.5 * w, 0.5 * h + 1.0).direction;
+  const double angle = std::acos(std::min(double(glm::dot(a, b)), 1.0));
+  EXPECT_NEAR(camera_pixel_cone(cam).spread, angle, 1e-3 * angle);
+  EXPECT_EQ(camera_pixel_cone(cam).width, 0.0);
+
+  camera c;
+  c.kind = projection::orthographic;
+  c.ymag = 3.0f;
+  const view_camera ortho = make_gltf_camera(c, w, h);
+  const ray r0 = generate_camera_ray(ortho, 10.0, 10.0), r1 = generate_camera_ray(ortho, 10.0, 11.0);
+  EXPECT_NEAR(camera_pixel_cone(ortho).width, glm::length(r1.origin - r0.origin), 1e-5);
+  EXPECT_EQ(camera_pixel_cone(ortho).spread, 0.0);
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ uv_footprint triangle_footprint(const instance& inst, const mesh& m, const uint3
 
 // A quadric hit: the point projected onto the exact surface with its error bound, the gradient
 // normal (shading normal = geometric normal: the surface is exact) and the parametric UV.
-surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r) {
+surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
+                                         float cone_width) {
   quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   surface_point sp;
   sp.position = w.point;
@@ -86,6 +87,13 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   sp.front_face = glm::dot(w.normal, r.direction) < 0.0f;
   sp.geometric_normal = sp.front_face ? w.normal : -w.normal;
   sp.shading_normal = sp.geometric_normal;
+  vec3 dp_du, dp_dv;
+  if (cone_width > 0.0f &&
+      quadric_world_uv_jacobian(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id, dp_du, dp_dv)) {
+    sp.footprint0 =
+        footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
+    sp.footprint1 = sp.footprint0;
+  }
   return sp;
 }
 
@@ -93,7 +101,7 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
 
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width) {
   const instance& inst = s.instances[h.instance_id];
-  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r);
+  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r, cone_width);
   const mesh& m = s.meshes[inst.shape];
   const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
 
