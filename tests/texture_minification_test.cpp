@@ -93,11 +93,12 @@ view_camera checker_camera() {
                              width, height);
 }
 
-film render(const scene& s, int spp, int threads = 1) {
+film render(const scene& s, int spp, int threads = 1, float texture_cache_mb = 256.0f) {
   embree_accelerator accel(s);
   render_settings settings;
   settings.samples_per_pixel = spp;
   settings.threads = threads;
+  settings.texture_cache_mb = texture_cache_mb;
   return render_image(s, accel, checker_camera(), settings);
 }
 
@@ -158,6 +159,8 @@ void expect_no_aliasing(bool through_mirror) {
   EXPECT_LT(rms_difference(reference, point_sampled, rows), 0.08);
   const film filtered = render(checker_scene(mip_mode::linear, through_mirror), 1);
   const film aliased = render(checker_scene(mip_mode::none, through_mirror), 1);
+  // Mip levels average linear values (sRGB decoded first): black and white give 0.5, not sRGB 0.5.
+  EXPECT_NEAR(mean_red(filtered, rows), 0.5, 0.01);
   const double filtered_rms = rms_difference(filtered, reference, rows);
   const double aliased_rms = rms_difference(aliased, reference, rows);
   std::printf("rows %d-%d (%zu): rms against the reference: mip-mapped 1 spp %.4f, no mip 1 spp %.4f\n",
@@ -218,13 +221,15 @@ TEST(texture_minification, cone_after_planar_mirror_matches_unfolded_straight_ra
 }
 
 // OpenImageIO's cache is shared by the render threads; the filtered image must not depend on
-// which thread filled it first.
-TEST(texture_minification, mip_mapped_render_is_identical_for_any_thread_count) {
+// which thread filled it first, nor on a cache too small to hold the texture's tiles.
+TEST(texture_minification, mip_mapped_render_is_identical_for_any_thread_count_and_cache_size) {
   const scene s = checker_scene(mip_mode::linear, true);
   const film one = render(s, 2, 1);
   const film many = render(s, 2, 4);
+  const film small_cache = render(s, 2, 3, 0.1f);
   ASSERT_EQ(one.color.size(), many.color.size());
   EXPECT_EQ(std::memcmp(one.color.data(), many.color.data(), one.color.size() * sizeof(vec4)), 0);
+  EXPECT_EQ(std::memcmp(one.color.data(), small_cache.color.data(), one.color.size() * sizeof(vec4)), 0);
 }
 
 }  // namespace

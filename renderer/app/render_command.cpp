@@ -203,8 +203,7 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  app.add_option("--texture-cache-mb", o.texture_cache_mb,
-                 "Memory for mip-mapped texture tiles (MB; grows to twice the largest texture's float size)")
+  app.add_option("--texture-cache-mb", o.texture_cache_mb, "Memory for mip-mapped texture tiles (MB)")
       ->check(CLI::Range(1.0f, 1e6f))
       ->capture_default_str();
   app.add_flag("--allow-outside-files", o.allow_outside_files,
