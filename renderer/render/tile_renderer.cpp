@@ -43,6 +43,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
     ++counts.camera;
+    const vec3 eye = r.origin;  // find_visible_hit moves r's origin past culled back faces
     std::optional<hit> h = find_visible_hit(ctx, r, counts);
     if (!h) {
       if (settings.show_background) {
@@ -54,8 +55,9 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     surface_point sp = make_surface_point(ctx.world, *h, r);
     colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts);
     alpha_sum += 1.0f;
-    if (h->t < nearest) {
-      nearest = h->t;
+    float distance = h->t + glm::length(r.origin - eye);
+    if (distance < nearest) {
+      nearest = distance;
       nearest_normal = sp.shading_normal;
     }
   }
