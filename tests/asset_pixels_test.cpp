@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -243,8 +242,8 @@ TEST(asset_pixels, texture_coordinate_test_puts_each_texture_corner_on_its_quad)
       dark[k] = count(r, quarter, [&](const rgb& c) { return c.luma() < 0.3f * base; });
     }
     for (int k = 0; k < 4; ++k) {
-      if (k != q.corner)
-        EXPECT_GT(dark[q.corner], 3 * dark[k]) << "dark pixels in quarter " << k << " of " << area;
+      if (k == q.corner) continue;
+      EXPECT_GT(dark[q.corner], 3 * dark[k]) << "dark pixels in quarter " << k << " of " << area;
     }
   }
 }
@@ -522,5 +521,92 @@ TEST(asset_pixels, multi_uv_test_emissive_uses_the_second_uv_set) {
   EXPECT_LT(share(first_set, cube, logo), 0.2 * share(r, cube, logo));
 }
 
+// Luminance on an n×n grid over a world-space square in the plane z, as the camera sees it.
+std::vector<double> luma_grid(const rendering& r, const bounds3& square, int n, double z) {
+  std::vector<double> values;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      dvec3 p(square.lower.x + (i + 0.5) / n * (square.upper.x - square.lower.x),
+              square.upper.y - (j + 0.5) / n * (square.upper.y - square.lower.y), z);
+      glm::dvec2 px = r.project(p);
+      int x = std::clamp(int(px.x), 0, r.width - 1), y = std::clamp(int(px.y), 0, r.height - 1);
+      values.push_back(r.color(x, y).luma());
+    }
+  return values;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i] / a.size(), mb += b[i] / b.size();
+  double ab = 0, aa = 0, bb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    ab += (a[i] - ma) * (b[i] - mb), aa += (a[i] - ma) * (a[i] - ma), bb += (b[i] - mb) * (b[i] - mb);
+  }
+  return ab / std::sqrt(aa * bb);
+}
+
+// The grid upside down: what a flipped green channel would do to a normal-mapped cell's shading.
+std::vector<double> flip_rows(const std::vector<double>& v, int n) {
+  std::vector<double> out(v.size());
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) out[j * n + i] = v[(n - 1 - j) * n + i];
+  return out;
+}
+
+// A copy of a .glb with one directional light added, shining along `direction`.
+fs::path with_directional_light(const model& m, const dvec3& direction, const std::string& name) {
+  json doc = m.doc;
+  doc["extensionsUsed"].push_back("KHR_lights_punctual");
+  doc["extensions"]["KHR_lights_punctual"]["lights"] =
+      json::array({{{"type", "directional"}, {"intensity", 3.0}}});
+  // The light shines along its node's -Z: the node's basis has z = -direction.
+  dvec3 z = -glm::normalize(direction), x = glm::normalize(glm::cross(dvec3(0, 1, 0), z)),
+        y = glm::cross(z, x);
+  doc["nodes"].push_back({{"name", "test light"},
+                          {"matrix", {x.x, x.y, x.z, 0, y.x, y.y, y.z, 0, z.x, z.y, z.z, 0, 0, 0, 0, 1}},
+                          {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  doc["scenes"][doc.value("scene", 0)]["nodes"].push_back(doc["nodes"].size() - 1);
+  fs::path copy = fs::path(testing::scratch_folder(name)) / m.file.filename();
+  write_glb(m.file, doc, copy);
+  return copy;
+}
+
+// README (NormalTangentTest supplies no tangents, so kiln generates them): each pair has real
+// geometry on the left and a normal-mapped flat quad on the right, and both must shade alike. Lit
+// from the upper right and seen straight on from far away (so the bumps line up with their cells),
+// the normal-mapped twin's brightness must follow the real one's, which a flipped Y (green) would
+// turn upside down. The third pair of each row is a mirror with nothing to reflect here.
+TEST(asset_pixels, normal_tangent_test_normal_maps_shade_like_their_geometry) {
+  SKIP_WITHOUT_ASSETS();
+  model m = load(asset("NormalTangentTest/glTF-Binary/NormalTangentTest.glb"));
+  fs::path lit = with_directional_light(m, dvec3(-1, -1, -2), "normal_tangent_lit");
+  rendering r = render(lit, "normal_tangent", 512, 512,
+                       {"--look-from", "0,-0.125,40", "--look-at", "0,-0.125,0", "--fov", "3.5"});
+  bounds3 panel = node_bounds(m, m.doc["meshes"][0]["name"]);
+  // Cell columns and rows as fractions of the panel (x from the left, y from the top).
+  const double columns[4][2] = {{0.0, 0.136}, {0.147, 0.283}, {0.36, 0.496}, {0.505, 0.64}};
+  const double rows[5][2] = {{0.0, 0.14}, {0.186, 0.326}, {0.372, 0.512}, {0.558, 0.698}, {0.744, 0.884}};
+  auto cell = [&](int column, int row) {
+    dvec3 size = panel.diagonal();
+    auto inset = [](double a, double b, double f) { return a + f * (b - a); };
+    double x0 = inset(columns[column][0], columns[column][1], 0.2),
+           x1 = inset(columns[column][0], columns[column][1], 0.8);
+    double y0 = inset(rows[row][0], rows[row][1], 0.2), y1 = inset(rows[row][0], rows[row][1], 0.8);
+    bounds3 b;
+    b.extend(dvec3(panel.lower.x + x0 * size.x, panel.upper.y - y1 * size.y, 0.0));
+    b.extend(dvec3(panel.lower.x + x1 * size.x, panel.upper.y - y0 * size.y, 0.0));
+    return b;
+  };
+  const int n = 16;  // grid over the bump (the middle 60% of the cell, clear of its cast shadow)
+  for (int pair = 0; pair < 2; ++pair)
+    for (int row = 0; row < 5; ++row) {
+      std::vector<double> real = luma_grid(r, cell(2 * pair, row), n, 0.0),
+                          mapped = luma_grid(r, cell(2 * pair + 1, row), n, 0.0);
+      SCOPED_TRACE(std::string(pair ? "grey" : "pink") + " row " + std::to_string(row));
+      EXPECT_GT(correlation(real, mapped), 0.9);
+      // The light is far enough off axis that a flipped Y would show: upside down, they differ.
+      EXPECT_LT(correlation(flip_rows(real, n), mapped), 0.5);
+    }
+}
 }  // namespace
 }  // namespace kiln
