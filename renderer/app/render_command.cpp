@@ -144,6 +144,7 @@ void add_default_light(scene& world, const view_camera& cam) {
   headlight.kind = light_kind::point;
   headlight.position = cam.eye;
   headlight.intensity = float(pi * distance * distance);
+  headlight.casts_shadows = false;
   world.lights.push_back(headlight);
 }
 

@@ -18,7 +18,7 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   const ray_cone at_hit = cone_at(cone, distance_to_hit(start, r, *h));
   surface_point sp = make_surface_point(ctx.world, *h, r, at_hit.width);
   s.rgba = vec4(shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit), 1.0f);
-  s.depth = h->t;
+  s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
   s.normal = sp.shading_normal;
   s.instance = h->instance_id;
   return s;

@@ -169,6 +169,10 @@ struct light {
   vec3 direction{0, 0, -1};  // world space, the way light travels (spot, directional)
   float inner_cone_angle = 0.0f;
   float outer_cone_angle = pi / 4.0f;
+  // glTF lights cast shadows. kiln's default headlight does not: a point seen from the camera is
+  // always visible from a light at the camera, except through what the camera ray itself passed
+  // (culled back faces, BLEND surfaces), which would only darken what the camera sees.
+  bool casts_shadows = true;
 };
 
 enum class projection { perspective, orthographic };

@@ -55,6 +55,10 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
     vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction);
     if (f == vec3(0.0f)) continue;
 
+    if (!l.casts_shadows) {
+      total += f * ls.irradiance * cos_theta;
+      continue;
+    }
     ray shadow;
     shadow.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
     shadow.direction = ls.direction;
