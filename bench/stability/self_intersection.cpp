@@ -213,8 +213,8 @@ self_intersection_result measure_self_intersection(test_shape shape, const place
       next.direction = r.direction;
       const std::optional<hit> g = accel.intersect(next);
       // The inner surface is at most 2·thin_gap·scale away (cos ≥ 0.5); anything past a quarter of
-      // the shape's size is its far side or nothing.
-      if (g && g->instance_id == 0)
+      // the shape's size is a far side or nothing: the ray passed both surfaces.
+      if (g && g->instance_id == 0 && g->t <= 0.25 * where.scale)
         ++out.gap_self_hits;
       else if (!g || g->t > 0.25 * where.scale)
         ++out.leaks;
