@@ -76,10 +76,11 @@ void self_intersection_study(const options& o, std::ofstream& csv) {
       for (const auto& [sweep, where] : points) {
         const self_intersection_result r = measure_self_intersection(shape, where, m, o.rays, 11);
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%s,%.1e,%.1e,%.1e,%lld,%lld,%.6g,%lld,%lld,%.6g,%lld,%.1f\n", sweep,
-                      shape_name(shape), method_name(m).c_str(), m.epsilon, where.scale, where.translation,
-                      (long long)r.shadow_rays, (long long)r.acne, r.acne_rate(), (long long)r.gap_rays,
-                      (long long)r.leaks, r.leak_rate(), (long long)r.gap_self_hits, r.ns_per_shadow_ray);
+        std::snprintf(line, sizeof line, "%s,%s,%s,%.1e,%.1e,%.1e,%lld,%lld,%.6g,%lld,%lld,%.6g,%lld,%.1f\n",
+                      sweep, shape_name(shape), method_name(m).c_str(), m.epsilon, where.scale,
+                      where.translation, (long long)r.shadow_rays, (long long)r.acne, r.acne_rate(),
+                      (long long)r.gap_rays, (long long)r.leaks, r.leak_rate(), (long long)r.gap_self_hits,
+                      r.ns_per_shadow_ray);
         csv << line;
       }
 }
@@ -87,10 +88,10 @@ void self_intersection_study(const options& o, std::ofstream& csv) {
 void write_accuracy(std::ofstream& csv, const char* shape, const char* solver, const char* rays_kind,
                     double distance, const solver_accuracy& a) {
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%s,%.1e,%lld,%lld,%lld,%lld,%lld,%.6g,%.6g,%.6g,%.1f\n", shape, solver,
-                rays_kind, distance, (long long)a.rays, (long long)a.reference_hits, (long long)a.missed,
-                (long long)a.invented, (long long)a.wrong, a.miss_rate(), a.failure_rate(), a.max_error,
-                a.ns_per_ray);
+  std::snprintf(line, sizeof line, "%s,%s,%s,%.1e,%lld,%lld,%lld,%lld,%lld,%.6g,%.6g,%.6g,%.1f\n", shape,
+                solver, rays_kind, distance, (long long)a.rays, (long long)a.reference_hits,
+                (long long)a.missed, (long long)a.invented, (long long)a.wrong, a.miss_rate(),
+                a.failure_rate(), a.max_error, a.ns_per_ray);
   csv << line;
 }
 
@@ -102,10 +103,11 @@ void sphere_study(const options& o, std::ofstream& csv) {
   csv << accuracy_header;
   std::vector<double> distances = decades(1, 7);
   distances.insert(distances.begin(), 1.5);
-  for (sphere_solver s : {sphere_solver::naive_float, sphere_solver::naive_double, sphere_solver::stable_float,
-                          sphere_solver::stable_double, sphere_solver::kiln})
-    for (double d : distances) write_accuracy(csv, "sphere", solver_name(s), "toward", d,
-                                              measure_sphere_solver(s, d, o.solver_rays, 99));
+  for (sphere_solver s : {sphere_solver::naive_float, sphere_solver::naive_double,
+                          sphere_solver::stable_float, sphere_solver::stable_double, sphere_solver::kiln})
+    for (double d : distances)
+      write_accuracy(csv, "sphere", solver_name(s), "toward", d,
+                     measure_sphere_solver(s, d, o.solver_rays, 99));
 }
 
 void torus_study(const options& o, std::ofstream& csv) {

@@ -173,7 +173,8 @@ self_intersection_result measure_self_intersection(test_shape shape, const place
       const ray r = make_primary(shape, where, rng);
       const std::optional<hit> h = accel.intersect(r);
       if (!h) continue;  // far from the origin the float ray can miss a small shape: not a shadow ray
-      const vec3 up = glm::dot(h->geometric_normal, r.direction) < 0.0f ? h->geometric_normal : -h->geometric_normal;
+      const vec3 up =
+          glm::dot(h->geometric_normal, r.direction) < 0.0f ? h->geometric_normal : -h->geometric_normal;
       cases.push_back({r, *h, vec3(random_in_cone(rng, dvec3(up), 0.05))});
     }
     // Three timed passes, the fastest kept: the machine is shared, and a pass can be preempted.
@@ -188,7 +189,9 @@ self_intersection_result measure_self_intersection(test_shape shape, const place
         shadow.kind = ray_kind::shadow;
         if (accel.occluded(shadow)) ++acne;
       }
-      best_ns = std::min(best_ns, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count());
+      best_ns = std::min(
+          best_ns,
+          std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count());
       out.acne = acne;
     }
     out.shadow_rays = int64_t(cases.size());

@@ -36,11 +36,11 @@ struct placement {
 constexpr double thin_gap = 4e-5;
 
 struct self_intersection_result {
-  int64_t shadow_rays = 0;     // primary hits on the lone surface, each casting one shadow ray
-  int64_t acne = 0;            // shadow rays toward an unoccluded (directional) light that hit the surface
-  int64_t gap_rays = 0;        // primary hits on the outer surface of the thin shell
-  int64_t leaks = 0;           // continuation rays that did not stop at the inner surface (passed it)
-  int64_t gap_self_hits = 0;   // continuation rays that re-hit the outer surface right where they left it
+  int64_t shadow_rays = 0;    // primary hits on the lone surface, each casting one shadow ray
+  int64_t acne = 0;           // shadow rays toward an unoccluded (directional) light that hit the surface
+  int64_t gap_rays = 0;       // primary hits on the outer surface of the thin shell
+  int64_t leaks = 0;          // continuation rays that did not stop at the inner surface (passed it)
+  int64_t gap_self_hits = 0;  // continuation rays that re-hit the outer surface right where they left it
   double ns_per_shadow_ray = 0.0;  // hit-point reconstruction + offset + occlusion query
   double acne_rate() const { return shadow_rays ? double(acne) / double(shadow_rays) : 0.0; }
   double leak_rate() const { return gap_rays ? double(leaks) / double(gap_rays) : 0.0; }

@@ -116,7 +116,8 @@ solver_accuracy score(const std::vector<test_ray>& rays, int repeats, double t_t
   for (int k = 0; k < repeats; ++k) {
     const auto start = std::chrono::steady_clock::now();
     for (const test_ray& r : rays) sink += solve(r.o, r.d).value_or(0.0);
-    best_ns = std::min(best_ns, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count());
+    best_ns = std::min(
+        best_ns, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count());
   }
   out.ns_per_ray = rays.empty() ? 0.0 : best_ns / double(rays.size());
   // Keeps the timed calls from being optimised away.
@@ -189,7 +190,8 @@ solver_accuracy measure_sphere_solver(sphere_solver s, double distance, int rays
     prepared.back().reference = sphere_reference(prepared.back().o, prepared.back().d);
   }
   return score(
-      prepared, 5, inf, [s](const dvec3& o, const dvec3& d) { return solve_unit_sphere(s, o, d); }, sphere_distance);
+      prepared, 5, inf, [s](const dvec3& o, const dvec3& d) { return solve_unit_sphere(s, o, d); },
+      sphere_distance);
 }
 
 std::array<solver_accuracy, 3> measure_torus_solvers(double distance, bool grazing, int rays, uint64_t seed) {
@@ -201,8 +203,9 @@ std::array<solver_accuracy, 3> measure_torus_solvers(double distance, bool grazi
   }
   std::array<solver_accuracy, 3> out;
   for (int k = 0; k < 3; ++k)
-    out[size_t(k)] =
-        score(prepared, 3, 1e-3, [k](const dvec3& o, const dvec3& d) { return solve_torus(k, o, d); }, torus_distance);
+    out[size_t(k)] = score(
+        prepared, 3, 1e-3, [k](const dvec3& o, const dvec3& d) { return solve_torus(k, o, d); },
+        torus_distance);
   return out;
 }
 

@@ -78,7 +78,8 @@ TEST(stability_invalid_input, non_finite_rays_are_refused_and_shade_to_a_finite_
 TEST(stability_invalid_input, the_loader_refuses_a_nan_vertex) {
   testing::gltf_builder b;
   b.add_node({{"mesh", b.add_mesh({{0, 0, 0}, {1, nan_f, 0}, {0, 1, 0}}, {0, 1, 2})}});
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "kiln_stability_nan_vertex.gltf";
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "kiln_stability_nan_vertex.gltf";
   b.write(path.string());
   try {
     load_gltf(path.string());

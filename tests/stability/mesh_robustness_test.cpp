@@ -1,7 +1,8 @@
 // Rays through the shared edges and vertices of a closed mesh, and meshes with degenerate
 // triangles, through kiln's watertight test (the grid backend's, geometry/watertight_triangle.h)
-// and Embree (kiln's default backend; asserted for degenerate triangles, measured for edges), against the textbook Möller–Trumbore test in float
-// (bench/stability/naive_triangle.h), which must slip through or return a non-finite hit somewhere.
+// and Embree (kiln's default backend; asserted for degenerate triangles, measured for edges), against the
+// textbook Möller–Trumbore test in float (bench/stability/naive_triangle.h), which must slip through or
+// return a non-finite hit somewhere.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -33,7 +34,8 @@ std::vector<edge_ray> edge_and_vertex_rays(const mesh& m, const vec3& centre, in
   std::vector<vec3> targets = m.positions;
   for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
     for (int k = 0; k < 3; ++k) {
-      const vec3 a = m.positions[m.indices[i + size_t(k)]], b = m.positions[m.indices[i + size_t((k + 1) % 3)]];
+      const vec3 a = m.positions[m.indices[i + size_t(k)]],
+                 b = m.positions[m.indices[i + size_t((k + 1) % 3)]];
       targets.push_back(a + 0.5f * (b - a));
       targets.push_back(a + 0.25f * (b - a));
     }
@@ -91,12 +93,13 @@ TEST(stability_watertight, no_ray_slips_through_shared_edges_or_vertices_of_a_cl
     const std::optional<hit> h = accel.intersect(e.r);
     if (!h || !near_target(e, h->t)) ++embree_slips;
     const sheared_ray sr = shear_ray(e.r.origin, e.r.direction);
-    const float t_watertight = brute_force_nearest(m, [&](const vec3& a, const vec3& b, const vec3& c, float& t) {
-      triangle_hit th;
-      if (!intersect_watertight(sr, a, b, c, 0.0f, inf, th)) return false;
-      t = th.t;
-      return true;
-    });
+    const float t_watertight =
+        brute_force_nearest(m, [&](const vec3& a, const vec3& b, const vec3& c, float& t) {
+          triangle_hit th;
+          if (!intersect_watertight(sr, a, b, c, 0.0f, inf, th)) return false;
+          t = th.t;
+          return true;
+        });
     if (!near_target(e, t_watertight)) ++watertight_slips;
     const float t_naive = brute_force_nearest(m, [&](const vec3& a, const vec3& b, const vec3& c, float& t) {
       naive_triangle_hit nh;
@@ -118,7 +121,8 @@ TEST(stability_watertight, no_ray_slips_through_shared_edges_or_vertices_of_a_cl
 // and three collinear vertices on the line x = 0.5, and a zero-area sliver along the shared diagonal.
 mesh square_with_degenerates() {
   mesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 0.25f, 0}, {0.5f, 0.5f, 0}, {0.5f, 0.75f, 0}};
+  m.positions = {{0, 0, 0},        {1, 0, 0},       {1, 1, 0},       {0, 1, 0},
+                 {0.5f, 0.25f, 0}, {0.5f, 0.5f, 0}, {0.5f, 0.75f, 0}};
   m.indices = {0, 1, 2, 0, 2, 3, /* degenerate: */ 5, 4, 5, 4, 5, 6, 0, 5, 2};
   for (const vec3& p : m.positions) m.bounds.extend(dvec3(p));
   return m;
@@ -148,9 +152,11 @@ TEST(stability_degenerate_triangles, never_hit_and_never_produce_a_non_finite_hi
     EXPECT_LT(glm::length(r.origin + h->t * r.direction - target), 1e-5f) << i;
     const sheared_ray sr = shear_ray(r.origin, r.direction);
     for (size_t k = 6; k < m.indices.size(); k += 3) {
-      const vec3 p0 = m.positions[m.indices[k]], p1 = m.positions[m.indices[k + 1]], p2 = m.positions[m.indices[k + 2]];
+      const vec3 p0 = m.positions[m.indices[k]], p1 = m.positions[m.indices[k + 1]],
+                 p2 = m.positions[m.indices[k + 2]];
       triangle_hit th;
-      EXPECT_FALSE(intersect_watertight(sr, p0, p1, p2, 0.0f, inf, th)) << "ray " << i << " triangle " << k / 3;
+      EXPECT_FALSE(intersect_watertight(sr, p0, p1, p2, 0.0f, inf, th))
+          << "ray " << i << " triangle " << k / 3;
       naive_triangle_hit nh;
       if (intersect_naive_triangle(r.origin, r.direction, p0, p1, p2, nh) &&
           !(std::isfinite(nh.t) && std::isfinite(nh.u) && std::isfinite(nh.v)))
@@ -166,7 +172,8 @@ TEST(stability_degenerate_triangles, the_loader_drops_them) {
   std::vector<std::array<float, 3>> positions;
   for (const vec3& p : m.positions) positions.push_back({p.x, p.y, p.z});
   b.add_node({{"mesh", b.add_mesh(positions, m.indices)}});
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "kiln_stability_degenerate.gltf";
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "kiln_stability_degenerate.gltf";
   b.write(path.string());
   const scene s = load_gltf(path.string());
   std::filesystem::remove(path);

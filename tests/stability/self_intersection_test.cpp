@@ -2,13 +2,14 @@
 // experiments of chart 4, bench/stability/self_intersection.h). kiln's error-bound offset must
 // give zero acne everywhere and no leak through a 4e-5 gap wherever float can still tell the two
 // surfaces apart; every fixed epsilon from 1e-7 to 1e-2 must fail somewhere in the same range.
+#include "stability/self_intersection.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "ray_budget.h"
-#include "stability/self_intersection.h"
 
 namespace kiln::bench {
 namespace {
@@ -78,7 +79,8 @@ TEST(stability_thin_shell, error_bound_offset_stops_at_a_4e5_gap_up_to_translati
     }
   // The naive counterpart over the same placements: an epsilon large enough for no acne there
   // (1e-4) jumps the 4e-5 gap.
-  const self_intersection_result naive = measure_self_intersection(test_shape::plane, {1.0, 0.0}, {1e-4}, rays, 11);
+  const self_intersection_result naive =
+      measure_self_intersection(test_shape::plane, {1.0, 0.0}, {1e-4}, rays, 11);
   EXPECT_GT(naive.leaks, 0);
 }
 

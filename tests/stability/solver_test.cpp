@@ -36,8 +36,8 @@ TEST(stability_far_quadric, kiln_sphere_solver_is_exact_to_8_eps_d_from_1_to_1e7
 
 TEST(stability_far_quadric, textbook_and_stable_quadratics_fail_somewhere_from_1_to_1e7) {
   const int rays = testing::ray_budget(2000);
-  for (sphere_solver s : {sphere_solver::naive_float, sphere_solver::naive_double, sphere_solver::stable_float,
-                          sphere_solver::stable_double}) {
+  for (sphere_solver s : {sphere_solver::naive_float, sphere_solver::naive_double,
+                          sphere_solver::stable_float, sphere_solver::stable_double}) {
     int64_t failures = 0;
     for (double d : distances()) {
       const solver_accuracy a = measure_sphere_solver(s, d, rays, 99);
