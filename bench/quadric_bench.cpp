@@ -14,7 +14,7 @@
 
 #include "accel/embree/embree_accelerator.h"
 #include "geometry/quadric.h"
-#include "torus_accuracy.h"
+#include "stability/torus_accuracy.h"
 
 namespace kiln {
 namespace {

@@ -1,5 +1,14 @@
 #include "app/render_command.h"
 
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
 #include "accel/make_accelerator.h"
 #include "app/interrupt.h"
 #include "core/error.h"
@@ -8,16 +17,6 @@
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
-
-#include <CLI/CLI.hpp>
-
-#include <unistd.h>
-
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <iostream>
-#include <sstream>
 
 namespace kiln {
 
@@ -70,8 +69,9 @@ const camera& select_camera(const scene& world, const std::string& which) {
   long index = std::strtol(which.c_str(), &end, 10);
   if (!which.empty() && end && *end == '\0') {
     if (index < 0 || size_t(index) >= world.cameras.size())
-      throw input_error(world.source, "--camera", "camera index " + which + " out of range (file has " +
-                                                      std::to_string(world.cameras.size()) + " cameras)");
+      throw input_error(world.source, "--camera",
+                        "camera index " + which + " out of range (file has " +
+                            std::to_string(world.cameras.size()) + " cameras)");
     return world.cameras[size_t(index)];
   }
   std::string names;
@@ -110,7 +110,8 @@ view_camera choose_view(const render_options& options, const scene& world, std::
     int width = 0, height = 0;
     resolve_image_size(options, 0.0f, width, height);
     description = "look-at";
-    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width, height);
+    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width,
+                               height);
   }
   if (!options.camera.empty() || !world.cameras.empty()) {
     const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
@@ -143,6 +144,7 @@ void add_default_light(scene& world, const view_camera& cam) {
   headlight.kind = light_kind::point;
   headlight.position = cam.eye;
   headlight.intensity = float(pi * distance * distance);
+  headlight.casts_shadows = false;
   world.lights.push_back(headlight);
 }
 
@@ -179,11 +181,14 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
 
 void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
-  app.add_option("--width", o.width, "Image width in pixels (default 640, or from --height and the camera's aspect)")
+  app.add_option("--width", o.width,
+                 "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--height", o.height, "Image height in pixels (default 480, or from the camera's aspect ratio)")
+  app.add_option("--height", o.height,
+                 "Image height in pixels (default 480, or from the camera's aspect ratio)")
       ->check(CLI::Range(1, max_image_side));
-  app.add_option("--spp", o.samples_per_pixel, "Samples per pixel, stratified and jittered (1 = pixel centre)")
+  app.add_option("--spp", o.samples_per_pixel,
+                 "Samples per pixel, stratified and jittered (1 = pixel centre)")
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
   app.add_option("--sampler", o.sampler,
@@ -221,7 +226,8 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--look-at", [&o](const std::string& s) { o.look_at = parse_triple(s, "--look-at"); },
       "Look-at camera target X,Y,Z");
   app.add_option_function<std::string>(
-      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); }, "Look-at camera up vector X,Y,Z (default 0,1,0)");
+      "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); },
+      "Look-at camera up vector X,Y,Z (default 0,1,0)");
   app.add_option("--fov", o.fov_degrees, "Look-at camera vertical field of view in degrees")
       ->check(CLI::Range(1e-3, 179.999))
       ->capture_default_str();
@@ -231,25 +237,34 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--background",
       [&o](const std::string& s) {
         dvec3 c = parse_triple(s, "--background");
-        if (c.x < 0 || c.y < 0 || c.z < 0) throw CLI::ValidationError("--background", "colour must be non-negative");
+        if (c.x < 0 || c.y < 0 || c.z < 0)
+          throw CLI::ValidationError("--background", "colour must be non-negative");
         o.background = vec3(c);
       },
       "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)");
-  app.add_option("--environment", o.environment,
-                 "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
+  app.add_option(
+         "--environment", o.environment,
+         "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene")
       ->check(CLI::ExistingFile);
   app.add_option("--environment-rotation", o.environment_rotation_degrees,
                  "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)")
       ->check(CLI::Range(-36000.0, 36000.0))
       ->capture_default_str();
-  app.add_option("--environment-intensity", o.environment_intensity, "Scale of the environment map's radiance")
+  app.add_option("--environment-intensity", o.environment_intensity,
+                 "Scale of the environment map's radiance")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
-  app.add_flag("--show-background", o.show_background,
-               "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
-  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_flag(
+      "--show-background", o.show_background,
+      "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
+  app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--texture-cache-mb", o.texture_cache_mb, "Memory for mip-mapped texture tiles (MB)")
+      ->check(CLI::Range(1.0f, 1e6f))
       ->capture_default_str();
   app.add_flag("--allow-outside-files", o.allow_outside_files,
                "Let buffer and image URIs name files outside the asset's folder (absolute paths, '..')");
@@ -293,7 +308,8 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
-  app.add_flag("--float", o.full_float, "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+  app.add_flag("--float", o.full_float,
+               "Write RGBA and N as 32-bit float instead of half (Z is always float)");
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -351,6 +367,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.show_background = options.show_background;
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
+  settings.texture_cache_mb = options.texture_cache_mb;
   settings.cancel = &interrupt_requested();
   return settings;
 }
@@ -399,7 +416,8 @@ void run_render(const render_options& options) {
       {"kiln/command_line", options.command_line},
   };
   // A signal that arrives after the last pixel still stops the run before anything is written.
-  if (interrupt_requested()) throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  if (interrupt_requested())
+    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {

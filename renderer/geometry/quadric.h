@@ -72,6 +72,12 @@ struct quadric_world_point {
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
                                       uint32_t part);
 
+// World-space dP/du and dP/dv of the parametric UV at the same hit, by central differences of the
+// UV along the surface (for texture footprints). False where the parameterisation is singular
+// (poles, apex, disk centre).
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                               vec3& dp_du, vec3& dp_dv);
+
 // The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
 // centre (coefficients[i] multiplies sⁱ; leading coefficient 1).
 struct torus_ray_quartic {

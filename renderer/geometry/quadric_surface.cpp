@@ -156,4 +156,38 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
   return w;
 }
 
+namespace {
+
+// UV difference folded across the u seam (u wraps from 1 back to 0 around the axis).
+dvec2 uv_difference(const dvec2& a, const dvec2& b) {
+  dvec2 d = a - b;
+  d.x -= std::round(d.x);
+  return d;
+}
+
+}  // namespace
+
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                               vec3& dp_du, vec3& dp_dv) {
+  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
+  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
+  const quadric_surface s = quadric_surface_at(q, part, o + double(t) * d);
+  // Central differences of the parametric UV along two orthonormal tangents, at a step small
+  // against the shape (its bounds) yet far above rounding: the UV change per unit tangent length.
+  const dvec3 t1 = s.dpdu, t2 = glm::cross(s.normal, s.dpdu);
+  const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
+  const auto uv_at = [&](const dvec3& p) { return quadric_surface_at(q, part, p).uv; };
+  const dvec2 du_dt1 = uv_difference(uv_at(s.point + h * t1), uv_at(s.point - h * t1)) / (2.0 * h);
+  const dvec2 du_dt2 = uv_difference(uv_at(s.point + h * t2), uv_at(s.point - h * t2)) / (2.0 * h);
+  // Invert [duv/dt1 duv/dt2] to get dp/du and dp/dv in the (t1, t2) frame.
+  const double det = du_dt1.x * du_dt2.y - du_dt2.x * du_dt1.y;
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
+  const dvec3 object_du = (du_dt2.y * t1 - du_dt1.y * t2) / det;
+  const dvec3 object_dv = (du_dt1.x * t2 - du_dt2.x * t1) / det;
+  const dmat3 linear(inst.world_from_object);
+  dp_du = vec3(linear * object_du);
+  dp_dv = vec3(linear * object_dv);
+  return is_finite(dp_du) && is_finite(dp_dv);
+}
+
 }  // namespace kiln

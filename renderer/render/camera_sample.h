@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/view_camera.h"
+#include "shade/ray_cone.h"
 #include "shade/whitted.h"
 
 #include <cstdint>
@@ -21,7 +22,8 @@ struct camera_sample {
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
+// cone is the ray's footprint at the camera (for texture filtering along the whole path).
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
-                                  double px, double py, ray_counts& counts);
+                                  double px, double py, const ray_cone& cone, ray_counts& counts);
 
 }  // namespace kiln

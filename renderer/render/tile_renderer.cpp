@@ -15,8 +15,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <mutex>
 #include <vector>
+
+#include "shade/environment.h"
+#include "shade/texture_filter.h"
 
 namespace kiln {
 
@@ -29,8 +34,17 @@ struct tile {
 std::vector<tile> make_tiles(int width, int height, int size) {
   std::vector<tile> tiles;
   for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size) tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+    for (int x = 0; x < width; x += size)
+      tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
   return tiles;
+}
+
+// The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
+// stands for a sub-pixel), no narrower than 1/8 pixel (as pbrt-v4 scales its camera differentials).
+ray_cone sample_cone(const view_camera& cam, int spp) {
+  const pixel_cone pixel = camera_pixel_cone(cam);
+  const double scale = std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1))));
+  return {float(pixel.width * scale), float(pixel.spread * scale)};
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
@@ -38,6 +52,7 @@ std::vector<tile> make_tiles(int width, int height, int size) {
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
+  const ray_cone cone = sample_cone(cam, spp);
   float nearest = inf;
   vec3 nearest_normal(0.0f);
   splat.clear();
@@ -45,7 +60,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
-                                           y + double(offset.y), counts);
+                                           y + double(offset.y), cone, counts);
     splat.add(settings.filter, offset, cs.rgba);
     if (cs.depth < nearest) {
       nearest = cs.depth;
@@ -84,7 +99,8 @@ void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& count
 void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
   const size_t row = size_t(job.cam.width) + 1;
   sample_tracer trace = [&](double px, double py) {
-    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, counts);
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
+                               counts);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1; ++x) {
@@ -102,13 +118,17 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
 }  // namespace
 
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
-                  const render_settings& settings, render_statistics* stats, const progress_callback& progress) {
+                  const render_settings& settings, render_statistics* stats,
+                  const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
   film out(cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
+  std::unique_ptr<texture_filter> textures;
+  if (scene_needs_texture_filter(world))
+    textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
+  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
   const bool adaptive = settings.adaptive.threshold > 0.0f;
   splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
   std::vector<camera_sample> corners;
@@ -124,10 +144,11 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     if (adaptive) {
       const size_t row = size_t(cam.width) + 1;
       corners.resize(row * (size_t(cam.height) + 1));
+      const ray_cone pixel = sample_cone(cam, 1);  // a corner sample stands for a whole pixel
       tbb::parallel_for(0, cam.height + 1, [&](int y) {
         ray_counts counts;
         for (int x = 0; x <= cam.width && !cancelled(); ++x)
-          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, counts);
+          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

@@ -1,8 +1,8 @@
 #include "render/view_camera.h"
 
-#include "core/error.h"
-
 #include <cmath>
+
+#include "core/error.h"
 
 namespace kiln {
 
@@ -10,8 +10,9 @@ namespace {
 
 void check_image_size(int width, int height) {
   if (width <= 0 || height <= 0)
-    throw input_error("", "camera", "image size must be positive, got " + std::to_string(width) + "x" +
-                                        std::to_string(height));
+    throw input_error(
+        "", "camera",
+        "image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
 }
 
 // Fills the perspective window for a vertical field of view at image-plane distance d = 1.
@@ -32,8 +33,8 @@ view_camera make_look_at_camera(const dvec3& eye, const dvec3& target, const dve
   if (!is_finite(eye) || !is_finite(target) || !is_finite(up) || !std::isfinite(yfov_degrees))
     throw input_error("", "camera", "look-at parameters must be finite numbers");
   if (!(yfov_degrees > 0.0 && yfov_degrees < 180.0))
-    throw input_error("", "camera", "field of view must be between 0 and 180 degrees, got " +
-                                        std::to_string(yfov_degrees));
+    throw input_error("", "camera",
+                      "field of view must be between 0 and 180 degrees, got " + std::to_string(yfov_degrees));
   dvec3 view = target - eye;
   double length = glm::length(view);
   if (!(length > 0.0)) throw input_error("", "camera", "look-from and look-at are the same point");
@@ -107,7 +108,8 @@ ray generate_camera_ray(const view_camera& cam, double px, double py) {
   dvec3 lower_left = cam.eye + cam.distance * cam.view + cam.left * cam.right + cam.bottom * cam.up;
   double sx = px / cam.width;
   double sy = 1.0 - py / cam.height;  // image rows run top-down, the window's u axis bottom-up
-  dvec3 on_window = lower_left + (cam.right_edge - cam.left) * sx * cam.right + (cam.top - cam.bottom) * sy * cam.up;
+  dvec3 on_window =
+      lower_left + (cam.right_edge - cam.left) * sx * cam.right + (cam.top - cam.bottom) * sy * cam.up;
   ray r;
   r.kind = ray_kind::camera;
   if (cam.kind == projection::orthographic) {
@@ -118,6 +120,12 @@ ray generate_camera_ray(const view_camera& cam, double px, double py) {
     r.direction = vec3(glm::normalize(on_window - cam.eye));
   }
   return r;
+}
+
+pixel_cone camera_pixel_cone(const view_camera& cam) {
+  const double pixel = (cam.top - cam.bottom) / cam.height;  // window units per pixel
+  if (cam.kind == projection::orthographic) return {pixel, 0.0};
+  return {0.0, pixel / cam.distance};
 }
 
 dmat4 world_to_camera(const view_camera& cam) {

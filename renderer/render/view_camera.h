@@ -3,22 +3,22 @@
 // O = C + d·v + l·x + b·u. Depends on core and scene (for glTF cameras).
 #pragma once
 
-#include "core/ray.h"
-#include "scene/scene.h"
-
 #include <optional>
 #include <string>
+
+#include "core/ray.h"
+#include "scene/scene.h"
 
 namespace kiln {
 
 struct view_camera {
   projection kind = projection::perspective;
-  dvec3 eye{0.0};               // C
-  dvec3 view{0.0, 0.0, -1.0};   // v, unit
-  dvec3 up{0.0, 1.0, 0.0};      // u, unit, orthogonal to v
-  dvec3 right{1.0, 0.0, 0.0};   // x = v × u
+  dvec3 eye{0.0};                                                  // C
+  dvec3 view{0.0, 0.0, -1.0};                                      // v, unit
+  dvec3 up{0.0, 1.0, 0.0};                                         // u, unit, orthogonal to v
+  dvec3 right{1.0, 0.0, 0.0};                                      // x = v × u
   double left = -1.0, right_edge = 1.0, bottom = -1.0, top = 1.0;  // window l, r, b, t
-  double distance = 1.0;        // d
+  double distance = 1.0;                                           // d
   int width = 1;
   int height = 1;
 };
@@ -38,6 +38,15 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
 // The ray through image position (px, py) in pixels, (0, 0) at the top-left corner of the image
 // and (width, height) at the bottom-right; pixel (i, j) has its centre at (i + 0.5, j + 0.5).
 ray generate_camera_ray(const view_camera& cam, double px, double py);
+
+// A pixel's ray cone (Akenine-Möller et al., Ray Tracing Gems ch. 20): perspective rays start with
+// width 0 and spread by the pixel angle, window height / (d · image height); orthographic rays are
+// one pixel wide and do not spread.
+struct pixel_cone {
+  double width = 0.0;   // world units at the ray origin
+  double spread = 0.0;  // radians
+};
+pixel_cone camera_pixel_cone(const view_camera& cam);
 
 // World to camera space (+X right, +Y up, looking along -Z): OpenEXR's worldToCamera.
 dmat4 world_to_camera(const view_camera& cam);

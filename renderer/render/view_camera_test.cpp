@@ -120,5 +120,25 @@ TEST(view_camera, world_to_ndc_maps_window_corners_to_unit_square) {
   EXPECT_NEAR(q.z, -5.0, 1e-12);
 }
 
+// The perspective pixel cone spreads by the angle between neighbouring pixel centres at the image
+// centre; an orthographic one is a pixel wide and does not spread.
+TEST(view_camera, pixel_cone_is_one_pixel) {
+  const int w = 64, h = 48;
+  const view_camera cam = make_look_at_camera(dvec3(0.0), dvec3(0, 0, -1), dvec3(0, 1, 0), 50.0, w, h);
+  const vec3 a = generate_camera_ray(cam, 0.5 * w, 0.5 * h).direction;
+  const vec3 b = generate_camera_ray(cam, 0.5 * w, 0.5 * h + 1.0).direction;
+  const double angle = std::acos(std::min(double(glm::dot(a, b)), 1.0));
+  EXPECT_NEAR(camera_pixel_cone(cam).spread, angle, 1e-3 * angle);
+  EXPECT_EQ(camera_pixel_cone(cam).width, 0.0);
+
+  camera c;
+  c.kind = projection::orthographic;
+  c.ymag = 3.0f;
+  const view_camera ortho = make_gltf_camera(c, w, h);
+  const ray r0 = generate_camera_ray(ortho, 10.0, 10.0), r1 = generate_camera_ray(ortho, 10.0, 11.0);
+  EXPECT_NEAR(camera_pixel_cone(ortho).width, glm::length(r1.origin - r0.origin), 1e-5);
+  EXPECT_EQ(camera_pixel_cone(ortho).spread, 0.0);
+}
+
 }  // namespace
 }  // namespace kiln

@@ -4,11 +4,11 @@
 // are never stored.
 #pragma once
 
-#include "core/math.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "core/math.h"
 
 namespace kiln {
 
@@ -19,18 +19,24 @@ struct image {
   std::string name;
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> texels8;   // width*height*4, row 0 at the top (glTF's UV origin)
-  std::vector<float> texels32;    // used instead of texels8 for 16-bit or float sources
+  std::vector<uint8_t> texels8;  // width*height*4, row 0 at the top (glTF's UV origin)
+  std::vector<float> texels32;   // used instead of texels8 for 16-bit or float sources
 };
 
 enum class wrap_mode { repeat, clamp_to_edge, mirrored_repeat };
 enum class filter_mode { nearest, linear };
+// How minification moves between mip levels: none (level 0 only), the nearest level, or a blend of
+// the two nearest levels.
+enum class mip_mode { none, nearest, linear };
 
-// glTF sampler: wrap per axis and magnification filter.
+// glTF sampler: wrap per axis, magnification filter, and the minification filter split into its
+// texel filter and its mip mode (glTF's minFilter absent means LINEAR_MIPMAP_LINEAR here).
 struct sampler {
   wrap_mode wrap_s = wrap_mode::repeat;
   wrap_mode wrap_t = wrap_mode::repeat;
-  filter_mode filter = filter_mode::linear;
+  filter_mode filter = filter_mode::linear;  // magFilter
+  filter_mode min_filter = filter_mode::linear;
+  mip_mode mipmap = mip_mode::linear;
 };
 
 struct texture {
@@ -67,9 +73,9 @@ struct material {
   texture_ref emissive_texture;    // sRGB
   texture_ref normal_texture;
   texture_ref occlusion_texture;
-  float specular_factor = 1.0f;       // KHR_materials_specular
-  vec3 specular_color_factor{1.0f};   // KHR_materials_specular
-  float ior = 1.5f;                   // KHR_materials_ior
+  float specular_factor = 1.0f;      // KHR_materials_specular
+  vec3 specular_color_factor{1.0f};  // KHR_materials_specular
+  float ior = 1.5f;                  // KHR_materials_ior
   alpha_mode alpha = alpha_mode::opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
@@ -121,12 +127,12 @@ enum class quadric_kind {
 struct quadric {
   std::string name;
   quadric_kind kind = quadric_kind::sphere;
-  double radius = 1.0;        // sphere, cylinder, cone (base), paraboloid (at zmax), hyperboloid
-                              // (waist / a), disk (outer), torus (minor)
-  double inner_radius = 0.0;  // disk
-  double major_radius = 0.0;  // torus
-  double height = 1.0;        // cone apex height
-  double c = 1.0;             // hyperboloids: the z semi-axis
+  double radius = 1.0;             // sphere, cylinder, cone (base), paraboloid (at zmax), hyperboloid
+                                   // (waist / a), disk (outer), torus (minor)
+  double inner_radius = 0.0;       // disk
+  double major_radius = 0.0;       // torus
+  double height = 1.0;             // cone apex height
+  double c = 1.0;                  // hyperboloids: the z semi-axis
   double zmin = -1.0, zmax = 1.0;  // clipping along z for the axial kinds
   bool caps = false;               // close the axial kinds with disks at zmin/zmax where they have area
   // general: A x² + B y² + C z² + D xy + E xz + F yz + G x + H y + I z + J = 0, clipped to box.
@@ -158,11 +164,15 @@ struct light {
   light_kind kind = light_kind::point;
   vec3 color{1.0f};
   float intensity = 1.0f;
-  float range = 0.0f;           // 0 means infinite
-  dvec3 position{0.0};          // world space (point, spot)
-  vec3 direction{0, 0, -1};     // world space, the way light travels (spot, directional)
+  float range = 0.0f;        // 0 means infinite
+  dvec3 position{0.0};       // world space (point, spot)
+  vec3 direction{0, 0, -1};  // world space, the way light travels (spot, directional)
   float inner_cone_angle = 0.0f;
   float outer_cone_angle = pi / 4.0f;
+  // glTF lights cast shadows. kiln's default headlight does not: a point seen from the camera is
+  // always visible from a light at the camera, except through what the camera ray itself passed
+  // (culled back faces, BLEND surfaces), which would only darken what the camera sees.
+  bool casts_shadows = true;
 };
 
 enum class projection { perspective, orthographic };

@@ -1,16 +1,21 @@
 #include "shade/material_eval.h"
 
-#include "shade/texture_sampling.h"
-
 #include <algorithm>
 #include <cmath>
 
+#include "shade/texture_sampling.h"
+
 namespace kiln {
 
-vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in,
+                        texel_encoding encoding) {
   // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
-  vec2 uv = transform_uv(ref, in.uv[ref.texcoord == 1 ? 1 : 0]);
-  return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
+  const int set = ref.texcoord == 1 ? 1 : 0;
+  const vec2 uv = transform_uv(ref, in.uv[set]);
+  const uv_footprint& f = in.footprint[set];
+  if (f.empty()) return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
+  const uv_footprint transformed{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
+  return sample_texture(s, in.filter, uint32_t(ref.texture), uv, transformed, encoding);
 }
 
 namespace {
@@ -90,7 +95,8 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
   vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
   // Transmitted light is traced as refraction, so it leaves the diffuse lobe (glTF's mix).
   vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) / pi);
-  vec3 dielectric = (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
+  vec3 dielectric =
+      (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
   vec3 metal = metal_fresnel * (distribution * visibility);
   return glm::mix(dielectric, metal, mp.metallic);
 }

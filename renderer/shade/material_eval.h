@@ -15,8 +15,8 @@ struct material_point {
   vec3 base_color{1.0f};
   float alpha = 1.0f;
   float metallic = 1.0f;
-  float roughness = 1.0f;  // perceptual; GGX alpha = roughness²
-  vec3 emission{0.0f};     // emitted radiance
+  float roughness = 1.0f;        // perceptual; GGX alpha = roughness²
+  vec3 emission{0.0f};           // emitted radiance
   float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
   float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
@@ -29,8 +29,10 @@ inline float see_through_weight(const material_point& mp) { return (1.0f - mp.me
 
 // The texture coordinate sets and vertex colour at a shading point.
 struct material_inputs {
-  vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};  // TEXCOORD_0, TEXCOORD_1
-  vec4 color0{1.0f};                      // COLOR_0 (multiplies the base colour)
+  vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};   // TEXCOORD_0, TEXCOORD_1
+  vec4 color0{1.0f};                       // COLOR_0 (multiplies the base colour)
+  uv_footprint footprint[2];               // ray-cone footprint per UV set; empty: point samples
+  const texture_filter* filter = nullptr;  // mip-mapped minification; null: level 0 only
 };
 
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
@@ -40,11 +42,14 @@ inline material_inputs material_inputs_at(const surface_point& sp) {
   in.uv[0] = sp.uv0;
   in.uv[1] = sp.uv1;
   in.color0 = sp.color0;
+  in.footprint[0] = sp.footprint0;
+  in.footprint[1] = sp.footprint1;
   return in;
 }
 
 // A material's texture (present) at a shading point: its UV set, KHR_texture_transform, sampler.
-vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding);
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in,
+                        texel_encoding encoding);
 
 // Only TEXCOORD_0, no vertex colour.
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0);

@@ -2,9 +2,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "shade/dielectric.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
+#include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_sampling.h"
 
@@ -316,6 +319,84 @@ TEST(environment, map_radiance_is_scaled_by_intensity_and_constant_colour_otherw
   EXPECT_NEAR(environment_radiance(s, vec3(0, -1, 0)).x, 1.0f, 1e-5f);  // straight down: bottom row
   // Slightly above the horizon along +X: u = 0.75 is the centre of texel column 2.5 -> between 2 and 3.
   EXPECT_NEAR(environment_radiance(s, vec3(1, 0.05f, 0)).y, 2.0f * 2.5f, 1e-3f);
+}
+
+// A triangle's footprint: a cone of width w arriving at 60° from the normal covers w/cos 60° along
+// the projected ray and w across it; the triangle maps 2 world units to one u and 4 to one v.
+TEST(texture_footprint, triangle_footprint_is_the_cone_section_through_the_uv_jacobian) {
+  scene s = one_triangle(dmat4(1.0));
+  hit h;
+  h.u = h.v = 0.25f;
+  h.geometric_normal = vec3(0, 0, 1);
+  ray r;
+  const float angle = glm::radians(60.0f);
+  r.direction = vec3(std::sin(angle), 0.0f, -std::cos(angle));  // projected direction: +x (u)
+  const float w = 0.01f;
+  const surface_point sp = make_surface_point(s, h, r, w);
+  EXPECT_NEAR(sp.footprint0.dx.x, w / std::cos(angle) / 2.0f, 1e-6f);
+  EXPECT_NEAR(sp.footprint0.dx.y, 0.0f, 1e-7f);
+  EXPECT_NEAR(sp.footprint0.dy.x, 0.0f, 1e-7f);
+  EXPECT_NEAR(std::abs(sp.footprint0.dy.y), w / 4.0f, 1e-6f);
+  EXPECT_TRUE(make_surface_point(s, h, r).footprint0.empty());  // no cone, no footprint
+}
+
+// A sphere of radius 2 seen head-on at its equator on the u seam: u = φ/2π and v = θ/π, so one unit
+// of u spans 2π·2 and one of v spans π·2; the numerical Jacobian must fold the seam.
+TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
+  scene s;
+  quadric q;
+  q.kind = quadric_kind::sphere;
+  q.radius = 2.0;
+  q.bounds = quadric_bounds(q);
+  s.quadrics.push_back(q);
+  s.materials.emplace_back();
+  instance inst;
+  inst.kind = shape_kind::quadric;
+  finish_instance_transform(inst);
+  s.instances.push_back(inst);
+  ray r;
+  r.origin = vec3(5, 0, 0);
+  r.direction = vec3(-1, 0, 0);
+  hit h;
+  h.t = 3.0f;
+  h.geometric_normal = vec3(1, 0, 0);
+  const float w = 0.02f;
+  const surface_point sp = make_surface_point(s, h, r, w);
+  const float du = w / (2.0f * pi * 2.0f), dv = w / (pi * 2.0f);
+  // Normal incidence: the footprint is a circle; its axes start along dp/du.
+  EXPECT_NEAR(std::abs(sp.footprint0.dx.x), du, 1e-3f * du);
+  EXPECT_NEAR(sp.footprint0.dx.y, 0.0f, 1e-3f * dv);
+  EXPECT_NEAR(sp.footprint0.dy.x, 0.0f, 1e-3f * du);
+  EXPECT_NEAR(std::abs(sp.footprint0.dy.y), dv, 1e-3f * dv);
+}
+
+// Refraction scales the spread as Snell's law bends two nearby rays: refract two directions dθ apart
+// through a plane and measure the angle between the refracted pair.
+TEST(ray_cone, refracted_spread_matches_snell_on_two_nearby_rays) {
+  const vec3 n(0, 0, 1);
+  const float eta = 1.0f / 1.5f, d_theta = 1e-2f;
+  auto incoming = [](float a) { return vec3(std::sin(a), 0.0f, -std::cos(a)); };
+  for (float degrees : {0.0f, 20.0f, 45.0f, 70.0f}) {
+    const float a = glm::radians(degrees);
+    // Two rays d_theta apart, centred on a; the angle between the refracted pair from atan2 (acos
+    // loses small angles in float).
+    const vec3 t0 = *refract_direction(incoming(a - 0.5f * d_theta), n, eta);
+    const vec3 t1 = *refract_direction(incoming(a + 0.5f * d_theta), n, eta);
+    const float bent = std::atan2(glm::length(glm::cross(t0, t1)), glm::dot(t0, t1));
+    const vec3 centre = *refract_direction(incoming(a), n, eta);
+    const ray_cone out = refracted_cone({0.5f, d_theta}, eta, glm::dot(incoming(a), n), glm::dot(centre, n));
+    EXPECT_NEAR(out.spread, bent, 1e-2f * bent) << degrees;
+    EXPECT_EQ(out.width, 0.5f);
+  }
+}
+
+// A planar mirror keeps the cone: after travelling d1 to the mirror and d2 beyond it, the width is
+// that of one straight ray of length d1 + d2.
+TEST(ray_cone, width_after_planar_mirror_equals_unfolded_straight_width) {
+  const ray_cone camera{0.0f, 2e-3f};
+  const ray_cone folded = cone_at(reflected_cone(cone_at(camera, 3.0f)), 7.5f);
+  EXPECT_FLOAT_EQ(folded.width, cone_at(camera, 10.5f).width);
+  EXPECT_FLOAT_EQ(folded.spread, camera.spread);
 }
 
 }  // namespace

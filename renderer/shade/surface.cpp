@@ -1,15 +1,79 @@
 #include "shade/surface.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
 
+uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n,
+                                     const vec3& direction, float cone_width) {
+  uv_footprint fp;
+  if (!(cone_width > 0.0f)) return fp;
+  // The ellipse's axes on the tangent plane: along the projected ray direction (stretched by
+  // 1/|cos θ|, clamped so that grazing rays stay finite) and across it.
+  const float cos_theta = std::max(std::abs(glm::dot(direction, n)), 1e-4f);
+  vec3 along = direction - glm::dot(direction, n) * n;
+  float along_length = glm::length(along);
+  if (!(along_length > 1e-6f)) {
+    along = dp_du - glm::dot(dp_du, n) * n;  // normal incidence: the circle, any axis will do
+    along_length = glm::length(along);
+    if (!(along_length > 0.0f)) return fp;
+  }
+  along /= along_length;
+  const vec3 across = glm::cross(n, along);
+  const vec3 axis_x = along * (cone_width / cos_theta);
+  const vec3 axis_y = across * cone_width;
+  // Express each axis in the basis (dp_du, dp_dv): a = α·dp_du + β·dp_dv solved through the Gram
+  // matrix (a least-squares fit for axes slightly off the plane); (α, β) is then the UV change.
+  const double g11 = glm::dot(dp_du, dp_du), g12 = glm::dot(dp_du, dp_dv), g22 = glm::dot(dp_dv, dp_dv);
+  const double det = g11 * g22 - g12 * g12;
+  if (!(det > 1e-12 * g11 * g22) || !std::isfinite(det)) return fp;
+  auto to_uv = [&](const vec3& a) {
+    const double r1 = glm::dot(a, dp_du), r2 = glm::dot(a, dp_dv);
+    return vec2(float((g22 * r1 - g12 * r2) / det), float((g11 * r2 - g12 * r1) / det));
+  };
+  fp.dx = to_uv(axis_x);
+  fp.dy = to_uv(axis_y);
+  return fp;
+}
+
 namespace {
+
+// dP/du and dP/dv of a triangle (world space) for one UV set, from its edges: [e1 e2] = J·[Δuv1 Δuv2].
+// Degenerate UVs (zero area in UV space) give zero vectors, so the footprint stays empty.
+void triangle_uv_jacobian(const vec3 p[3], const vec2 uv[3], vec3& dp_du, vec3& dp_dv) {
+  const vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const vec2 d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
+  const float det = d1.x * d2.y - d1.y * d2.x;
+  if (!(std::abs(det) > 0.0f) || !std::isfinite(det)) {
+    dp_du = dp_dv = vec3(0.0f);
+    return;
+  }
+  dp_du = (e1 * d2.y - e2 * d1.y) / det;
+  dp_dv = (e2 * d1.x - e1 * d2.x) / det;
+}
+
+uv_footprint triangle_footprint(const instance& inst, const mesh& m, const uint32_t* idx,
+                                const std::vector<vec2>& set, const vec3& n, const vec3& direction,
+                                float cone_width) {
+  vec3 p[3];
+  vec2 uv[3];
+  for (int k = 0; k < 3; ++k) {
+    p[k] = vec3(transform_point(inst.world_from_object, dvec3(m.positions[idx[k]])));
+    uv[k] = set[idx[k]];
+  }
+  vec3 dp_du, dp_dv;
+  triangle_uv_jacobian(p, uv, dp_du, dp_dv);
+  return footprint_from_jacobian(dp_du, dp_dv, n, direction, cone_width);
+}
 
 // A quadric hit: the point projected onto the exact surface with its error bound, the gradient
 // normal (shading normal = geometric normal: the surface is exact) and the parametric UV.
-surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r) {
+surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
+                                         float cone_width) {
   quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   surface_point sp;
   sp.position = w.point;
@@ -23,14 +87,21 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   sp.front_face = glm::dot(w.normal, r.direction) < 0.0f;
   sp.geometric_normal = sp.front_face ? w.normal : -w.normal;
   sp.shading_normal = sp.geometric_normal;
+  vec3 dp_du, dp_dv;
+  if (cone_width > 0.0f &&
+      quadric_world_uv_jacobian(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id, dp_du, dp_dv)) {
+    sp.footprint0 =
+        footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
+    sp.footprint1 = sp.footprint0;
+  }
   return sp;
 }
 
 }  // namespace
 
-surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
+surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width) {
   const instance& inst = s.instances[h.instance_id];
-  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r);
+  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r, cone_width);
   const mesh& m = s.meshes[inst.shape];
   const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
 
@@ -75,6 +146,14 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r) {
   if (glm::dot(ns, ng) < 0.0f) ns = glm::normalize(ns - 2.0f * glm::dot(ns, ng) * ng);
   sp.geometric_normal = ng;
   sp.shading_normal = ns;
+  if (cone_width > 0.0f) {
+    const vec3 direction = glm::normalize(r.direction);
+    if (!m.texcoords0.empty())
+      sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);
+    sp.footprint1 = m.texcoords1.empty()
+                        ? sp.footprint0
+                        : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
+  }
   return sp;
 }
 

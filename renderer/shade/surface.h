@@ -5,18 +5,22 @@
 
 #include "core/ray.h"
 #include "scene/scene.h"
+#include "shade/texture_sampling.h"
 
 namespace kiln {
 
 struct surface_point {
-  vec3 position{0.0f};        // world space
-  vec3 position_error{0.0f};  // per-axis bound on the rounding error of position
+  vec3 position{0.0f};          // world space
+  vec3 position_error{0.0f};    // per-axis bound on the rounding error of position
   vec3 geometric_normal{0.0f};  // unit, facing the incoming ray
   vec3 shading_normal{0.0f};    // unit, interpolated, on the same side as geometric_normal
   vec2 uv0{0.0f};
-  vec2 uv1{0.0f};        // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
-  vec4 color0{1.0f};     // COLOR_0, white when the mesh has none
-  vec4 tangent{0.0f};    // world-space tangent (xyz, unnormalised) and handedness w; 0 when none
+  vec2 uv1{0.0f};      // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
+  vec4 color0{1.0f};   // COLOR_0, white when the mesh has none
+  vec4 tangent{0.0f};  // world-space tangent (xyz, unnormalised) and handedness w; 0 when none
+  // The ray cone's footprint in each UV set (before KHR_texture_transform); zero: no footprint.
+  uv_footprint footprint0;
+  uv_footprint footprint1;
   uint32_t material = 0;
   bool front_face = true;  // the ray arrived on glTF's front side
 };
@@ -27,7 +31,15 @@ T interpolate(const T& a0, const T& a1, const T& a2, float u, float v) {
   return (1.0f - u - v) * a0 + u * a1 + v * a2;
 }
 
-// Builds the shading point of a hit for the ray that found it.
-surface_point make_surface_point(const scene& s, const hit& h, const ray& r);
+// Builds the shading point of a hit for the ray that found it. cone_width is the ray cone's width
+// at the hit (world units, see shade/ray_cone.h); 0 leaves the UV footprints empty.
+surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width = 0.0f);
+
+// The footprint in UV space of a cone of width `cone_width` arriving along unit `direction` at a
+// surface with unit normal n, whose UV-to-world Jacobian has columns dp_du, dp_dv: the circular cross
+// section stretches by 1/|cos θ| along the projected ray direction (the ellipse's major axis) and
+// keeps its width across it. Axes that dp_du, dp_dv cannot express are dropped (degenerate UVs).
+uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n,
+                                     const vec3& direction, float cone_width);
 
 }  // namespace kiln

@@ -1,13 +1,14 @@
 #include "shade/texture_sampling.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "shade/texture_filter.h"
+
 namespace kiln {
 
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 int wrap_texel(int i, int size, wrap_mode mode) {
   switch (mode) {
@@ -40,7 +41,9 @@ const std::array<float, 256>& srgb_table() {
   return table;
 }
 
-vec4 fetch(const image& img, int x, int y, texel_encoding encoding) {
+}  // namespace
+
+vec4 fetch_texel(const image& img, int x, int y, texel_encoding encoding) {
   size_t i = (size_t(y) * img.width + x) * 4;
   if (!img.texels8.empty()) {
     const uint8_t* t = &img.texels8[i];
@@ -56,28 +59,18 @@ vec4 fetch(const image& img, int x, int y, texel_encoding encoding) {
   return {t[0], t[1], t[2], t[3]};
 }
 
-}  // namespace
+namespace {
 
-vec2 transform_uv(const texture_ref& ref, vec2 uv) {
-  vec2 scaled = uv * ref.uv_scale;
-  if (ref.rotation == 0.0f) return scaled + ref.offset;
-  // Counter-clockwise as seen on the image, whose v axis points down: u' = c·u + s·v,
-  // v' = -s·u + c·v (checked against the TextureTransformTest sample's green marker).
-  const float c = std::cos(ref.rotation), s = std::sin(ref.rotation);
-  return vec2(c * scaled.x + s * scaled.y, c * scaled.y - s * scaled.x) + ref.offset;
-}
-
-vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding) {
-  const image& img = s.images[tex.image];
-  if (img.width <= 0 || img.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return vec4(1.0f);
-  const sampler& smp = tex.sampling;
+// Level 0 with one texel filter: nearest or bilinear.
+vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv,
+                   texel_encoding encoding) {
   // Texel centres sit at half-integers; keep the coordinate bounded before converting to int.
   float fx = std::fmod(uv.x, 65536.0f) * img.width - 0.5f;
   float fy = std::fmod(uv.y, 65536.0f) * img.height - 0.5f;
-  if (smp.filter == filter_mode::nearest) {
+  if (filter == filter_mode::nearest) {
     int x = wrap_texel(int(std::floor(fx + 0.5f)), img.width, smp.wrap_s);
     int y = wrap_texel(int(std::floor(fy + 0.5f)), img.height, smp.wrap_t);
-    return fetch(img, x, y, encoding);
+    return fetch_texel(img, x, y, encoding);
   }
   float x0f = std::floor(fx);
   float y0f = std::floor(fy);
@@ -87,9 +80,47 @@ vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding 
   int x1 = wrap_texel(int(x0f) + 1, img.width, smp.wrap_s);
   int y0 = wrap_texel(int(y0f), img.height, smp.wrap_t);
   int y1 = wrap_texel(int(y0f) + 1, img.height, smp.wrap_t);
-  vec4 top = glm::mix(fetch(img, x0, y0, encoding), fetch(img, x1, y0, encoding), tx);
-  vec4 bottom = glm::mix(fetch(img, x0, y1, encoding), fetch(img, x1, y1, encoding), tx);
+  vec4 top = glm::mix(fetch_texel(img, x0, y0, encoding), fetch_texel(img, x1, y0, encoding), tx);
+  vec4 bottom = glm::mix(fetch_texel(img, x0, y1, encoding), fetch_texel(img, x1, y1, encoding), tx);
   return glm::mix(top, bottom, ty);
+}
+
+bool sampleable(const image& img, vec2 uv) {
+  return img.width > 0 && img.height > 0 && std::isfinite(uv.x) && std::isfinite(uv.y);
+}
+
+}  // namespace
+
+vec2 transform_uv_vector(const texture_ref& ref, vec2 d) {
+  vec2 scaled = d * ref.uv_scale;
+  if (ref.rotation == 0.0f) return scaled;
+  // Counter-clockwise as seen on the image, whose v axis points down: u' = c·u + s·v,
+  // v' = -s·u + c·v (checked against the TextureTransformTest sample's green marker).
+  const float c = std::cos(ref.rotation), s = std::sin(ref.rotation);
+  return vec2(c * scaled.x + s * scaled.y, c * scaled.y - s * scaled.x);
+}
+
+vec2 transform_uv(const texture_ref& ref, vec2 uv) { return transform_uv_vector(ref, uv) + ref.offset; }
+
+vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding) {
+  const image& img = s.images[tex.image];
+  if (!sampleable(img, uv)) return vec4(1.0f);
+  return sample_level0(img, tex.sampling, tex.sampling.filter, uv, encoding);
+}
+
+vec4 sample_texture(const scene& s, const texture_filter* filter, uint32_t texture_index, vec2 uv,
+                    const uv_footprint& footprint, texel_encoding encoding) {
+  const texture& tex = s.textures[texture_index];
+  const image& img = s.images[tex.image];
+  if (!sampleable(img, uv)) return vec4(1.0f);
+  // OpenGL's rule: the scale factor ρ is the footprint's longest axis in texels; ρ ≤ 1 magnifies.
+  const vec2 texels(img.width, img.height);
+  const float rho = std::max(glm::length(footprint.dx * texels), glm::length(footprint.dy * texels));
+  if (!(rho > 1.0f) || !std::isfinite(rho))
+    return sample_level0(img, tex.sampling, tex.sampling.filter, uv, encoding);
+  if (tex.sampling.mipmap == mip_mode::none || !filter)
+    return sample_level0(img, tex.sampling, tex.sampling.min_filter, uv, encoding);
+  return filter->minified(texture_index, encoding, uv, footprint);
 }
 
 }  // namespace kiln

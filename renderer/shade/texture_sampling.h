@@ -9,12 +9,36 @@ namespace kiln {
 // How a texture's texels are to be read.
 enum class texel_encoding { linear, srgb };
 
+// A pixel's footprint in texture space: the two axes of the ellipse a ray cone covers, as changes
+// of (u, v) (OpenImageIO's dsdx, dtdx and dsdy, dtdy). Both zero: a point sample.
+struct uv_footprint {
+  vec2 dx{0.0f};
+  vec2 dy{0.0f};
+
+  bool empty() const { return dx == vec2(0.0f) && dy == vec2(0.0f); }
+};
+
+class texture_filter;
+
 // Filtered RGBA at uv (glTF convention: (0,0) is the top-left corner of the image).
 // sRGB decoding applies to RGB, never to alpha, and happens before filtering.
 vec4 sample_texture(const scene& s, const texture& tex, vec2 uv, texel_encoding encoding);
 
+// Filtered RGBA for a footprint: magnification (the footprint covers at most one texel) and
+// samplers without mip-mapping read level 0 exactly as the point sample above, with the magFilter or
+// minFilter respectively; mip-mapped minification goes to `filter` (OpenImageIO's TextureSystem).
+// A null filter or an empty footprint reads level 0.
+vec4 sample_texture(const scene& s, const texture_filter* filter, uint32_t texture_index, vec2 uv,
+                    const uv_footprint& footprint, texel_encoding encoding);
+
 // Applies a texture reference's KHR_texture_transform to uv (identity by default).
 vec2 transform_uv(const texture_ref& ref, vec2 uv);
+
+// KHR_texture_transform's linear part (scale, then rotation) applied to a UV difference.
+vec2 transform_uv_vector(const texture_ref& ref, vec2 d);
+
+// Texel (x, y) of img (in range) as linear RGBA: sRGB decoding applies to RGB only.
+vec4 fetch_texel(const image& img, int x, int y, texel_encoding encoding);
 
 // Maps an integer texel coordinate into [0, size) by a glTF wrap mode.
 int wrap_texel(int i, int size, wrap_mode mode);

@@ -1,13 +1,13 @@
 #include "shade/whitted.h"
 
+#include <algorithm>
+
 #include "core/float_bits.h"
 #include "shade/environment.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/normal_mapping.h"
 #include "shade/shadow_transmittance.h"
-
-#include <algorithm>
 
 namespace kiln {
 
@@ -55,6 +55,10 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
     vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction);
     if (f == vec3(0.0f)) continue;
 
+    if (!l.casts_shadows) {
+      total += f * ls.irradiance * cos_theta;
+      continue;
+    }
     ray shadow;
     shadow.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
     shadow.direction = ls.direction;
@@ -142,7 +146,7 @@ namespace {
 // Emission, direct light, mirror and refraction at a fully covering surface.
 vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
                    const material_point& mp, int depth, float throughput, ray_counts& counts,
-                   const medium_stack& media) {
+                   const medium_stack& media, const ray_cone& cone) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) return mp.base_color;
   const vec3 incident = glm::normalize(r.direction);
@@ -184,8 +188,12 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
         refracted.direction = *direction;
         refracted.kind = ray_kind::refraction;
         ++counts.refraction;
-        radiance +=
-            weight * trace_radiance(ctx, refracted, depth + 1, next_throughput, counts, crossing.beyond);
+        const ray_cone bent =
+            crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
+                                            glm::dot(*direction, sp.geometric_normal))
+                           : cone;
+        radiance += weight *
+                    trace_radiance(ctx, refracted, depth + 1, next_throughput, counts, crossing.beyond, bent);
       }
     }
   }
@@ -203,7 +211,8 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
     reflected.kind = ray_kind::reflection;
     ++counts.reflection;
     // A reflected ray stays in the medium it came from.
-    radiance += reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput, counts, media);
+    radiance += reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput, counts, media,
+                                                reflected_cone(cone));
   }
   return radiance;
 }
@@ -211,21 +220,22 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 }  // namespace
 
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
-                   float throughput, ray_counts& counts, const medium_stack& media) {
+                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone) {
   const material& m = ctx.world.materials[unmapped.material];
-  const material_inputs inputs = material_inputs_at(unmapped);
+  material_inputs inputs = material_inputs_at(unmapped);
+  inputs.filter = ctx.textures;
   material_point mp = evaluate_material(ctx.world, m, inputs);
   surface_point sp = unmapped;
   apply_normal_map(ctx.world, m, inputs, sp);
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
-    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media);
+    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone);
 
   // BLEND: the surface covers a share alpha of the ray; the rest continues unbent behind it (one
   // depth level, so stacked transparent layers stay bounded by max_depth).
   const float alpha = std::max(mp.alpha, 0.0f);
   vec3 radiance(0.0f);
   if (alpha > 0.0f)
-    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media);
+    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone);
   const float behind = throughput * (1.0f - alpha);
   if (depth < ctx.options.max_depth && behind >= ctx.options.min_throughput) {
     ray through;
@@ -234,22 +244,30 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
     through.origin =
         offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
     ++counts.transparency;
-    radiance += (1.0f - alpha) * trace_radiance(ctx, through, depth + 1, behind, counts, media);
+    // The continued ray starts where this cone ends: its width so far carries on.
+    radiance += (1.0f - alpha) * trace_radiance(ctx, through, depth + 1, behind, counts, media, cone);
   }
   return radiance;
 }
 
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
-               ray_counts& counts, const medium_stack& media) {
-  return shade_surface(ctx, r, make_surface_point(ctx.world, h, r), depth, throughput, counts, media);
+               ray_counts& counts, const medium_stack& media, const ray_cone& cone) {
+  return shade_surface(ctx, r, make_surface_point(ctx.world, h, r, cone.width), depth, throughput, counts,
+                       media, cone);
+}
+
+float distance_to_hit(const ray& start, const ray& r, const hit& h) {
+  return glm::length(r.origin - start.origin) + h.t * glm::length(r.direction);
 }
 
 vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, float throughput,
-                    ray_counts& counts, const medium_stack& media) {
+                    ray_counts& counts, const medium_stack& media, const ray_cone& cone_in) {
   ray r = r_in;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
+  const ray_cone cone = h ? cone_at(cone_in, distance_to_hit(r_in, r, *h)) : cone_in;
   if (media.empty())
-    return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media) : environment_radiance(ctx.world, r.direction);
+    return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media, cone)
+             : environment_radiance(ctx.world, r.direction);
 
   // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
   // that leaves the scene from inside (an open mesh, no exit surface) is
@@ -258,8 +276,9 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
   const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);
-  vec3 arriving = h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media)
-                    : environment_radiance(ctx.world, r.direction);
+  vec3 arriving =
+      h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone)
+        : environment_radiance(ctx.world, r.direction);
   return absorption * arriving;
 }
 

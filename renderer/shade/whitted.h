@@ -1,15 +1,17 @@
 // Whitted-style shading: emission, direct light from every punctual light with a shadow ray
 // (attenuated through see-through surfaces), recursive Fresnel-weighted mirror reflection for
-// smooth surfaces, and refraction with exact dielectric Fresnel for transmissive materials. Sees the Scene and the
-// accelerator interface only, never a backend.
+// smooth surfaces, and refraction with exact dielectric Fresnel for transmissive materials. Sees the Scene
+// and the accelerator interface only, never a backend.
 #pragma once
+
+#include <cstdint>
 
 #include "accel/accelerator.h"
 #include "scene/scene.h"
 #include "shade/dielectric.h"
+#include "shade/ray_cone.h"
 #include "shade/surface.h"
-
-#include <cstdint>
+#include "shade/texture_filter.h"
 
 namespace kiln {
 
@@ -46,6 +48,8 @@ struct shading_context {
   // Some material lets light through (transmission): occluded shadow rays are then walked hit by
   // hit to attenuate them; otherwise one occlusion query decides. See scene_has_see_through().
   bool see_through_shadows = false;
+  // Mip-mapped minification for ray-cone footprints; null: textures read level 0 only.
+  const texture_filter* textures = nullptr;
 };
 
 // True when some material can pass light through itself (transmission or alphaMode BLEND), so
@@ -57,18 +61,25 @@ bool scene_has_see_through(const scene& s);
 // it. Shadow rays do not cull (a single-sided surface still casts a shadow from behind).
 std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts);
 
-// Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
-// media: the closed volumes r travels in (empty for camera rays).
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth, float throughput,
-                   ray_counts& counts, const medium_stack& media = medium_stack{});
+// Distance from start.origin to the hit h of r, where r is start advanced by find_visible_hit past
+// culled back faces (the ray cone keeps widening across them).
+float distance_to_hit(const ray& start, const ray& r, const hit& h);
 
-// Radiance arriving along r from the surface at h (the closest hit of r).
+// Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
+// media: the closed volumes r travels in (empty for camera rays). cone: r's ray cone at the hit
+// (the width sp's footprints were built with); reflected, refracted and continued rays carry it on.
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
+                   float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
+                   const ray_cone& cone = {});
+
+// Radiance arriving along r from the surface at h (the closest hit of r); cone is r's at the hit.
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
-               ray_counts& counts, const medium_stack& media = medium_stack{});
+               ray_counts& counts, const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
 
 // Radiance arriving along r: shade the closest hit, or the environment on a miss; inside an
 // absorbing volume the result is attenuated by Beer-Lambert over the travelled distance.
+// cone: r's ray cone at its origin.
 vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts,
-                    const medium_stack& media = medium_stack{});
+                    const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
 
 }  // namespace kiln

@@ -1,11 +1,12 @@
 // Loader tests on small glTF files the tests write themselves: geometry reading, topology
 // conversion, hierarchy flattening, instancing, materials, textures, lights and cameras.
 #include "io/gltf/gltf_loader.h"
-#include "io/gltf/gltf_test_util.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "io/gltf/gltf_test_util.h"
 
 namespace kiln {
 namespace {
@@ -302,31 +303,30 @@ gltf_builder textured_quad(const std::string& png_base64, int texcoord_component
                                  json{{"uri", "data:image/png;base64,AAAA"}}});  // unused, corrupt
   b.doc["samplers"] = json::array({json{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}});
   b.doc["textures"] = json::array({json{{"source", 0}, {"sampler", 0}}, json{{"source", 1}}});
-  b.doc["materials"] =
-      json::array({json{{"name", "unused"}},
-                   json{{"name", "painted"},
-                        {"pbrMetallicRoughness",
-                         {{"baseColorFactor", {0.5, 0.25, 1, 1}},
-                          {"baseColorTexture", {{"index", 0}}},
-                          {"metallicFactor", 0.25},
-                          {"roughnessFactor", 0.75}}},
-                        {"normalTexture", {{"index", 0}, {"scale", 0.5}}},
-                        {"occlusionTexture", {{"index", 0}, {"strength", 0.3}}},
-                        {"emissiveFactor", {1, 0.5, 0}},
-                        {"alphaMode", "MASK"},
-                        {"alphaCutoff", 0.4},
-                        {"doubleSided", true},
-                        {"extensions",
-                         {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
-                          {"KHR_materials_ior", {{"ior", 1.33}}},
-                          {"KHR_materials_specular",
-                           {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}},
-                          {"KHR_materials_transmission",
-                           {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}},
-                          {"KHR_materials_volume",
-                           {{"thicknessFactor", 0.1},
-                            {"attenuationDistance", 2.5},
-                            {"attenuationColor", {0.9, 0.8, 0.7}}}}}}}});
+  b.doc["materials"] = json::array(
+      {json{{"name", "unused"}},
+       json{{"name", "painted"},
+            {"pbrMetallicRoughness",
+             {{"baseColorFactor", {0.5, 0.25, 1, 1}},
+              {"baseColorTexture", {{"index", 0}}},
+              {"metallicFactor", 0.25},
+              {"roughnessFactor", 0.75}}},
+            {"normalTexture", {{"index", 0}, {"scale", 0.5}}},
+            {"occlusionTexture", {{"index", 0}, {"strength", 0.3}}},
+            {"emissiveFactor", {1, 0.5, 0}},
+            {"alphaMode", "MASK"},
+            {"alphaCutoff", 0.4},
+            {"doubleSided", true},
+            {"extensions",
+             {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
+              {"KHR_materials_ior", {{"ior", 1.33}}},
+              {"KHR_materials_specular", {{"specularFactor", 0.7}, {"specularColorFactor", {1, 0.5, 0.25}}}},
+              {"KHR_materials_transmission",
+               {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}},
+              {"KHR_materials_volume",
+               {{"thicknessFactor", 0.1},
+                {"attenuationDistance", 2.5},
+                {"attenuationColor", {0.9, 0.8, 0.7}}}}}}}});
   const int mesh_index =
       b.add_mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}, {"material", 1}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
@@ -367,6 +367,9 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_EQ(s.textures[0].sampling.wrap_s, wrap_mode::clamp_to_edge);
   EXPECT_EQ(s.textures[0].sampling.wrap_t, wrap_mode::mirrored_repeat);
   EXPECT_EQ(s.textures[0].sampling.filter, filter_mode::nearest);
+  // No minFilter: trilinear mip-mapping.
+  EXPECT_EQ(s.textures[0].sampling.min_filter, filter_mode::linear);
+  EXPECT_EQ(s.textures[0].sampling.mipmap, mip_mode::linear);
   ASSERT_EQ(s.images.size(), 1u);
   const image& img = s.images[0];
   EXPECT_EQ(img.width, 2);
@@ -406,6 +409,35 @@ TEST(GltfLoader, DecodesSixteenBitImagesAsFloat) {
   EXPECT_NEAR(img.texels32[1], 32768.0f / 65535.0f, 1e-6);
   EXPECT_FLOAT_EQ(img.texels32[2], 0.0f);
   EXPECT_FLOAT_EQ(img.texels32[3], 1.0f);
+}
+
+// Each glTF minFilter splits into a texel filter and a mip mode; an unknown one is refused.
+TEST(GltfLoader, ReadsEveryMinFilter) {
+  struct expected {
+    int gl;
+    filter_mode filter;
+    mip_mode mipmap;
+  };
+  const expected cases[] = {
+      {9728, filter_mode::nearest, mip_mode::none},    {9729, filter_mode::linear, mip_mode::none},
+      {9984, filter_mode::nearest, mip_mode::nearest}, {9985, filter_mode::linear, mip_mode::nearest},
+      {9986, filter_mode::nearest, mip_mode::linear},  {9987, filter_mode::linear, mip_mode::linear}};
+  for (const expected& e : cases) {
+    temp_folder dir;
+    gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
+    b.doc["samplers"][0]["minFilter"] = e.gl;
+    const scene s = load_gltf(b.write_gltf(dir));
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].sampling.min_filter, e.filter) << e.gl;
+    EXPECT_EQ(s.textures[0].sampling.mipmap, e.mipmap) << e.gl;
+    EXPECT_EQ(s.textures[0].sampling.filter, filter_mode::nearest) << e.gl;  // magFilter untouched
+  }
+  temp_folder dir;
+  gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
+  b.doc["samplers"][0]["minFilter"] = 9730;
+  const std::string path = b.write_gltf(dir);
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_NE(message.find("/samplers/0/minFilter"), std::string::npos) << message;
 }
 
 TEST(GltfLoader, CorruptImageUsedByMaterialNamesTheImage) {
@@ -534,9 +566,10 @@ TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
   temp_folder dir;
   gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
   json& prim = b.doc["meshes"][0]["primitives"][0];
-  prim["attributes"]["TEXCOORD_1"] = b.add_data(std::vector<float>{0.5f, 0.5f, 1, 0.5f, 0.5f, 1}, k_float, "VEC2", 2);
-  prim["attributes"]["COLOR_0"] =
-      b.add_data(std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0}, k_ubyte, "VEC4", 4, true);
+  prim["attributes"]["TEXCOORD_1"] =
+      b.add_data(std::vector<float>{0.5f, 0.5f, 1, 0.5f, 0.5f, 1}, k_float, "VEC2", 2);
+  prim["attributes"]["COLOR_0"] = b.add_data(
+      std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0}, k_ubyte, "VEC4", 4, true);
   // The base colour texture moves to TEXCOORD_1 through KHR_texture_transform's texCoord.
   b.doc["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
       {"offset", {0.25, -0.5}}, {"rotation", 0.5}, {"scale", {2, 3}}, {"texCoord", 1}};

@@ -1,11 +1,11 @@
 #include "io/gltf/gltf_materials.h"
 
+#include <cmath>
+#include <limits>
+
 #include "core/error.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_images.h"
-
-#include <cmath>
-#include <limits>
 
 namespace kiln::gltf_internal {
 namespace {
@@ -32,7 +32,8 @@ int effective_texcoord(const tinygltf::Value* transform, int texcoord) {
 
 // The textureInfo at key inside a material extension, as (index, texCoord); (-1, 0) when absent or
 // malformed (convert_material reports malformed ones).
-std::pair<int, int> extension_texture_slot(const tinygltf::Material& m, const char* extension, const char* key) {
+std::pair<int, int> extension_texture_slot(const tinygltf::Material& m, const char* extension,
+                                           const char* key) {
   auto it = m.extensions.find(extension);
   if (it == m.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return {-1, 0};
   const tinygltf::Value& info = it->second.Get(key);
@@ -57,11 +58,22 @@ std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
           extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
 }
 
+// glTF minFilter (OpenGL enums): NEAREST 9728, LINEAR 9729, {NEAREST,LINEAR}_MIPMAP_NEAREST 9984/9985,
+// {NEAREST,LINEAR}_MIPMAP_LINEAR 9986/9987; absent (-1) keeps the sampler's trilinear default.
+void set_min_filter(int gl, sampler& out) {
+  if (gl < 0) return;
+  out.min_filter = (gl == 9728 || gl == 9984 || gl == 9986) ? filter_mode::nearest : filter_mode::linear;
+  out.mipmap = gl <= 9729 ? mip_mode::none : (gl <= 9985 ? mip_mode::nearest : mip_mode::linear);
+}
+
 wrap_mode to_wrap(int gl) {
   switch (gl) {
-    case 33071: return wrap_mode::clamp_to_edge;
-    case 33648: return wrap_mode::mirrored_repeat;
-    default: return wrap_mode::repeat;  // 10497; validation refused anything else
+    case 33071:
+      return wrap_mode::clamp_to_edge;
+    case 33648:
+      return wrap_mode::mirrored_repeat;
+    default:
+      return wrap_mode::repeat;  // 10497; validation refused anything else
   }
 }
 
@@ -109,6 +121,7 @@ int32_t resolve_texture(const tinygltf::Model& model, int gltf_texture, texture_
     result.sampling.wrap_s = to_wrap(s.wrapS);
     result.sampling.wrap_t = to_wrap(s.wrapT);
     result.sampling.filter = s.magFilter == 9728 ? filter_mode::nearest : filter_mode::linear;
+    set_min_filter(s.minFilter, result.sampling);
   }
   out.textures.push_back(result);
   remap.textures[t] = static_cast<int32_t>(out.textures.size() - 1);
@@ -151,7 +164,8 @@ bool bounded_number(const tinygltf::Value& object, const char* key, double low, 
   require(v.IsNumber(), file, at, std::string(key) + " must be a number");
   out = v.GetNumberAsDouble();
   require(std::isfinite(out) && out >= low && out <= high, file, at,
-          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) +
+              "]");
   return true;
 }
 
@@ -178,7 +192,8 @@ void apply_texture_transform(const tinygltf::Value* t, texture_ref& ref, const s
   transform_pair(*t, "offset", ref.offset, file, at);
   transform_pair(*t, "scale", ref.uv_scale, file, at);
   double rotation = 0.0;
-  if (bounded_number(*t, "rotation", -1e6, 1e6, rotation, file, at)) ref.rotation = static_cast<float>(rotation);
+  if (bounded_number(*t, "rotation", -1e6, 1e6, rotation, file, at))
+    ref.rotation = static_cast<float>(rotation);
   if (t->Has("texCoord")) {
     require(t->Get("texCoord").IsInt() && t->Get("texCoord").GetNumberAsInt() >= 0, file,
             pointer_join(at, "texCoord"), "texCoord must be a non-negative integer");
@@ -188,7 +203,8 @@ void apply_texture_transform(const tinygltf::Value* t, texture_ref& ref, const s
 
 // A textureInfo inside a material extension, validated like the core ones.
 texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Value& ext, const char* key,
-                              texture_remap& remap, scene& out, const std::string& file, const std::string& where) {
+                              texture_remap& remap, scene& out, const std::string& file,
+                              const std::string& where) {
   if (!ext.IsObject() || !ext.Has(key)) return texture_ref{};
   const tinygltf::Value& info = ext.Get(key);
   const std::string at = pointer_join(where, key);
@@ -210,7 +226,8 @@ texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Valu
 
 // KHR_materials_transmission and KHR_materials_volume.
 void convert_transmission(const tinygltf::Model& model, const tinygltf::Material& src, material& m,
-                          texture_remap& remap, scene& out, const std::string& file, const std::string& ext_where) {
+                          texture_remap& remap, scene& out, const std::string& file,
+                          const std::string& ext_where) {
   if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_transmission")) {
     const std::string at = pointer_join(ext_where, "KHR_materials_transmission");
     double factor = 0.0;
@@ -225,13 +242,15 @@ void convert_transmission(const tinygltf::Model& model, const tinygltf::Material
     if (bounded_number(*ext, "thicknessFactor", 0.0, largest, value, file, at))
       m.thickness_factor = static_cast<float>(value);
     if (bounded_number(*ext, "attenuationDistance", 0.0, largest, value, file, at)) {
-      require(value > 0.0, file, pointer_join(at, "attenuationDistance"), "attenuationDistance must be positive");
+      require(value > 0.0, file, pointer_join(at, "attenuationDistance"),
+              "attenuationDistance must be positive");
       m.attenuation_distance = static_cast<float>(value);
     }
     if (ext->IsObject() && ext->Has("attenuationColor")) {
       const tinygltf::Value& color = ext->Get("attenuationColor");
       const std::string color_at = pointer_join(at, "attenuationColor");
-      require(color.IsArray() && color.ArrayLen() == 3, file, color_at, "attenuationColor must have 3 numbers");
+      require(color.IsArray() && color.ArrayLen() == 3, file, color_at,
+              "attenuationColor must have 3 numbers");
       for (int i = 0; i < 3; ++i) {
         const tinygltf::Value& c = color.Get(i);
         require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
@@ -384,7 +403,8 @@ bool material_samples_texcoord(const tinygltf::Model& model, int material_index,
 }
 
 int material_normal_texcoord(const tinygltf::Model& model, int material_index) {
-  const tinygltf::NormalTextureInfo& info = model.materials[static_cast<size_t>(material_index)].normalTexture;
+  const tinygltf::NormalTextureInfo& info =
+      model.materials[static_cast<size_t>(material_index)].normalTexture;
   return effective_texcoord(transform_of(info.extensions), info.texCoord);
 }
 

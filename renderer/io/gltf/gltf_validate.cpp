@@ -193,6 +193,11 @@ void validate_textures(const tinygltf::Model& model, const std::string& file) {
     if (s.magFilter != -1 && s.magFilter != 9728 && s.magFilter != 9729)
       throw input_error(file, pointer_join(where, "magFilter"),
                         "unknown magFilter " + std::to_string(s.magFilter));
+    const bool known_min = s.minFilter == -1 || s.minFilter == 9728 || s.minFilter == 9729 ||
+                           (s.minFilter >= 9984 && s.minFilter <= 9987);
+    if (!known_min)
+      throw input_error(file, pointer_join(where, "minFilter"),
+                        "unknown minFilter " + std::to_string(s.minFilter));
   }
   for (size_t i = 0; i < model.textures.size(); ++i) {
     const tinygltf::Texture& t = model.textures[i];
@@ -281,7 +286,8 @@ void check_attribute_format(const tinygltf::Accessor& acc, const std::string& na
                      (acc.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                          ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
     if (!ok)
-      throw input_error(file, where, "COLOR_0 must be VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
+      throw input_error(file, where,
+                        "COLOR_0 must be VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/SHORT" + got);
   }
 }
 

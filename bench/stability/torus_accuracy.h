@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <random>
 
 #include "core/math.h"
 
@@ -21,6 +22,18 @@ struct torus_accuracy {
 // solver: 0 kiln's root isolation, 1 closed form (Ferrari), 2 closed form + Newton polishing.
 torus_accuracy measure_torus_accuracy(int64_t rays, double distance, bool grazing, uint64_t seed,
                                       int solver = 0);
+
+// A test ray of measure_torus_accuracy: unit direction, origin `distance` before its target.
+struct torus_test_ray {
+  dvec3 origin{0.0};
+  dvec3 direction{0.0};
+};
+torus_test_ray make_torus_test_ray(std::mt19937_64& rng, double distance, bool grazing);
+
+// The first hit (t > 0) of the torus (major 1, minor 0.3) by dense sign sampling of the quartic in
+// long double and bisection: slow (2·10⁵ evaluations per ray), but it skips no root whose chord is
+// longer than the sampling step.
+std::optional<double> torus_reference_hit(const dvec3& o, const dvec3& d);
 
 // One torus solve (major 1, minor 0.3) with the chosen solver.
 std::optional<double> solve_torus(int solver, const dvec3& o, const dvec3& d);

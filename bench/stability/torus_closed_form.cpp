@@ -1,4 +1,4 @@
-#include "torus_closed_form.h"
+#include "stability/torus_closed_form.h"
 
 #include <cmath>
 
