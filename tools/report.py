@@ -53,7 +53,7 @@ def suite_table(results):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     columns = ["label", "triangles_unique", "triangles_placed", "instances", "threads", "load_s", "build_s",
-               "render_s", "peak_rss_mb", "render_mrays_per_s", "bare_mrays_per_s", "render_over_bare",
+               "render_s", "peak_rss_mb", "scene_memory_mb", "render_mrays_per_s", "bare_mrays_per_s", "render_over_bare",
                "camera_kiln_over_bare", "shadow_kiln_over_bare"]
 
     def cell(value):

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -56,7 +57,7 @@ totals sum_kinds(const bench_measurement& m, bool camera_and_shadow_only) {
 }
 
 nlohmann::json report_json(const bench_options& o, const prepared_scene& p, const bench_measurement& m,
-                           const std::string& label) {
+                           const std::string& label, size_t rss_before_load) {
   nlohmann::json kinds = nlohmann::json::array();
   for (const kind_measurement& k : m.kinds)
     kinds.push_back({{"kind", k.kind},
@@ -90,7 +91,10 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
           {"first_pixel_seconds", p.load_seconds + m.build_seconds},
           {"render_seconds", m.render_seconds},
           {"peak_rss_bytes",
-           {{"after_build", m.peak_rss_after_build}, {"after_render", m.peak_rss_after_render}}},
+           {{"before_load", rss_before_load},
+            {"after_build", m.peak_rss_after_build},
+            {"after_render", m.peak_rss_after_render}}},
+          {"scene_memory_bytes", m.peak_rss_after_render - std::min(m.peak_rss_after_render, rss_before_load)},
           {"rays",
            {{"camera", m.rays.camera},
             {"shadow", m.rays.shadow},
@@ -162,6 +166,9 @@ void add_bench_options(CLI::App& app, bench_options& o) {
 void run_bench_command(const bench_options& o) {
   if (!o.json.empty()) check_output_writable(o.json);
   if (!o.csv.empty()) check_output_writable(o.csv);
+  // The process's own baseline (libraries, thread pools) before anything of the scene exists, so the
+  // report can give the memory the scene, its BVH and the render added.
+  const size_t rss_before_load = peak_resident_bytes();
   prepared_scene prepared = prepare_scene(o.view);
   bench_settings settings;
   settings.accel = o.accel;
@@ -169,7 +176,7 @@ void run_bench_command(const bench_options& o) {
   const bench_measurement m = run_bench(prepared.world, prepared.cam, make_render_settings(o.view), settings);
   const std::string label =
       o.label.empty() ? std::filesystem::path(o.view.input).filename().string() : o.label;
-  const nlohmann::json report = report_json(o, prepared, m, label);
+  const nlohmann::json report = report_json(o, prepared, m, label, rss_before_load);
   if (!o.json.empty()) write_text_atomically(o.json, report.dump(2) + "\n");
   if (!o.csv.empty()) write_text_atomically(o.csv, report_csv(report));
   if (!o.view.quiet) print_summary(report);

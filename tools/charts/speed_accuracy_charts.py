@@ -55,7 +55,8 @@ def chart2(rows, out):
               ("normal_error_deg", "mean normal error (degrees)"), ("depth_error", "mean relative depth error"))
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.5))
     for col, (key, label) in enumerate(errors):
-        for row, (cost, cost_label) in enumerate((("render_s", "render time (s)"), ("peak_rss_mb", "peak memory (MB)"))):
+        for row, (cost, cost_label) in enumerate((("render_s", "render time (s)"),
+                                                 ("scene_memory_mb", "memory the scene added (MB, peak RSS)"))):
             ax = axes[row][col]
             for shape, colour in zip(("sphere", "cylinder", "torus"), ("C0", "C1", "C2")):
                 meshes = sorted((float(r[cost]), max(float(r[key]), 1e-6), int(r["triangles"])) for r in rows
