@@ -122,8 +122,8 @@ TEST(GltfCoverage, PrimitivesOfOneMeshKeepTheirOwnMaterials) {
     EXPECT_EQ(inst.shape, i % 3);
     const material& m = s.materials.at(inst.material);
     EXPECT_EQ(m.name, expected[i % 3]);
-    const vec4 expected = i % 3 == 0 ? vec4(0, 0, 1, 1) : i % 3 == 1 ? vec4(1, 0, 0, 1) : vec4(1.0f);
-    EXPECT_EQ(m.base_color_factor, expected);
+    const vec4 expected_colour = i % 3 == 0 ? vec4(0, 0, 1, 1) : i % 3 == 1 ? vec4(1, 0, 0, 1) : vec4(1.0f);
+    EXPECT_EQ(m.base_color_factor, expected_colour);
   }
 }
 
