@@ -54,7 +54,8 @@ int gltf_builder::add_accessor(const void* data, size_t bytes, int component_typ
 }
 
 int gltf_builder::add_mesh(const std::vector<std::array<float, 3>>& positions, const std::vector<uint32_t>& indices,
-                           int material, const std::vector<std::array<float, 3>>& normals) {
+                           int material, const std::vector<std::array<float, 3>>& normals,
+                           const std::vector<std::array<float, 2>>& texcoords) {
   std::array<float, 3> lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
   for (const auto& p : positions)
     for (int a = 0; a < 3; ++a) {
@@ -67,6 +68,9 @@ int gltf_builder::add_mesh(const std::vector<std::array<float, 3>>& positions, c
   if (!normals.empty())
     primitive["attributes"]["NORMAL"] =
         add_accessor(normals.data(), normals.size() * 12, 5126, "VEC3", normals.size(), 34962);
+  if (!texcoords.empty())
+    primitive["attributes"]["TEXCOORD_0"] =
+        add_accessor(texcoords.data(), texcoords.size() * 8, 5126, "VEC2", texcoords.size(), 34962);
   primitive["indices"] = add_accessor(indices.data(), indices.size() * 4, 5125, "SCALAR", indices.size(), 34963);
   if (material >= 0) primitive["material"] = material;
   doc_["meshes"].push_back({{"primitives", {primitive}}});

@@ -15,9 +15,11 @@ class gltf_builder {
  public:
   gltf_builder();
 
-  // Adds a mesh with one TRIANGLES primitive; returns the mesh index.
+  // Adds a mesh with one TRIANGLES primitive (TEXCOORD_0 when texcoords is not empty); returns the
+  // mesh index.
   int add_mesh(const std::vector<std::array<float, 3>>& positions, const std::vector<uint32_t>& indices,
-               int material = -1, const std::vector<std::array<float, 3>>& normals = {});
+               int material = -1, const std::vector<std::array<float, 3>>& normals = {},
+               const std::vector<std::array<float, 2>>& texcoords = {});
 
   // Adds a material; returns its index. Extra JSON (extensions) can be merged by the caller.
   int add_material(const nlohmann::json& material);
