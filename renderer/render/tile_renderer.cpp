@@ -31,36 +31,50 @@ std::vector<tile> make_tiles(int width, int height, int size) {
 }
 
 // Renders every sample of one pixel and writes the pixel. The nearest sample decides depth and
-// normal (never averaged, so Z and N stay valid for compositing).
-void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x, int y,
-                  film& out, ray_counts& counts) {
+// normal (never averaged, so Z and N stay valid for compositing). Samples with non-finite
+// radiance are discarded (counted in `discarded`); the pixel averages the samples that remain,
+// because one NaN or infinity (an infinite emission, a NaN environment scale, a degenerate
+// shading frame) would otherwise poison the pixel and every filter a compositor runs over it.
+// Z keeps +inf where nothing was hit: that is the compositing convention, not a failure.
+void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
+                  int y, film& out, ray_counts& counts, uint64_t& discarded) {
   const int spp = settings.samples_per_pixel;
   vec3 colour_sum(0.0f);
   float alpha_sum = 0.0f;
+  int kept = 0;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
   for (int s = 0; s < spp; ++s) {
+    // A pixel of thousands of samples takes long enough that a signal must not wait for it.
+    if (s % 64 == 63 && settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;
     vec2 offset = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     ray r = generate_camera_ray(cam, x + double(offset.x), y + double(offset.y));
     ++counts.camera;
     std::optional<hit> h = find_visible_hit(ctx, r, counts);
-    if (!h) {
-      if (settings.show_background) {
-        colour_sum += environment_radiance(ctx.world, r.direction);
-        alpha_sum += 1.0f;
+    vec3 radiance(0.0f);
+    float alpha = 0.0f;
+    if (h) {
+      surface_point sp = make_surface_point(ctx.world, *h, r);
+      radiance = shade_surface(ctx, r, sp, 0, 1.0f, counts);
+      alpha = 1.0f;
+      if (h->t < nearest && is_finite(sp.shading_normal)) {
+        nearest = h->t;
+        nearest_normal = sp.shading_normal;
       }
+    } else if (settings.show_background) {
+      radiance = environment_radiance(ctx.world, r.direction);
+      alpha = 1.0f;
+    }
+    if (!is_finite(radiance)) {
+      ++discarded;
       continue;
     }
-    surface_point sp = make_surface_point(ctx.world, *h, r);
-    colour_sum += shade_surface(ctx, r, sp, 0, 1.0f, counts);
-    alpha_sum += 1.0f;
-    if (h->t < nearest) {
-      nearest = h->t;
-      nearest_normal = sp.shading_normal;
-    }
+    colour_sum += radiance;
+    alpha_sum += alpha;
+    ++kept;
   }
   size_t i = out.index(x, y);
-  out.color[i] = vec4(colour_sum, alpha_sum) / float(spp);
+  out.color[i] = kept ? vec4(colour_sum, alpha_sum) / float(kept) : vec4(0.0f);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
 }
@@ -78,6 +92,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
 
   std::mutex merge_mutex;
   ray_counts total_counts;
+  uint64_t total_discarded = 0;
   std::atomic<size_t> tiles_done{0};
   auto cancelled = [&settings] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   tbb::task_arena arena(threads);
@@ -86,10 +101,13 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       for (size_t t = range.begin(); t != range.end(); ++t) {
         const tile& tl = tiles[t];
         ray_counts counts;
-        for (int y = tl.y0; y < tl.y1 && !cancelled(); ++y)
-          for (int x = tl.x0; x < tl.x1; ++x) render_pixel(ctx, cam, settings, x, y, out, counts);
+        uint64_t discarded = 0;
+        for (int y = tl.y0; y < tl.y1; ++y)
+          for (int x = tl.x0; x < tl.x1 && !cancelled(); ++x)
+            render_pixel(ctx, cam, settings, x, y, out, counts, discarded);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
+        total_discarded += discarded;
         size_t done = ++tiles_done;
         if (progress) progress(done, tiles.size());
       }
@@ -100,6 +118,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
 
   if (stats) {
     stats->rays = total_counts;
+    stats->discarded_samples = total_discarded;
     stats->threads_used = threads;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -20,12 +20,13 @@ struct render_settings {
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
-  // row and render_image throws kiln::error of kind interrupted.
+  // (or sample batch) and render_image throws kiln::error of kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
 };
 
 struct render_statistics {
   ray_counts rays;
+  uint64_t discarded_samples = 0;  // samples whose radiance was NaN or infinite, left out of their pixel
   double seconds = 0.0;
   int threads_used = 0;
 };

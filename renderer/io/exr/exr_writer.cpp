@@ -4,8 +4,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -62,6 +65,16 @@ std::vector<float> interleave(const film& f) {
   return pixels;
 }
 
+// Flushes a closed file's data to the disk. OpenImageIO does not expose its descriptor, so the
+// file is opened again: fsync on any descriptor of the file syncs its data. Without this a crash
+// right after the rename can leave the target name pointing at an empty or partial file.
+bool sync_to_disk(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  return ::close(fd) == 0 && ok;
+}
+
 }  // namespace
 
 void check_output_writable(const std::string& path) {
@@ -76,6 +89,16 @@ void check_output_writable(const std::string& path) {
   // a socket.
   if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
     throw io_error(path, "output exists and is not a regular file");
+  // access() answers yes to root for any folder, including /proc and /sys where nothing can be
+  // created, so create the temporary file the writer will use, and remove it again.
+  const std::string probe = temporary_path(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return;  // a stale temporary of this process id: the writer replaces it
+    throw io_error(path, "output folder is not writable: " + folder.string() + " (" + std::strerror(errno) + ")");
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
@@ -91,8 +114,16 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   ok = out->close() && ok;
   std::string reason = ok ? std::string() : out->geterror();
+  if (ok && !sync_to_disk(temporary, O_RDONLY)) {
+    ok = false;
+    reason = "cannot flush the file to disk";
+  }
   std::error_code ec;
   if (ok) fs::rename(temporary, path, ec);
+  // The rename itself lives in the folder: sync it too, best effort (some file systems refuse).
+  if (ok && !ec)
+    sync_to_disk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(),
+                 O_RDONLY | O_DIRECTORY);
   if (!ok || ec) {
     fs::remove(temporary, ec);
     throw io_error(path, "cannot write EXR: " + (reason.empty() ? std::string("rename failed") : reason));

@@ -20,15 +20,18 @@ namespace fs = std::filesystem;
 // What the tinygltf file-system callbacks may touch: files inside the asset's folder only,
 // unless the caller allows files anywhere.
 struct fs_context {
-  std::string folder_prefix;  // absolute, lexically normal asset folder, ending in '/'
+  std::string folder_prefix;  // canonical asset folder (symlinks resolved), ending in '/'
   bool allow_outside = false;
 };
 
-// True when path, with "." and ".." resolved lexically, lies inside the asset's folder. A scene
-// file must not read arbitrary files (../../etc/passwd) on a render farm node.
+// True when path, with ".", ".." and symbolic links resolved, lies inside the asset's folder. A
+// scene file must not read arbitrary files (../../etc/passwd) on a render farm node, and neither
+// may a symlink that sits in the folder but points out of it.
 bool inside_asset_folder(const std::string& path, const fs_context& context) {
-  const std::string normal = fs::path(path).lexically_normal().string();
-  return normal.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
+  std::error_code ec;
+  const std::string resolved = fs::weakly_canonical(fs::path(path), ec).string();
+  if (ec) return false;
+  return resolved.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
 }
 
 bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::string& why) {
@@ -255,7 +258,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
   if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   fs_context context;
-  context.folder_prefix = folder.lexically_normal().string();
+  context.folder_prefix = fs::weakly_canonical(folder, ec).string();
+  if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   context.allow_outside = options.allow_files_outside_folder;
   if (context.folder_prefix.empty() || context.folder_prefix.back() != '/') context.folder_prefix += '/';
 
