@@ -108,12 +108,12 @@ std::vector<std::string> long_render(const std::string& output) {
 // Few pixels of a huge number of samples in one tile: each pixel takes long, so a check per tile
 // row or per pixel alone would keep the signal waiting for seconds.
 std::vector<std::string> long_pixels_render(const std::string& output) {
-  return {"render",  demo_scene, "-o",          output, "--width", "512", "--height",
-          "512",     "--spp",    "65536",       "--tile-size", "512",   "--threads", "2"};
+  return {"render", demo_scene, "-o",    output,        "--width", "512",       "--height",
+          "512",    "--spp",    "65536", "--tile-size", "512",     "--threads", "2"};
 }
 
-void expect_signal_stops_render(int signo, const std::function<std::vector<std::string>(const std::string&)>& args =
-                                               long_render) {
+void expect_signal_stops_render(
+    int signo, const std::function<std::vector<std::string>(const std::string&)>& args = long_render) {
   std::string folder = scratch_folder("signal_" + std::to_string(signo));
   std::string output = folder + "/frame.exr";
   write_file(output, previous_content);

@@ -95,7 +95,8 @@ void check_output_writable(const std::string& path) {
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
     if (errno == EEXIST) return;  // a stale temporary of this process id: the writer replaces it
-    throw io_error(path, "output folder is not writable: " + folder.string() + " (" + std::strerror(errno) + ")");
+    throw io_error(path,
+                   "output folder is not writable: " + folder.string() + " (" + std::strerror(errno) + ")");
   }
   ::close(fd);
   ::unlink(probe.c_str());

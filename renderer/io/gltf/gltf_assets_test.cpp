@@ -235,10 +235,12 @@ TEST(GltfAssets, InvalidCorpusFilesGetTheirExpectedOutcome) {
     const gltf_test::corpus_expectation& want = *row->second;
     try {
       const scene s = load_gltf(entry.path().string());
-      EXPECT_EQ(want.result, gltf_test::outcome::load) << "loaded; expected refusal at '" << want.location << "'";
+      EXPECT_EQ(want.result, gltf_test::outcome::load)
+          << "loaded; expected refusal at '" << want.location << "'";
       EXPECT_FALSE(s.materials.empty());
       bool warned = false;
-      for (const std::string& warning : s.stats.warnings) warned = warned || warning.find(want.fragment) != std::string::npos;
+      for (const std::string& warning : s.stats.warnings)
+        warned = warned || warning.find(want.fragment) != std::string::npos;
       EXPECT_TRUE(warned) << "no warning contains '" << want.fragment << "'";
     } catch (const kiln::error& e) {
       const std::string message = e.what();
@@ -249,12 +251,14 @@ TEST(GltfAssets, InvalidCorpusFilesGetTheirExpectedOutcome) {
       EXPECT_NE(e.reason().find(want.fragment), std::string::npos) << message;
       // Only damage to the container or the JSON text itself has no value to point at; what
       // tinygltf would refuse in its own words (no path) is checked before it parses.
-      const bool about_the_text = e.reason().rfind("GLB:", 0) == 0 || e.reason().find("JSON") != std::string::npos;
+      const bool about_the_text =
+          e.reason().rfind("GLB:", 0) == 0 || e.reason().find("JSON") != std::string::npos;
       EXPECT_TRUE(!e.location().empty() || about_the_text) << "refused without a JSON pointer: " << message;
     }
     auto it = index.find(relative);
     if (it != index.end() && must_refuse(relative, it->second))
-      EXPECT_EQ(want.result, gltf_test::outcome::refuse) << relative << " (" << it->second << ") must be refused";
+      EXPECT_EQ(want.result, gltf_test::outcome::refuse)
+          << relative << " (" << it->second << ") must be refused";
   }
   EXPECT_EQ(files, 77u);
   EXPECT_EQ(expected.size(), files);

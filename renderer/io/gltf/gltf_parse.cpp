@@ -167,7 +167,8 @@ void check_required_extensions_in_json(const nlohmann::json& doc, const std::str
 }
 
 void check_required_extensions_in_json(const uint8_t* text, size_t size, const std::string& path) {
-  check_required_extensions_in_json(nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false), path);
+  check_required_extensions_in_json(
+      nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false), path);
 }
 
 // The deepest nesting of arrays and objects in JSON text, found without parsing: JSON parsers
@@ -196,8 +197,9 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
 // within its limit, and every buffer and image URI inside the asset's folder. glTF URIs are
 // relative references: an absolute path or a file: URI is never followed; ".." that leaves the
 // folder only with the allow option. Each refusal names the JSON pointer.
-void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path, const fs_context& context,
-                               const gltf_limits& limits, const buffer_sources& sources) {
+void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path,
+                               const fs_context& context, const gltf_limits& limits,
+                               const buffer_sources& sources) {
   if (size > limits.max_json_bytes)
     throw input_error(path, "", "JSON is " + std::to_string(size) + " bytes, over the limit of " +
                                     std::to_string(limits.max_json_bytes) + " (--max-json-bytes)");
@@ -207,7 +209,9 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded()) check_json_syntax(text, size, path);
   if (!doc.is_object())
-    throw input_error(path, "", std::string("invalid glTF: the top-level JSON value is ") + doc.type_name() + ", not an object");
+    throw input_error(
+        path, "",
+        std::string("invalid glTF: the top-level JSON value is ") + doc.type_name() + ", not an object");
   auto nodes = doc.find("nodes");
   if (nodes != doc.end() && nodes->is_array() && nodes->size() > limits.max_nodes)
     throw input_error(path, "/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
@@ -276,7 +280,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       json_offset = layout.json_offset;
       json_length = layout.json_length;
       buffer_sources sources{context.folder_prefix, true, layout.has_bin, layout.bin_length};
-      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits, sources);
+      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits,
+                                sources);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
         throw input_error(path, "", "GLB JSON chunk starts with a byte order mark, which glTF forbids");
       ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
