@@ -66,6 +66,27 @@ TEST(NonFiniteSamples, InfiniteEmissionIsDiscardedAndCounted) {
   EXPECT_EQ(stats.discarded_samples, hit_pixels);
 }
 
+// Samples near the float maximum are finite and kept; their sum over 16 samples is not a float,
+// so the pixel must average them without overflowing to +inf.
+TEST(NonFiniteSamples, VeryBrightSamplesAreKeptAndAveragedWithoutOverflow) {
+  material bright;
+  bright.unlit = true;
+  bright.base_color_factor = vec4(3e38f, 2e38f, 1.0f, 1.0f);
+  const scene s = quad_scene(bright);
+  render_statistics stats;
+  const film image = render(s, 16, false, stats);
+  EXPECT_EQ(stats.discarded_samples, 0u);
+  size_t inside = 0;
+  for (size_t i = 0; i < image.color.size(); ++i) {
+    ASSERT_TRUE(finite(image.color[i])) << "pixel " << i;
+    if (image.color[i].a != 1.0f) continue;  // edge and background pixels average in zeros
+    ++inside;
+    EXPECT_FLOAT_EQ(image.color[i].r, 3e38f) << "pixel " << i;
+    EXPECT_FLOAT_EQ(image.color[i].g, 2e38f) << "pixel " << i;
+  }
+  EXPECT_GT(inside, 50u);
+}
+
 // The same quad, unlit, against a NaN environment shown as background: each pixel keeps exactly
 // its quad samples, so its colour is the quad's with alpha 1, and the count of discarded samples
 // is every background sample, which a reference render with a finite environment measures as

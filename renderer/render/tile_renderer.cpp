@@ -39,8 +39,10 @@ std::vector<tile> make_tiles(int width, int height, int size) {
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, film& out, ray_counts& counts, uint64_t& discarded) {
   const int spp = settings.samples_per_pixel;
-  vec3 colour_sum(0.0f);
-  float alpha_sum = 0.0f;
+  // Summed in double: spp samples near the float maximum (a very bright emitter) would overflow a
+  // float sum to +inf although each sample and their mean are finite.
+  dvec3 colour_sum(0.0);
+  double alpha_sum = 0.0;
   int kept = 0;
   float nearest = inf;
   vec3 nearest_normal(0.0f);
@@ -69,12 +71,12 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
       ++discarded;
       continue;
     }
-    colour_sum += radiance;
+    colour_sum += dvec3(radiance);
     alpha_sum += alpha;
     ++kept;
   }
   size_t i = out.index(x, y);
-  out.color[i] = kept ? vec4(colour_sum, alpha_sum) / float(kept) : vec4(0.0f);
+  out.color[i] = kept ? vec4(dvec4(colour_sum, alpha_sum) / double(kept)) : vec4(0.0f);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
 }

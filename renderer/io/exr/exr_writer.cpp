@@ -7,9 +7,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 
 namespace kiln {
@@ -54,11 +56,16 @@ OIIO::ImageSpec make_spec(const film& f, const exr_settings& settings, const exr
   return spec;
 }
 
-std::vector<float> interleave(const film& f) {
+// Half's largest finite value. A brighter float would become +inf in a half channel, and the
+// image holds no infinities but background Z, so half colour saturates here instead.
+constexpr float half_max = 65504.0f;
+
+std::vector<float> interleave(const film& f, bool full_float) {
   std::vector<float> pixels(size_t(f.width) * f.height * channel_count);
+  const float limit = full_float ? std::numeric_limits<float>::max() : half_max;
   for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
     float* p = &pixels[i * channel_count];
-    for (int c = 0; c < 4; ++c) p[c] = f.color[i][c];
+    for (int c = 0; c < 4; ++c) p[c] = std::clamp(f.color[i][c], -limit, limit);
     p[4] = f.depth[i];
     for (int c = 0; c < 3; ++c) p[5 + c] = f.normal[i][c];
   }
@@ -111,7 +118,7 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   auto out = OIIO::ImageOutput::create("openexr");
   if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
   OIIO::ImageSpec spec = make_spec(f, settings, metadata);
-  std::vector<float> pixels = interleave(f);
+  std::vector<float> pixels = interleave(f, settings.full_float);
   bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   ok = out->close() && ok;
   std::string reason = ok ? std::string() : out->geterror();
