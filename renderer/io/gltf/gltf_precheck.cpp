@@ -78,44 +78,44 @@ class pointer_tracker : public nlohmann::json_sax<json> {
   std::vector<frame> stack_;
 };
 
-// The base64 payload tinygltf decodes: only the alphabet, '=' only as the final padding.
+// The decoded size of a base64 payload: only the alphabet, then at most two '=' that pad to a
+// multiple of 4 characters. Unpadded payloads are accepted, as tinygltf decodes them too.
 bool decoded_base64_size(const std::string& text, size_t& size) {
+  size_t n = text.size();
   size_t padding = 0;
-  for (size_t i = 0; i < text.size(); ++i) {
+  while (n > 0 && text[n - 1] == '=' && padding < 2) --n, ++padding;
+  if (n == 0 || n % 4 == 1 || (padding > 0 && text.size() % 4 != 0)) return false;
+  for (size_t i = 0; i < n; ++i) {
     const char c = text[i];
-    const bool alphabet =
-        (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' || c == '/';
-    if (c == '=') {
-      if (text.size() - i > 2) return false;
-      ++padding;
-    } else if (!alphabet || padding > 0) {
+    if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' || c == '/'))
       return false;
-    }
   }
-  if (text.empty() || text.size() % 4 != 0) return false;
-  size = text.size() / 4 * 3 - padding;
+  size = n / 4 * 3 + (n % 4 == 2 ? 1 : n % 4 == 3 ? 2 : 0);
   return true;
 }
 
-// The data-URI headers tinygltf recognises, per collection.
-const std::vector<std::string>& data_uri_headers(bool image) {
-  static const std::vector<std::string> buffer = {"data:application/octet-stream;base64,",
-                                                  "data:application/gltf-buffer;base64,"};
-  static const std::vector<std::string> picture = {"data:image/png;base64,", "data:image/jpeg;base64,",
-                                                   "data:image/bmp;base64,", "data:image/gif;base64,"};
-  return image ? picture : buffer;
+// The data-URI headers tinygltf recognises; it decodes any of them for buffers and images alike.
+const std::vector<std::string>& data_uri_headers() {
+  static const std::vector<std::string> headers = {"data:application/octet-stream;base64,",
+                                                   "data:application/gltf-buffer;base64,",
+                                                   "data:image/png;base64,",
+                                                   "data:image/jpeg;base64,",
+                                                   "data:image/bmp;base64,",
+                                                   "data:image/gif;base64,",
+                                                   "data:text/plain;base64,"};
+  return headers;
 }
 
 // Checks a data URI's header and payload; returns the decoded size.
 size_t check_data_uri(const std::string& uri, bool image, const std::string& path, const std::string& where) {
-  for (const std::string& header : data_uri_headers(image)) {
+  for (const std::string& header : data_uri_headers()) {
     if (uri.rfind(header, 0) != 0) continue;
     size_t size = 0;
     if (!decoded_base64_size(uri.substr(header.size()), size))
       throw input_error(path, where, "the data URI's base64 payload is malformed or empty");
     return size;
   }
-  const std::string& expected = data_uri_headers(image).front();
+  const std::string& expected = data_uri_headers()[image ? 2 : 0];
   throw input_error(
       path, where,
       "malformed data URI '" + uri.substr(0, 48) + "' (expected it to start with " + expected + ")");

@@ -84,6 +84,24 @@ TEST(GltfPrecheck, MalformedDataUriHeaderAndPayload) {
   EXPECT_NE(r.reason.find("base64"), std::string::npos) << r.reason;
 }
 
+// Exporters differ in padding and MIME type; what tinygltf decodes must still load.
+TEST(GltfPrecheck, UnpaddedBase64AndOtherTinygltfHeadersLoad) {
+  temp_folder dir;
+  gltf_builder b = single_triangle();
+  b.bin.resize(b.bin.size() + 2);  // 44 bytes: base64 pads with one '='
+  std::string unpadded = base64_encode(b.bin);
+  ASSERT_EQ(unpadded.back(), '=');
+  while (unpadded.back() == '=') unpadded.pop_back();
+  for (const std::string header :
+       {"data:application/gltf-buffer;base64,", "data:application/octet-stream;base64,"}) {
+    const std::string path = dir.file("scene.gltf");
+    write_text(path, b.finished(header + unpadded).dump());
+    const scene s = load_gltf(path);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    EXPECT_EQ(s.meshes[0].positions[2], vec3(0, 1, 0));
+  }
+}
+
 TEST(GltfPrecheck, ByteLengthMustMatchTheDataUri) {
   temp_folder dir;
   const refusal r = refusal_of(write_edited(
