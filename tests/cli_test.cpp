@@ -56,6 +56,52 @@ TEST(cli, usage_errors_exit_2_with_one_line) {
   }
 }
 
+// CLI11's range checks compare with < and >, which NaN passes: every floating option refuses
+// non-finite text itself, naming the option, before anything loads or renders.
+TEST(cli, non_finite_floating_options_exit_2_naming_the_option) {
+  const std::string out = scratch_folder("non_finite_options") + "/out.exr";
+  for (const char* option :
+       {"--fov", "--environment-rotation", "--environment-intensity", "--min-throughput"})
+    for (const char* value : {"nan", "-nan", "inf", "-inf", "1e999"}) {
+      auto result = run_kiln({"render", demo_scene, "-o", out, option, value});
+      EXPECT_EQ(result.exit_code, 2) << option << ' ' << value;
+      ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+      EXPECT_NE(result.stderr_text.find(option), std::string::npos) << result.stderr_text;
+      EXPECT_NE(result.stderr_text.find("finite"), std::string::npos) << result.stderr_text;
+    }
+  auto result = run_kiln({"compare", demo_scene, "--pixel-tolerance", "nan"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("--pixel-tolerance"), std::string::npos) << result.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+  // Finite values at the ends of the ranges still pass the check.
+  result =
+      run_kiln({"render", demo_scene, "-o", out, "--width", "8", "--height", "8", "--fov", "179",
+                "--environment-rotation", "-36000", "--min-throughput", "0", "--environment-intensity", "0"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+}
+
+// The size limit applies before the scene loads: the asset named here does not even exist.
+TEST(cli, images_over_the_pixel_limit_are_refused_before_loading) {
+  const std::string out = scratch_folder("pixel_limit") + "/out.exr";
+  auto result =
+      run_kiln({"render", "/no/such/asset.gltf", "-o", out, "--width", "65536", "--height", "65536"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("4294967296 pixels"), std::string::npos) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("--max-pixels"), std::string::npos) << result.stderr_text;
+  // One side given, the other from the camera's aspect: refused once the camera is known.
+  result = run_kiln({"render", demo_scene, "-o", out, "--width", "40000"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("--max-pixels"), std::string::npos) << result.stderr_text;
+  // The limit is exactly width × height and can be moved.
+  result = run_kiln(
+      {"render", demo_scene, "-o", out, "--width", "200", "--height", "100", "--max-pixels", "19999"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  result = run_kiln(
+      {"render", demo_scene, "-o", out, "--width", "200", "--height", "100", "--max-pixels", "20000"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+}
+
 TEST(cli, glass_showcase_renders_with_its_environment_map) {
   const std::string scenes = std::string(KILN_SOURCE_DIR) + "/scenes/";
   std::string out = scratch_folder("showcase") + "/out.exr";
@@ -65,6 +111,14 @@ TEST(cli, glass_showcase_renders_with_its_environment_map) {
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("refraction rays"), std::string::npos) << result.stderr_text;
   EXPECT_EQ(result.stderr_text.find(" 0 refraction rays"), std::string::npos) << result.stderr_text;
+  // Every sample of this scene is finite, and the summary and the EXR header both say so.
+  EXPECT_NE(result.stderr_text.find("; 0 non-finite samples discarded)"), std::string::npos)
+      << result.stderr_text;
+  {
+    auto in = OIIO::ImageInput::open(out);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("kiln/discarded_samples"), "0");
+  }
   // A file OpenImageIO cannot read is bad input naming the option.
   result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--environment",
                      scenes + "README.md"});

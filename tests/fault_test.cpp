@@ -105,11 +105,19 @@ std::vector<std::string> long_render(const std::string& output) {
   return {"render", demo_scene, "-o", output, "--width", "1920", "--height", "1440", "--spp", "1024", "--threads", "2"};
 }
 
-void expect_signal_stops_render(int signo) {
+// Few pixels of a huge number of samples in one tile: each pixel takes long, so a check per tile
+// row or per pixel alone would keep the signal waiting for seconds.
+std::vector<std::string> long_pixels_render(const std::string& output) {
+  return {"render", demo_scene, "-o",    output,        "--width", "512",       "--height",
+          "512",    "--spp",    "65536", "--tile-size", "512",     "--threads", "2"};
+}
+
+void expect_signal_stops_render(
+    int signo, const std::function<std::vector<std::string>(const std::string&)>& args = long_render) {
   std::string folder = scratch_folder("signal_" + std::to_string(signo));
   std::string output = folder + "/frame.exr";
   write_file(output, previous_content);
-  child_process child = start_kiln(long_render(output), folder);
+  child_process child = start_kiln(args(output), folder);
   // Wait until kiln handles the signal (a loaded machine may take a while to start it), then
   // give it time to load the scene and start tracing.
   for (int i = 0; i < 1000 && !child.catches(signo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -133,6 +141,10 @@ void expect_signal_stops_render(int signo) {
 TEST(faults, sigint_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGINT); }
 
 TEST(faults, sigterm_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGTERM); }
+
+TEST(faults, sigint_stops_a_render_of_65536_samples_a_pixel_within_a_second) {
+  expect_signal_stops_render(SIGINT, long_pixels_render);
+}
 
 TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
   std::string folder = scratch_folder("full_disk");
@@ -161,6 +173,21 @@ TEST(faults, output_that_is_not_a_regular_file_is_refused_before_rendering) {
   ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("not a regular file"), std::string::npos) << result.stderr_text;
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+// An existing folder where nothing can be created: as root, access() says it is writable, so only
+// a real attempt tells. The refusal comes before the render (its wording is the pre-check's).
+TEST(faults, output_in_a_folder_that_cannot_hold_files_is_refused_before_rendering) {
+  for (const std::string folder : {"/proc", "/sys"}) {
+    const std::string output = folder + "/kiln_fault_test.exr";
+    auto result = testing::run_kiln({"render", demo_scene, "-o", output, "--width", "1920", "--spp", "1024"});
+    EXPECT_EQ(result.exit_code, 1) << result.stderr_text;
+    ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(output), std::string::npos) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find("output folder is not writable: " + folder), std::string::npos)
+        << result.stderr_text;
+    EXPECT_FALSE(fs::exists(output));
+  }
 }
 
 }  // namespace

@@ -1,27 +1,78 @@
 #!/usr/bin/env bash
-# Fuzzes kiln's glTF/GLB loader with libFuzzer (clang-14 from Debian, ASan+UBSan).
-#   tools/fuzz.sh [SECONDS]     default 300; the run's last status line gives executions and coverage
-# Seeds: scenes/, tests/data/bad_gltf/ and, when present, ../shared/assets (files under 1 MiB).
+# Fuzzes kiln's loader with libFuzzer (clang-14 from Debian, ASan+UBSan).
+#   tools/fuzz.sh [TARGET] [SECONDS]
+#     TARGET  gltf_loader (whole .gltf/.glb files), quadric (the KILN_quadric extension) or all
+#             (default: both in sequence); SECONDS per target, default 300
+# Each run's last lines (libFuzzer's final stats) give executions and coverage; the full log is
+# fuzz/findings/TARGET.log. Seeds for gltf_loader: scenes/, tests/data/bad_gltf/,
+# tests/data/fuzz_regressions/ and, when present, ../shared/assets (files under 1 MiB); for quadric:
+# the definitions of scenes/quadric_showcase.gltf, one per seed and all together.
 # Findings land in fuzz/findings/; each one becomes a regression input in tests/data/fuzz_regressions/,
 # which the normal test suite replays (tests/fuzz_regression_test.cpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${1:-300}"
+target=all
+seconds=300
+for arg in "$@"; do
+  case "$arg" in
+    gltf_loader | quadric | all) target="$arg" ;;
+    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|all] [SECONDS]" >&2 && exit 2 ;;
+    *) seconds="$arg" ;;
+  esac
+done
+targets=(gltf_loader quadric)
+[[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
   apt-get update -q && apt-get install -y -q clang-14
 fi
 tools/install_dependencies.sh
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKILN_FUZZ=ON \
-  -DKILN_BUILD_TESTS=OFF -DKILN_SANITIZE=address,undefined >/dev/null
-cmake --build build-fuzz --target fuzz_gltf_loader
+  -DKILN_BUILD_TESTS=OFF -DKILN_BUILD_BENCHMARKS=OFF -DKILN_SANITIZE=address,undefined "${launcher[@]}" >/dev/null
+cmake --build build-fuzz --target "${targets[@]/#/fuzz_}"
+mkdir -p fuzz/findings
+failed=0
 
-corpus=fuzz/corpus/gltf_loader
-mkdir -p "$corpus" fuzz/findings
-seeds=(scenes tests/data/bad_gltf tests/data/fuzz_regressions)
-[[ -d ../shared/assets ]] && seeds+=(../shared/assets)
-find "${seeds[@]}" -type f \( -name '*.gltf' -o -name '*.glb' \) -size -1024k -exec cp -n {} "$corpus/" \; 2>/dev/null || true
+seed_gltf_loader() {
+  local seeds=(scenes tests/data/bad_gltf tests/data/fuzz_regressions)
+  [[ -d ../shared/assets ]] && seeds+=(../shared/assets)
+  find "${seeds[@]}" -type f \( -name '*.gltf' -o -name '*.glb' \) -size -1024k -exec cp -n {} "$1/" \; 2>/dev/null || true
+}
 
-ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-  build-fuzz/fuzz/fuzz_gltf_loader "$corpus" -dict=fuzz/gltf.dict -max_total_time="$seconds" \
-  -max_len=262144 -rss_limit_mb=4096 -timeout=10 -artifact_prefix=fuzz/findings/ -print_final_stats=1
+# Input format of fuzz_quadric: the extension's value, a newline, then the node's placement.
+seed_quadric() {
+  python3 - "$1" <<'PY'
+import json, sys
+ext = json.load(open("scenes/quadric_showcase.gltf"))["extensions"]["KILN_quadric"]
+defs = ext["primitives"]
+for i, d in enumerate(defs):
+    with open(f"{sys.argv[1]}/one_{i}", "w") as f:
+        f.write(json.dumps({"primitives": [d]}) + "\n" + json.dumps({"primitive": 0, "material": 0}))
+    with open(f"{sys.argv[1]}/all_{i}", "w") as f:
+        f.write(json.dumps(ext) + "\n" + json.dumps({"primitive": i}))
+PY
+}
+
+for t in "${targets[@]}"; do
+  corpus="fuzz/corpus/$t"
+  mkdir -p "$corpus"
+  "seed_$t" "$corpus"
+  dict=fuzz/gltf.dict
+  [[ "$t" == quadric ]] && dict=fuzz/quadric.dict
+  echo "kiln: fuzzing $t for $seconds s" >&2
+  set +e
+  ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \
+    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    "build-fuzz/fuzz/fuzz_$t" "$corpus" -dict="$dict" -max_total_time="$seconds" \
+    -max_len=262144 -rss_limit_mb=4096 -timeout=10 -artifact_prefix="fuzz/findings/$t-" -print_final_stats=1 \
+    2>&1 | tee "fuzz/findings/$t.log" | grep -E '^(#[0-9]+ +(INITED|DONE)|stat::|==[0-9]+==|SUMMARY|artifact_prefix)'
+  status=${PIPESTATUS[0]}
+  set -e
+  if [[ $status -ne 0 ]]; then
+    echo "kiln: fuzz_$t stopped with status $status: see fuzz/findings/$t.log" >&2
+    failed=1
+  fi
+done
+exit "$failed"

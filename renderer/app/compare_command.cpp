@@ -8,6 +8,7 @@
 
 #include "accel/compare/comparing_accelerator.h"
 #include "accel/make_accelerator.h"
+#include "app/cli_checks.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
 
@@ -162,6 +163,7 @@ void add_compare_options(CLI::App& app, compare_options& o) {
   app.add_option("--json", o.json, "Write a JSON report");
   app.add_option("--pixel-tolerance", o.pixel_tolerance,
                  "Channel difference (relative above 1) counted as differing")
+      ->check(finite_number())
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--max-mismatches", o.max_mismatches,

@@ -1,5 +1,5 @@
-// SIGINT/SIGTERM handling for the CLI: the first signal asks the render to stop (it stops at the
-// next pixel row, the EXR writer never starts, no temporary file is left); a second signal
+// SIGINT/SIGTERM handling for the CLI: the first signal asks the render to stop (it stops within
+// a pixel or 64 samples, the EXR writer never starts, no temporary file is left); a second signal
 // kills the process at once with the default action.
 #pragma once
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "accel/make_accelerator.h"
+#include "app/cli_checks.h"
 #include "app/interrupt.h"
 #include "core/error.h"
 #include "io/exr/environment_reader.h"
@@ -82,6 +83,16 @@ const camera& select_camera(const scene& world, const std::string& which) {
   throw input_error(world.source, "--camera", "no camera named '" + which + "' (cameras: " + names + ")");
 }
 
+// The film holds 32 bytes a pixel (RGBA, Z, N) and the EXR writer a copy; past max_pixels the
+// allocation would fail (or swap) only after the scene has loaded, so refuse it as a usage error.
+void check_pixel_count(int width, int height, size_t max_pixels) {
+  const size_t pixels = size_t(width) * size_t(height);
+  if (pixels > max_pixels)
+    throw input_error("", "image size",
+                      std::to_string(width) + "x" + std::to_string(height) + " is " + std::to_string(pixels) +
+                          " pixels, over the limit of " + std::to_string(max_pixels) + " (--max-pixels)");
+}
+
 // Image size: explicit values win; a missing side follows the glTF camera's aspect ratio when it
 // has one, 4:3 otherwise; with neither given the image is 640 wide.
 void resolve_image_size(const render_options& options, float camera_aspect, int& width, int& height) {
@@ -101,6 +112,7 @@ void resolve_image_size(const render_options& options, float camera_aspect, int&
   }
   if (width > max_image_side || height > max_image_side)
     throw input_error("", "image size", "at most " + std::to_string(max_image_side) + " pixels a side");
+  check_pixel_count(width, height, options.max_pixels);
 }
 
 view_camera choose_view(const render_options& options, const scene& world, std::string& description) {
@@ -229,6 +241,7 @@ void add_view_options(CLI::App& app, render_options& o) {
       "--up", [&o](const std::string& s) { o.up = parse_triple(s, "--up"); },
       "Look-at camera up vector X,Y,Z (default 0,1,0)");
   app.add_option("--fov", o.fov_degrees, "Look-at camera vertical field of view in degrees")
+      ->check(finite_number())
       ->check(CLI::Range(1e-3, 179.999))
       ->capture_default_str();
   app.add_option("--scene", o.scene_index, "glTF scene index (default: the file's default scene)")
@@ -248,10 +261,12 @@ void add_view_options(CLI::App& app, render_options& o) {
       ->check(CLI::ExistingFile);
   app.add_option("--environment-rotation", o.environment_rotation_degrees,
                  "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)")
+      ->check(finite_number())
       ->check(CLI::Range(-36000.0, 36000.0))
       ->capture_default_str();
   app.add_option("--environment-intensity", o.environment_intensity,
                  "Scale of the environment map's radiance")
+      ->check(finite_number())
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   app.add_flag(
@@ -261,13 +276,16 @@ void add_view_options(CLI::App& app, render_options& o) {
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
   app.add_option("--min-throughput", o.min_throughput, "Reflections weighted below this are not traced")
+      ->check(finite_number())
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--texture-cache-mb", o.texture_cache_mb, "Memory for mip-mapped texture tiles (MB)")
       ->check(CLI::Range(1.0f, 1e6f))
       ->capture_default_str();
-  app.add_flag("--allow-outside-files", o.allow_outside_files,
-               "Let buffer and image URIs name files outside the asset's folder (absolute paths, '..')");
+  app.add_flag(
+      "--allow-outside-files", o.allow_outside_files,
+      "Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that lead "
+      "out); absolute paths and URLs stay refused");
   app.add_option("--max-json-bytes", o.max_json_bytes, "Refuse glTF JSON larger than this (bytes)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -301,6 +319,9 @@ void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("--grid-max-depth", o.grid.max_depth,
                  "Adaptive grid: levels of subdivision below the top grid")
       ->check(CLI::Range(0, max_grid_depth))
+      ->capture_default_str();
+  app.add_option("--max-pixels", o.max_pixels, "Refuse images with more pixels than this (width x height)")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
@@ -373,6 +394,8 @@ render_settings make_render_settings(const render_options& options) {
 }
 
 void run_render(const render_options& options) {
+  // Both sides given: the size is known before the scene loads, so a huge one fails at once.
+  if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
 
   prepared_scene prepared = prepare_scene(options);
@@ -413,6 +436,7 @@ void run_render(const render_options& options) {
       {"kiln/background", format_vec(options.background)},
       {"kiln/depth", "ray distance"},
       {"kiln/render_seconds", std::to_string(stats.seconds)},
+      {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
   };
   // A signal that arrives after the last pixel still stops the run before anything is written.
@@ -427,10 +451,12 @@ void run_render(const render_options& options) {
             : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
                  "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
-                 "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays) -> %s\n",
+                 "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays; %llu non-finite samples "
+                 "discarded) -> %s\n",
                  cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
+                 (unsigned long long)stats.discarded_samples,
                  options.output.c_str());
   }
 }

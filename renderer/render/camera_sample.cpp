@@ -4,6 +4,19 @@
 
 namespace kiln {
 
+namespace {
+
+// A sample whose radiance is not finite contributes nothing (adaptive sampling sees a transparent
+// black corner) and is counted.
+camera_sample discard(camera_sample s, ray_counts& counts) {
+  ++counts.discarded_samples;
+  s.rgba = vec4(0.0f);
+  s.finite = false;
+  return s;
+}
+
+}  // namespace
+
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts) {
   camera_sample s;
@@ -13,14 +26,18 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
   if (!h) {
     if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
+    if (!is_finite(s.rgba)) return discard(s, counts);
     return s;
   }
   const ray_cone at_hit = cone_at(cone, distance_to_hit(start, r, *h));
   surface_point sp = make_surface_point(ctx.world, *h, r, at_hit.width);
-  s.rgba = vec4(shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit), 1.0f);
+  // The geometry AOVs keep the hit even when its radiance has to be discarded.
   s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
-  s.normal = sp.shading_normal;
+  if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
   s.instance = h->instance_id;
+  const vec3 radiance = shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit);
+  if (!is_finite(radiance)) return discard(s, counts);
+  s.rgba = vec4(radiance, 1.0f);
   return s;
 }
 

@@ -18,6 +18,7 @@ struct camera_sample {
   float depth = inf;  // ray distance of the hit; +inf on a miss
   vec3 normal{0.0f};  // world shading normal of the hit; 0 on a miss
   uint32_t instance = no_instance;
+  bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).

@@ -9,7 +9,7 @@ pixel_splat::pixel_splat(int r) : reach(r), sum(size_t(2 * r + 1) * (2 * r + 1))
 }
 
 void pixel_splat::clear() {
-  std::fill(sum.begin(), sum.end(), vec4(0.0f));
+  std::fill(sum.begin(), sum.end(), dvec4(0.0));
   std::fill(weight.begin(), weight.end(), 0.0f);
 }
 
@@ -30,7 +30,7 @@ void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& v
     for (int i = 0; i < n; ++i) {
       const float w = wx[i] * wy[j];
       if (w == 0.0f) continue;
-      sum[size_t(j) * n + i] += value * w;
+      sum[size_t(j) * n + i] += dvec4(value) * double(w);
       weight[size_t(j) * n + i] += w;
     }
   }
@@ -42,7 +42,7 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
       tile_size_(std::max(1, tile_size)),
       reach_(filter_reach(f)),
       window_((2 * reach_ + 1) * (2 * reach_ + 1)),
-      sum_(size_t(width) * height, vec4(0.0f)),
+      sum_(size_t(width) * height, dvec4(0.0)),
       weight_(size_t(width) * height, 0.0f),
       slot_of_(size_t(width) * height, -1) {
   int64_t slots = 0;
@@ -52,7 +52,7 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
         slot_of_[size_t(y) * width + x] = slots;
         slots += window_;
       }
-  slot_sum_.assign(size_t(slots), vec4(0.0f));
+  slot_sum_.assign(size_t(slots), dvec4(0.0));
   slot_weight_.assign(size_t(slots), 0.0f);
 }
 
@@ -90,14 +90,14 @@ void splat_film::add(int x, int y, const pixel_splat& splat) {
 
 void splat_film::resolve(film& out) const {
   for (size_t p = 0; p < sum_.size(); ++p) {
-    vec4 sum = sum_[p];
+    dvec4 sum = sum_[p];
     float weight = weight_[p];
     if (slot_of_[p] >= 0)
       for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k) {
         sum += slot_sum_[k];
         weight += slot_weight_[k];
       }
-    out.color[p] = weight > 0.0f ? sum / weight : vec4(0.0f);
+    out.color[p] = weight > 0.0f ? vec4(sum / double(weight)) : vec4(0.0f);
   }
 }
 

@@ -17,7 +17,7 @@ namespace kiln {
 // One source pixel's contributions to the (2·reach+1)² pixels around it, rows top to bottom.
 struct pixel_splat {
   int reach = 0;
-  std::vector<vec4> sum;      // Σ w·(premultiplied colour, alpha) over the source's samples
+  std::vector<dvec4> sum;     // Σ w·(premultiplied colour, alpha) over the source's samples
   std::vector<float> weight;  // Σ w
 
   explicit pixel_splat(int r = 0);
@@ -43,10 +43,12 @@ class splat_film {
   bool within_one_tile(int x, int y) const;
 
   int width_, height_, tile_size_, reach_, window_;
-  std::vector<vec4> sum_;  // pixels folded by their own tile
+  // Sums in double: a few very bright samples (near the float maximum) must not overflow a pixel
+  // to +inf although each sample and their mean are finite.
+  std::vector<dvec4> sum_;  // pixels folded by their own tile
   std::vector<float> weight_;
   std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere
-  std::vector<vec4> slot_sum_;    // per border pixel, one slot per source, raster order
+  std::vector<dvec4> slot_sum_;   // per border pixel, one slot per source, raster order
   std::vector<float> slot_weight_;
 };
 

@@ -39,6 +39,10 @@ std::vector<tile> make_tiles(int width, int height, int size) {
   return tiles;
 }
 
+bool cancel_requested(const render_settings& s) {
+  return s.cancel && s.cancel->load(std::memory_order_relaxed);
+}
+
 // The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
 // stands for a sub-pixel), no narrower than 1/8 pixel (as pbrt-v4 scales its camera differentials).
 ray_cone sample_cone(const view_camera& cam, int spp) {
@@ -57,11 +61,16 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   vec3 nearest_normal(0.0f);
   splat.clear();
   for (int s = 0; s < spp; ++s) {
+    // A pixel of thousands of samples takes long enough that a signal must not wait for it.
+    if (s % 64 == 63 && cancel_requested(settings)) break;
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), cone, counts);
-    splat.add(settings.filter, offset, cs.rgba);
+    // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
+    // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
+    // pixel's filtered sum then weighs only the samples that remain.
+    if (cs.finite) splat.add(settings.filter, offset, cs.rgba);
     if (cs.depth < nearest) {
       nearest = cs.depth;
       nearest_normal = cs.normal;
@@ -71,10 +80,6 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   size_t i = out.index(x, y);
   out.depth[i] = nearest;
   out.normal[i] = nearest_normal;
-}
-
-bool cancel_requested(const render_settings& s) {
-  return s.cancel && s.cancel->load(std::memory_order_relaxed);
 }
 
 // What every tile task reads (and the outputs it writes its own pixels of).
@@ -175,6 +180,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
 
   if (stats) {
     stats->rays = total_counts;
+    stats->discarded_samples = total_counts.discarded_samples;
     stats->threads_used = threads;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -27,12 +27,13 @@ struct render_settings {
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
-  // row and render_image throws kiln::error of kind interrupted.
+  // (or sample batch) and render_image throws kiln::error of kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
 };
 
 struct render_statistics {
   ray_counts rays;
+  uint64_t discarded_samples = 0;  // samples whose radiance was NaN or infinite, left out of their pixel
   double seconds = 0.0;
   int threads_used = 0;
 };

@@ -30,9 +30,11 @@ struct ray_counts {
   uint64_t reflection = 0;
   uint64_t refraction = 0;
   uint64_t transparency = 0;  // continuations through BLEND surfaces and culled back faces
+  uint64_t discarded_samples = 0;  // camera samples whose radiance was NaN or infinite, left out
 
   ray_counts& operator+=(const ray_counts& o) {
     transparency += o.transparency;
+    discarded_samples += o.discarded_samples;
     camera += o.camera;
     shadow += o.shadow;
     reflection += o.reflection;

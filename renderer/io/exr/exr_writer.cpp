@@ -4,9 +4,14 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 
 namespace kiln {
@@ -51,15 +56,30 @@ OIIO::ImageSpec make_spec(const film& f, const exr_settings& settings, const exr
   return spec;
 }
 
-std::vector<float> interleave(const film& f) {
+// Half's largest finite value. A brighter float would become +inf in a half channel, and the
+// image holds no infinities but background Z, so half colour saturates here instead.
+constexpr float half_max = 65504.0f;
+
+std::vector<float> interleave(const film& f, bool full_float) {
   std::vector<float> pixels(size_t(f.width) * f.height * channel_count);
+  const float limit = full_float ? std::numeric_limits<float>::max() : half_max;
   for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
     float* p = &pixels[i * channel_count];
-    for (int c = 0; c < 4; ++c) p[c] = f.color[i][c];
+    for (int c = 0; c < 4; ++c) p[c] = std::clamp(f.color[i][c], -limit, limit);
     p[4] = f.depth[i];
     for (int c = 0; c < 3; ++c) p[5 + c] = f.normal[i][c];
   }
   return pixels;
+}
+
+// Flushes a closed file's data to the disk. OpenImageIO does not expose its descriptor, so the
+// file is opened again: fsync on any descriptor of the file syncs its data. Without this a crash
+// right after the rename can leave the target name pointing at an empty or partial file.
+bool sync_to_disk(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  return ::close(fd) == 0 && ok;
 }
 
 }  // namespace
@@ -76,6 +96,17 @@ void check_output_writable(const std::string& path) {
   // a socket.
   if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
     throw io_error(path, "output exists and is not a regular file");
+  // access() answers yes to root for any folder, including /proc and /sys where nothing can be
+  // created, so create the temporary file the writer will use, and remove it again.
+  const std::string probe = temporary_path(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return;  // a stale temporary of this process id: the writer replaces it
+    throw io_error(path,
+                   "output folder is not writable: " + folder.string() + " (" + std::strerror(errno) + ")");
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
@@ -87,12 +118,20 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   auto out = OIIO::ImageOutput::create("openexr");
   if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
   OIIO::ImageSpec spec = make_spec(f, settings, metadata);
-  std::vector<float> pixels = interleave(f);
+  std::vector<float> pixels = interleave(f, settings.full_float);
   bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   ok = out->close() && ok;
   std::string reason = ok ? std::string() : out->geterror();
+  if (ok && !sync_to_disk(temporary, O_RDONLY)) {
+    ok = false;
+    reason = "cannot flush the file to disk";
+  }
   std::error_code ec;
   if (ok) fs::rename(temporary, path, ec);
+  // The rename itself lives in the folder: sync it too, best effort (some file systems refuse).
+  if (ok && !ec)
+    sync_to_disk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(),
+                 O_RDONLY | O_DIRECTORY);
   if (!ok || ec) {
     fs::remove(temporary, ec);
     throw io_error(path, "cannot write EXR: " + (reason.empty() ? std::string("rename failed") : reason));

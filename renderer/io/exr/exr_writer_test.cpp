@@ -68,6 +68,26 @@ TEST(exr_writer, half_colour_keeps_float_depth) {
   EXPECT_EQ(in->spec().channelformat(4), OIIO::TypeDesc::FLOAT);
 }
 
+// A colour beyond half's range would be written as +inf; it saturates at 65504 instead, and
+// float output keeps it exactly.
+TEST(exr_writer, half_colour_saturates_instead_of_becoming_infinite) {
+  film f = test_film();
+  f.color[f.index(1, 1)] = vec4(1e6f, -3e5f, 70000.0f, 1.0f);
+  for (bool full_float : {false, true}) {
+    fs::path file = scratch_dir() / (full_float ? "bright_float.exr" : "bright_half.exr");
+    write_exr(file.string(), f, exr_settings{full_float}, exr_metadata{});
+    auto in = OIIO::ImageInput::open(file.string());
+    ASSERT_TRUE(in);
+    std::vector<float> pixels(5 * 3 * 8);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 8, OIIO::TypeDesc::FLOAT, pixels.data()));
+    const float* p = &pixels[(1 * 5 + 1) * 8];
+    EXPECT_EQ(p[0], full_float ? 1e6f : 65504.0f);
+    EXPECT_EQ(p[1], full_float ? -3e5f : -65504.0f);
+    EXPECT_EQ(p[2], full_float ? 70000.0f : 65504.0f);
+    EXPECT_EQ(p[3], 1.0f);
+  }
+}
+
 TEST(exr_writer, unwritable_folder_is_an_io_error_and_leaves_nothing) {
   fs::path file = scratch_dir() / "missing_folder" / "out.exr";
   try {

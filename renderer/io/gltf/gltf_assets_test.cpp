@@ -1,7 +1,9 @@
 // The optional asset suite: Khronos sample models must load with the triangle counts listed in
 // ../shared/assets/README.md, and every file of the glTF-Validator invalid corpus must either
-// load or raise kiln::error, never crash; the ones whose damage makes rendering unsafe must throw.
+// get the outcome gltf_invalid_corpus_table.h names (a refusal at a JSON pointer, or a load with a
+// warning), never crash; the ones whose damage makes rendering unsafe must throw.
 // Skips when ../shared/assets is absent (the project's own tests must pass without it).
+#include "io/gltf/gltf_invalid_corpus_table.h"
 #include "io/gltf/gltf_loader.h"
 
 #include <gtest/gtest.h>
@@ -212,37 +214,55 @@ bool must_refuse(const std::string& file, const std::string& codes) {
   return file.find("infinite_transform") != std::string::npos;
 }
 
-TEST(GltfAssets, InvalidCorpusNeverCrashes) {
+// Every file gets the outcome its row in gltf_invalid_corpus_table.h names; a refusal is one line
+// naming the file, and files the validator's INDEX marks as fatal are never loaded.
+TEST(GltfAssets, InvalidCorpusFilesGetTheirExpectedOutcome) {
   const fs::path root = assets / "invalid";
   if (!fs::exists(root)) GTEST_SKIP() << "no invalid corpus at " << root;
   const auto index = invalid_index(root / "INDEX.md");
   EXPECT_GT(index.size(), 50u);
+  std::map<std::string, const gltf_test::corpus_expectation*> expected;
+  for (const auto& row : gltf_test::invalid_corpus_expectations()) expected[row.file] = &row;
   size_t files = 0;
-  size_t refused = 0;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     const std::string ext = entry.path().extension().string();
     if (!entry.is_regular_file() || (ext != ".gltf" && ext != ".glb")) continue;
     ++files;
     const std::string relative = fs::relative(entry.path(), root).generic_string();
     SCOPED_TRACE(relative);
-    bool threw = false;
+    auto row = expected.find(relative);
+    ASSERT_NE(row, expected.end()) << "no expected outcome for " << relative;
+    const gltf_test::corpus_expectation& want = *row->second;
     try {
       const scene s = load_gltf(entry.path().string());
+      EXPECT_EQ(want.result, gltf_test::outcome::load)
+          << "loaded; expected refusal at '" << want.location << "'";
       EXPECT_FALSE(s.materials.empty());
+      bool warned = false;
+      for (const std::string& warning : s.stats.warnings)
+        warned = warned || warning.find(want.fragment) != std::string::npos;
+      EXPECT_TRUE(warned) << "no warning contains '" << want.fragment << "'";
     } catch (const kiln::error& e) {
-      threw = true;
       const std::string message = e.what();
+      EXPECT_EQ(want.result, gltf_test::outcome::refuse) << message;
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
       EXPECT_EQ(message.rfind(entry.path().string(), 0), 0u) << message;
+      EXPECT_EQ(e.location().rfind(want.location, 0), 0u) << message;
+      EXPECT_NE(e.reason().find(want.fragment), std::string::npos) << message;
+      // Only damage to the container or the JSON text itself has no value to point at; what
+      // tinygltf would refuse in its own words (no path) is checked before it parses.
+      const bool about_the_text =
+          e.reason().rfind("GLB:", 0) == 0 || e.reason().find("JSON") != std::string::npos;
+      EXPECT_TRUE(!e.location().empty() || about_the_text) << "refused without a JSON pointer: " << message;
     }
-    refused += threw;
     auto it = index.find(relative);
     if (it != index.end() && must_refuse(relative, it->second)) {
-      EXPECT_TRUE(threw) << relative << " (" << it->second << ") must be refused";
+      EXPECT_EQ(want.result, gltf_test::outcome::refuse)
+          << relative << " (" << it->second << ") must be refused";
     }
   }
   EXPECT_EQ(files, 77u);
-  EXPECT_GT(refused, 40u);
+  EXPECT_EQ(expected.size(), files);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // overflow-checked size arithmetic. Internal to io/gltf; depends on the standard library only.
 #pragma once
 
+#include <cctype>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -48,6 +49,21 @@ inline bool checked_mul(uint64_t a, uint64_t b, uint64_t& out) {
   if (a != 0 && b > std::numeric_limits<uint64_t>::max() / a) return false;
   out = a * b;
   return true;
+}
+
+// Decodes %XX escapes (RFC 3986) so that "%2E%2E/" cannot hide a ".." from the folder check.
+inline std::string percent_decoded(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 // Files larger than this are refused: tinygltf passes sizes through int and unsigned int.

@@ -69,6 +69,46 @@ TEST(GltfFileAccess, AbsolutePathIsRefusedEvenWhenOutsideFilesAreAllowed) {
   }
 }
 
+// A symlink inside the folder is judged by where it leads: the lexical path stays inside, the file
+// it names does not.
+TEST(GltfFileAccess, SymlinkLeadingOutOfTheFolderIsRefusedUnlessAllowed) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "link.bin", "outside.bin");
+  fs::create_symlink(dir.file("outside.bin"), dir.file("sub/link.bin"));
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_NE(message.find("/buffers/0/uri"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;
+  const scene s = load_gltf(path, allowing_outside());
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].positions[1], vec3(1, 0, 0));
+}
+
+TEST(GltfFileAccess, SymlinkToASystemFileIsRefused) {
+  temp_folder dir;
+  const std::string path = write_with_buffer_at(dir, "passwd", "unused.bin");
+  fs::create_symlink("/etc/passwd", dir.file("sub/passwd"));
+  const std::string message = error_of([&] { load_gltf(path); });
+  EXPECT_NE(message.find("/buffers/0/uri"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;
+}
+
+TEST(GltfFileAccess, SymlinkThatStaysInsideIsFine) {
+  temp_folder dir;
+  fs::create_directories(dir.file("sub/data"));
+  const std::string path = write_with_buffer_at(dir, "link.bin", "sub/data/real.bin");
+  fs::create_symlink("data/real.bin", dir.file("sub/link.bin"));
+  EXPECT_EQ(load_gltf(path).meshes.size(), 1u);
+}
+
+// The asset's own folder reached through a symlink (e.g. a farm's mounted project path) is
+// still its folder.
+TEST(GltfFileAccess, AssetFolderReachedThroughASymlinkLoads) {
+  temp_folder dir;
+  write_with_buffer_at(dir, "inside.bin", "sub/inside.bin");
+  fs::create_directory_symlink(dir.file("sub"), dir.file("alias"));
+  EXPECT_EQ(load_gltf(dir.file("alias/scene.gltf")).meshes.size(), 1u);
+}
+
 TEST(GltfFileAccess, ImageUriEscapeIsRefused) {
   temp_folder dir;
   gltf_builder b = single_triangle();

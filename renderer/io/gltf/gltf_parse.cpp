@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_precheck.h"
 
 #include <nlohmann/json.hpp>
 
@@ -20,15 +21,18 @@ namespace fs = std::filesystem;
 // What the tinygltf file-system callbacks may touch: files inside the asset's folder only,
 // unless the caller allows files anywhere.
 struct fs_context {
-  std::string folder_prefix;  // absolute, lexically normal asset folder, ending in '/'
+  std::string folder_prefix;  // canonical asset folder (symlinks resolved), ending in '/'
   bool allow_outside = false;
 };
 
-// True when path, with "." and ".." resolved lexically, lies inside the asset's folder. A scene
-// file must not read arbitrary files (../../etc/passwd) on a render farm node.
+// True when path, with ".", ".." and symbolic links resolved, lies inside the asset's folder. A
+// scene file must not read arbitrary files (../../etc/passwd) on a render farm node, and neither
+// may a symlink that sits in the folder but points out of it.
 bool inside_asset_folder(const std::string& path, const fs_context& context) {
-  const std::string normal = fs::path(path).lexically_normal().string();
-  return normal.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
+  std::error_code ec;
+  const std::string resolved = fs::weakly_canonical(fs::path(path), ec).string();
+  if (ec) return false;
+  return resolved.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
 }
 
 bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::string& why) {
@@ -152,8 +156,7 @@ void check_required_extensions(const std::vector<std::string>& required, const s
 // When tinygltf refuses a file, an unsupported required extension is usually the real cause
 // (Draco primitives have accessors without bufferViews, which tinygltf rejects on its own), so
 // look for one in the raw JSON and report it instead of tinygltf's symptom.
-void check_required_extensions_in_json(const uint8_t* text, size_t size, const std::string& path) {
-  const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
+void check_required_extensions_in_json(const nlohmann::json& doc, const std::string& path) {
   if (!doc.is_object()) return;
   auto required = doc.find("extensionsRequired");
   if (required == doc.end() || !required->is_array()) return;
@@ -163,19 +166,9 @@ void check_required_extensions_in_json(const uint8_t* text, size_t size, const s
   check_required_extensions(names, path);
 }
 
-// Decodes %XX escapes (RFC 3986) so that "%2E%2E/" cannot hide a ".." from the check below.
-std::string percent_decode(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
+void check_required_extensions_in_json(const uint8_t* text, size_t size, const std::string& path) {
+  check_required_extensions_in_json(
+      nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false), path);
 }
 
 // The deepest nesting of arrays and objects in JSON text, found without parsing: JSON parsers
@@ -204,8 +197,9 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
 // within its limit, and every buffer and image URI inside the asset's folder. glTF URIs are
 // relative references: an absolute path or a file: URI is never followed; ".." that leaves the
 // folder only with the allow option. Each refusal names the JSON pointer.
-void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path, const fs_context& context,
-                               const gltf_limits& limits) {
+void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path,
+                               const fs_context& context, const gltf_limits& limits,
+                               const buffer_sources& sources) {
   if (size > limits.max_json_bytes)
     throw input_error(path, "", "JSON is " + std::to_string(size) + " bytes, over the limit of " +
                                     std::to_string(limits.max_json_bytes) + " (--max-json-bytes)");
@@ -213,7 +207,11 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
     throw input_error(path, "", "JSON nests deeper than " + std::to_string(limits.max_json_depth) +
                                     " levels (--max-json-depth)");
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
-  if (!doc.is_object()) return;
+  if (doc.is_discarded()) check_json_syntax(text, size, path);
+  if (!doc.is_object())
+    throw input_error(
+        path, "",
+        std::string("invalid glTF: the top-level JSON value is ") + doc.type_name() + ", not an object");
   auto nodes = doc.find("nodes");
   if (nodes != doc.end() && nodes->is_array() && nodes->size() > limits.max_nodes)
     throw input_error(path, "/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
@@ -224,7 +222,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
     for (size_t i = 0; i < items->size(); ++i) {
       const nlohmann::json& item = (*items)[i];
       if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
-      const std::string uri = percent_decode(item["uri"].get<std::string>());
+      const std::string uri = percent_decoded(item["uri"].get<std::string>());
       if (uri.rfind("data:", 0) == 0) continue;
       const std::string where = pointer_join(pointer(collection, static_cast<int64_t>(i)), "uri");
       if (uri.rfind("file:", 0) == 0 || fs::path(uri).is_absolute())
@@ -234,6 +232,10 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
                           "'" + uri + "' refers to a file outside the asset's folder (allow with --allow-outside-files)");
     }
   }
+  // An unsupported required extension explains what follows from it (Draco's accessors have no
+  // bufferViews), so it is reported first.
+  check_required_extensions_in_json(doc, path);
+  check_what_tinygltf_refuses(doc, path, sources);
 }
 
 }  // namespace
@@ -255,7 +257,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
   if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   fs_context context;
-  context.folder_prefix = folder.lexically_normal().string();
+  context.folder_prefix = fs::weakly_canonical(folder, ec).string();
+  if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   context.allow_outside = options.allow_files_outside_folder;
   if (context.folder_prefix.empty() || context.folder_prefix.back() != '/') context.folder_prefix += '/';
 
@@ -276,7 +279,9 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       const glb_layout layout = check_glb_container(bytes, path);
       json_offset = layout.json_offset;
       json_length = layout.json_length;
-      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits);
+      buffer_sources sources{context.folder_prefix, true, layout.has_bin, layout.bin_length};
+      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits,
+                                sources);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
         throw input_error(path, "", "GLB JSON chunk starts with a byte order mark, which glTF forbids");
       ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
@@ -284,7 +289,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
     } else {
       if (has_utf8_bom(bytes.data(), bytes.size()))
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
-      check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits);
+      check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits,
+                                buffer_sources{context.folder_prefix, false, false, 0});
       ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                       static_cast<unsigned int>(bytes.size()), folder.string());
     }
