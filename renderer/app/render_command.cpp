@@ -320,6 +320,10 @@ void add_view_options(CLI::App& app, render_options& o) {
                  "Adaptive grid: levels of subdivision below the top grid")
       ->check(CLI::Range(0, max_grid_depth))
       ->capture_default_str();
+  app.add_option("--max-texels", o.max_texels,
+                 "Refuse glTF images declaring more texels than this (width x height), before decoding")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--max-pixels", o.max_pixels, "Refuse images with more pixels than this (width x height)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -346,6 +350,7 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_json_depth = options.max_json_depth;
   load_options.limits.max_nodes = options.max_nodes;
   load_options.limits.max_instances = options.max_instances;
+  load_options.limits.max_texels = options.max_texels;
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {

@@ -54,6 +54,7 @@ struct render_options {
   size_t max_json_depth = 512;
   size_t max_nodes = 1000000;
   size_t max_instances = 1000000;
+  uint64_t max_texels = uint64_t(1) << 28;
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
   bool quiet = false;
   std::string command_line;

@@ -15,8 +15,6 @@
 namespace kiln::gltf_internal {
 namespace {
 
-// Largest image kiln decodes; a texture header claiming more is treated as corrupt.
-constexpr uint64_t max_texels = uint64_t(1) << 28;
 
 bool starts_with(const std::vector<uint8_t>& bytes, const char* magic, size_t offset = 0) {
   const size_t n = std::strlen(magic);
@@ -118,7 +116,7 @@ std::string one_line(std::string text) {
 }  // namespace
 
 image decode_image(const std::vector<uint8_t>& encoded, const std::string& name, const std::string& file,
-                   const std::string& where) {
+                   const std::string& where, uint64_t max_texels) {
   auto fail = [&](const std::string& reason) { return input_error(file, where, reason); };
   const std::string pseudo_name = name_from_magic(encoded);
   if (pseudo_name.empty()) throw fail("image data is not PNG, JPEG, WebP, GIF or BMP");
@@ -145,7 +143,9 @@ image decode_image(const std::vector<uint8_t>& encoded, const std::string& name,
   if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || spec.depth > 1)
     throw fail("image has invalid dimensions");
   const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
-  if (texels > max_texels) throw fail("image is larger than kiln's limit of 2^28 texels");
+  if (texels > max_texels)
+    throw fail("image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+               " texels, over the limit of " + std::to_string(max_texels) + " (--max-texels)");
 
   image out;
   out.name = name;

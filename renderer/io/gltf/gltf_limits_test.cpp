@@ -75,7 +75,23 @@ TEST(GltfLimits, ImageWithHugeDeclaredSizeIsRefusedWithoutDecoding) {
   b.doc["images"] = json::array({json{{"uri", std::string("data:image/png;base64,") + png_huge_base64}}});
   const std::string message = load_error(b.write_gltf(dir));
   EXPECT_NE(message.find("/images/0"), std::string::npos) << message;
-  EXPECT_NE(message.find("limit"), std::string::npos) << message;
+  EXPECT_NE(message.find("over the limit of 268435456 (--max-texels)"), std::string::npos) << message;
+}
+
+TEST(GltfLimits, TexelLimitIsOverridable) {
+  temp_folder dir;
+  gltf_builder b = single_triangle();
+  b.doc["materials"] = json::array({json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.doc["textures"] = json::array({json{{"source", 0}}});
+  b.doc["images"] = json::array({json{{"uri", std::string("data:image/png;base64,") + png_2x2_base64}}});
+  const std::string path = b.write_gltf(dir);
+  EXPECT_EQ(load_gltf(path).images.size(), 1u);  // 4 texels: well within the default
+  gltf_load_options options;
+  options.limits.max_texels = 3;
+  const std::string message = load_error(path, options);
+  EXPECT_NE(message.find("/images/0: image is 2x2 texels, over the limit of 3 (--max-texels)"), std::string::npos)
+      << message;
 }
 
 }  // namespace

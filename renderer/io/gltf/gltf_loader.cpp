@@ -29,6 +29,7 @@ struct build_context {
   const tinygltf::Model& model;
   const std::string& file;
   size_t max_instances;  // gltf_limits::max_instances
+  uint64_t max_texels;   // gltf_limits::max_texels
   bool quantized;        // the file uses KHR_mesh_quantization
   scene& out;
   std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
@@ -383,6 +384,7 @@ void place_nodes(build_context& ctx, const std::vector<int>& roots) {
 void convert_used_materials(build_context& ctx) {
   std::set<int> used(ctx.instance_gltf_material.begin(), ctx.instance_gltf_material.end());
   texture_remap remap = make_texture_remap(ctx.model);
+  remap.max_texels = ctx.max_texels;
   std::map<int, uint32_t> scene_index;
   for (int gltf_material : used) {
     if (gltf_material < 0) continue;
@@ -436,7 +438,7 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   scene out;
   out.source = path;
   const bool quantized = uses_extension(model, quantization_extension);
-  build_context ctx{model, path, options.limits.max_instances, quantized, out, {}, {}, {}};
+  build_context ctx{model, path, options.limits.max_instances, options.limits.max_texels, quantized, out, {}, {}, {}};
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
   // were refused while parsing).

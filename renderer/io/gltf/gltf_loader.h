@@ -19,6 +19,7 @@ struct gltf_limits {
   size_t max_json_depth = 512;                // nesting of arrays and objects; glTF itself needs < 10
   size_t max_nodes = 1000000;                 // entries in "nodes"
   size_t max_instances = 1000000;             // scene instances once EXT_mesh_gpu_instancing adds its own
+  uint64_t max_texels = uint64_t(1) << 28;    // width × height of one image, checked before decoding
 };
 
 struct gltf_load_options {

@@ -93,7 +93,8 @@ int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_rema
   if (slot >= 0) return slot;
   const tinygltf::Image& img = model.images[static_cast<size_t>(gltf_image)];
   const std::string name = !img.name.empty() ? img.name : img.uri;
-  out.images.push_back(decode_image(encoded_bytes(model, img), name, file, pointer("images", gltf_image)));
+  out.images.push_back(decode_image(encoded_bytes(model, img), name, file, pointer("images", gltf_image),
+                                    remap.max_texels));
   slot = static_cast<int32_t>(out.images.size() - 1);
   return slot;
 }

@@ -17,6 +17,7 @@ struct texture_remap {
   std::vector<int32_t> textures;
   std::vector<int32_t> images;
   std::vector<char> missing_source_warned;  // per glTF texture: warned once about a missing source
+  uint64_t max_texels = uint64_t(1) << 28;  // gltf_limits::max_texels
 };
 
 texture_remap make_texture_remap(const tinygltf::Model& model);
