@@ -48,29 +48,23 @@ ray_cone sample_cone(const view_camera& cam, int spp) {
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
-// sample decides depth and normal (never filtered, so Z and N stay valid for compositing).
+// sample decides depth, normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   const ray_cone cone = sample_cone(cam, spp);
-  float nearest = inf;
-  vec3 nearest_normal(0.0f);
+  camera_sample nearest;
   splat.clear();
   for (int s = 0; s < spp; ++s) {
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
-                                           y + double(offset.y), cone, counts);
+                                           y + double(offset.y), cone, counts, settings.aovs.albedo);
     splat.add(settings.filter, offset, cs.rgba);
-    if (cs.depth < nearest) {
-      nearest = cs.depth;
-      nearest_normal = cs.normal;
-    }
+    if (cs.depth < nearest.depth) nearest = cs;
   }
   splats.add(x, y, splat);
-  size_t i = out.index(x, y);
-  out.depth[i] = nearest;
-  out.normal[i] = nearest_normal;
+  store_nearest_sample(nearest, out, out.index(x, y));
 }
 
 bool cancel_requested(const render_settings& s) {
@@ -100,7 +94,7 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
   const size_t row = size_t(job.cam.width) + 1;
   sample_tracer trace = [&](double px, double py) {
     return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
-                               counts);
+                               counts, job.settings.aovs.albedo);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1; ++x) {
@@ -110,8 +104,7 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
       adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
       size_t i = job.out.index(x, y);
       job.out.color[i] = p.rgba;
-      job.out.depth[i] = p.depth;
-      job.out.normal[i] = p.normal;
+      store_nearest_sample(p.nearest, job.out, i);
     }
 }
 
@@ -121,7 +114,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                   const render_settings& settings, render_statistics* stats,
                   const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
-  film out(cam.width, cam.height);
+  film out(cam.width, cam.height, settings.aovs);
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
@@ -148,7 +141,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       tbb::parallel_for(0, cam.height + 1, [&](int y) {
         ray_counts counts;
         for (int x = 0; x <= cam.width && !cancelled(); ++x)
-          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts);
+          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts,
+                                                     settings.aovs.albedo);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

@@ -26,6 +26,7 @@ struct render_settings {
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
+  aov_set aovs;  // which outputs the film keeps beside the colour
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
   // row and render_image throws kiln::error of kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
