@@ -167,5 +167,59 @@ TEST(exr_aov_cli, unknown_or_repeated_aovs_exit_2_with_one_line) {
   }
 }
 
+// The pixels of an EXR's data window as float, with the window.
+struct exr_pixels {
+  OIIO::ImageSpec spec;
+  std::vector<float> values;
+};
+
+exr_pixels read_pixels(const std::string& path) {
+  exr_pixels out;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return out;
+  out.spec = in->spec();
+  out.values.resize(out.spec.image_pixels() * out.spec.nchannels);
+  in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeDesc::FLOAT, out.values.data());
+  return out;
+}
+
+TEST(exr_crop_cli, crop_stores_the_region_with_the_full_frame_as_display_window) {
+  const std::string dir = scratch_folder("crop");
+  const std::vector<std::string> common = {"--aovs",   "beauty,Z,N,P,id", "--filter",
+                                           "gaussian", "--threads",       "2"};
+  std::vector<std::string> crop_args = common;
+  crop_args.insert(crop_args.end(), {"--crop", "5,4,17,13"});
+  const exr_pixels full = read_pixels(render(dir, "full.exr", common));
+  const exr_pixels crop = read_pixels(render(dir, "crop.exr", crop_args));
+  EXPECT_EQ(crop.spec.x, 5);
+  EXPECT_EQ(crop.spec.y, 4);
+  EXPECT_EQ(crop.spec.width, 12);
+  EXPECT_EQ(crop.spec.height, 9);
+  EXPECT_EQ(crop.spec.full_x, 0);
+  EXPECT_EQ(crop.spec.full_y, 0);
+  EXPECT_EQ(crop.spec.full_width, 24);
+  EXPECT_EQ(crop.spec.full_height, 18);
+  EXPECT_EQ(full.spec.x, 0);
+  EXPECT_EQ(full.spec.width, 24);
+  ASSERT_EQ(crop.spec.channelnames, full.spec.channelnames);
+  const int n = crop.spec.nchannels;
+  int differing = 0;
+  for (int y = 0; y < crop.spec.height; ++y)
+    for (int x = 0; x < crop.spec.width; ++x)
+      differing += std::memcmp(&crop.values[(size_t(y) * 12 + x) * n],
+                               &full.values[(size_t(y + 4) * 24 + (x + 5)) * n], n * sizeof(float)) != 0;
+  EXPECT_EQ(differing, 0);
+}
+
+TEST(exr_crop_cli, bad_crops_exit_2_with_one_line) {
+  for (const char* crop : {"0,0,25,10", "3,3,3,9", "1,2,3", "-1,0,4,4", "0,0,4,19", "a,b,c,d"}) {
+    auto result = run_kiln({"render", demo_scene, "-o", scratch_folder("crop_bad") + "/x.exr", "--width",
+                            "24", "--height", "18", "--crop", crop});
+    EXPECT_EQ(result.exit_code, 2) << crop;
+    EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find("--crop"), std::string::npos) << result.stderr_text;
+  }
+}
+
 }  // namespace
 }  // namespace kiln

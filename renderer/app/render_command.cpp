@@ -338,6 +338,20 @@ void add_render_options(CLI::App& app, render_options& o) {
       },
       "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
       "(id.object, id.material, id.instance) (default beauty,Z,N)");
+  app.add_option_function<std::string>(
+      "--crop",
+      [&o](const std::string& text) {
+        std::istringstream in(text);
+        pixel_rect r;
+        char c1 = 0, c2 = 0, c3 = 0;
+        if (!(in >> r.x0 >> c1 >> r.y0 >> c2 >> r.x1 >> c3 >> r.y1) || c1 != ',' || c2 != ',' || c3 != ',' ||
+            !(in >> std::ws).eof() || r.x0 < 0 || r.y0 < 0 || r.x1 <= r.x0 || r.y1 <= r.y0)
+          throw CLI::ValidationError(
+              "--crop", "expects pixels x0,y0,x1,y1 with 0 <= x0 < x1 and 0 <= y0 < y1, got '" + text + "'");
+        o.crop = r;
+      },
+      "Render and store only pixels [x0, x1) x [y0, y1) (EXR data window; the display window stays the "
+      "full frame)");
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -416,6 +430,13 @@ void run_render(const render_options& options) {
   double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
+  if (options.crop) {
+    const pixel_rect& c = *options.crop;
+    if (c.x1 > cam.width || c.y1 > cam.height)
+      throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                                          std::to_string(cam.height) + " image");
+    settings.crop = c;
+  }
   render_statistics stats;
   film image;
   try {

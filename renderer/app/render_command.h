@@ -40,6 +40,7 @@ struct render_options {
   int scene_index = -1;
   bool full_float = false;
   aov_set aovs;  // --aovs; the default is beauty, Z and N
+  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid

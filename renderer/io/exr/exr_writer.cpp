@@ -62,6 +62,13 @@ std::string temporary_path(const std::string& path) {
 
 OIIO::ImageSpec make_spec(const film& f, const std::vector<channel>& channels, const exr_metadata& metadata) {
   OIIO::ImageSpec spec(f.width, f.height, int(channels.size()), OIIO::TypeDesc::FLOAT);
+  // The data window is the stored region; the display window the full frame (they differ for crops).
+  spec.x = f.x0;
+  spec.y = f.y0;
+  spec.full_x = 0;
+  spec.full_y = 0;
+  spec.full_width = f.full_width;
+  spec.full_height = f.full_height;
   spec.channelnames.clear();
   for (const channel& c : channels) {
     spec.channelnames.push_back(c.name);
