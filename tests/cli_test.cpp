@@ -30,7 +30,7 @@ TEST(cli, help_documents_every_render_option) {
   for (const char* option : {"--output", "--width", "--height", "--spp", "--threads", "--tile-size", "--camera",
                              "--look-from", "--look-at", "--up", "--fov", "--scene", "--float", "--environment",
                              "--environment-rotation", "--environment-intensity", "--filter", "--filter-radius",
-                             "--adaptive-threshold", "--adaptive-depth"})
+                             "--adaptive-threshold", "--adaptive-depth", "--aovs", "--crop"})
     EXPECT_NE(help.find(option), std::string::npos) << option;
 }
 

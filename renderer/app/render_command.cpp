@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -189,6 +190,21 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
   return out.str();
 }
 
+// FNV-1a (64 bit) of the file's bytes in hex, so a composite can tell which scene an image came
+// from. Only the named file: external buffers and images are not hashed.
+std::string file_hash_hex(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  uint64_t h = 0xcbf29ce484222325ull;
+  char buffer[1 << 16];
+  while (in) {
+    in.read(buffer, sizeof buffer);
+    for (std::streamsize k = 0; k < in.gcount(); ++k) h = (h ^ uint8_t(buffer[k])) * 0x100000001b3ull;
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)h);
+  return text;
+}
+
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
@@ -334,7 +350,33 @@ void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   app.add_flag("--float", o.full_float,
-               "Write RGBA and N as 32-bit float instead of half (Z is always float)");
+               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
+  app.add_option_function<std::string>(
+      "--aovs",
+      [&o](const std::string& text) {
+        std::string bad;
+        std::optional<aov_set> aovs = parse_aov_list(text, &bad);
+        if (!aovs)
+          throw CLI::ValidationError("--aovs", "unknown or repeated output " + bad +
+                                                   " (choose from beauty, Z, N, P, albedo, uv, id)");
+        o.aovs = *aovs;
+      },
+      "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
+      "(id.object, id.material, id.instance) (default beauty,Z,N)");
+  app.add_option_function<std::string>(
+      "--crop",
+      [&o](const std::string& text) {
+        std::istringstream in(text);
+        pixel_rect r;
+        char c1 = 0, c2 = 0, c3 = 0;
+        if (!(in >> r.x0 >> c1 >> r.y0 >> c2 >> r.x1 >> c3 >> r.y1) || c1 != ',' || c2 != ',' || c3 != ',' ||
+            !(in >> std::ws).eof() || r.x0 < 0 || r.y0 < 0 || r.x1 <= r.x0 || r.y1 <= r.y0)
+          throw CLI::ValidationError(
+              "--crop", "expects pixels x0,y0,x1,y1 with 0 <= x0 < x1 and 0 <= y0 < y1, got '" + text + "'");
+        o.crop = r;
+      },
+      "Render and store only pixels [x0, x1) x [y0, y1) (EXR data window; the display window stays the "
+      "full frame)");
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -394,6 +436,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
   settings.texture_cache_mb = options.texture_cache_mb;
+  settings.aovs = options.aovs;
   settings.cancel = &interrupt_requested();
   return settings;
 }
@@ -415,6 +458,13 @@ void run_render(const render_options& options) {
   double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
+  if (options.crop) {
+    const pixel_rect& c = *options.crop;
+    if (c.x1 > cam.width || c.y1 > cam.height)
+      throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                                          std::to_string(cam.height) + " image");
+    settings.crop = c;
+  }
   render_statistics stats;
   film image;
   try {
@@ -443,7 +493,11 @@ void run_render(const render_options& options) {
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
+      {"kiln/aovs", aov_list_name(options.aovs)},
+      {"kiln/scene_hash", file_hash_hex(options.input)},
   };
+  metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
+  metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
   // A signal that arrives after the last pixel still stops the run before anything is written.
   if (interrupt_requested())
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");

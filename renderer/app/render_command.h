@@ -8,6 +8,7 @@
 
 #include "accel/grid/grid.h"
 #include "core/math.h"
+#include "render/aov_list.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
@@ -38,6 +39,8 @@ struct render_options {
   double fov_degrees = 45.0;
   int scene_index = -1;
   bool full_float = false;
+  aov_set aovs;  // --aovs; the default is beauty, Z and N
+  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid

@@ -27,10 +27,7 @@ struct pixel_refiner {
   adaptive_pixel result;
 
   void note(const camera_sample& s) {
-    if (s.depth < result.depth) {
-      result.depth = s.depth;
-      result.normal = s.normal;
-    }
+    if (s.depth < result.nearest.depth) result.nearest = s;
   }
 
   void store(int i, int j, const camera_sample& s) {

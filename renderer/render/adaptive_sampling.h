@@ -31,8 +31,7 @@ using sample_tracer = std::function<camera_sample(double x, double y)>;
 // What a refined pixel contributes to the film.
 struct adaptive_pixel {
   vec4 rgba{0.0f};    // area-weighted mean of the squares' corner means
-  float depth = inf;  // nearest sample the pixel used
-  vec3 normal{0.0f};  // that sample's normal
+  camera_sample nearest;  // the nearest sample the pixel used: its depth, normal and other AOVs
 };
 
 // Per-thread scratch: the samples already traced inside the current pixel, on its finest grid,

@@ -36,7 +36,7 @@ TEST(adaptive_sampling, uniform_pixel_traces_nothing_beyond_its_corners) {
   adaptive_pixel p = refine(picture, 3);
   EXPECT_EQ(picture.calls, 0);
   EXPECT_EQ(p.rgba, vec4(1.0f));
-  EXPECT_EQ(p.depth, 2.0f);
+  EXPECT_EQ(p.nearest.depth, 2.0f);
 }
 
 TEST(adaptive_sampling, an_edge_splits_only_the_squares_it_crosses) {

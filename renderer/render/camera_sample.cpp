@@ -1,6 +1,7 @@
 #include "render/camera_sample.h"
 
 #include "shade/environment.h"
+#include "shade/material_eval.h"
 
 namespace kiln {
 
@@ -18,7 +19,8 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 }  // namespace
 
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
-                                  double px, double py, const ray_cone& cone, ray_counts& counts) {
+                                  double px, double py, const ray_cone& cone, ray_counts& counts,
+                                  bool with_albedo) {
   camera_sample s;
   const ray start = generate_camera_ray(cam, px, py);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
@@ -35,10 +37,29 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
   if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
   s.instance = h->instance_id;
+  s.position = sp.position;
+  s.uv = sp.uv0;
+  s.node = int32_t(ctx.world.instances[h->instance_id].node);
+  s.material = ctx.world.materials[sp.material].source_index;
+  if (with_albedo) {
+    material_inputs inputs = material_inputs_at(sp);
+    inputs.filter = ctx.textures;
+    s.albedo = evaluate_material(ctx.world, ctx.world.materials[sp.material], inputs).base_color;
+  }
   const vec3 radiance = shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit);
   if (!is_finite(radiance)) return discard(s, counts);
   s.rgba = vec4(radiance, 1.0f);
   return s;
+}
+
+void store_nearest_sample(const camera_sample& s, film& out, size_t i) {
+  if (!out.depth.empty()) out.depth[i] = s.depth;
+  if (!out.normal.empty()) out.normal[i] = s.normal;
+  if (!out.position.empty()) out.position[i] = s.position;
+  if (!out.albedo.empty()) out.albedo[i] = s.albedo;
+  if (!out.uv.empty()) out.uv[i] = s.uv;
+  if (!out.ids.empty())
+    out.ids[i] = glm::ivec3(s.node, s.material, s.instance == no_instance ? -1 : int32_t(s.instance));
 }
 
 }  // namespace kiln

@@ -3,6 +3,7 @@
 // Depends on shade and render; never on a backend.
 #pragma once
 
+#include "render/film.h"
 #include "render/view_camera.h"
 #include "shade/ray_cone.h"
 #include "shade/whitted.h"
@@ -18,13 +19,23 @@ struct camera_sample {
   float depth = inf;  // ray distance of the hit; +inf on a miss
   vec3 normal{0.0f};  // world shading normal of the hit; 0 on a miss
   uint32_t instance = no_instance;
+  vec3 position{0.0f};  // world hit point; 0 on a miss
+  vec3 albedo{0.0f};    // base colour after textures and vertex colours (only when asked for); 0 on a miss
+  vec2 uv{0.0f};        // TEXCOORD_0; 0 on a miss
+  int32_t node = -1;    // glTF node of the instance hit; -1 on a miss
+  int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
 // cone is the ray's footprint at the camera (for texture filtering along the whole path).
+// with_albedo evaluates the material once more for the albedo AOV.
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
-                                  double px, double py, const ray_cone& cone, ray_counts& counts);
+                                  double px, double py, const ray_cone& cone, ray_counts& counts,
+                                  bool with_albedo = false);
+
+// Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that exist.
+void store_nearest_sample(const camera_sample& s, film& out, size_t i);
 
 }  // namespace kiln

@@ -1,24 +1,52 @@
 // The film: one buffer per output, filled by the tile scheduler and read by io/exr.
-// Depends on core only. Colour is premultiplied linear Rec.709 RGBA.
+// Depends on core only. Colour is premultiplied linear Rec.709 RGBA. Only the AOVs asked for have
+// buffers; the others stay empty. Colour always has one: the renderer resolves into it.
 #pragma once
 
 #include "core/math.h"
+#include "render/aov_list.h"
 
 #include <vector>
 
 namespace kiln {
 
+// A rectangle of pixels, half-open: [x0, x1) × [y0, y1).
+struct pixel_rect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool operator==(const pixel_rect& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
+};
+
 struct film {
-  int width = 0;
+  int width = 0;  // of the stored region (the EXR data window)
   int height = 0;
+  // Where the stored region sits in the full frame (the EXR display window), for crops.
+  int x0 = 0, y0 = 0;
+  int full_width = 0, full_height = 0;
   std::vector<vec4> color;   // premultiplied RGBA, row 0 at the top
   std::vector<float> depth;  // ray distance of the nearest sample; +inf where nothing was hit
   std::vector<vec3> normal;  // world shading normal of the nearest sample; 0 for background
+  // The nearest sample's world hit point, base colour and TEXCOORD_0; 0 for background.
+  std::vector<vec3> position;
+  std::vector<vec3> albedo;
+  std::vector<vec2> uv;
+  // The nearest sample's glTF node, material and scene instance as exact integers; -1 for background.
+  std::vector<glm::ivec3> ids;
+  aov_set aovs;  // what the file should hold
 
   film() = default;
-  film(int w, int h)
-      : width(w), height(h), color(size_t(w) * h, vec4(0.0f)), depth(size_t(w) * h, inf),
-        normal(size_t(w) * h, vec3(0.0f)) {}
+  film(int w, int h, const aov_set& a = aov_set{})
+      : width(w), height(h), full_width(w), full_height(h), aovs(a) {
+    const size_t n = size_t(w) * h;
+    color.assign(n, vec4(0.0f));
+    if (a.depth) depth.assign(n, inf);
+    if (a.normal) normal.assign(n, vec3(0.0f));
+    if (a.position) position.assign(n, vec3(0.0f));
+    if (a.albedo) albedo.assign(n, vec3(0.0f));
+    if (a.uv) uv.assign(n, vec2(0.0f));
+    if (a.ids) ids.assign(n, glm::ivec3(-1));
+  }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };

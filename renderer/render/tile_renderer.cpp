@@ -31,16 +31,47 @@ struct tile {
   int x0, y0, x1, y1;
 };
 
-std::vector<tile> make_tiles(int width, int height, int size) {
+// Tiles over a region of the frame, in frame pixels, aligned at the region's corner.
+std::vector<tile> make_tiles(const pixel_rect& r, int size) {
   std::vector<tile> tiles;
-  for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size)
-      tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+  for (int y = r.y0; y < r.y1; y += size)
+    for (int x = r.x0; x < r.x1; x += size)
+      tiles.push_back({x, y, std::min(x + size, r.x1), std::min(y + size, r.y1)});
   return tiles;
 }
 
 bool cancel_requested(const render_settings& s) {
   return s.cancel && s.cancel->load(std::memory_order_relaxed);
+}
+
+// The pixels a crop needs rendered: with a filter that reaches r pixels, its sources r pixels
+// around it (inside the frame) too, so every crop pixel folds the same sources as in a full frame.
+pixel_rect render_region(const pixel_rect& crop, int reach, int width, int height) {
+  return {std::max(0, crop.x0 - reach), std::max(0, crop.y0 - reach), std::min(width, crop.x1 + reach),
+          std::min(height, crop.y1 + reach)};
+}
+
+// The pixels of `from` that lie in frame region `to` (inside from's region).
+film crop_film(const film& from, const pixel_rect& to) {
+  film out(to.width(), to.height(), from.aovs);
+  out.x0 = to.x0;
+  out.y0 = to.y0;
+  out.full_width = from.full_width;
+  out.full_height = from.full_height;
+  auto copy = [&](const auto& src, auto& dst) {
+    if (src.empty()) return;
+    for (int y = to.y0; y < to.y1; ++y)
+      for (int x = to.x0; x < to.x1; ++x)
+        dst[out.index(x - to.x0, y - to.y0)] = src[from.index(x - from.x0, y - from.y0)];
+  };
+  copy(from.color, out.color);
+  copy(from.depth, out.depth);
+  copy(from.normal, out.normal);
+  copy(from.position, out.position);
+  copy(from.albedo, out.albedo);
+  copy(from.uv, out.uv);
+  copy(from.ids, out.ids);
+  return out;
 }
 
 // The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
@@ -52,13 +83,12 @@ ray_cone sample_cone(const view_camera& cam, int spp) {
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
-// sample decides depth and normal (never filtered, so Z and N stay valid for compositing).
+// sample decides depth, normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   const ray_cone cone = sample_cone(cam, spp);
-  float nearest = inf;
-  vec3 nearest_normal(0.0f);
+  camera_sample nearest;
   splat.clear();
   for (int s = 0; s < spp; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
@@ -66,20 +96,16 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
-                                           y + double(offset.y), cone, counts);
+                                           y + double(offset.y), cone, counts, settings.aovs.albedo);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
     if (cs.finite) splat.add(settings.filter, offset, cs.rgba);
-    if (cs.depth < nearest) {
-      nearest = cs.depth;
-      nearest_normal = cs.normal;
-    }
+    if (cs.depth < nearest.depth) nearest = cs;
   }
-  splats.add(x, y, splat);
-  size_t i = out.index(x, y);
-  out.depth[i] = nearest;
-  out.normal[i] = nearest_normal;
+  // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
+  splats.add(x - out.x0, y - out.y0, splat);
+  store_nearest_sample(nearest, out, out.index(x - out.x0, y - out.y0));
 }
 
 // What every tile task reads (and the outputs it writes its own pixels of).
@@ -96,27 +122,26 @@ struct tile_job {
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
   pixel_splat splat(job.splats.reach());
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
-    for (int x = tl.x0; x < tl.x1; ++x)
+    for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
       render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
 void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
-  const size_t row = size_t(job.cam.width) + 1;
+  const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
     return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
-                               counts);
+                               counts, job.settings.aovs.albedo);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
-    for (int x = tl.x0; x < tl.x1; ++x) {
-      const size_t c = y * row + x;
+    for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
+      const size_t c = (y - job.out.y0) * row + (x - job.out.x0);
       const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
                                         job.corners[c + row + 1]};
       adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
-      size_t i = job.out.index(x, y);
+      size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
-      job.out.depth[i] = p.depth;
-      job.out.normal[i] = p.normal;
+      store_nearest_sample(p.nearest, job.out, i);
     }
 }
 
@@ -126,16 +151,26 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                   const render_settings& settings, render_statistics* stats,
                   const progress_callback& progress) {
   auto start = std::chrono::steady_clock::now();
-  film out(cam.width, cam.height);
+  const pixel_rect frame{0, 0, cam.width, cam.height};
+  const pixel_rect crop = settings.crop.width() > 0 ? settings.crop : frame;
+  if (crop.x0 < 0 || crop.y0 < 0 || crop.x1 > cam.width || crop.y1 > cam.height || crop.height() <= 0)
+    throw input_error("", "crop", "the region must lie inside the image");
+  const bool adaptive = settings.adaptive.threshold > 0.0f;
+  const pixel_rect region =
+      adaptive ? crop : render_region(crop, filter_reach(settings.filter), cam.width, cam.height);
+  film out(region.width(), region.height(), settings.aovs);
+  out.x0 = region.x0;
+  out.y0 = region.y0;
+  out.full_width = cam.width;
+  out.full_height = cam.height;
   const int tile_size = std::max(1, settings.tile_size);
-  const std::vector<tile> tiles = make_tiles(cam.width, cam.height, tile_size);
+  const std::vector<tile> tiles = make_tiles(region, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   std::unique_ptr<texture_filter> textures;
   if (scene_needs_texture_filter(world))
     textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
-  const bool adaptive = settings.adaptive.threshold > 0.0f;
-  splat_film splats(adaptive ? 0 : cam.width, adaptive ? 0 : cam.height, tile_size, settings.filter);
+  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter);
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, splats, corners};
 
@@ -147,13 +182,14 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   arena.execute([&] {
     // Adaptive sampling starts from the (W+1)×(H+1) pixel corners, each traced once.
     if (adaptive) {
-      const size_t row = size_t(cam.width) + 1;
-      corners.resize(row * (size_t(cam.height) + 1));
+      const size_t row = size_t(region.width()) + 1;
+      corners.resize(row * (size_t(region.height()) + 1));
       const ray_cone pixel = sample_cone(cam, 1);  // a corner sample stands for a whole pixel
-      tbb::parallel_for(0, cam.height + 1, [&](int y) {
+      tbb::parallel_for(region.y0, region.y1 + 1, [&](int y) {
         ray_counts counts;
-        for (int x = 0; x <= cam.width && !cancelled(); ++x)
-          corners[y * row + x] = trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts);
+        for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
+          corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
+              ctx, cam, settings.show_background, x, y, pixel, counts, settings.aovs.albedo);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });
@@ -177,6 +213,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");
   if (!adaptive) splats.resolve(out);
+  if (!(region == crop)) out = crop_film(out, crop);
 
   if (stats) {
     stats->rays = total_counts;

@@ -26,6 +26,10 @@ struct render_settings {
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
+  aov_set aovs;  // which outputs the film keeps beside the colour
+  // Renders and keeps only this region of the frame (empty: the whole frame). Its pixels are
+  // bit-identical to the same pixels of a full render.
+  pixel_rect crop;
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
   // (or sample batch) and render_image throws kiln::error of kind interrupted.
   const std::atomic<bool>* cancel = nullptr;

@@ -63,6 +63,9 @@ enum class alpha_mode { opaque, mask, blend };
 // glTF metallic-roughness material with the extensions kiln understands. All colours are linear.
 struct material {
   std::string name;
+  // Its index in the glTF file's materials (the id.material AOV); the default material, which the
+  // file does not list, takes the index one past the file's last material.
+  int32_t source_index = 0;
   vec4 base_color_factor{1.0f};
   texture_ref base_color_texture;  // sRGB
   float metallic_factor = 1.0f;

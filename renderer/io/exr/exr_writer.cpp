@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <functional>
 #include <system_error>
 
 namespace kiln {
@@ -19,7 +20,47 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int channel_count = 8;  // R G B A Z N.X N.Y N.Z
+// One channel of the file: its name, its pixel format and where its values come from.
+struct channel {
+  std::string name;
+  OIIO::TypeDesc format;
+  std::function<float(size_t)> value;
+};
+
+// The channels of the film's AOVs, in the order of aov_list_name(). Z, P and the ids are always
+// float (distances and positions need the precision; ids must stay exact integers).
+std::vector<channel> film_channels(const film& f, const exr_settings& settings) {
+  const OIIO::TypeDesc small = settings.full_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+  const OIIO::TypeDesc full = OIIO::TypeDesc::FLOAT;
+  std::vector<channel> out;
+  auto add = [&out](const std::string& name, OIIO::TypeDesc format, std::function<float(size_t)> value) {
+    out.push_back({name, format, std::move(value)});
+  };
+  const aov_set& a = f.aovs;
+  const char* rgba[4] = {"R", "G", "B", "A"};
+  const char* xyz[3] = {".X", ".Y", ".Z"};
+  const char* rgb[3] = {".R", ".G", ".B"};
+  // Half's largest finite value is 65504: a brighter colour would become +inf in a half channel,
+  // and the image holds no infinities but background Z, so half colour saturates there instead.
+  const float limit = settings.full_float ? std::numeric_limits<float>::max() : 65504.0f;
+  for (int c = 0; c < 4 && a.beauty; ++c)
+    add(rgba[c], small, [&f, c, limit](size_t i) { return std::clamp(f.color[i][c], -limit, limit); });
+  if (a.depth) add("Z", full, [&f](size_t i) { return f.depth[i]; });
+  for (int c = 0; c < 3 && a.normal; ++c)
+    add(std::string("N") + xyz[c], small, [&f, c](size_t i) { return f.normal[i][c]; });
+  for (int c = 0; c < 3 && a.position; ++c)
+    add(std::string("P") + xyz[c], full, [&f, c](size_t i) { return f.position[i][c]; });
+  for (int c = 0; c < 3 && a.albedo; ++c)
+    add(std::string("albedo") + rgb[c], small, [&f, c](size_t i) { return f.albedo[i][c]; });
+  if (a.uv) {
+    add("uv.U", small, [&f](size_t i) { return f.uv[i].x; });
+    add("uv.V", small, [&f](size_t i) { return f.uv[i].y; });
+  }
+  const char* id_names[3] = {"id.object", "id.material", "id.instance"};
+  for (int c = 0; c < 3 && a.ids; ++c)
+    add(id_names[c], full, [&f, c](size_t i) { return float(f.ids[i][c]); });
+  return out;
+}
 
 // Temporary name beside the target, so the final rename stays on one file system.
 std::string temporary_path(const std::string& path) {
@@ -28,13 +69,22 @@ std::string temporary_path(const std::string& path) {
   return (target.parent_path() / name).string();
 }
 
-OIIO::ImageSpec make_spec(const film& f, const exr_settings& settings, const exr_metadata& metadata) {
-  OIIO::ImageSpec spec(f.width, f.height, channel_count, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
-  spec.alpha_channel = 3;
-  spec.z_channel = 4;
-  OIIO::TypeDesc colour = settings.full_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
-  spec.channelformats = {colour, colour, colour, colour, OIIO::TypeDesc::FLOAT, colour, colour, colour};
+OIIO::ImageSpec make_spec(const film& f, const std::vector<channel>& channels, const exr_metadata& metadata) {
+  OIIO::ImageSpec spec(f.width, f.height, int(channels.size()), OIIO::TypeDesc::FLOAT);
+  // The data window is the stored region; the display window the full frame (they differ for crops).
+  spec.x = f.x0;
+  spec.y = f.y0;
+  spec.full_x = 0;
+  spec.full_y = 0;
+  spec.full_width = f.full_width;
+  spec.full_height = f.full_height;
+  spec.channelnames.clear();
+  for (const channel& c : channels) {
+    spec.channelnames.push_back(c.name);
+    spec.channelformats.push_back(c.format);
+  }
+  spec.alpha_channel = f.aovs.beauty ? 3 : -1;
+  spec.z_channel = f.aovs.depth ? (f.aovs.beauty ? 4 : 0) : -1;
   spec.attribute("compression", "zip");
   spec.attribute("oiio:ColorSpace", "Linear");
   // Rec.709 primaries and D65 white: glTF's linear colour space.
@@ -53,22 +103,16 @@ OIIO::ImageSpec make_spec(const film& f, const exr_settings& settings, const exr
   spec.attribute("worldToNDC", OIIO::TypeMatrix44, world_to_ndc);
   spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
   for (const auto& [key, value] : metadata.attributes) spec.attribute(key, value);
+  for (const auto& [key, value] : metadata.float_attributes) spec.attribute(key, value);
+  for (const auto& [key, value] : metadata.int_attributes) spec.attribute(key, value);
   return spec;
 }
 
-// Half's largest finite value. A brighter float would become +inf in a half channel, and the
-// image holds no infinities but background Z, so half colour saturates here instead.
-constexpr float half_max = 65504.0f;
-
-std::vector<float> interleave(const film& f, bool full_float) {
-  std::vector<float> pixels(size_t(f.width) * f.height * channel_count);
-  const float limit = full_float ? std::numeric_limits<float>::max() : half_max;
-  for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
-    float* p = &pixels[i * channel_count];
-    for (int c = 0; c < 4; ++c) p[c] = std::clamp(f.color[i][c], -limit, limit);
-    p[4] = f.depth[i];
-    for (int c = 0; c < 3; ++c) p[5 + c] = f.normal[i][c];
-  }
+std::vector<float> interleave(const film& f, const std::vector<channel>& channels) {
+  const size_t n = channels.size();
+  std::vector<float> pixels(size_t(f.width) * f.height * n);
+  for (size_t i = 0; i < size_t(f.width) * f.height; ++i)
+    for (size_t c = 0; c < n; ++c) pixels[i * n + c] = channels[c].value(i);
   return pixels;
 }
 
@@ -117,8 +161,10 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   const std::string temporary = temporary_path(path);
   auto out = OIIO::ImageOutput::create("openexr");
   if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec = make_spec(f, settings, metadata);
-  std::vector<float> pixels = interleave(f, settings.full_float);
+  const std::vector<channel> channels = film_channels(f, settings);
+  if (channels.empty()) throw io_error(path, "refusing to write an image without channels");
+  OIIO::ImageSpec spec = make_spec(f, channels, metadata);
+  std::vector<float> pixels = interleave(f, channels);
   bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   ok = out->close() && ok;
   std::string reason = ok ? std::string() : out->geterror();

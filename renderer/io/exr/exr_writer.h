@@ -1,4 +1,5 @@
-// Writes a film as one OpenEXR file through OpenImageIO: premultiplied RGBA plus Z and N.
+// Writes a film as one OpenEXR file through OpenImageIO: the film's AOVs (by default premultiplied
+// RGBA plus Z and N).
 // The only module that knows EXR. Writes go to a temporary file beside the target that is
 // renamed into place, so a failed write never leaves a partial image.
 #pragma once
@@ -13,7 +14,7 @@
 namespace kiln {
 
 struct exr_settings {
-  bool full_float = false;  // RGBA and N as 32-bit float; half otherwise. Z is always float.
+  bool full_float = false;  // RGBA, N, albedo and uv as 32-bit float; half otherwise. Z, P, ids always float.
 };
 
 // What the header records besides the pixels.
@@ -21,6 +22,8 @@ struct exr_metadata {
   dmat4 world_to_camera{1.0};  // camera space: +X right, +Y up, looking along -Z
   dmat4 world_to_ndc{1.0};
   std::vector<std::pair<std::string, std::string>> attributes;  // e.g. {"kiln/spp", "4"}
+  std::vector<std::pair<std::string, float>> float_attributes;  // e.g. {"renderTimeSeconds", 1.5f}
+  std::vector<std::pair<std::string, int>> int_attributes;      // e.g. {"samplesPerPixel", 4}
 };
 
 // Throws kiln::error (io) when the directory of path does not exist or cannot be written.

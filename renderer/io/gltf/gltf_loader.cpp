@@ -389,10 +389,12 @@ void convert_used_materials(build_context& ctx) {
   for (int gltf_material : used) {
     if (gltf_material < 0) continue;
     ctx.out.materials.push_back(convert_material(ctx.model, gltf_material, remap, ctx.out, ctx.file));
+    ctx.out.materials.back().source_index = gltf_material;
     scene_index[gltf_material] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
   }
   if (used.count(-1) != 0 || ctx.out.materials.empty()) {
     ctx.out.materials.push_back(default_material());
+    ctx.out.materials.back().source_index = static_cast<int32_t>(ctx.model.materials.size());
     scene_index[-1] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
   }
   for (size_t i = 0; i < ctx.out.instances.size(); ++i)

@@ -1,0 +1,54 @@
+#include "render/aov_list.h"
+
+#include <sstream>
+
+namespace kiln {
+
+namespace {
+
+struct aov_name {
+  const char* name;
+  bool aov_set::*flag;
+};
+
+// Channel order in the EXR file.
+constexpr aov_name aov_names[] = {
+    {"beauty", &aov_set::beauty}, {"Z", &aov_set::depth}, {"N", &aov_set::normal}, {"P", &aov_set::position},
+    {"albedo", &aov_set::albedo}, {"uv", &aov_set::uv},   {"id", &aov_set::ids},
+};
+
+}  // namespace
+
+std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad) {
+  aov_set aovs;
+  for (const aov_name& a : aov_names) aovs.*a.flag = false;
+  std::istringstream in(text);
+  std::string item;
+  bool any = false;
+  while (std::getline(in, item, ',')) {
+    const aov_name* found = nullptr;
+    for (const aov_name& a : aov_names)
+      if (item == a.name) found = &a;
+    if (!found || aovs.*found->flag) {
+      if (bad) *bad = found ? item + " (given twice)" : "'" + item + "'";
+      return std::nullopt;
+    }
+    aovs.*found->flag = true;
+    any = true;
+  }
+  // getline drops a trailing empty item, so "beauty," needs its own check.
+  if (!any || text.back() == ',') {
+    if (bad) *bad = "an empty name";
+    return std::nullopt;
+  }
+  return aovs;
+}
+
+std::string aov_list_name(const aov_set& aovs) {
+  std::string out;
+  for (const aov_name& a : aov_names)
+    if (aovs.*a.flag) out += (out.empty() ? "" : ",") + std::string(a.name);
+  return out;
+}
+
+}  // namespace kiln
