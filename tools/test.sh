@@ -18,7 +18,11 @@ if [[ "${KILN_SKIP_SANITIZERS:-0}" != 1 ]]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKILN_SANITIZE=address,undefined >/dev/null
   cmake --build build-sanitize
-  ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1 LSAN_OPTIONS=suppressions="$PWD/fuzz/lsan.supp" \
+  # new_delete_type_mismatch=0: OpenImageIO 2.4's TextureSystem::destroy deletes its implementation
+  # through the base class with the base's size (a sized-delete mismatch inside the library, not in
+  # kiln); every other ASan check stays on.
+  ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1:new_delete_type_mismatch=0 \
+    LSAN_OPTIONS=suppressions="$PWD/fuzz/lsan.supp" \
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
 fi
