@@ -91,10 +91,10 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
           {"first_pixel_seconds", p.load_seconds + m.build_seconds},
           {"render_seconds", m.render_seconds},
           {"peak_rss_bytes",
-           {{"before_load", rss_before_load},
-            {"after_build", m.peak_rss_after_build},
+           {{"after_build", m.peak_rss_after_build},
             {"after_render", m.peak_rss_after_render}}},
-          {"scene_memory_bytes", m.peak_rss_after_render - std::min(m.peak_rss_after_render, rss_before_load)},
+          {"rss_bytes", {{"before_load", rss_before_load}, {"after_build", m.rss_after_build}}},
+          {"scene_memory_bytes", m.rss_after_build - std::min(m.rss_after_build, rss_before_load)},
           {"rays",
            {{"camera", m.rays.camera},
             {"shadow", m.rays.shadow},
@@ -168,7 +168,7 @@ void run_bench_command(const bench_options& o) {
   if (!o.csv.empty()) check_output_writable(o.csv);
   // The process's own baseline (libraries, thread pools) before anything of the scene exists, so the
   // report can give the memory the scene, its BVH and the render added.
-  const size_t rss_before_load = peak_resident_bytes();
+  const size_t rss_before_load = current_resident_bytes();
   prepared_scene prepared = prepare_scene(o.view);
   bench_settings settings;
   settings.accel = o.accel;

@@ -1,6 +1,7 @@
 #include "bench/bench_run.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <fstream>
 
 #include "accel/embree/embree_accelerator.h"
 #include "accel/make_accelerator.h"
@@ -69,6 +71,13 @@ void time_both(kind_measurement& km, const std::vector<ray>& rays, int threads, 
 
 }  // namespace
 
+size_t current_resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t pages_total = 0, pages_resident = 0;
+  statm >> pages_total >> pages_resident;
+  return pages_resident * size_t(sysconf(_SC_PAGESIZE));
+}
+
 size_t peak_resident_bytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -89,6 +98,7 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
   std::unique_ptr<accelerator> accel = make_accelerator(world, *kind);
   m.build_seconds = seconds_since(build_start);
   m.peak_rss_after_build = peak_resident_bytes();
+  m.rss_after_build = current_resident_bytes();
 
   const int repeats = std::max(1, settings.repeats);
   for (int rep = 0; rep < repeats; ++rep) {

@@ -31,6 +31,7 @@ struct bench_measurement {
   double first_pixel_seconds = 0.0;  // load + build: how long until tracing starts
   size_t peak_rss_after_build = 0;   // bytes (getrusage maximum resident set size)
   size_t peak_rss_after_render = 0;
+  size_t rss_after_build = 0;  // current, not peak: the scene and its acceleration structure
   size_t unique_triangles = 0;  // stored once per mesh
   size_t placed_triangles = 0;  // summed over instances
   size_t instances = 0;
@@ -51,5 +52,9 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
 
 // Peak resident set size of this process so far, in bytes.
 size_t peak_resident_bytes();
+
+// Resident set size of this process now, in bytes (/proc/self/statm). Unlike the peak, it shows
+// what a small scene adds on top of the libraries' own baseline.
+size_t current_resident_bytes();
 
 }  // namespace kiln
