@@ -56,7 +56,7 @@ def chart2(rows, out):
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.5))
     for col, (key, label) in enumerate(errors):
         for row, (cost, cost_label) in enumerate((("render_s", "render time (s)"),
-                                                 ("scene_memory_mb", "memory the scene added (MB, peak RSS)"))):
+                                                 ("scene_memory_mb", "memory the scene added (MB, resident set)"))):
             ax = axes[row][col]
             for shape, colour in zip(("sphere", "cylinder", "torus"), ("C0", "C1", "C2")):
                 meshes = sorted((float(r[cost]), max(float(r[key]), 1e-6), int(r["triangles"])) for r in rows
