@@ -17,6 +17,7 @@
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
 #include "io/gltf/gltf_loader.h"
+#include "render/frame_bands.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 
@@ -363,7 +364,7 @@ void add_render_options(CLI::App& app, render_options& o) {
       },
       "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
       "(id.object, id.material, id.instance) (default beauty,Z,N)");
-  app.add_option_function<std::string>(
+  CLI::Option* crop = app.add_option_function<std::string>(
       "--crop",
       [&o](const std::string& text) {
         std::istringstream in(text);
@@ -377,6 +378,21 @@ void add_render_options(CLI::App& app, render_options& o) {
       },
       "Render and store only pixels [x0, x1) x [y0, y1) (EXR data window; the display window stays the "
       "full frame)");
+  app.add_option_function<std::string>(
+         "--tile",
+         [&o](const std::string& text) {
+           std::istringstream in(text);
+           char slash = 0;
+           int index = -1, count = 0;
+           if (!(in >> index >> slash >> count) || slash != '/' || !(in >> std::ws).eof() || count < 1 ||
+               index < 0 || index >= count)
+             throw CLI::ValidationError("--tile", "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
+           o.tile_index = index;
+           o.tile_count = count;
+         },
+         "Render band i (0-based) of N horizontal bands of whole rows, as a crop (band i holds rows "
+         "[floor(i*H/N), floor((i+1)*H/N)); join the files with kiln stitch)")
+      ->excludes(crop);
   app.add_option("--accel", o.accel, "Traversal backend")
       ->check(CLI::IsMember({"embree", "grid", "adaptive-grid"}))
       ->capture_default_str();
@@ -464,6 +480,12 @@ void run_render(const render_options& options) {
       throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
                                           std::to_string(cam.height) + " image");
     settings.crop = c;
+  }
+  if (options.tile_count > 0) {
+    if (options.tile_count > cam.height)
+      throw input_error("", "--tile", "cannot split " + std::to_string(cam.height) + " rows into " +
+                                          std::to_string(options.tile_count) + " bands");
+    settings.crop = frame_band(options.tile_index, options.tile_count, cam.width, cam.height);
   }
   render_statistics stats;
   film image;

@@ -41,6 +41,7 @@ struct render_options {
   bool full_float = false;
   aov_set aovs;  // --aovs; the default is beauty, Z and N
   std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
+  int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
   vec3 background{0.0f};
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
