@@ -5,6 +5,7 @@
 #include "app/compare_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
+#include "app/stitch_command.h"
 #include "core/error.h"
 
 #include <CLI/CLI.hpp>
@@ -55,6 +56,11 @@ int main(int argc, char** argv) {
       "bench", "Time one view and replay its rays through a bare Embree loop (JSON and CSV reports)");
   kiln::add_bench_options(*bench_command, bench);
 
+  kiln::stitch_options stitch;
+  CLI::App* stitch_command = app.add_subcommand(
+      "stitch", "Join region EXRs (e.g. the bands of render --tile i/N) into one full-frame EXR");
+  kiln::add_stitch_options(*stitch_command, stitch);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -69,6 +75,7 @@ int main(int argc, char** argv) {
     if (render_command->parsed()) kiln::run_render(render);
     if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
     if (bench_command->parsed()) kiln::run_bench_command(bench);
+    if (stitch_command->parsed()) kiln::run_stitch(stitch);
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';

@@ -1,6 +1,7 @@
 #include "io/exr/exr_writer.h"
 
 #include "core/error.h"
+#include "io/exr/exr_header.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -126,6 +127,32 @@ bool sync_to_disk(const std::string& path, int flags) {
   return ::close(fd) == 0 && ok;
 }
 
+// Writes spec and pixels (in format) to a temporary file beside path, flushes it and renames it
+// into place. Throws kiln::error (io) on failure, leaving no temporary behind.
+void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc format,
+                      const void* pixels) {
+  const std::string temporary = temporary_path(path);
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
+  bool ok = out->open(temporary, spec) && out->write_image(format, pixels);
+  ok = out->close() && ok;
+  std::string reason = ok ? std::string() : out->geterror();
+  if (ok && !sync_to_disk(temporary, O_RDONLY)) {
+    ok = false;
+    reason = "cannot flush the file to disk";
+  }
+  std::error_code ec;
+  if (ok) fs::rename(temporary, path, ec);
+  // The rename itself lives in the folder: sync it too, best effort (some file systems refuse).
+  if (ok && !ec)
+    sync_to_disk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(),
+                 O_RDONLY | O_DIRECTORY);
+  if (!ok || ec) {
+    fs::remove(temporary, ec);
+    throw io_error(path, "cannot write EXR: " + (reason.empty() ? std::string("rename failed") : reason));
+  }
+}
+
 }  // namespace
 
 void check_output_writable(const std::string& path) {
@@ -158,30 +185,25 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   check_output_writable(path);
   if (f.width <= 0 || f.height <= 0 || f.color.size() != size_t(f.width) * f.height)
     throw io_error(path, "refusing to write an empty or inconsistent image");
-  const std::string temporary = temporary_path(path);
-  auto out = OIIO::ImageOutput::create("openexr");
-  if (!out) throw io_error(path, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
   const std::vector<channel> channels = film_channels(f, settings);
   if (channels.empty()) throw io_error(path, "refusing to write an image without channels");
-  OIIO::ImageSpec spec = make_spec(f, channels, metadata);
   std::vector<float> pixels = interleave(f, channels);
-  bool ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
-  ok = out->close() && ok;
-  std::string reason = ok ? std::string() : out->geterror();
-  if (ok && !sync_to_disk(temporary, O_RDONLY)) {
-    ok = false;
-    reason = "cannot flush the file to disk";
-  }
-  std::error_code ec;
-  if (ok) fs::rename(temporary, path, ec);
-  // The rename itself lives in the folder: sync it too, best effort (some file systems refuse).
-  if (ok && !ec)
-    sync_to_disk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(),
-                 O_RDONLY | O_DIRECTORY);
-  if (!ok || ec) {
-    fs::remove(temporary, ec);
-    throw io_error(path, "cannot write EXR: " + (reason.empty() ? std::string("rename failed") : reason));
-  }
+  write_atomically(path, make_spec(f, channels, metadata), OIIO::TypeDesc::FLOAT, pixels.data());
+}
+
+void write_exr(const std::string& path, const exr_image& image) {
+  check_output_writable(path);
+  const pixel_rect& d = image.data_window;
+  if (!image.header || d.width() <= 0 || d.height() <= 0 ||
+      image.pixels.size() != size_t(d.width()) * size_t(d.height()) * image.pixel_bytes())
+    throw io_error(path, "refusing to write an empty or inconsistent image");
+  OIIO::ImageSpec spec = image.header->spec;
+  spec.x = d.x0;
+  spec.y = d.y0;
+  spec.width = d.width();
+  spec.height = d.height();
+  // TypeUnknown: the pixels are in the spec's own per-channel formats.
+  write_atomically(path, spec, OIIO::TypeUnknown, image.pixels.data());
 }
 
 }  // namespace kiln

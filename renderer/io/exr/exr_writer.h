@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "io/exr/exr_reader.h"
 #include "render/film.h"
 
 #include <string>
@@ -33,5 +34,9 @@ void check_output_writable(const std::string& path);
 // Writes the film to path atomically. Throws kiln::error (io) on failure.
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
                const exr_metadata& metadata);
+
+// Writes an image read by read_exr (possibly with other pixels and data window) to path
+// atomically, with its header and per-channel formats. Throws kiln::error (io) on failure.
+void write_exr(const std::string& path, const exr_image& image);
 
 }  // namespace kiln

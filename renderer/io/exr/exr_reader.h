@@ -1,0 +1,32 @@
+// Reads an OpenEXR image with its pixels in the file's own per-channel formats (half stays half,
+// float stays float), so images can be joined without changing a bit. Hides OpenImageIO.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/film.h"
+
+namespace kiln {
+
+// The whole header as read (attributes, channel formats, windows); opaque outside io/exr.
+struct exr_header;
+
+struct exr_image {
+  pixel_rect data_window;     // the stored pixels, in frame coordinates
+  pixel_rect display_window;  // the full frame
+  std::vector<std::string> channel_names;
+  std::vector<std::string> channel_formats;  // per channel: "half", "float", "uint", ...
+  std::vector<size_t> channel_bytes;         // per channel, in the native format
+  // Row-major over the data window, each pixel's channels in order, each in its own format.
+  std::vector<unsigned char> pixels;
+  std::shared_ptr<const exr_header> header;
+
+  size_t pixel_bytes() const;
+};
+
+// Throws kiln::error (input) naming path when the file cannot be opened or read.
+exr_image read_exr(const std::string& path);
+
+}  // namespace kiln

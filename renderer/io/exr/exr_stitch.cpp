@@ -1,0 +1,90 @@
+#include "io/exr/exr_stitch.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace kiln {
+
+namespace {
+
+std::string describe(const pixel_rect& r) {
+  return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ")x[" + std::to_string(r.y0) + "," +
+         std::to_string(r.y1) + ")";
+}
+
+bool inside(const pixel_rect& r, const pixel_rect& frame) {
+  return r.x0 >= frame.x0 && r.y0 >= frame.y0 && r.x1 <= frame.x1 && r.y1 <= frame.y1;
+}
+
+bool overlap(const pixel_rect& a, const pixel_rect& b) {
+  return std::max(a.x0, b.x0) < std::min(a.x1, b.x1) && std::max(a.y0, b.y0) < std::min(a.y1, b.y1);
+}
+
+// Every region agrees with the first on frame and channels, lies in the frame and overlaps no other.
+void check_regions(const std::vector<std::string>& paths, const std::vector<exr_image>& regions) {
+  const exr_image& first = regions.front();
+  for (size_t k = 0; k < regions.size(); ++k) {
+    const exr_image& r = regions[k];
+    if (!(r.display_window == first.display_window))
+      throw input_error(
+          paths[k], "displayWindow",
+          describe(r.display_window) + " differs from " + describe(first.display_window) + " of " + paths[0]);
+    if (r.channel_names != first.channel_names || r.channel_formats != first.channel_formats)
+      throw input_error(paths[k], "channels", "channel names or formats differ from those of " + paths[0]);
+    if (!inside(r.data_window, r.display_window))
+      throw input_error(
+          paths[k], "dataWindow",
+          describe(r.data_window) + " reaches outside the display window " + describe(r.display_window));
+    for (size_t j = 0; j < k; ++j)
+      if (overlap(regions[j].data_window, r.data_window))
+        throw input_error(
+            paths[k], "dataWindow",
+            describe(r.data_window) + " overlaps " + describe(regions[j].data_window) + " of " + paths[j]);
+  }
+}
+
+// The first pixel of the frame no region holds, as "(x, y)"; empty when all are covered.
+std::string first_missing_pixel(const std::vector<exr_image>& regions, const pixel_rect& frame) {
+  std::vector<char> covered(size_t(frame.width()) * size_t(frame.height()), 0);
+  for (const exr_image& r : regions)
+    for (int y = r.data_window.y0; y < r.data_window.y1; ++y)
+      std::fill_n(covered.begin() + ptrdiff_t(size_t(y - frame.y0) * size_t(frame.width()) +
+                                              size_t(r.data_window.x0 - frame.x0)),
+                  r.data_window.width(), char(1));
+  auto gap = std::find(covered.begin(), covered.end(), char(0));
+  if (gap == covered.end()) return {};
+  const size_t i = size_t(gap - covered.begin());
+  return "(" + std::to_string(frame.x0 + int(i % size_t(frame.width()))) + ", " +
+         std::to_string(frame.y0 + int(i / size_t(frame.width()))) + ")";
+}
+
+}  // namespace
+
+exr_image stitch_regions(const std::vector<std::string>& paths, const std::vector<exr_image>& regions) {
+  if (regions.empty() || paths.size() != regions.size()) throw input_error("", "stitch", "no input images");
+  check_regions(paths, regions);
+  const pixel_rect frame = regions.front().display_window;
+  const std::string missing = first_missing_pixel(regions, frame);
+  if (!missing.empty())
+    throw input_error(paths.back(), "dataWindow",
+                      "with this file the " + std::to_string(paths.size()) +
+                          " inputs still do not cover the display window " + describe(frame) + ": pixel " +
+                          missing + " is missing");
+  exr_image out = regions.front();
+  out.data_window = frame;
+  const size_t pixel = out.pixel_bytes();
+  const size_t frame_row = size_t(frame.width()) * pixel;
+  out.pixels.assign(frame_row * size_t(frame.height()), 0);
+  for (const exr_image& r : regions) {
+    const size_t row = size_t(r.data_window.width()) * pixel;
+    for (int y = r.data_window.y0; y < r.data_window.y1; ++y)
+      std::memcpy(
+          out.pixels.data() + size_t(y - frame.y0) * frame_row + size_t(r.data_window.x0 - frame.x0) * pixel,
+          r.pixels.data() + size_t(y - r.data_window.y0) * row, row);
+  }
+  return out;
+}
+
+}  // namespace kiln

@@ -1,0 +1,151 @@
+// `kiln render --tile i/N` and `kiln stitch` end to end: the bands of the demo scene stitched
+// together are the full render, channel for channel and format for format; inputs that overlap or
+// leave a gap, and malformed --tile requests, are refused with exit code 2 and one line.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+using testing::command_result;
+using testing::lines;
+using testing::run_kiln;
+using testing::scratch_folder;
+
+const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
+
+// Arguments that render the demo scene at 64x48 with every output the test compares into path.
+std::vector<std::string> render_arguments(const std::string& path, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"render", demo_scene, "-o",    path, "--width", "64",           "--height",
+                                   "48",     "-q",       "--spp", "2",  "--aovs",  "beauty,Z,N,id"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+// Renders into dir/name and returns the path; a failed render fails the test.
+std::string render(const std::string& dir, const std::string& name, const std::vector<std::string>& extra) {
+  const command_result result = run_kiln(render_arguments(dir + "/" + name, extra));
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  return dir + "/" + name;
+}
+
+struct image {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;  // every channel converted to float, which is exact for half and float
+};
+
+image read(const std::string& path) {
+  image out;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+  if (!in) return out;
+  out.spec = in->spec();
+  out.pixels.resize(out.spec.image_pixels() * size_t(out.spec.nchannels));
+  EXPECT_TRUE(in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
+  return out;
+}
+
+TEST(stitch_cli, bands_cover_the_frame_rows_exactly_once) {
+  const std::string dir = scratch_folder("stitch_bands");
+  std::vector<int> covered(48, 0);
+  for (int i = 0; i < 5; ++i) {
+    image band = read(render(dir, "band.exr", {"--tile", std::to_string(i) + "/5"}));
+    EXPECT_EQ(band.spec.x, 0);
+    EXPECT_EQ(band.spec.width, 64);
+    EXPECT_EQ(band.spec.full_width, 64);
+    EXPECT_EQ(band.spec.full_height, 48);
+    EXPECT_GE(band.spec.height, 9);  // 48 rows in 5 bands: 9 or 10 each
+    EXPECT_LE(band.spec.height, 10);
+    for (int y = band.spec.y; y < band.spec.y + band.spec.height; ++y) ++covered[size_t(y)];
+  }
+  for (int y = 0; y < 48; ++y) EXPECT_EQ(covered[size_t(y)], 1) << "row " << y;
+}
+
+TEST(stitch_cli, stitched_bands_equal_the_full_render) {
+  const std::string dir = scratch_folder("stitch_equal");
+  const std::string full = render(dir, "full.exr", {});
+  std::vector<std::string> args = {"stitch", dir + "/stitched.exr"};
+  for (int i = 0; i < 3; ++i)
+    args.push_back(render(dir, "band" + std::to_string(i) + ".exr", {"--tile", std::to_string(i) + "/3"}));
+  auto result = run_kiln(args);
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+
+  image a = read(full), b = read(dir + "/stitched.exr");
+  // Data window, then display window: both the full frame.
+  auto windows = [](const OIIO::ImageSpec& s) {
+    return std::vector<int>{s.x, s.y, s.width, s.height, s.full_x, s.full_y, s.full_width, s.full_height};
+  };
+  EXPECT_EQ(windows(b.spec), (std::vector<int>{0, 0, 64, 48, 0, 0, 64, 48}));
+  EXPECT_EQ(windows(b.spec), windows(a.spec));
+  ASSERT_EQ(a.spec.channelnames, b.spec.channelnames);
+  EXPECT_EQ(a.spec.channelnames.size(), 11u);  // RGBA, Z, N.XYZ, three ids
+  for (int c = 0; c < a.spec.nchannels; ++c)
+    EXPECT_EQ(a.spec.channelformat(c), b.spec.channelformat(c)) << a.spec.channelnames[size_t(c)];
+  EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("R")), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("Z")), OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(b.spec.get_string_attribute("kiln/aovs"), "beauty,Z,N,id");  // the first band's header
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  // Bytes, not values: NaN-free, but background Z is +inf and the comparison must be exact.
+  EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
+  size_t differing = 0;
+  for (size_t k = 0; k < a.pixels.size(); ++k)
+    differing += std::memcmp(&a.pixels[k], &b.pixels[k], sizeof(float)) != 0;
+  EXPECT_EQ(differing, 0u);
+}
+
+TEST(stitch_cli, overlapping_or_incomplete_inputs_exit_2_naming_the_file) {
+  const std::string dir = scratch_folder("stitch_refused");
+  const std::string b0 = render(dir, "b0.exr", {"--tile", "0/3"});
+  const std::string b1 = render(dir, "b1.exr", {"--tile", "1/3"});
+  const std::string b2 = render(dir, "b2.exr", {"--tile", "2/3"});
+  const std::string wide = render(dir, "wide.exr", {"--crop", "0,10,64,20"});        // overlaps band 0 and 1
+  const std::string other = render(dir, "other.exr", {"--tile", "1/3", "--float"});  // float colour
+  struct refusal {
+    std::vector<std::string> inputs;
+    std::string file, problem;
+  };
+  const std::vector<refusal> cases = {
+      {{b0, b1}, b1, "pixel (0, 32) is missing"},
+      {{b0, b2}, b2, "pixel (0, 16) is missing"},
+      {{b0, b1, b1, b2}, b1, "overlaps"},
+      {{b0, wide, b2}, wide, "overlaps [0,64)x[0,16)"},
+      {{b0, other, b2}, other, "channel names or formats differ"},
+  };
+  for (const refusal& c : cases) {
+    std::vector<std::string> args = {"stitch", dir + "/out.exr"};
+    args.insert(args.end(), c.inputs.begin(), c.inputs.end());
+    auto result = run_kiln(args);
+    EXPECT_EQ(result.exit_code, 2) << c.problem;
+    ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(c.file + ":"), std::string::npos) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(c.problem), std::string::npos) << result.stderr_text;
+  }
+  EXPECT_FALSE(std::ifstream(dir + "/out.exr").good());  // nothing written
+}
+
+TEST(stitch_cli, bad_tile_requests_exit_2_with_one_line) {
+  const std::string dir = scratch_folder("stitch_bad_tile");
+  for (std::vector<std::string> extra :
+       std::vector<std::vector<std::string>>{{"--tile", "3/3"},
+                                             {"--tile", "0/0"},
+                                             {"--tile", "-1/3"},
+                                             {"--tile", "1/3x"},
+                                             {"--tile", "1,3"},
+                                             {"--tile", "0/49"},
+                                             {"--tile", "0/2", "--crop", "0,0,4,4"}}) {
+    auto result = run_kiln(render_arguments(dir + "/x.exr", extra));
+    EXPECT_EQ(result.exit_code, 2) << extra[1];
+    EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find("--tile"), std::string::npos) << result.stderr_text;
+  }
+}
+
+}  // namespace
+}  // namespace kiln
