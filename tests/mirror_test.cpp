@@ -22,13 +22,10 @@ material metal(float base, float roughness) {
   return m;
 }
 
-material emitter(float radiance) {
-  material m;
-  m.base_color_factor = vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  m.metallic_factor = 0.0f;
-  m.specular_factor = 0.0f;
-  m.emissive_factor = vec3(radiance);
-  m.double_sided = true;  // seen from below
+// An emitting ceiling, seen from below.
+material ceiling(float radiance) {
+  material m = testing::emitter(radiance);
+  m.double_sided = true;
   return m;
 }
 
@@ -36,7 +33,7 @@ material emitter(float radiance) {
 // ray down onto the floor brings back is the mirrored ceiling.
 scene floor_under_emitter(float base, float roughness) {
   scene s;
-  s.materials = {metal(base, roughness), emitter(3.0f)};
+  s.materials = {metal(base, roughness), ceiling(3.0f)};
   add_quad(s, -50, -50, 50, 50, 0.0f, 0);
   add_quad(s, -50, -50, 50, 50, 2.0f, 1);
   return s;

@@ -19,6 +19,7 @@ namespace kiln {
 namespace {
 
 using testing::add_box;
+using testing::emitter;
 using testing::make_ray;
 
 // Passes queries on to a real backend and records every ray handed to
@@ -46,15 +47,6 @@ material glass(float ior, bool volume) {
   m.transmission_factor = 1.0f;
   m.ior = ior;
   m.thickness_factor = volume ? 1.0f : 0.0f;
-  return m;
-}
-
-material emitter(float radiance) {
-  material m;
-  m.base_color_factor = vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  m.metallic_factor = 0.0f;
-  m.specular_factor = 0.0f;
-  m.emissive_factor = vec3(radiance);
   return m;
 }
 

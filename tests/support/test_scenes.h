@@ -40,6 +40,16 @@ inline void add_quad(scene& s, float x0, float y0, float x1, float y1, float z, 
   add_mesh_instance(s, std::move(m), material);
 }
 
+// A material that only emits: black base, no specular, the given radiance.
+inline material emitter(float radiance) {
+  material m;
+  m.base_color_factor = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  m.metallic_factor = 0.0f;
+  m.specular_factor = 0.0f;
+  m.emissive_factor = vec3(radiance);
+  return m;
+}
+
 inline ray make_ray(const vec3& origin, const vec3& direction) {
   ray r;
   r.origin = origin;

@@ -10,7 +10,6 @@ Each as PNG and SVG next to the CSV files; a chart whose CSV is missing is skipp
 
 usage: speed_accuracy_charts.py RESULTS_DIR
 """
-import csv
 import sys
 from pathlib import Path
 
@@ -18,19 +17,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from chart_io import read, save  # noqa: E402
 
 
-def read(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def save(fig, out, name):
-    fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(out / f"{name}.{ext}", dpi=110)
-    plt.close(fig)
-    print(f"wrote {out / name}.png and .svg")
 
 
 def chart1(rows, out):

@@ -8,7 +8,6 @@ error against ns/ray. Each as PNG and SVG, next to the CSV files.
 
 usage: stability_charts.py RESULTS_DIR
 """
-import csv
 import sys
 from pathlib import Path
 
@@ -16,21 +15,12 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from chart_io import read, save  # noqa: E402
 import numpy as np  # noqa: E402
 
 FLOOR = 1e-5  # zero rates are drawn here (below 1/rays), on log axes
 
 
-def read(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def save(fig, out, name):
-    fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(out / f"{name}.{ext}", dpi=110)
-    plt.close(fig)
 
 
 def chart4(rows, out):
