@@ -3,10 +3,11 @@
 # slurmctld and slurmd, all under one temporary folder, on free nonstandard ports, so it clashes
 # neither with a system Slurm nor with another copy of itself.
 #
-#   eval "$(tools/farm/test_slurm.sh start [DIR])"   # prints export SLURM_CONF=... KILN_TEST_SLURM_DIR=...
+#   env=$(tools/farm/test_slurm.sh start [DIR]) && eval "$env"  # export SLURM_CONF=... KILN_TEST_SLURM_DIR=...
 #   tools/farm/test_slurm.sh stop DIR               # cancels jobs, stops every process, removes DIR
 #
-# start creates DIR (default: a new mktemp folder), waits until sinfo shows the node idle
+# start creates DIR (default: a new mktemp folder; every folder above it must be searchable by all,
+# munged insists), waits until sinfo shows the node idle
 # (KILN_TEST_SLURM_TIMEOUT seconds, default 60) and prints the exports on stdout; on failure it
 # prints the daemons' logs to stderr, stops what it started and exits 1. DIR/env.sh holds the same
 # exports. stop cancels the jobs (slurmstepd ends their processes), then ends, each by its id,

@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""tools/farm/kiln_farm.py without a cluster: plan checking, the task list and sbatch scripts of
+--dry-run and a written work folder, the EXR header reader against kiln's own --tile bands, and
+finalize's report on missing and damaged bands.
+Usage: kiln_farm_test.py SOURCE_DIR KILN_BINARY"""
+
+import contextlib
+import io
+import json
+import os
+import shlex
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SOURCE_DIR, KILN = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+sys.path.insert(0, os.path.join(SOURCE_DIR, "tools", "farm"))
+import kiln_farm  # noqa: E402
+
+CORNELL = os.path.join(SOURCE_DIR, "scenes", "cornell_box.gltf")
+
+
+def run_main(args):
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = kiln_farm.main(args)
+    return rc, out.getvalue(), err.getvalue()
+
+
+class FarmTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write_plan(self, plan):
+        path = os.path.join(self.dir, "plan.json")
+        with open(path, "w") as f:
+            json.dump(plan, f) if not isinstance(plan, str) else f.write(plan)
+        return path
+
+    def job(self, name="a", **overrides):
+        job = {"name": name, "asset": CORNELL, "output": os.path.join(self.dir, "out", name + ".exr"),
+               "render_args": ["--width", "40", "--height", "10", "--spp", "1"]}
+        job.update(overrides)
+        return job
+
+    def assert_plan_error(self, plan, expected):
+        path = self.write_plan(plan)
+        rc, _, err = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run"])
+        self.assertEqual(rc, 2)
+        self.assertEqual(err.count("\n"), 1, err)
+        self.assertIn(f"{path}: {expected}", err)
+
+    def test_bad_plans_are_refused_with_the_json_path(self):
+        self.assert_plan_error("{", "line 1, column 2")
+        self.assert_plan_error({"version": 2, "jobs": []}, "/version: expected 1, got 2")
+        self.assert_plan_error({"version": 1, "jobs": []}, "/jobs: expected a non-empty array")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(), self.job()]}, "/jobs/1/name: 'a' is not unique")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(name="../x")]}, "/jobs/0/name: '../x' must be")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(asset="scenes/x.gltf")]},
+                               "/jobs/0/asset: 'scenes/x.gltf' is not an absolute path")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(), self.job("b", output=self.job()["output"])]},
+                               "/jobs/1/output:")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(render_args=["--tile", "0/2"])]},
+                               "/jobs/0/render_args/0: '--tile' is set by the farm")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(render_args="--spp 4")]},
+                               "/jobs/0/render_args: expected an array of strings")
+
+    def test_dry_run_prints_both_scripts_and_writes_nothing(self):
+        path = self.write_plan({"version": 1, "jobs": [self.job("a"), self.job("b")]})
+        work = os.path.join(self.dir, "work")
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", work, "--tiles", "3", "--dry-run",
+                               "--partition", "render", "--time", "0:30:00", "--cpus-per-task", "4",
+                               "--mem", "3G", "--array-limit", "5", "--max-retries", "2", "--kiln", KILN])
+        self.assertEqual(rc, 0)
+        self.assertFalse(os.path.exists(work))
+        for line in ("#SBATCH --array=0-5%5", "#SBATCH --partition=render", "#SBATCH --time=0:30:00",
+                     "#SBATCH --cpus-per-task=4", "#SBATCH --mem=3G", "#SBATCH --requeue", "max_retries=2",
+                     f"#SBATCH --output={work}/logs/render.%A_%a.log",
+                     f"exec python3 {work}/kiln_farm.py finalize --work-dir {work}",
+                     "--dependency=afterany:<render job id>"):
+            self.assertIn(line, out)
+
+    def test_tasks_render_exactly_the_bands_that_stitch(self):
+        # Each line of tasks.txt, run as a shell command, renders its band where farm.json says;
+        # finalize then stitches them into the single-process image.
+        path = self.write_plan({"version": 1, "jobs": [self.job("a"), self.job("b", render_args=[
+            "--width", "40", "--height", "10", "--spp", "2", "--threads", "2", "--float"])]})
+        options = kiln_farm.parse_args(["submit", "--plan", path, "--work-dir", self.dir, "--tiles", "3",
+                                        "--cpus-per-task", "3", "--kiln", KILN])
+        plan = kiln_farm.load_plan(path)
+        tasks = kiln_farm.build_tasks(plan, KILN, 3, 3, self.dir)
+        kiln_farm.write_work_dir(options, plan, tasks)
+        with open(os.path.join(self.dir, "tasks.txt")) as f:
+            lines = f.read().splitlines()
+        self.assertEqual(len(lines), 6)
+        self.assertEqual(shlex.split(lines[4]), [KILN, "render", CORNELL, "-o",
+                                                 os.path.join(self.dir, "tiles", "b.1of3.exr"), "--tile", "1/3",
+                                                 "--width", "40", "--height", "10", "--spp", "2", "--threads", "2",
+                                                 "--float"])
+        self.assertEqual(shlex.split(lines[0])[-2:], ["--threads", "3"])  # the plan left threads open
+        for k, line in enumerate(lines):
+            if k == 5:
+                continue  # band 2 of b stays missing
+            subprocess.run(shlex.split(line) + ["-q"], check=True)
+        for i in range(3):
+            header = kiln_farm.read_exr_header(os.path.join(self.dir, "tiles", f"a.{i}of3.exr"))
+            y0, y1 = kiln_farm.band_rows(i, 3, 10)
+            self.assertEqual(header["data_window"], [0, y0, 39, y1 - 1])
+            self.assertEqual(header["display_window"], [0, 0, 39, 9])
+        # Damage band 0 of b: cut it short.
+        damaged = os.path.join(self.dir, "tiles", "b.0of3.exr")
+        with open(damaged, "rb") as f:
+            data = f.read()
+        with open(damaged, "wb") as f:
+            f.write(data[:len(data) - 40])
+        with open(os.path.join(self.dir, "status", "5.rc"), "w") as f:
+            f.write("1\n")
+        rc, _, err = run_main(["finalize", "--work-dir", self.dir])
+        self.assertEqual(rc, 1)
+        with open(os.path.join(self.dir, "verify.json")) as f:
+            report = json.load(f)
+        self.assertFalse(report["ok"])
+        a, b = report["jobs"]
+        self.assertTrue(a["ok"], a)
+        self.assertEqual((a["width"], a["height"]), (40, 10))
+        self.assertEqual(a["channels"], ["A:half", "B:half", "G:half", "N.X:half", "N.Y:half", "N.Z:half",
+                                         "R:half", "Z:float"])
+        self.assertEqual(len(b["problems"]), 2, b)
+        self.assertIn("band 0 of 3", b["problems"][0])
+        self.assertIn("truncated", b["problems"][0])
+        self.assertTrue(b["problems"][1].startswith("band 2 of 3 missing (task 5: exit 1; log "), b)
+        self.assertFalse(os.path.exists(b["output"]))
+        # The stitched output has the bytes of a single-process render apart from its header.
+        reference = os.path.join(self.dir, "reference.exr")
+        subprocess.run([KILN, "render", CORNELL, "-o", reference, "--width", "40", "--height", "10", "--spp", "1",
+                        "-q"], check=True)
+        self.assertEqual(kiln_farm.read_exr_header(reference), kiln_farm.read_exr_header(a["output"]))
+        diff = subprocess.run(["idiff", "-q", "-fail", "0", "-failpercent", "0", "-warn", "0", "-a", reference,
+                               a["output"]], capture_output=True)
+        self.assertEqual(diff.returncode, 0, diff.stdout)
+
+    def test_one_band_is_moved_into_place(self):
+        path = self.write_plan({"version": 1, "jobs": [self.job("whole")]})
+        options = kiln_farm.parse_args(["submit", "--plan", path, "--work-dir", self.dir, "--kiln", KILN])
+        plan = kiln_farm.load_plan(path)
+        tasks = kiln_farm.build_tasks(plan, KILN, 1, 1, self.dir)
+        kiln_farm.write_work_dir(options, plan, tasks)
+        with open(os.path.join(self.dir, "tasks.txt")) as f:
+            argv = shlex.split(f.read())
+        self.assertNotIn("--tile", argv)
+        subprocess.run(argv + ["-q"], check=True)
+        rc, _, _ = run_main(["finalize", "--work-dir", self.dir])
+        self.assertEqual(rc, 0)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "tiles", "whole.0of1.exr")))
+        header = kiln_farm.read_exr_header(self.job("whole")["output"])
+        self.assertEqual(header["data_window"], [0, 0, 39, 9])
+
+    def test_header_reader_refuses_what_is_not_exr(self):
+        path = os.path.join(self.dir, "x.exr")
+        with open(path, "wb") as f:
+            f.write(b"P6\n1 1\n255\n\0\0\0")
+        with self.assertRaisesRegex(ValueError, "not an OpenEXR file"):
+            kiln_farm.read_exr_header(path)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
