@@ -28,6 +28,8 @@ cleanup() {
   exit "$rc"
 }
 trap cleanup EXIT
+trap 'exit 143' TERM  # so that an interrupted run also stops its daemons
+trap 'exit 130' INT
 slurm_env=$("$farm/test_slurm.sh" start "$scratch/slurm")  # a plain assignment, so set -e sees a failure
 eval "$slurm_env"
 
