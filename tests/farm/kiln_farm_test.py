@@ -160,6 +160,40 @@ class FarmTest(unittest.TestCase):
         header = kiln_farm.read_exr_header(self.job("whole")["output"])
         self.assertEqual(header["data_window"], [0, 0, 39, 9])
 
+    def fake_kiln(self, with_plan_only):
+        """A kiln stand-in whose batch command writes a one-job plan and records its arguments."""
+        path = os.path.join(self.dir, "fake_kiln")
+        job = json.dumps({"version": 1, "jobs": [self.job("from_manifest")]})
+        help_text = "--plan-only PLAN  write the resolved plan" if with_plan_only else "Subcommands: render"
+        with open(path, "w") as f:
+            f.write("#!/bin/sh\n"
+                    f"[ \"$2\" = --help ] && {{ echo '{help_text}'; exit 0; }}\n"
+                    f"echo \"$@\" >{self.dir}/batch_args\n"
+                    "while [ \"$1\" != --plan-only ]; do shift; done\n"
+                    f"echo '{job}' >\"$2\"\n")
+        os.chmod(path, 0o755)
+        return path
+
+    def test_manifest_goes_through_kiln_batch_plan_only(self):
+        kiln = self.fake_kiln(with_plan_only=True)
+        work = os.path.join(self.dir, "work")
+        rc, out, err = run_main(["submit", "--manifest", "shots.csv", "--out-dir", "renders", "--work-dir", work,
+                                 "--kiln", kiln, "--tiles", "2", "--dry-run", "--", "--spp", "4"])
+        self.assertEqual(rc, 0, err)
+        with open(os.path.join(self.dir, "batch_args")) as f:
+            self.assertEqual(f.read().split(), ["batch", "--manifest", os.path.abspath("shots.csv"), "--out-dir",
+                                                os.path.abspath("renders"), "--plan-only",
+                                                os.path.join(work, "plan.json"), "--spp", "4"])
+        self.assertIn("#SBATCH --array=0-1\n", out)  # the plan's one job in two bands
+
+    def test_manifest_needs_a_kiln_with_plan_only(self):
+        kiln = self.fake_kiln(with_plan_only=False)
+        rc, _, err = run_main(["submit", "--manifest", "shots.csv", "--out-dir", "renders", "--work-dir", self.dir,
+                               "--kiln", kiln, "--dry-run"])
+        self.assertEqual(rc, 2)
+        self.assertIn("'kiln batch --plan-only' is not supported by this binary", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "batch_args")))
+
     def test_header_reader_refuses_what_is_not_exr(self):
         path = os.path.join(self.dir, "x.exr")
         with open(path, "wb") as f:

@@ -237,9 +237,12 @@ def write_work_dir(options, plan, tasks):
         os.makedirs(os.path.dirname(job["output"]), exist_ok=True)
 
 
-def sbatch(args):
+def sbatch(args, cancel_on_failure=None):
+    """Submits; on failure cancels cancel_on_failure (the array a finalize job would have ended)."""
     result = subprocess.run(["sbatch", "--parsable"] + args, capture_output=True, text=True)
     if result.returncode != 0:
+        if cancel_on_failure:
+            subprocess.run(["scancel", cancel_on_failure])
         sys.exit(f"kiln farm: sbatch {' '.join(args)} failed: {result.stderr.strip()}")
     return result.stdout.strip().split(";")[0]
 
@@ -298,7 +301,8 @@ def submit(options):
         with open(path, "w", encoding="utf-8") as f:
             f.write(text)
     array_id = sbatch([render_path])
-    final_id = sbatch([f"--dependency=afterany:{array_id}", "--kill-on-invalid-dep=no", finalize_path])
+    final_id = sbatch([f"--dependency=afterany:{array_id}", "--kill-on-invalid-dep=no", finalize_path],
+                      cancel_on_failure=array_id)
     with open(os.path.join(options.work_dir, "submission.json"), "w", encoding="utf-8") as f:
         json.dump({"render_job": array_id, "finalize_job": final_id, "tasks": len(tasks)}, f, indent=2)
     print(f"kiln farm: render array job {array_id} ({len(tasks)} tasks), finalize job {final_id}; "
