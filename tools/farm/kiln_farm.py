@@ -139,7 +139,8 @@ def build_tasks(plan, kiln, tiles, cpus_per_task, work_dir):
             args += ["--threads", str(cpus_per_task)]
         for i in range(tiles):
             band = ["--tile", f"{i}/{tiles}"] if tiles > 1 else []
-            argv = [kiln, "render", job["asset"], "-o", tile_path(work_dir, job["name"], i, tiles)] + band + args
+            tile = tile_path(work_dir, job["name"], i, tiles)
+            argv = [kiln, "render", job["asset"], "-o", tile] + band + args
             tasks.append((job["name"], i, argv))
     return tasks
 

@@ -61,6 +61,16 @@ stop_slurm() {
   esac
 }
 
+start_failed() {
+  echo "test_slurm: start failed" >&2
+  local f
+  for f in "$1"/log/*; do
+    echo "== $f" >&2
+    tail -n 20 "$f" >&2
+  done
+  stop_slurm "$1"
+}
+
 free_port() {
   python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
 }
@@ -77,14 +87,14 @@ start_slurm() {
   chmod 755 "$dir"
   mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/log"
   chmod 755 "$dir/munge"
-  trap 'echo "test_slurm: start failed" >&2; for f in "$dir"/log/*; do echo "== $f" >&2; tail -n 20 "$f" >&2; done; stop_slurm "$dir"' ERR
+  trap 'start_failed "$dir"' ERR
 
   local daemon_env=(env "KILN_TEST_SLURM_DAEMON=$dir")
   local socket="$dir/munge/munge.socket"
   dd if=/dev/urandom of="$dir/munge/munge.key" bs=1024 count=1 status=none
   chmod 400 "$dir/munge/munge.key"
-  "${daemon_env[@]}" munged --socket="$socket" --key-file="$dir/munge/munge.key" --pid-file="$dir/munge/munged.pid" \
-    --log-file="$dir/log/munged.log" --seed-file="$dir/munge/munged.seed" --num-threads=2
+  "${daemon_env[@]}" munged --socket="$socket" --key-file="$dir/munge/munge.key" \
+    --pid-file="$dir/munge/munged.pid" --log-file="$dir/log/munged.log" --seed-file="$dir/munge/munged.seed" --num-threads=2
   local i
   for i in $(seq 1 50); do [ -S "$socket" ] && break; sleep 0.1; done
   [ -S "$socket" ]
