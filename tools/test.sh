@@ -7,6 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/install_dependencies.sh
+# The farm test starts a private Slurm as root; install its packages before the suite starts.
+[ "$(id -u)" -ne 0 ] || tools/farm/install_test_slurm.sh
 jobs="$(nproc)"
 
 echo "== release build and tests"
