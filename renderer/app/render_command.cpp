@@ -13,6 +13,7 @@
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
+#include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
@@ -191,25 +192,14 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
   return out.str();
 }
 
-// FNV-1a (64 bit) of the file's bytes in hex, so a composite can tell which scene an image came
-// from. Only the named file: external buffers and images are not hashed.
-std::string file_hash_hex(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  uint64_t h = 0xcbf29ce484222325ull;
-  char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof buffer);
-    for (std::streamsize k = 0; k < in.gcount(); ++k) h = (h ^ uint8_t(buffer[k])) * 0x100000001b3ull;
-  }
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)h);
-  return text;
-}
-
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
+  add_view_settings(app, o);
+}
+
+void add_view_settings(CLI::App& app, render_options& o) {
   app.add_option("--width", o.width,
                  "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
@@ -350,6 +340,10 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
+  add_image_options(app, o);
+}
+
+void add_image_options(CLI::App& app, render_options& o) {
   app.add_flag("--float", o.full_float,
                "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
   app.add_option_function<std::string>(
@@ -457,11 +451,13 @@ render_settings make_render_settings(const render_options& options) {
   return settings;
 }
 
-void run_render(const render_options& options) {
+void run_render(const render_options& options, const render_fingerprint* known) {
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
 
+  // Hashed before loading: an asset edited during the render then reads as stale next time.
+  const render_fingerprint fingerprint = known ? *known : make_fingerprint(options);
   prepared_scene prepared = prepare_scene(options);
   const scene& world = prepared.world;
   const view_camera& cam = prepared.cam;
@@ -517,6 +513,8 @@ void run_render(const render_options& options) {
       {"kiln/command_line", options.command_line},
       {"kiln/aovs", aov_list_name(options.aovs)},
       {"kiln/scene_hash", file_hash_hex(options.input)},
+      {"kiln/input_hash", fingerprint.input_hash},
+      {"kiln/settings_hash", fingerprint.settings_hash},
   };
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
@@ -525,7 +523,7 @@ void run_render(const render_options& options) {
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
-  if (!options.quiet) {
+  if (!options.quiet && options.summary_line) {
     const std::string sampling =
         settings.adaptive.threshold > 0.0f
             ? "adaptive " + sampling_description(settings, true)

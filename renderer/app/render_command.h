@@ -61,12 +61,19 @@ struct render_options {
   uint64_t max_texels = uint64_t(1) << 28;
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
   bool quiet = false;
+  bool summary_line = true;  // the closing line with timings and ray counts (kiln batch prints its own)
   std::string command_line;
 };
 
 // Declares the options every subcommand that renders shares (asset, image size, camera, samples,
 // shading limits, threads, grid settings), writing into options. `kiln compare` reuses them.
 void add_view_options(CLI::App& app, render_options& options);
+
+// The view options without the asset positional (kiln batch takes many assets).
+void add_view_settings(CLI::App& app, render_options& options);
+
+// What render adds to the view options besides -o: --float, --aovs, --crop, --tile, --accel.
+void add_image_options(CLI::App& app, render_options& options);
 
 // Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);
@@ -85,7 +92,10 @@ prepared_scene prepare_scene(const render_options& options);
 // The renderer's settings from the command-line options.
 render_settings make_render_settings(const render_options& options);
 
-// Runs a render. Throws kiln::error for bad input (kind input) or I/O and render failures.
-void run_render(const render_options& options);
+struct render_fingerprint;
+
+// Runs a render; the EXR records the fingerprint (computed here unless known). Throws
+// kiln::error for bad input (kind input), I/O and render failures, or an interrupt.
+void run_render(const render_options& options, const render_fingerprint* known = nullptr);
 
 }  // namespace kiln
