@@ -93,6 +93,8 @@ void add_batch_options(CLI::App& app, batch_options& o) {
 void apply_render_arguments(render_options& options, const std::vector<std::string>& arguments) {
   CLI::App parser{"kiln render options"};
   parser.set_help_flag();  // no --help inside a manifest
+  // Later arguments refine earlier ones: manifest defaults, then the job's fields, then overrides.
+  parser.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   add_view_settings(parser, options);
   add_image_options(parser, options);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
