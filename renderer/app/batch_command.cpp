@@ -45,8 +45,9 @@ std::string default_output(const batch_job_spec& spec) {
 }
 
 std::string shell_quoted(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:") ==
-                        std::string::npos)
+  if (!s.empty() &&
+      s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:") ==
+          std::string::npos)
     return s;
   std::string out = "'";
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -56,7 +57,8 @@ std::string shell_quoted(const std::string& s) {
 // The `kiln render` line that renders the job, for the EXR header.
 std::string render_command_line(const render_options& o) {
   std::string line = "kiln render " + shell_quoted(o.input) + " -o " + shell_quoted(o.output);
-  for (const std::string& a : canonical_render_arguments(o, region_arguments::include)) line += " " + shell_quoted(a);
+  for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
+    line += " " + shell_quoted(a);
   return line;
 }
 
@@ -68,7 +70,9 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
       throw input_error("", job.where, "a plan leaves --crop and --tile to whoever runs it; drop them");
     std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
     if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
-    list.push_back({{"name", job.name}, {"asset", job.options.input}, {"output", job.options.output},
+    list.push_back({{"name", job.name},
+                    {"asset", job.options.input},
+                    {"output", job.options.output},
                     {"render_args", args}});
   }
   return {{"version", 1}, {"jobs", list}};
@@ -77,16 +81,19 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
 }  // namespace
 
 void add_batch_options(CLI::App& app, batch_options& o) {
-  app.add_option("assets", o.assets,
-                 "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
+  app.add_option(
+      "assets", o.assets,
+      "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
   add_view_settings(app, o.defaults);
   add_image_options(app, o.defaults);
   app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();
-  app.add_flag("--resume", o.resume,
-               "Skip jobs whose output exists, reads back complete and records the same input and settings hashes");
-  app.add_option("--summary", o.summary, "Write a JSON summary of every job (also after a failure or a signal)");
+  app.add_flag(
+      "--resume", o.resume,
+      "Skip jobs whose output exists, reads back complete and records the same input and settings hashes");
+  app.add_option("--summary", o.summary,
+                 "Write a JSON summary of every job (also after a failure or a signal)");
   app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
 }
 
@@ -141,8 +148,9 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     job.options.command_line = render_command_line(job.options);
     auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
     if (!inserted)
-      throw input_error("", spec.where, "writes " + job.options.output + ", as does " + jobs[it->second].where +
-                                            " (give one of them another output)");
+      throw input_error("", spec.where,
+                        "writes " + job.options.output + ", as does " + jobs[it->second].where +
+                            " (give one of them another output)");
     // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
     fs::path relative = output.lexically_normal().lexically_relative(out_dir);
     job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()

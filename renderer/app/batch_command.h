@@ -27,9 +27,9 @@ struct batch_options {
 
 // One resolved job: the options `kiln render` would get, or why they are invalid.
 struct batch_job {
-  std::string name;  // unique: the output's path under --out-dir without .exr
-  std::string where;  // the manifest location, or the asset argument
-  render_options options;  // input and output absolute
+  std::string name;                    // unique: the output's path under --out-dir without .exr
+  std::string where;                   // the manifest location, or the asset argument
+  render_options options;              // input and output absolute
   std::vector<std::string> arguments;  // the job's render arguments after the defaults
   std::string error;  // non-empty: the options did not parse; the job fails without rendering
 };

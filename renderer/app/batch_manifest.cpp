@@ -49,9 +49,11 @@ bool is_integer_text(const std::string& s) {
 
 // {"max-depth": 4, "show-background": true} into render options; a false flag becomes
 // --flag=false, which CLI11 reads as off.
-std::vector<std::string> option_arguments(const json& object, const std::string& file, const std::string& where) {
+std::vector<std::string> option_arguments(const json& object, const std::string& file,
+                                          const std::string& where) {
   if (!object.is_object())
-    throw input_error(file, where, std::string("expected an object of render options, got ") + object.type_name());
+    throw input_error(file, where,
+                      std::string("expected an object of render options, got ") + object.type_name());
   std::vector<std::string> out;
   for (auto it = object.begin(); it != object.end(); ++it) {
     const std::string name = it.key().rfind("--", 0) == 0 ? it.key() : "--" + it.key();
@@ -71,19 +73,22 @@ std::vector<std::string> option_arguments(const json& object, const std::string&
 }
 
 batch_job_spec json_job(const json& job, const std::string& file, const std::string& where) {
-  if (!job.is_object()) throw input_error(file, where, std::string("expected a job object, got ") + job.type_name());
+  if (!job.is_object())
+    throw input_error(file, where, std::string("expected a job object, got ") + job.type_name());
   batch_job_spec spec;
   spec.where = file + ": " + where;
   auto string_field = [&](const char* key) -> std::string {
     const json& value = job.at(key);
-    if (!value.is_string()) throw input_error(file, where + "/" + key, std::string("expected a string, got ") + value.type_name());
+    if (!value.is_string())
+      throw input_error(file, where + "/" + key, std::string("expected a string, got ") + value.type_name());
     return value.get<std::string>();
   };
   for (auto it = job.begin(); it != job.end(); ++it) {
     const std::string& key = it.key();
     if (key != "asset" && key != "camera" && key != "resolution" && key != "spp" && key != "output" &&
         key != "overrides")
-      throw input_error(file, where + "/" + key, "unknown job field (expected " + std::string(job_fields) + ")");
+      throw input_error(file, where + "/" + key,
+                        "unknown job field (expected " + std::string(job_fields) + ")");
   }
   if (!job.contains("asset")) throw input_error(file, where, "the job has no \"asset\"");
   spec.asset = string_field("asset");
@@ -98,10 +103,12 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
     spec.arguments.insert(spec.arguments.end(), {"--camera", spec.camera});
   }
   if (job.contains("resolution") && !resolution_arguments(string_field("resolution"), spec.arguments))
-    throw input_error(file, where + "/resolution", "expected WIDTHxHEIGHT such as 640x480, got " + job["resolution"].dump());
+    throw input_error(file, where + "/resolution",
+                      "expected WIDTHxHEIGHT such as 640x480, got " + job["resolution"].dump());
   if (job.contains("spp")) {
     const json& spp = job["spp"];
-    if (!spp.is_number_integer()) throw input_error(file, where + "/spp", "expected an integer, got " + spp.dump());
+    if (!spp.is_number_integer())
+      throw input_error(file, where + "/spp", "expected an integer, got " + spp.dump());
     spec.arguments.insert(spec.arguments.end(), {"--spp", spp.dump()});
   }
   if (job.contains("output")) spec.output = string_field("output");
@@ -140,7 +147,8 @@ batch_manifest read_json_manifest(const std::string& path) {
       if (it.key() != "defaults" && it.key() != "jobs")
         throw input_error(path, "/" + it.key(), "unknown field (expected \"defaults\" and \"jobs\")");
     if (!doc.contains("jobs")) throw input_error(path, "", "the manifest has no \"jobs\" array");
-    if (doc.contains("defaults")) manifest.default_arguments = option_arguments(doc["defaults"], path, "/defaults");
+    if (doc.contains("defaults"))
+      manifest.default_arguments = option_arguments(doc["defaults"], path, "/defaults");
     jobs = &doc["jobs"];
     jobs_where = "/jobs";
   }
@@ -206,8 +214,9 @@ batch_manifest read_csv_manifest(const std::string& path) {
       continue;
     }
     if (fields.size() != header.size())
-      throw input_error(path, where, "expected " + std::to_string(header.size()) + " fields, got " +
-                                         std::to_string(fields.size()));
+      throw input_error(
+          path, where,
+          "expected " + std::to_string(header.size()) + " fields, got " + std::to_string(fields.size()));
     batch_job_spec spec;
     spec.where = path + ": " + where;
     std::vector<std::string> overrides;
@@ -224,9 +233,11 @@ batch_manifest read_csv_manifest(const std::string& path) {
         spec.arguments.insert(spec.arguments.end(), {"--camera", value});
       } else if (column == "resolution") {
         if (!resolution_arguments(value, spec.arguments))
-          throw input_error(path, where, "resolution: expected WIDTHxHEIGHT such as 640x480, got '" + value + "'");
+          throw input_error(path, where,
+                            "resolution: expected WIDTHxHEIGHT such as 640x480, got '" + value + "'");
       } else if (column == "spp") {
-        if (!is_integer_text(value)) throw input_error(path, where, "spp: expected an integer, got '" + value + "'");
+        if (!is_integer_text(value))
+          throw input_error(path, where, "spp: expected an integer, got '" + value + "'");
         spec.arguments.insert(spec.arguments.end(), {"--spp", value});
       } else if (column == "output") {
         spec.output = value;
@@ -237,7 +248,8 @@ batch_manifest read_csv_manifest(const std::string& path) {
     spec.arguments.insert(spec.arguments.end(), overrides.begin(), overrides.end());
     manifest.jobs.push_back(std::move(spec));
   }
-  if (header.empty()) throw input_error(path, "", "empty manifest (expected a header row: " + std::string(job_fields) + ")");
+  if (header.empty())
+    throw input_error(path, "", "empty manifest (expected a header row: " + std::string(job_fields) + ")");
   return manifest;
 }
 

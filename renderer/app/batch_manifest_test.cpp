@@ -97,7 +97,8 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
 }
 
 TEST_F(manifest, a_bare_json_array_is_a_list_of_jobs) {
-  const std::vector<batch_job> jobs = plan(write("m.json", R"([{"asset": "x.gltf"}, {"asset": "y.gltf", "spp": 2}])"));
+  const std::vector<batch_job> jobs =
+      plan(write("m.json", R"([{"asset": "x.gltf"}, {"asset": "y.gltf", "spp": 2}])"));
   ASSERT_EQ(jobs.size(), 2u);
   EXPECT_EQ(jobs[0].options.output, (dir / "out/x.exr").string());
   EXPECT_EQ(jobs[1].options.samples_per_pixel, 2);
@@ -137,11 +138,16 @@ TEST_F(manifest, bad_csv_rows_are_refused_with_file_and_line) {
   EXPECT_EQ(error_for("b.csv", header + "x.gltf,,,four,,\n"),
             (dir / "b.csv").string() + ": line 2: spp: expected an integer, got 'four'");
   EXPECT_EQ(error_for("c.csv", header + "\nx.gltf,,640by480,,,\n"),
-            (dir / "c.csv").string() + ": line 3: resolution: expected WIDTHxHEIGHT such as 640x480, got '640by480'");
-  EXPECT_EQ(error_for("d.csv", "asset,colour\nx.gltf,red\n"),
-            (dir / "d.csv").string() + ": line 1: unknown column 'colour' (expected asset, camera, resolution, spp, output, overrides)");
-  EXPECT_EQ(error_for("e.csv", header + ",Cam,,,,\n"), (dir / "e.csv").string() + ": line 2: empty asset path");
-  EXPECT_EQ(error_for("f.csv", header + "\"x.gltf,,,,,\n"), (dir / "f.csv").string() + ": line 2: unclosed quote");
+            (dir / "c.csv").string() +
+                ": line 3: resolution: expected WIDTHxHEIGHT such as 640x480, got '640by480'");
+  EXPECT_EQ(
+      error_for("d.csv", "asset,colour\nx.gltf,red\n"),
+      (dir / "d.csv").string() +
+          ": line 1: unknown column 'colour' (expected asset, camera, resolution, spp, output, overrides)");
+  EXPECT_EQ(error_for("e.csv", header + ",Cam,,,,\n"),
+            (dir / "e.csv").string() + ": line 2: empty asset path");
+  EXPECT_EQ(error_for("f.csv", header + "\"x.gltf,,,,,\n"),
+            (dir / "f.csv").string() + ": line 2: unclosed quote");
 }
 
 TEST_F(manifest, bad_json_is_refused_with_file_and_json_pointer) {
@@ -151,11 +157,13 @@ TEST_F(manifest, bad_json_is_refused_with_file_and_json_pointer) {
             (dir / "b.json").string() + ": /jobs/0/asset: expected a string, got number");
   EXPECT_EQ(error_for("c.json", R"({"jobs": [{"camera": "Cam"}]})"),
             (dir / "c.json").string() + ": /jobs/0: the job has no \"asset\"");
-  EXPECT_EQ(error_for("d.json", R"({"jobs": [{"asset": "x.gltf", "sp": 3}]})"),
-            (dir / "d.json").string() +
-                ": /jobs/0/sp: unknown job field (expected asset, camera, resolution, spp, output, overrides)");
+  EXPECT_EQ(
+      error_for("d.json", R"({"jobs": [{"asset": "x.gltf", "sp": 3}]})"),
+      (dir / "d.json").string() +
+          ": /jobs/0/sp: unknown job field (expected asset, camera, resolution, spp, output, overrides)");
   EXPECT_EQ(error_for("e.json", R"({"jobs": [{"asset": "x.gltf", "overrides": {"aovs": ["beauty"]}}]})"),
-            (dir / "e.json").string() + ": /jobs/0/overrides/aovs: expected a string, number or boolean, got array");
+            (dir / "e.json").string() +
+                ": /jobs/0/overrides/aovs: expected a string, number or boolean, got array");
   EXPECT_EQ(error_for("f.json", R"({"jobs": {"asset": "x.gltf"}})"),
             (dir / "f.json").string() + ": /jobs: expected an array of jobs, got object");
   const std::string syntax = error_for("g.json", "{\"jobs\": [\n  {\"asset\": \"x.gltf\",}\n]}");
@@ -164,7 +172,8 @@ TEST_F(manifest, bad_json_is_refused_with_file_and_json_pointer) {
 }
 
 TEST_F(manifest, a_bad_override_fails_only_its_job_with_the_parsers_message) {
-  const std::vector<batch_job> jobs = plan(write("m.json", R"([{"asset": "x.gltf", "overrides": {"max-depth": 99}},
+  const std::vector<batch_job> jobs =
+      plan(write("m.json", R"([{"asset": "x.gltf", "overrides": {"max-depth": 99}},
       {"asset": "y.gltf", "overrides": {"no-such-option": 1}}, {"asset": "z.gltf"}])"));
   ASSERT_EQ(jobs.size(), 3u);
   EXPECT_EQ(jobs[0].error, "bad render options: --max-depth: Value 99 not in range 0 to 64");
@@ -180,8 +189,8 @@ TEST_F(manifest, two_jobs_writing_one_output_are_refused_before_anything_renders
     ADD_FAILURE() << "two jobs write out/x.exr";
   } catch (const error& e) {
     EXPECT_EQ(e.kind(), error_kind::input);
-    EXPECT_EQ(std::string(e.what()), path + ": /1: writes " + (dir / "out/x.exr").string() + ", as does " + path +
-                                         ": /0 (give one of them another output)");
+    EXPECT_EQ(std::string(e.what()), path + ": /1: writes " + (dir / "out/x.exr").string() + ", as does " +
+                                         path + ": /0 (give one of them another output)");
   }
 }
 

@@ -77,7 +77,8 @@ job_result run_job(const batch_job& job, bool resume) {
 nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vector<job_result>& results,
                             int exit_code, double seconds) {
   nlohmann::json list = nlohmann::json::array();
-  std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0}, {"failed", 0}, {"interrupted", 0}, {"not_started", 0}};
+  std::map<std::string, int> counts{
+      {"rendered", 0}, {"skipped", 0}, {"failed", 0}, {"interrupted", 0}, {"not_started", 0}};
   for (size_t i = 0; i < jobs.size(); ++i) {
     const job_result& r = results[i];
     ++counts[status_name(r.status)];
@@ -129,17 +130,23 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
                  status_name(r.status), r.seconds, r.error.empty() ? "" : ": ", r.error.c_str());
     // ETA from the mean time of a rendered job: skipped ones cost next to nothing.
     const size_t left = jobs.size() - done;
-    if (rendered)
+    if (interrupted)
+      std::fprintf(stderr, "kiln batch: stopped by signal %d, %zu job%s not started\n", interrupt_signal(),
+                   left, left == 1 ? "" : "s");
+    else if (rendered)
       std::fprintf(stderr, "kiln batch: %zu/%zu done, %zu failed, ETA %.1f s\n", done, jobs.size(), failed,
                    render_seconds / double(rendered) * double(left));
     else
       std::fprintf(stderr, "kiln batch: %zu/%zu done, %zu failed, ETA unknown\n", done, jobs.size(), failed);
   }
   if (interrupt_requested()) interrupted = true;
-  const int exit_code = interrupted ? 128 + (interrupt_signal() ? interrupt_signal() : SIGINT) : failed ? 1 : 0;
+  const int exit_code = interrupted ? 128 + (interrupt_signal() ? interrupt_signal() : SIGINT)
+                        : failed    ? 1
+                                    : 0;
   if (!summary.empty()) {
     try {
-      write_text_atomically(summary, summary_json(jobs, results, exit_code, seconds_since(batch_start)).dump(2) + "\n");
+      write_text_atomically(
+          summary, summary_json(jobs, results, exit_code, seconds_since(batch_start)).dump(2) + "\n");
     } catch (const error& e) {
       std::fprintf(stderr, "kiln: %s\n", e.what());
       return exit_code ? exit_code : 1;

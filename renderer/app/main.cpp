@@ -2,6 +2,12 @@
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
 // 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render;
 // `kiln batch` exits 1 when any job failed).
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
 #include "app/batch_command.h"
 #include "app/bench_command.h"
 #include "app/compare_command.h"
@@ -9,13 +15,6 @@
 #include "app/render_command.h"
 #include "app/stitch_command.h"
 #include "core/error.h"
-
-#include <CLI/CLI.hpp>
-
-#include <csignal>
-#include <cstdio>
-#include <exception>
-#include <iostream>
 
 namespace {
 
@@ -88,7 +87,8 @@ int main(int argc, char** argv) {
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';
-    if (e.kind() == kiln::error_kind::interrupted) return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
+    if (e.kind() == kiln::error_kind::interrupted)
+      return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
     return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;
   } catch (const std::bad_alloc&) {
     std::cerr << "kiln: out of memory\n";

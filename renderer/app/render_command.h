@@ -39,14 +39,14 @@ struct render_options {
   double fov_degrees = 45.0;
   int scene_index = -1;
   bool full_float = false;
-  aov_set aovs;  // --aovs; the default is beauty, Z and N
-  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
+  aov_set aovs;                        // --aovs; the default is beauty, Z and N
+  std::optional<pixel_rect> crop;      // --crop x0,y0,x1,y1; checked against the image size once it is known
   int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
   vec3 background{0.0f};
   bool show_background = false;
-  std::string accel = "embree";  // embree | grid | adaptive-grid
+  std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
-  std::string environment;  // equirectangular map file; empty: the --background colour
+  std::string environment;                      // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
   int max_depth = 8;

@@ -40,7 +40,10 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"scene", [](render_options& o) { o.scene_index = 1; }},
       {"float", [](render_options& o) { o.full_float = true; }},
       {"aovs", [](render_options& o) { o.aovs.normal = false; }},
-      {"crop", [](render_options& o) { o.crop = pixel_rect{0, 0, 8, 8}; }},
+      {"crop",
+       [](render_options& o) {
+         o.crop = pixel_rect{0, 0, 8, 8};
+       }},
       {"tile", [](render_options& o) { o.tile_index = 1, o.tile_count = 4; }},
       {"background", [](render_options& o) { o.background = vec3(0.5f); }},
       {"show background", [](render_options& o) { o.show_background = true; }},
