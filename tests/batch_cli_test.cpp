@@ -315,8 +315,9 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
   // b was rendering (or, on a slow machine, not yet started) when the signal came; c never starts.
   EXPECT_TRUE(seen[1] == "interrupted" || seen[1] == "not_started") << seen[1];
   EXPECT_EQ(seen[2], "not_started");
-  if (seen[1] == "interrupted")
+  if (seen[1] == "interrupted") {
     EXPECT_NE(stopped["jobs"][1]["error"].get<std::string>().find("interrupted"), std::string::npos);
+  }
   // Only the finished output: no partial b.exr, no temporary file.
   EXPECT_EQ(files_in(out), (std::vector<std::string>{"a.exr"}));
   const auto a_id = identity(out + "/a.exr");
