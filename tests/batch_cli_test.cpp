@@ -277,9 +277,9 @@ void write_slow_manifest(const fs::path& dir) {
              {"asset": "scenes/cornell_box.gltf", "output": "c.exr", "spp": 26}]})");
 }
 
-TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fresh_run) {
-  const fs::path dir = scratch_folder("batch_sigint");
-  write_slow_manifest(dir);
+// Starts the slow batch in dir, sends signo once the first output exists, and checks the exit code
+// and the summary: a rendered, b interrupted (or not yet started), c not started.
+void expect_signal_stops_batch(const fs::path& dir, int signo) {
   const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
   std::vector<std::string> args = {KILN_BINARY, "batch", "--manifest", (dir / "jobs.json").string(),
                                    "--out-dir", out,     "--summary",  summary,
@@ -301,15 +301,15 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
   for (int i = 0; i < 6000 && !fs::exists(out + "/a.exr"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_TRUE(fs::exists(out + "/a.exr"));
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  ASSERT_EQ(::kill(pid, signo), 0);
   int status = 0;
   ::waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + signo);
 
   const json stopped = read_json(summary);
   const std::vector<std::string> seen = statuses(stopped);
-  EXPECT_EQ(stopped["exit_code"], 130);
+  EXPECT_EQ(stopped["exit_code"], 128 + signo);
   ASSERT_EQ(seen.size(), 3u);
   EXPECT_EQ(seen[0], "rendered");
   // b was rendering (or, on a slow machine, not yet started) when the signal came; c never starts.
@@ -318,6 +318,23 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
   if (seen[1] == "interrupted") {
     EXPECT_NE(stopped["jobs"][1]["error"].get<std::string>().find("interrupted"), std::string::npos);
   }
+  EXPECT_EQ(stopped["totals"]["rendered"], 1);
+  EXPECT_EQ(stopped["totals"]["not_started"].get<int>() + stopped["totals"]["interrupted"].get<int>(), 2);
+}
+
+TEST(batch_cli, sigterm_stops_the_batch_with_exit_143_and_a_summary) {
+  const fs::path dir = scratch_folder("batch_sigterm");
+  write_slow_manifest(dir);
+  expect_signal_stops_batch(dir, SIGTERM);
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"a.exr"}));
+}
+
+TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fresh_run) {
+  const fs::path dir = scratch_folder("batch_sigint");
+  write_slow_manifest(dir);
+  expect_signal_stops_batch(dir, SIGINT);
+  if (HasFatalFailure()) return;
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
   // Only the finished output: no partial b.exr, no temporary file.
   EXPECT_EQ(files_in(out), (std::vector<std::string>{"a.exr"}));
   const auto a_id = identity(out + "/a.exr");
