@@ -1,19 +1,20 @@
 // kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
-// 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render).
+// 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render;
+// `kiln batch` exits 1 when any job failed).
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "app/batch_command.h"
 #include "app/bench_command.h"
 #include "app/compare_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
 #include "app/stitch_command.h"
 #include "core/error.h"
-
-#include <CLI/CLI.hpp>
-
-#include <csignal>
-#include <cstdio>
-#include <exception>
-#include <iostream>
 
 namespace {
 
@@ -61,6 +62,12 @@ int main(int argc, char** argv) {
       "stitch", "Join region EXRs (e.g. the bands of render --tile i/N) into one full-frame EXR");
   kiln::add_stitch_options(*stitch_command, stitch);
 
+  kiln::batch_options batch;
+  batch.defaults.command_line = render.command_line;
+  CLI::App* batch_command = app.add_subcommand(
+      "batch", "Render many assets (arguments, glob patterns or a manifest) with resume and a JSON summary");
+  kiln::add_batch_options(*batch_command, batch);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -76,10 +83,12 @@ int main(int argc, char** argv) {
     if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
     if (bench_command->parsed()) kiln::run_bench_command(bench);
     if (stitch_command->parsed()) kiln::run_stitch(stitch);
+    if (batch_command->parsed()) return kiln::run_batch(batch);  // 0, 1 when a job failed, 128 + signal
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';
-    if (e.kind() == kiln::error_kind::interrupted) return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
+    if (e.kind() == kiln::error_kind::interrupted)
+      return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
     return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;
   } catch (const std::bad_alloc&) {
     std::cerr << "kiln: out of memory\n";

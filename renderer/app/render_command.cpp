@@ -13,6 +13,7 @@
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
+#include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
@@ -191,25 +192,14 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
   return out.str();
 }
 
-// FNV-1a (64 bit) of the file's bytes in hex, so a composite can tell which scene an image came
-// from. Only the named file: external buffers and images are not hashed.
-std::string file_hash_hex(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  uint64_t h = 0xcbf29ce484222325ull;
-  char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof buffer);
-    for (std::streamsize k = 0; k < in.gcount(); ++k) h = (h ^ uint8_t(buffer[k])) * 0x100000001b3ull;
-  }
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)h);
-  return text;
-}
-
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
   app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
+  add_view_settings(app, o);
+}
+
+void add_view_settings(CLI::App& app, render_options& o) {
   app.add_option("--width", o.width,
                  "Image width in pixels (default 640, or from --height and the camera's aspect)")
       ->check(CLI::Range(1, max_image_side));
@@ -225,29 +215,37 @@ void add_view_options(CLI::App& app, render_options& o) {
                  "baseline stratification is measured against)")
       ->check(CLI::IsMember({"stratified", "random"}))
       ->capture_default_str();
-  app.add_option("--filter", o.filter,
-                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
-                 "1.5 with sigma radius/3, blackman-harris 2)")
+  app.add_option(
+         "--filter", o.filter,
+         "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+         "1.5 with sigma radius/3, blackman-harris 2)")
       ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
       ->capture_default_str();
   app.add_option_function<float>(
       "--filter-radius",
       [&o](float r) {
-        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        if (!(r > 0.0f && r <= 16.0f))
+          throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
         o.filter_radius = r;
       },
       "Filter radius in pixels, in (0, 16] (default: the filter's own)");
-  app.add_option("--adaptive-threshold", o.adaptive_threshold,
-                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
-                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+  app.add_option(
+         "--adaptive-threshold", o.adaptive_threshold,
+         "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+         "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
       ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
-  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--camera", o.camera,
+                 "glTF camera by name or index (default: the first camera in the file)");
   app.add_option_function<std::string>(
       "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
@@ -350,6 +348,10 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
+  add_image_options(app, o);
+}
+
+void add_image_options(CLI::App& app, render_options& o) {
   app.add_flag("--float", o.full_float,
                "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
   app.add_option_function<std::string>(
@@ -386,7 +388,8 @@ void add_render_options(CLI::App& app, render_options& o) {
            int index = -1, count = 0;
            if (!(in >> index >> slash >> count) || slash != '/' || !(in >> std::ws).eof() || count < 1 ||
                index < 0 || index >= count)
-             throw CLI::ValidationError("--tile", "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
+             throw CLI::ValidationError("--tile",
+                                        "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
            o.tile_index = index;
            o.tile_count = count;
          },
@@ -419,7 +422,8 @@ prepared_scene prepare_scene(const render_options& options) {
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet) {
-    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings)
+      std::cerr << "kiln: warning: " << warning << '\n';
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
       std::cerr << "kiln: warning: dropped " << dropped << " degenerate triangle" << (dropped == 1 ? "" : "s")
                 << " (repeated vertices or zero area)\n";
@@ -445,7 +449,8 @@ render_settings make_render_settings(const render_options& options) {
   if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
     throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
-    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
+    throw input_error("", "--adaptive-threshold",
+                      "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -457,11 +462,13 @@ render_settings make_render_settings(const render_options& options) {
   return settings;
 }
 
-void run_render(const render_options& options) {
+void run_render(const render_options& options, const render_fingerprint* known) {
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
 
+  // Hashed before loading: an asset edited during the render then reads as stale next time.
+  const render_fingerprint fingerprint = known ? *known : make_fingerprint(options);
   prepared_scene prepared = prepare_scene(options);
   const scene& world = prepared.world;
   const view_camera& cam = prepared.cam;
@@ -471,20 +478,23 @@ void run_render(const render_options& options) {
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel =
       make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
-  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  double build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
   if (options.crop) {
     const pixel_rect& c = *options.crop;
     if (c.x1 > cam.width || c.y1 > cam.height)
-      throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
-                                          std::to_string(cam.height) + " image");
+      throw input_error("", "--crop",
+                        "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                            std::to_string(cam.height) + " image");
     settings.crop = c;
   }
   if (options.tile_count > 0) {
     if (options.tile_count > cam.height)
-      throw input_error("", "--tile", "cannot split " + std::to_string(cam.height) + " rows into " +
-                                          std::to_string(options.tile_count) + " bands");
+      throw input_error("", "--tile",
+                        "cannot split " + std::to_string(cam.height) + " rows into " +
+                            std::to_string(options.tile_count) + " bands");
     settings.crop = frame_band(options.tile_index, options.tile_count, cam.width, cam.height);
   }
   render_statistics stats;
@@ -517,6 +527,8 @@ void run_render(const render_options& options) {
       {"kiln/command_line", options.command_line},
       {"kiln/aovs", aov_list_name(options.aovs)},
       {"kiln/scene_hash", file_hash_hex(options.input)},
+      {"kiln/input_hash", fingerprint.input_hash},
+      {"kiln/settings_hash", fingerprint.settings_hash},
   };
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
@@ -525,11 +537,11 @@ void run_render(const render_options& options) {
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
-  if (!options.quiet) {
-    const std::string sampling =
-        settings.adaptive.threshold > 0.0f
-            ? "adaptive " + sampling_description(settings, true)
-            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
+  if (!options.quiet && options.summary_line) {
+    const std::string sampling = settings.adaptive.threshold > 0.0f
+                                     ? "adaptive " + sampling_description(settings, true)
+                                     : std::to_string(options.samples_per_pixel) + " spp, " +
+                                           sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
                  "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays; %llu non-finite samples "
@@ -537,8 +549,7 @@ void run_render(const render_options& options) {
                  cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
-                 (unsigned long long)stats.discarded_samples,
-                 options.output.c_str());
+                 (unsigned long long)stats.discarded_samples, options.output.c_str());
   }
 }
 

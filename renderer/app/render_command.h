@@ -39,14 +39,14 @@ struct render_options {
   double fov_degrees = 45.0;
   int scene_index = -1;
   bool full_float = false;
-  aov_set aovs;  // --aovs; the default is beauty, Z and N
-  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
+  aov_set aovs;                        // --aovs; the default is beauty, Z and N
+  std::optional<pixel_rect> crop;      // --crop x0,y0,x1,y1; checked against the image size once it is known
   int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
   vec3 background{0.0f};
   bool show_background = false;
-  std::string accel = "embree";  // embree | grid | adaptive-grid
+  std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
-  std::string environment;  // equirectangular map file; empty: the --background colour
+  std::string environment;                      // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
   int max_depth = 8;
@@ -61,12 +61,19 @@ struct render_options {
   uint64_t max_texels = uint64_t(1) << 28;
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
   bool quiet = false;
+  bool summary_line = true;  // the closing line with timings and ray counts (kiln batch prints its own)
   std::string command_line;
 };
 
 // Declares the options every subcommand that renders shares (asset, image size, camera, samples,
 // shading limits, threads, grid settings), writing into options. `kiln compare` reuses them.
 void add_view_options(CLI::App& app, render_options& options);
+
+// The view options without the asset positional (kiln batch takes many assets).
+void add_view_settings(CLI::App& app, render_options& options);
+
+// What render adds to the view options besides -o: --float, --aovs, --crop, --tile, --accel.
+void add_image_options(CLI::App& app, render_options& options);
 
 // Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);
@@ -85,7 +92,10 @@ prepared_scene prepare_scene(const render_options& options);
 // The renderer's settings from the command-line options.
 render_settings make_render_settings(const render_options& options);
 
-// Runs a render. Throws kiln::error for bad input (kind input) or I/O and render failures.
-void run_render(const render_options& options);
+struct render_fingerprint;
+
+// Runs a render; the EXR records the fingerprint (computed here unless known). Throws
+// kiln::error for bad input (kind input), I/O and render failures, or an interrupt.
+void run_render(const render_options& options, const render_fingerprint* known = nullptr);
 
 }  // namespace kiln

@@ -36,4 +36,9 @@ exr_image read_exr(const std::string& path) {
   return image;
 }
 
+std::string exr_string_attribute(const exr_image& image, const std::string& name) {
+  if (!image.header) return {};
+  return image.header->spec.get_string_attribute(name);
+}
+
 }  // namespace kiln

@@ -29,4 +29,7 @@ struct exr_image {
 // Throws kiln::error (input) naming path when the file cannot be opened or read.
 exr_image read_exr(const std::string& path);
 
+// The header's string attribute name (e.g. "kiln/settings_hash"), empty when it has none.
+std::string exr_string_attribute(const exr_image& image, const std::string& name);
+
 }  // namespace kiln

@@ -1,0 +1,178 @@
+#include "app/batch_command.h"
+
+#include <glob.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "app/batch_manifest.h"
+#include "app/batch_run.h"
+#include "app/render_fingerprint.h"
+#include "app/text_output.h"
+#include "core/error.h"
+#include "io/exr/exr_writer.h"
+
+namespace kiln {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_pattern(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
+
+// glob(3) ourselves, so a quoted pattern works and the order is the same on every shell (sorted).
+std::vector<std::string> expand_pattern(const std::string& pattern) {
+  glob_t matches{};
+  const int status = ::glob(pattern.c_str(), 0, nullptr, &matches);
+  std::vector<std::string> files;
+  if (status == 0)
+    for (size_t i = 0; i < matches.gl_pathc; ++i) files.push_back(matches.gl_pathv[i]);
+  ::globfree(&matches);
+  if (files.empty()) throw input_error("", pattern, "the pattern matches no file");
+  return files;
+}
+
+std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+
+// The default output name: the asset's stem, then _<camera> when the job names one.
+std::string default_output(const batch_job_spec& spec) {
+  std::string name = fs::path(spec.asset).stem().string();
+  if (!spec.camera.empty()) name += "_" + spec.camera;
+  return name + ".exr";
+}
+
+std::string shell_quoted(const std::string& s) {
+  if (!s.empty() &&
+      s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:") ==
+          std::string::npos)
+    return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The `kiln render` line that renders the job, for the EXR header.
+std::string render_command_line(const render_options& o) {
+  std::string line = "kiln render " + shell_quoted(o.input) + " -o " + shell_quoted(o.output);
+  for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
+    line += " " + shell_quoted(a);
+  return line;
+}
+
+nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const batch_job& job : jobs) {
+    if (!job.error.empty()) throw input_error("", job.where, job.error);
+    if (job.options.crop || job.options.tile_count > 0)
+      throw input_error("", job.where, "a plan leaves --crop and --tile to whoever runs it; drop them");
+    std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
+    if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
+    list.push_back({{"name", job.name},
+                    {"asset", job.options.input},
+                    {"output", job.options.output},
+                    {"render_args", args}});
+  }
+  return {{"version", 1}, {"jobs", list}};
+}
+
+}  // namespace
+
+void add_batch_options(CLI::App& app, batch_options& o) {
+  app.add_option(
+      "assets", o.assets,
+      "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
+  add_view_settings(app, o.defaults);
+  add_image_options(app, o.defaults);
+  app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();
+  app.add_flag(
+      "--resume", o.resume,
+      "Skip jobs whose output exists, reads back complete and records the same input and settings hashes");
+  app.add_option("--summary", o.summary,
+                 "Write a JSON summary of every job (also after a failure or a signal)");
+  app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
+}
+
+void apply_render_arguments(render_options& options, const std::vector<std::string>& arguments) {
+  CLI::App parser{"kiln render options"};
+  parser.set_help_flag();  // no --help inside a manifest
+  // Later arguments refine earlier ones: manifest defaults, then the job's fields, then overrides.
+  parser.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  add_view_settings(parser, options);
+  add_image_options(parser, options);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  parser.parse(reversed);
+}
+
+std::vector<batch_job> plan_batch(const batch_options& options) {
+  std::vector<batch_job_spec> specs;
+  for (const std::string& argument : options.assets) {
+    for (const std::string& file : is_pattern(argument) ? expand_pattern(argument) : std::vector{argument}) {
+      batch_job_spec spec;
+      spec.asset = absolute_path(file);
+      spec.where = file;
+      specs.push_back(spec);
+    }
+  }
+  std::vector<std::string> manifest_defaults;
+  if (!options.manifest.empty()) {
+    batch_manifest manifest = read_manifest(options.manifest);
+    manifest_defaults = manifest.default_arguments;
+    specs.insert(specs.end(), manifest.jobs.begin(), manifest.jobs.end());
+  }
+  if (specs.empty()) throw input_error("", "kiln batch", "no jobs: give assets, glob patterns or --manifest");
+
+  const fs::path out_dir = fs::absolute(options.out_dir).lexically_normal();
+  std::vector<batch_job> jobs;
+  std::map<std::string, size_t> writers;  // output -> job index
+  std::map<std::string, int> names;
+  for (const batch_job_spec& spec : specs) {
+    batch_job job;
+    job.where = spec.where;
+    job.options = options.defaults;
+    job.options.input = spec.asset;
+    job.options.summary_line = false;
+    job.arguments = manifest_defaults;
+    job.arguments.insert(job.arguments.end(), spec.arguments.begin(), spec.arguments.end());
+    try {
+      apply_render_arguments(job.options, job.arguments);
+    } catch (const CLI::ParseError& e) {
+      job.error = std::string("bad render options: ") + e.what();
+    }
+    const fs::path output = out_dir / (spec.output.empty() ? default_output(spec) : spec.output);
+    job.options.output = output.lexically_normal().string();
+    job.options.command_line = render_command_line(job.options);
+    auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
+    if (!inserted)
+      throw input_error("", spec.where,
+                        "writes " + job.options.output + ", as does " + jobs[it->second].where +
+                            " (give one of them another output)");
+    // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
+    fs::path relative = output.lexically_normal().lexically_relative(out_dir);
+    job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
+                                                               : relative.replace_extension().string();
+    if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
+int run_batch(const batch_options& options) {
+  if (!options.plan.empty()) {
+    check_output_writable(options.plan);
+    write_text_atomically(options.plan, plan_json(plan_batch(options)).dump(2) + "\n");
+    return 0;
+  }
+  std::vector<batch_job> jobs = plan_batch(options);
+  if (!options.summary.empty()) check_output_writable(options.summary);
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
+  return run_batch_jobs(jobs, options.resume, options.summary, options.defaults.quiet);
+}
+
+}  // namespace kiln

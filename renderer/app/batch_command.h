@@ -1,0 +1,52 @@
+// `kiln batch`: renders many assets in one process, each through the same path as `kiln render`,
+// with the render options as defaults that a manifest refines per job. One failing job never
+// stops the others; --resume skips outputs that are complete and up to date; a summary records
+// every job's fate, also after a failure or a signal. App layer only.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/render_command.h"
+
+namespace CLI {
+class App;
+}
+
+namespace kiln {
+
+struct batch_options {
+  render_options defaults;          // every job starts from these (asset and output unset)
+  std::vector<std::string> assets;  // files or glob(3) patterns
+  std::string manifest;             // .json or .csv; empty: none
+  std::string out_dir;
+  bool resume = false;
+  std::string summary;  // JSON summary path; empty: none
+  std::string plan;     // --plan-only: write the job plan here and render nothing
+};
+
+// One resolved job: the options `kiln render` would get, or why they are invalid.
+struct batch_job {
+  std::string name;                    // unique: the output's path under --out-dir without .exr
+  std::string where;                   // the manifest location, or the asset argument
+  render_options options;              // input and output absolute
+  std::vector<std::string> arguments;  // the job's render arguments after the defaults
+  std::string error;  // non-empty: the options did not parse; the job fails without rendering
+};
+
+void add_batch_options(CLI::App& app, batch_options& options);
+
+// Expands patterns, reads the manifest, applies defaults and overrides, names the outputs.
+// Throws kiln::error (input) for a malformed manifest, a pattern without matches, no jobs, or two
+// jobs writing one output.
+std::vector<batch_job> plan_batch(const batch_options& options);
+
+// Parses render arguments (no asset, no -o) onto options through the same CLI11 declarations as
+// `kiln render`. Throws CLI::ParseError with the parser's message.
+void apply_render_arguments(render_options& options, const std::vector<std::string>& arguments);
+
+// Runs the batch (or writes the plan). Returns the exit code: 0 every job rendered or skipped,
+// 1 some failed, 128 + signal when interrupted. Throws kiln::error for bad input before any job.
+int run_batch(const batch_options& options);
+
+}  // namespace kiln

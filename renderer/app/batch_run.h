@@ -1,0 +1,25 @@
+// The run loop of `kiln batch`: renders resolved jobs one after another, skips up-to-date
+// outputs when resuming, keeps going past failures, stops at a signal, and reports progress and
+// a JSON summary. App layer only.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/batch_command.h"
+#include "app/render_fingerprint.h"
+
+namespace kiln {
+
+// What happened to a job; not_started when the batch stopped before it.
+enum class job_status { rendered, skipped, failed, interrupted, not_started };
+
+// True when output exists, every pixel reads back, and its kiln/input_hash and
+// kiln/settings_hash equal the fingerprint's.
+bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint);
+
+// Runs the jobs; writes the summary (when summary is not empty) whatever happens. Returns the exit
+// code: 0 all rendered or skipped, 1 any failed, 128 + signal when interrupted.
+int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary, bool quiet);
+
+}  // namespace kiln

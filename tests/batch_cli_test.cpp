@@ -1,0 +1,421 @@
+// `kiln batch` end to end, through the real binary on copies of the demo scene at tiny sizes:
+// manifests set what each job renders; a broken asset fails alone; --resume skips exactly the
+// outputs that are complete and up to date; SIGINT stops the batch cleanly and a resumed run
+// finishes it with the pixels of a fresh one; a --plan-only job rendered by hand with
+// `kiln render` gives the batch's pixels and hashes.
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing::command_result;
+using testing::lines;
+using testing::run_kiln;
+using testing::scratch_folder;
+
+const fs::path scenes = fs::path(KILN_SOURCE_DIR) / "scenes";
+
+// Copies the demo scene (its .gltf, buffer and texture) into folder, the .gltf as name.
+std::string copy_scene(const fs::path& folder, const std::string& name = "cornell_box.gltf") {
+  fs::create_directories(folder);
+  fs::copy_file(scenes / "cornell_box.gltf", folder / name, fs::copy_options::overwrite_existing);
+  fs::copy_file(scenes / "cornell_box.bin", folder / "cornell_box.bin", fs::copy_options::overwrite_existing);
+  fs::copy_file(scenes / "checker.png", folder / "checker.png", fs::copy_options::overwrite_existing);
+  return (folder / name).string();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in) << path;
+  return json::parse(in);
+}
+
+struct image {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;  // every channel as float: exact for half and float
+};
+
+image read_image(const std::string& path) {
+  image out;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+  if (!in) return out;
+  out.spec = in->spec();
+  out.pixels.resize(out.spec.image_pixels() * size_t(out.spec.nchannels));
+  EXPECT_TRUE(in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data())) << path;
+  return out;
+}
+
+std::string attribute(const image& i, const std::string& name) { return i.spec.get_string_attribute(name); }
+
+// Same size, channels (names and formats) and pixel values, bit for bit.
+void expect_same_pixels(const std::string& a_path, const std::string& b_path) {
+  const image a = read_image(a_path), b = read_image(b_path);
+  EXPECT_EQ(a.spec.width, b.spec.width);
+  EXPECT_EQ(a.spec.height, b.spec.height);
+  EXPECT_EQ(a.spec.channelnames, b.spec.channelnames);
+  EXPECT_EQ(a.spec.channelformats, b.spec.channelformats);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0)
+      << a_path << " and " << b_path << " differ";
+}
+
+// Inode and modification time: a skipped output keeps both, a rewritten one (renamed into place) gets a new
+// inode.
+std::pair<ino_t, int64_t> identity(const std::string& path) {
+  struct stat s {};
+  EXPECT_EQ(::stat(path.c_str(), &s), 0) << path;
+  return {s.st_ino, int64_t(s.st_mtim.tv_sec) * 1000000000 + s.st_mtim.tv_nsec};
+}
+
+std::vector<std::string> statuses(const json& summary) {
+  std::vector<std::string> out;
+  for (const json& job : summary["jobs"]) out.push_back(job["status"]);
+  return out;
+}
+
+std::vector<std::string> files_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file()) names.push_back(fs::relative(entry.path(), folder).string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const std::vector<std::string> tiny = {"--width", "24", "--height", "18"};
+
+std::vector<std::string> batch_args(std::vector<std::string> args,
+                                    const std::vector<std::string>& extra = tiny) {
+  args.insert(args.begin(), "batch");
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+TEST(batch_cli, a_broken_asset_fails_alone_and_the_summary_says_why) {
+  const fs::path dir = scratch_folder("batch_broken");
+  copy_scene(dir / "assets/good");
+  fs::create_directories(dir / "assets/broken");
+  write_file(dir / "assets/broken/broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [\n");
+  const std::string missing = (dir / "assets/missing.gltf").string();
+  const command_result result =
+      run_kiln(batch_args({(dir / "assets/*/*.gltf").string(), missing, "--out-dir", (dir / "out").string(),
+                           "--summary", (dir / "summary.json").string()}));
+  EXPECT_EQ(result.exit_code, 1) << result.stderr_text;
+
+  const json summary = read_json(dir / "summary.json");
+  EXPECT_EQ(statuses(summary), (std::vector<std::string>{"failed", "rendered", "failed"}));
+  const json& jobs = summary["jobs"];
+  EXPECT_EQ(jobs[0]["asset"], (dir / "assets/broken/broken.gltf").string());
+  EXPECT_NE(jobs[0]["error"].get<std::string>().find("broken.gltf"), std::string::npos) << jobs[0]["error"];
+  EXPECT_TRUE(jobs[1]["error"].is_null());
+  EXPECT_EQ(jobs[1]["output"], (dir / "out/cornell_box.exr").string());
+  EXPECT_GT(jobs[1]["seconds"].get<double>(), 0.0);
+  EXPECT_NE(jobs[2]["error"].get<std::string>().find("missing.gltf"), std::string::npos) << jobs[2]["error"];
+  EXPECT_EQ(summary["totals"]["jobs"], 3);
+  EXPECT_EQ(summary["totals"]["rendered"], 1);
+  EXPECT_EQ(summary["totals"]["failed"], 2);
+  EXPECT_EQ(summary["totals"]["skipped"], 0);
+  EXPECT_EQ(summary["exit_code"], 1);
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"cornell_box.exr"}));
+  const image good = read_image((dir / "out/cornell_box.exr").string());
+  EXPECT_EQ(good.spec.width, 24);
+  EXPECT_EQ(good.spec.height, 18);
+
+  // One line per job, each followed by the batch line; nothing else.
+  const std::vector<std::string> progress = lines(result.stderr_text);
+  ASSERT_EQ(progress.size(), 6u) << result.stderr_text;
+  EXPECT_EQ(progress[0].rfind("kiln batch: [1/3] broken failed ", 0), 0u) << progress[0];
+  EXPECT_EQ(progress[2].rfind("kiln batch: [2/3] cornell_box rendered ", 0), 0u) << progress[2];
+  EXPECT_EQ(progress[3].rfind("kiln batch: 2/3 done, 1 failed, ETA ", 0), 0u) << progress[3];
+  EXPECT_EQ(progress[5].rfind("kiln batch: 3/3 done, 2 failed, ETA 0.0 s", 0), 0u) << progress[5];
+
+  const command_result quiet = run_kiln(
+      batch_args({(dir / "assets/*/*.gltf").string(), missing, "--out-dir", (dir / "out").string(), "-q"}));
+  EXPECT_EQ(quiet.exit_code, 1);
+  EXPECT_EQ(quiet.stderr_text, "");
+}
+
+TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_overrides) {
+  const fs::path dir = scratch_folder("batch_json");
+  copy_scene(dir / "scenes");
+  write_file(dir / "jobs.json", R"({"defaults": {"spp": 2, "width": 16, "height": 12},
+    "jobs": [
+      {"asset": "scenes/cornell_box.gltf", "resolution": "40x30", "spp": 3, "output": "sub/a.exr",
+       "overrides": {"max-depth": 4, "aovs": "beauty,Z"}},
+      {"asset": "scenes/cornell_box.gltf", "camera": "0"}]})");
+  const command_result result = run_kiln(
+      {"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"cornell_box_0.exr", "sub/a.exr"}));
+
+  const image a = read_image((dir / "out/sub/a.exr").string());
+  EXPECT_EQ(a.spec.width, 40);
+  EXPECT_EQ(a.spec.height, 30);
+  EXPECT_EQ(a.spec.get_int_attribute("samplesPerPixel"), 3);
+  EXPECT_EQ(attribute(a, "kiln/max_depth"), "4");
+  EXPECT_EQ(attribute(a, "kiln/aovs"), "beauty,Z");
+  EXPECT_EQ(a.spec.nchannels, 5);  // R G B A Z
+  EXPECT_EQ(attribute(a, "kiln/scene_file"), (dir / "scenes/cornell_box.gltf").string());
+
+  const image b = read_image((dir / "out/cornell_box_0.exr").string());
+  EXPECT_EQ(b.spec.width, 16);
+  EXPECT_EQ(b.spec.height, 12);
+  EXPECT_EQ(b.spec.get_int_attribute("samplesPerPixel"), 2);
+  EXPECT_EQ(attribute(b, "kiln/max_depth"), "8");
+  EXPECT_EQ(attribute(b, "kiln/aovs"), "beauty,Z,N");
+  // The header's command line is the `kiln render` call that reproduces the job.
+  EXPECT_EQ(attribute(b, "kiln/command_line")
+                .rfind("kiln render " + (dir / "scenes/cornell_box.gltf").string() + " -o " +
+                           (dir / "out/cornell_box_0.exr").string() + " --width 16 --height 12 --spp 2 ",
+                       0),
+            0u)
+      << attribute(b, "kiln/command_line");
+}
+
+TEST(batch_cli, a_csv_manifest_renders_its_rows_and_a_bad_row_stops_everything_with_exit_2) {
+  const fs::path dir = scratch_folder("batch_csv");
+  copy_scene(dir / "scenes");
+  write_file(dir / "jobs.csv",
+             "asset,resolution,spp,output,overrides\n"
+             "scenes/cornell_box.gltf,20x10,5,wide.exr,\"--max-depth 2 --aovs beauty,id\"\n");
+  const command_result result = run_kiln(
+      {"batch", "--manifest", (dir / "jobs.csv").string(), "--out-dir", (dir / "out").string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const image wide = read_image((dir / "out/wide.exr").string());
+  EXPECT_EQ(wide.spec.width, 20);
+  EXPECT_EQ(wide.spec.height, 10);
+  EXPECT_EQ(wide.spec.get_int_attribute("samplesPerPixel"), 5);
+  EXPECT_EQ(attribute(wide, "kiln/max_depth"), "2");
+  EXPECT_EQ(attribute(wide, "kiln/aovs"), "beauty,id");
+
+  write_file(dir / "bad.csv",
+             "asset,resolution,spp,output,overrides\n"
+             "scenes/cornell_box.gltf,20x10,5,one.exr,\n"
+             "scenes/cornell_box.gltf,20x10,lots,two.exr,\n");
+  const command_result bad =
+      run_kiln({"batch", "--manifest", (dir / "bad.csv").string(), "--out-dir", (dir / "out2").string()});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.stderr_text,
+            "kiln: " + (dir / "bad.csv").string() + ": line 3: spp: expected an integer, got 'lots'\n");
+  EXPECT_FALSE(fs::exists(dir / "out2"));  // refused before anything rendered
+}
+
+TEST(batch_cli, resume_skips_up_to_date_outputs_and_renders_stale_or_truncated_ones) {
+  const fs::path dir = scratch_folder("batch_resume");
+  const std::string a = copy_scene(dir / "a", "first.gltf");
+  const std::string b = copy_scene(dir / "b", "second.gltf");
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const std::string a_exr = out + "/first.exr", b_exr = out + "/second.exr";
+  auto run = [&](const std::vector<std::string>& extra = tiny) {
+    const command_result r =
+        run_kiln(batch_args({a, b, "--out-dir", out, "--resume", "--summary", summary, "-q"}, extra));
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return statuses(read_json(summary));
+  };
+  EXPECT_EQ(run(), (std::vector<std::string>{"rendered", "rendered"}));  // nothing to resume from
+  const image first = read_image(a_exr);
+  EXPECT_EQ(attribute(first, "kiln/input_hash").size(), 16u);
+  EXPECT_EQ(attribute(first, "kiln/settings_hash").size(), 16u);
+  const auto a_id = identity(a_exr), b_id = identity(b_exr);
+
+  EXPECT_EQ(run(), (std::vector<std::string>{"skipped", "skipped"}));
+  EXPECT_EQ(identity(a_exr), a_id);
+  EXPECT_EQ(identity(b_exr), b_id);
+
+  // The asset changes (same scene, one more byte of JSON whitespace): only its job renders.
+  std::ofstream(a, std::ios::app) << "\n";
+  EXPECT_EQ(run(), (std::vector<std::string>{"rendered", "skipped"}));
+  EXPECT_NE(identity(a_exr), a_id);
+  EXPECT_EQ(identity(b_exr), b_id);
+  EXPECT_NE(attribute(read_image(a_exr), "kiln/input_hash"), attribute(first, "kiln/input_hash"));
+  EXPECT_EQ(attribute(read_image(a_exr), "kiln/settings_hash"), attribute(first, "kiln/settings_hash"));
+  const auto a_id2 = identity(a_exr);
+
+  // A truncated output (a crash mid-copy, a full disk elsewhere) reads back incomplete: rendered again.
+  fs::resize_file(b_exr, fs::file_size(b_exr) / 2);
+  EXPECT_EQ(run(), (std::vector<std::string>{"skipped", "rendered"}));
+  EXPECT_EQ(identity(a_exr), a_id2);
+  EXPECT_EQ(read_image(b_exr).spec.width, 24);
+  expect_same_pixels(a_exr, b_exr);  // the same scene with the same settings
+
+  // Other settings (more samples) make both stale.
+  EXPECT_EQ(run({"--width", "24", "--height", "18", "--spp", "2"}),
+            (std::vector<std::string>{"rendered", "rendered"}));
+  EXPECT_EQ(read_image(a_exr).spec.get_int_attribute("samplesPerPixel"), 2);
+  EXPECT_NE(attribute(read_image(a_exr), "kiln/settings_hash"), attribute(first, "kiln/settings_hash"));
+  EXPECT_EQ(files_in(out), (std::vector<std::string>{"first.exr", "second.exr"}));
+}
+
+// Jobs of about a second each, so a signal sent when the first output appears lands mid-batch.
+void write_slow_manifest(const fs::path& dir) {
+  copy_scene(dir / "scenes");
+  write_file(dir / "jobs.json", R"({"defaults": {"width": 200, "height": 150, "spp": 24, "threads": 2},
+    "jobs": [{"asset": "scenes/cornell_box.gltf", "output": "a.exr"},
+             {"asset": "scenes/cornell_box.gltf", "output": "b.exr", "spp": 25},
+             {"asset": "scenes/cornell_box.gltf", "output": "c.exr", "spp": 26}]})");
+}
+
+// Starts the slow batch in dir, sends signo once the first output exists, and checks the exit code
+// and the summary: a rendered, b interrupted (or not yet started), c not started.
+void expect_signal_stops_batch(const fs::path& dir, int signo) {
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  std::vector<std::string> args = {KILN_BINARY, "batch", "--manifest", (dir / "jobs.json").string(),
+                                   "--out-dir", out,     "--summary",  summary,
+                                   "-q"};
+  std::vector<char*> argv;
+  for (std::string& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  ASSERT_GT(pid, 0);
+  // The first output appears by rename, so it is complete the moment it exists.
+  for (int i = 0; i < 6000 && !fs::exists(out + "/a.exr"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(fs::exists(out + "/a.exr"));
+  ASSERT_EQ(::kill(pid, signo), 0);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + signo);
+
+  const json stopped = read_json(summary);
+  const std::vector<std::string> seen = statuses(stopped);
+  EXPECT_EQ(stopped["exit_code"], 128 + signo);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0], "rendered");
+  // b was rendering (or, on a slow machine, not yet started) when the signal came; c never starts.
+  EXPECT_TRUE(seen[1] == "interrupted" || seen[1] == "not_started") << seen[1];
+  EXPECT_EQ(seen[2], "not_started");
+  if (seen[1] == "interrupted") {
+    EXPECT_NE(stopped["jobs"][1]["error"].get<std::string>().find("interrupted"), std::string::npos);
+  }
+  EXPECT_EQ(stopped["totals"]["rendered"], 1);
+  EXPECT_EQ(stopped["totals"]["not_started"].get<int>() + stopped["totals"]["interrupted"].get<int>(), 2);
+}
+
+TEST(batch_cli, sigterm_stops_the_batch_with_exit_143_and_a_summary) {
+  const fs::path dir = scratch_folder("batch_sigterm");
+  write_slow_manifest(dir);
+  expect_signal_stops_batch(dir, SIGTERM);
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"a.exr"}));
+}
+
+TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fresh_run) {
+  const fs::path dir = scratch_folder("batch_sigint");
+  write_slow_manifest(dir);
+  expect_signal_stops_batch(dir, SIGINT);
+  if (HasFatalFailure()) return;
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  // Only the finished output: no partial b.exr, no temporary file.
+  EXPECT_EQ(files_in(out), (std::vector<std::string>{"a.exr"}));
+  const auto a_id = identity(out + "/a.exr");
+
+  const command_result resumed = run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir",
+                                           out, "--summary", summary, "--resume", "-q"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  EXPECT_EQ(statuses(read_json(summary)), (std::vector<std::string>{"skipped", "rendered", "rendered"}));
+  EXPECT_EQ(identity(out + "/a.exr"), a_id);
+
+  const std::string fresh = (dir / "fresh").string();
+  const command_result clean =
+      run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", fresh, "-q"});
+  ASSERT_EQ(clean.exit_code, 0) << clean.stderr_text;
+  for (const char* name : {"/a.exr", "/b.exr", "/c.exr"}) expect_same_pixels(out + name, fresh + name);
+}
+
+TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) {
+  const fs::path dir = scratch_folder("batch_plan");
+  const std::string asset = copy_scene(dir / "scenes");
+  const std::string out = (dir / "out").string(), plan_path = (dir / "plan.json").string();
+  const std::vector<std::string> options = {"--width", "32", "--height", "24",
+                                            "--spp",   "2",  "--aovs",   "beauty,N,id"};
+  write_file(dir / "jobs.json",
+             R"([{"asset": "scenes/cornell_box.gltf", "camera": "0", "overrides": {"max-depth": 3}}])");
+  const std::vector<std::string> inputs = {asset,       "--manifest", (dir / "jobs.json").string(),
+                                           "--out-dir", out,          "-q"};
+  command_result planned = run_kiln(batch_args(inputs, [&] {
+    std::vector<std::string> a = options;
+    a.insert(a.end(), {"--plan-only", plan_path});
+    return a;
+  }()));
+  ASSERT_EQ(planned.exit_code, 0) << planned.stderr_text;
+  EXPECT_FALSE(fs::exists(out));  // nothing rendered
+
+  const json plan = read_json(plan_path);
+  EXPECT_EQ(plan["version"], 1);
+  ASSERT_EQ(plan["jobs"].size(), 2u);
+  const json& plain = plan["jobs"][0];
+  const json& camera = plan["jobs"][1];
+  EXPECT_EQ(plain["name"], "cornell_box");
+  EXPECT_EQ(camera["name"], "cornell_box_0");
+  EXPECT_EQ(plain["asset"], asset);
+  EXPECT_EQ(camera["asset"], asset);
+  EXPECT_EQ(plain["output"], out + "/cornell_box.exr");
+  EXPECT_EQ(camera["output"], out + "/cornell_box_0.exr");
+  // The value after each option name, or "" when the option is absent.
+  auto value = [](const json& job, const std::string& name) -> std::string {
+    const std::vector<std::string> args = job["render_args"];
+    auto it = std::find(args.begin(), args.end(), name);
+    return it == args.end() || it + 1 == args.end() ? "" : *(it + 1);
+  };
+  EXPECT_EQ(value(camera, "--width"), "32");
+  EXPECT_EQ(value(camera, "--height"), "24");
+  EXPECT_EQ(value(camera, "--spp"), "2");
+  EXPECT_EQ(value(camera, "--camera"), "0");
+  EXPECT_EQ(value(camera, "--max-depth"), "3");
+  EXPECT_EQ(value(plain, "--max-depth"), "8");
+  EXPECT_EQ(value(camera, "--aovs"), "beauty,N,id");
+  for (const char* absent : {"-o", "--output", "--tile", "--crop", "--out-dir", "-q"})
+    EXPECT_EQ(value(camera, absent), "") << absent;
+  for (const json& arg : camera["render_args"]) EXPECT_NE(arg.get<std::string>(), asset);
+
+  const command_result batch = run_kiln(batch_args(inputs, options));
+  ASSERT_EQ(batch.exit_code, 0) << batch.stderr_text;
+  std::vector<std::string> by_hand = {"render", camera["asset"], "-o", (dir / "by_hand.exr").string(), "-q"};
+  for (const json& arg : camera["render_args"]) by_hand.push_back(arg);
+  const command_result hand = run_kiln(by_hand);
+  ASSERT_EQ(hand.exit_code, 0) << hand.stderr_text;
+  expect_same_pixels(camera["output"], (dir / "by_hand.exr").string());
+  const image batch_image = read_image(camera["output"]),
+              hand_image = read_image((dir / "by_hand.exr").string());
+  EXPECT_EQ(attribute(hand_image, "kiln/settings_hash").size(), 16u);  // kiln render records both hashes too
+  EXPECT_EQ(attribute(hand_image, "kiln/input_hash").size(), 16u);
+  EXPECT_EQ(attribute(hand_image, "kiln/settings_hash"), attribute(batch_image, "kiln/settings_hash"));
+  EXPECT_EQ(attribute(hand_image, "kiln/input_hash"), attribute(batch_image, "kiln/input_hash"));
+  EXPECT_EQ(attribute(hand_image, "kiln/camera"), attribute(batch_image, "kiln/camera"));
+  // The two jobs differ in camera and depth, so their settings (and pixels) are not the same.
+  EXPECT_NE(attribute(read_image(plain["output"]), "kiln/settings_hash"),
+            attribute(batch_image, "kiln/settings_hash"));
+}
+
+}  // namespace
+}  // namespace kiln
