@@ -12,10 +12,12 @@
 
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
+#include "app/exr_options.h"
 #include "app/interrupt.h"
 #include "core/error.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
+#include "io/exr/preview_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/frame_bands.h"
 #include "render/tile_renderer.h"
@@ -350,8 +352,7 @@ void add_view_options(CLI::App& app, render_options& o) {
 void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
-  app.add_flag("--float", o.full_float,
-               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
+  add_exr_options(app, o);
   app.add_option_function<std::string>(
       "--aovs",
       [&o](const std::string& text) {
@@ -461,6 +462,8 @@ void run_render(const render_options& options) {
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
+  const exr_settings storage = resolve_exr_settings(options);
+  if (!options.preview.empty()) check_output_writable(options.preview);
 
   prepared_scene prepared = prepare_scene(options);
   const scene& world = prepared.world;
@@ -523,7 +526,9 @@ void run_render(const render_options& options) {
   // A signal that arrives after the last pixel still stops the run before anything is written.
   if (interrupt_requested())
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
-  write_exr(options.output, image, exr_settings{options.full_float}, metadata);
+  write_exr(options.output, image, storage, metadata);
+  // From the file as written, so the preview shows exactly what the EXR holds.
+  if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
 
   if (!options.quiet) {
     const std::string sampling =
