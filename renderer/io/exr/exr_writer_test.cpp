@@ -214,7 +214,7 @@ TEST(exr_writer, multipart_writes_one_named_part_per_layer_with_the_single_part_
 }
 
 TEST(exr_writer, lossy_codecs_reach_only_colour_like_parts) {
-  for (const std::string& codec : {"pxr24", "b44", "b44a", "dwaa", "dwab"}) {
+  for (const std::string codec : {"pxr24", "b44", "b44a", "dwaa", "dwab"}) {
     fs::path file = scratch_dir() / ("lossy_" + codec + ".exr");
     exr_settings s;
     s.compression = codec;
@@ -249,7 +249,7 @@ TEST(exr_writer, lossless_codecs_round_trip_every_bit_and_levels_are_recorded) {
     write_exr(file.string(), all_aov_film(), exr_settings{}, exr_metadata{});
     return file;
   }());
-  for (const std::string& codec : {"none", "rle", "zips", "zip", "piz"}) {
+  for (const std::string codec : {"none", "rle", "zips", "zip", "piz"}) {
     fs::path file = scratch_dir() / ("lossless_" + codec + ".exr");
     exr_settings s;
     s.compression = codec;
