@@ -74,7 +74,8 @@ std::map<std::string, std::vector<float>> values(const std::string& path) {
   for (const part& p : read_parts(path)) {
     const size_t n = size_t(p.spec.nchannels);
     for (size_t c = 0; c < n; ++c)
-      for (size_t i = 0; i < p.spec.image_pixels(); ++i) out[p.spec.channelnames[c]].push_back(p.pixels[i * n + c]);
+      for (size_t i = 0; i < p.spec.image_pixels(); ++i)
+        out[p.spec.channelnames[c]].push_back(p.pixels[i * n + c]);
   }
   return out;
 }
@@ -82,13 +83,15 @@ std::map<std::string, std::vector<float>> values(const std::string& path) {
 void expect_usage_error(const command_result& result, const std::vector<std::string>& words) {
   EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
   EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
-  for (const std::string& w : words) EXPECT_NE(result.stderr_text.find(w), std::string::npos) << result.stderr_text;
+  for (const std::string& w : words)
+    EXPECT_NE(result.stderr_text.find(w), std::string::npos) << result.stderr_text;
 }
 
 TEST(exr_storage_cli, channel_format_sets_each_colour_like_layer) {
   const std::string dir = scratch_folder("storage_formats");
   const std::string aovs = "beauty,Z,N,P,albedo,uv,id";
-  const auto mixed = formats(render(dir, "mixed.exr", {"--aovs", aovs, "--channel-format", "beauty=float,uv=float"}));
+  const auto mixed =
+      formats(render(dir, "mixed.exr", {"--aovs", aovs, "--channel-format", "beauty=float,uv=float"}));
   const auto mostly_float =
       formats(render(dir, "float.exr", {"--aovs", aovs, "--float", "--channel-format", "N=half,Z=float"}));
   ASSERT_EQ(mixed.size(), 19u);
@@ -132,10 +135,12 @@ TEST(exr_storage_cli, lossy_codecs_are_refused_for_single_part_data_and_kept_off
   const std::string beauty = render(dir, "beauty.exr", {"--compression", "dwaa", "--aovs", "beauty,N"});
   EXPECT_EQ(read_parts(beauty).front().spec.get_string_attribute("compression"), "dwaa");
   for (const std::string codec : {"none", "rle", "zips", "zip", "piz"})
-    EXPECT_EQ(read_parts(render(dir, codec + ".exr", {"--compression", codec})).front().spec.get_string_attribute(
-                  "compression"),
+    EXPECT_EQ(read_parts(render(dir, codec + ".exr", {"--compression", codec}))
+                  .front()
+                  .spec.get_string_attribute("compression"),
               codec);
-  EXPECT_EQ(read_parts(render(dir, "default.exr", {})).front().spec.get_string_attribute("compression"), "zip");
+  EXPECT_EQ(read_parts(render(dir, "default.exr", {})).front().spec.get_string_attribute("compression"),
+            "zip");
 }
 
 TEST(exr_storage_cli, tiled_and_multipart_files_hold_the_single_part_scanline_pixels) {
@@ -186,9 +191,12 @@ struct preview_image {
   std::vector<unsigned char> codes;
 };
 
+// The codes as stored: OpenImageIO would otherwise multiply a PNG's colour by its alpha on reading.
 preview_image read_preview(const std::string& path) {
   preview_image out;
-  auto in = OIIO::ImageInput::open(path);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
   if (!in) return out;
   out.spec = in->spec();
@@ -201,21 +209,27 @@ TEST(exr_storage_cli, png_preview_is_the_view_transform_of_the_exr_within_one_co
   const std::string dir = scratch_folder("storage_preview_png");
   for (double exposure : {0.0, 1.5, -2.0}) {
     const std::string png = dir + "/preview.png";
-    const std::string exr = render(dir, "preview.exr",
-                                   {"--preview", png, "--preview-exposure", std::to_string(exposure), "--multipart"});
+    // 4 samples a pixel: edge pixels of the open box front have alpha strictly between 0 and 1.
+    const std::string exr = render(
+        dir, "preview.exr",
+        {"--preview", png, "--preview-exposure", std::to_string(exposure), "--multipart", "--spp", "4"});
     const auto v = values(exr);
     const preview_image p = read_preview(png);
     ASSERT_EQ(p.spec.nchannels, 4);
     ASSERT_EQ(p.spec.image_pixels(), v.at("R").size());
     int worst = 0;
+    size_t partial = 0;
     const char* names[4] = {"R", "G", "B", "A"};
     for (size_t i = 0; i < p.spec.image_pixels(); ++i)
       for (int c = 0; c < 4; ++c) {
+        partial += c == 3 && p.codes[i * 4 + 3] > 0 && p.codes[i * 4 + 3] < 255;
         const double x = v.at(names[c])[i];
-        const int expected = c < 3 ? srgb_code(x, exposure) : int(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
+        const int expected =
+            c < 3 ? srgb_code(x, exposure) : int(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
         worst = std::max(worst, std::abs(int(p.codes[i * 4 + size_t(c)]) - expected));
       }
     EXPECT_LE(worst, 1) << "exposure " << exposure;
+    EXPECT_GT(partial, 10u);  // colour stays premultiplied where coverage is partial
   }
 }
 
@@ -255,7 +269,8 @@ TEST(exr_storage_cli, preview_of_a_flat_square_keeps_alpha_in_png_and_colour_in_
   const int bright[3] = {srgb_code(0.2, 1), srgb_code(0.5, 1), srgb_code(0.8, 1)};
   EXPECT_EQ(square[0], 124);  // sRGB of 0.2 is 0.4845
   auto at = [](const preview_image& p, int x, int y, int c) {
-    return int(p.codes[(size_t(y) * size_t(p.spec.width) + size_t(x)) * size_t(p.spec.nchannels) + size_t(c)]);
+    return int(
+        p.codes[(size_t(y) * size_t(p.spec.width) + size_t(x)) * size_t(p.spec.nchannels) + size_t(c)]);
   };
   int jpeg_worst = 0;
   for (int y = 0; y < 24; ++y)

@@ -145,7 +145,8 @@ TEST(stitch_cli, multipart_tiled_bands_stitch_to_the_full_render) {
     EXPECT_EQ(b.tile_widths, (std::vector<int>{16, 16, 16, 16}));
     EXPECT_EQ(b.channels, a.channels);
     ASSERT_EQ(b.bytes.size(), a.bytes.size());
-    for (size_t k = 0; k < a.bytes.size(); ++k) EXPECT_TRUE(a.bytes[k] == b.bytes[k]) << a.names[k] << ", " << bands << " bands";
+    for (size_t k = 0; k < a.bytes.size(); ++k)
+      EXPECT_TRUE(a.bytes[k] == b.bytes[k]) << a.names[k] << ", " << bands << " bands";
   }
 }
 

@@ -95,7 +95,8 @@ exr_settings resolve_exr_settings(const render_options& options) {
   const std::string& codec = settings.compression;
   if (settings.compression_level > 0) {
     if (!compression_takes_level(codec))
-      throw input_error("", "--compression-level", codec + " takes no level (only zip, zips, dwaa and dwab do)");
+      throw input_error("", "--compression-level",
+                        codec + " takes no level (only zip, zips, dwaa and dwab do)");
     if ((codec == "zip" || codec == "zips") && settings.compression_level > 9)
       throw input_error("", "--compression-level", codec + " takes a level from 1 to 9");
   }

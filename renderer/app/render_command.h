@@ -39,9 +39,10 @@ struct render_options {
   dvec3 up{0.0, 1.0, 0.0};
   double fov_degrees = 45.0;
   int scene_index = -1;
-  bool full_float = false;       // --float: every colour-like layer float
+  bool full_float = false;      // --float: every colour-like layer float
   std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
-  exr_settings exr;  // --compression, --compression-level, --tiled, --multipart; formats: resolve_exr_settings
+  // --compression, --compression-level, --tiled, --multipart; the formats come from resolve_exr_settings.
+  exr_settings exr;
   std::string preview;  // --preview FILE.png|FILE.jpg; empty: none
   double preview_exposure = 0.0;
   aov_set aovs;  // --aovs; the default is beauty, Z and N

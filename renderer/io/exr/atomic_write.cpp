@@ -31,8 +31,9 @@ std::string temporary_path(const std::string& path) {
   return (target.parent_path() / name).string();
 }
 
-void write_atomically(const std::string& path, const std::string& format,
-                      const std::function<bool(OIIO::ImageOutput& out, const std::string& temporary)>& write) {
+void write_atomically(
+    const std::string& path, const std::string& format,
+    const std::function<bool(OIIO::ImageOutput& out, const std::string& temporary)>& write) {
   const std::string temporary = temporary_path(path);
   auto out = OIIO::ImageOutput::create(format);
   if (!out) throw io_error(path, "OpenImageIO has no " + format + " writer: " + OIIO::geterror());

@@ -20,8 +20,8 @@ pixel_rect data_window(const OIIO::ImageSpec& spec) {
 
 // Copies one part's interleaved pixels into the image's pixels, whose pixel is `pixel` bytes wide
 // and holds this part's channels from byte `offset` on.
-void interleave_part(const std::vector<unsigned char>& part, size_t part_pixel, std::vector<unsigned char>& pixels,
-                     size_t pixel, size_t offset) {
+void interleave_part(const std::vector<unsigned char>& part, size_t part_pixel,
+                     std::vector<unsigned char>& pixels, size_t pixel, size_t offset) {
   const size_t count = part.size() / part_pixel;
   for (size_t i = 0; i < count; ++i)
     std::memcpy(pixels.data() + i * pixel + offset, part.data() + i * part_pixel, part_pixel);

@@ -51,7 +51,7 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
   const layer_formats& formats = settings.formats;
   const OIIO::TypeDesc full = OIIO::TypeDesc::FLOAT;
   // Three channels name.X name.Y name.Z (or .R .G .B) of a vec3 buffer.
-  auto vec3_layer = [](const std::string& name, const char* const (&suffixes)[3], OIIO::TypeDesc format,
+  auto vec3_layer = [](const std::string& name, const char* const(&suffixes)[3], OIIO::TypeDesc format,
                        bool data, const std::vector<vec3>& buffer) {
     layer l{name, format, data, {}};
     for (int c = 0; c < 3; ++c)
@@ -76,10 +76,11 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
   if (a.position) out.push_back(vec3_layer("P", xyz, full, true, f.position));
   if (a.albedo) out.push_back(vec3_layer("albedo", rgb, type_of(formats.albedo), false, f.albedo));
   if (a.uv)
-    out.push_back({"uv",
-                   type_of(formats.uv),
-                   false,
-                   {{"uv.U", [&f](size_t i) { return f.uv[i].x; }}, {"uv.V", [&f](size_t i) { return f.uv[i].y; }}}});
+    out.push_back(
+        {"uv",
+         type_of(formats.uv),
+         false,
+         {{"uv.U", [&f](size_t i) { return f.uv[i].x; }}, {"uv.V", [&f](size_t i) { return f.uv[i].y; }}}});
   if (a.ids) {
     layer l{"id", full, true, {}};
     const char* id_names[3] = {"id.object", "id.material", "id.instance"};
@@ -94,11 +95,13 @@ void check_layers(const std::vector<layer>& layers, const exr_settings& settings
   if (settings.multipart || !is_lossy_compression(settings.compression)) return;
   for (const layer& l : layers)
     if (l.data)
-      throw input_error("", "--compression",
-                        settings.compression + " is lossy and a single-part EXR has one codec for all channels, "
-                                               "so it would alter " +
-                            l.channels.front().name +
-                            "; add --multipart (data layers then keep zip) or pick none, rle, zips, zip or piz");
+      throw input_error(
+          "", "--compression",
+          settings.compression +
+              " is lossy and a single-part EXR has one codec for all channels, "
+              "so it would alter " +
+              l.channels.front().name +
+              "; add --multipart (data layers then keep zip) or pick none, rle, zips, zip or piz");
 }
 
 // OpenImageIO's compression attribute: "zip", or with a level "zip:4" / "dwaa:45". Data layers
@@ -206,7 +209,8 @@ void check_output_writable(const std::string& path) {
   fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw io_error(path, "output folder does not exist: " + folder.string());
-  if (::access(folder.c_str(), W_OK) != 0) throw io_error(path, "output folder is not writable: " + folder.string());
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw io_error(path, "output folder is not writable: " + folder.string());
   if (fs::is_directory(target, ec)) throw io_error(path, "output path is a folder");
   // The temporary file is renamed over the target: that must never replace a device, a pipe or
   // a socket.

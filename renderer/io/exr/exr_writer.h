@@ -4,14 +4,14 @@
 // renamed into place, so a failed write never leaves a partial image.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/math.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_storage.h"
 #include "render/film.h"
-
-#include <string>
-#include <utility>
-#include <vector>
 
 namespace kiln {
 
@@ -38,7 +38,8 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
                const exr_metadata& metadata);
 
 // Writes an image read by read_exr (possibly with other pixels and data window) to path
-// atomically, with its header, parts, compression, tiling and per-channel formats. Throws kiln::error (io) on failure.
+// atomically, with its header, parts, compression, tiling and per-channel formats. Throws kiln::error (io) on
+// failure.
 void write_exr(const std::string& path, const exr_image& image);
 
 }  // namespace kiln

@@ -1,9 +1,5 @@
 #include "io/exr/exr_writer.h"
 
-#include "core/error.h"
-#include "io/exr/exr_reader.h"
-#include "io/exr/preview_writer.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+
+#include "core/error.h"
+#include "io/exr/exr_reader.h"
+#include "io/exr/preview_writer.h"
 
 namespace kiln {
 namespace {
@@ -198,7 +198,8 @@ TEST(exr_writer, multipart_writes_one_named_part_per_layer_with_the_single_part_
   EXPECT_EQ(parts[0].spec.channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
   EXPECT_EQ(parts[1].spec.channelnames, (std::vector<std::string>{"Z"}));
   // OpenEXR stores a part's channels sorted by name.
-  EXPECT_EQ(parts[6].spec.channelnames, (std::vector<std::string>{"id.instance", "id.material", "id.object"}));
+  EXPECT_EQ(parts[6].spec.channelnames,
+            (std::vector<std::string>{"id.instance", "id.material", "id.object"}));
   EXPECT_EQ(read_parts(single).size(), 1u);
 
   const auto a = channels_of(single), b = channels_of(multi);
@@ -322,7 +323,7 @@ TEST(preview_writer, codes_follow_the_piecewise_srgb_curve_after_exposure_and_cl
   EXPECT_EQ(preview_code(0.5f, 0.0), 188);
   EXPECT_EQ(preview_code(0.18f, 0.0), 118);
   EXPECT_EQ(preview_code(0.0031308f, 0.0), 10);
-  EXPECT_EQ(preview_code(0.001f, 0.0), 3);  // 12.92 * 0.001 * 255 = 3.29
+  EXPECT_EQ(preview_code(0.001f, 0.0), 3);   // 12.92 * 0.001 * 255 = 3.29
   EXPECT_EQ(preview_code(0.25f, 1.0), 188);  // one stop up: 0.5
   EXPECT_EQ(preview_code(1.0f, -1.0), 188);
   EXPECT_EQ(preview_code(1.0f, 0.0), 255);

@@ -51,7 +51,8 @@ unsigned char preview_code(float linear, double exposure) {
 
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure) {
   const std::string format = preview_format(preview_path);
-  if (format.empty()) throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
+  if (format.empty())
+    throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
   auto in = OIIO::ImageInput::open(exr_path);
   if (!in) throw input_error(exr_path, "", "cannot read EXR: " + OIIO::geterror());
   int r = 0;
@@ -65,7 +66,8 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   const int channels = format == "png" ? 4 : 3;
   std::vector<unsigned char> codes(pixel_count * size_t(channels));
   for (size_t i = 0; i < pixel_count; ++i) {
-    for (int c = 0; c < 3; ++c) codes[i * size_t(channels) + size_t(c)] = preview_code(rgba[i * 4 + size_t(c)], exposure);
+    for (int c = 0; c < 3; ++c)
+      codes[i * size_t(channels) + size_t(c)] = preview_code(rgba[i * 4 + size_t(c)], exposure);
     if (channels == 4) {
       const float a = std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
       codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
