@@ -12,11 +12,13 @@
 
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
+#include "app/exr_options.h"
 #include "app/interrupt.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
+#include "io/exr/preview_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/frame_bands.h"
 #include "render/tile_renderer.h"
@@ -352,8 +354,7 @@ void add_render_options(CLI::App& app, render_options& o) {
 }
 
 void add_image_options(CLI::App& app, render_options& o) {
-  app.add_flag("--float", o.full_float,
-               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
+  add_exr_options(app, o);
   app.add_option_function<std::string>(
       "--aovs",
       [&o](const std::string& text) {
@@ -466,6 +467,8 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
+  const exr_settings storage = resolve_exr_settings(options);
+  if (!options.preview.empty()) check_output_writable(options.preview);
 
   // Hashed before loading: an asset edited during the render then reads as stale next time.
   const render_fingerprint fingerprint = known ? *known : make_fingerprint(options);
@@ -535,7 +538,9 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   // A signal that arrives after the last pixel still stops the run before anything is written.
   if (interrupt_requested())
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
-  write_exr(options.output, image, exr_settings{options.full_float}, metadata);
+  write_exr(options.output, image, storage, metadata);
+  // From the file as written, so the preview shows exactly what the EXR holds.
+  if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
 
   if (!options.quiet && options.summary_line) {
     const std::string sampling = settings.adaptive.threshold > 0.0f

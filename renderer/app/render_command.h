@@ -8,6 +8,7 @@
 
 #include "accel/grid/grid.h"
 #include "core/math.h"
+#include "io/exr/exr_storage.h"
 #include "render/aov_list.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
@@ -38,9 +39,14 @@ struct render_options {
   dvec3 up{0.0, 1.0, 0.0};
   double fov_degrees = 45.0;
   int scene_index = -1;
-  bool full_float = false;
-  aov_set aovs;                        // --aovs; the default is beauty, Z and N
-  std::optional<pixel_rect> crop;      // --crop x0,y0,x1,y1; checked against the image size once it is known
+  bool full_float = false;      // --float: every colour-like layer float
+  std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
+  // --compression, --compression-level, --tiled, --multipart; the formats come from resolve_exr_settings.
+  exr_settings exr;
+  std::string preview;  // --preview FILE.png|FILE.jpg; empty: none
+  double preview_exposure = 0.0;
+  aov_set aovs;  // --aovs; the default is beauty, Z and N
+  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
   int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
   vec3 background{0.0f};
   bool show_background = false;

@@ -1,22 +1,19 @@
 // Writes a film as one OpenEXR file through OpenImageIO: the film's AOVs (by default premultiplied
-// RGBA plus Z and N).
+// RGBA plus Z and N) as layers, stored as exr_settings says (formats, codec, tiles, parts).
 // The only module that knows EXR. Writes go to a temporary file beside the target that is
 // renamed into place, so a failed write never leaves a partial image.
 #pragma once
-
-#include "core/math.h"
-#include "io/exr/exr_reader.h"
-#include "render/film.h"
 
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace kiln {
+#include "core/math.h"
+#include "io/exr/exr_reader.h"
+#include "io/exr/exr_storage.h"
+#include "render/film.h"
 
-struct exr_settings {
-  bool full_float = false;  // RGBA, N, albedo and uv as 32-bit float; half otherwise. Z, P, ids always float.
-};
+namespace kiln {
 
 // What the header records besides the pixels.
 struct exr_metadata {
@@ -31,12 +28,18 @@ struct exr_metadata {
 // Called before rendering so a long render never ends in an unwritable path.
 void check_output_writable(const std::string& path);
 
+// Throws kiln::error (input, location "--compression") when settings would store an exact data layer
+// of aovs (Z, P, ids) with a lossy codec: a single-part file has one codec for all its channels.
+// Called before rendering; write_exr checks again.
+void check_exr_settings(const aov_set& aovs, const exr_settings& settings);
+
 // Writes the film to path atomically. Throws kiln::error (io) on failure.
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
                const exr_metadata& metadata);
 
 // Writes an image read by read_exr (possibly with other pixels and data window) to path
-// atomically, with its header and per-channel formats. Throws kiln::error (io) on failure.
+// atomically, with its header, parts, compression, tiling and per-channel formats. Throws kiln::error (io) on
+// failure.
 void write_exr(const std::string& path, const exr_image& image);
 
 }  // namespace kiln

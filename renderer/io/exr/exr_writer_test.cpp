@@ -1,11 +1,16 @@
 #include "io/exr/exr_writer.h"
 
-#include "core/error.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <map>
+
+#include "core/error.h"
+#include "io/exr/exr_reader.h"
+#include "io/exr/preview_writer.h"
 
 namespace kiln {
 namespace {
@@ -17,6 +22,15 @@ fs::path scratch_dir() {
   fs::create_directories(dir);
   return dir;
 }
+
+// Settings with every colour-like layer in one format.
+exr_settings all_layers(sample_format format) {
+  exr_settings s;
+  s.formats = {format, format, format, format};
+  return s;
+}
+
+const exr_settings full_float = all_layers(sample_format::float32);
 
 film test_film() {
   film f(5, 3);
@@ -35,7 +49,7 @@ TEST(exr_writer, round_trips_channels_and_metadata) {
   exr_metadata metadata;
   metadata.world_to_camera[3][0] = 7.0;  // a translation, stored in the last row by OpenEXR
   metadata.attributes = {{"kiln/spp", "4"}};
-  write_exr(file.string(), test_film(), exr_settings{true}, metadata);
+  write_exr(file.string(), test_film(), full_float, metadata);
 
   auto in = OIIO::ImageInput::open(file.string());
   ASSERT_TRUE(in);
@@ -61,7 +75,7 @@ TEST(exr_writer, round_trips_channels_and_metadata) {
 
 TEST(exr_writer, half_colour_keeps_float_depth) {
   fs::path file = scratch_dir() / "half.exr";
-  write_exr(file.string(), test_film(), exr_settings{false}, exr_metadata{});
+  write_exr(file.string(), test_film(), exr_settings{}, exr_metadata{});
   auto in = OIIO::ImageInput::open(file.string());
   ASSERT_TRUE(in);
   EXPECT_EQ(in->spec().channelformat(0), OIIO::TypeDesc::HALF);
@@ -73,19 +87,253 @@ TEST(exr_writer, half_colour_keeps_float_depth) {
 TEST(exr_writer, half_colour_saturates_instead_of_becoming_infinite) {
   film f = test_film();
   f.color[f.index(1, 1)] = vec4(1e6f, -3e5f, 70000.0f, 1.0f);
-  for (bool full_float : {false, true}) {
-    fs::path file = scratch_dir() / (full_float ? "bright_float.exr" : "bright_half.exr");
-    write_exr(file.string(), f, exr_settings{full_float}, exr_metadata{});
+  for (bool as_float : {false, true}) {
+    fs::path file = scratch_dir() / (as_float ? "bright_float.exr" : "bright_half.exr");
+    write_exr(file.string(), f, as_float ? full_float : exr_settings{}, exr_metadata{});
     auto in = OIIO::ImageInput::open(file.string());
     ASSERT_TRUE(in);
     std::vector<float> pixels(5 * 3 * 8);
     ASSERT_TRUE(in->read_image(0, 0, 0, 8, OIIO::TypeDesc::FLOAT, pixels.data()));
     const float* p = &pixels[(1 * 5 + 1) * 8];
-    EXPECT_EQ(p[0], full_float ? 1e6f : 65504.0f);
-    EXPECT_EQ(p[1], full_float ? -3e5f : -65504.0f);
-    EXPECT_EQ(p[2], full_float ? 70000.0f : 65504.0f);
+    EXPECT_EQ(p[0], as_float ? 1e6f : 65504.0f);
+    EXPECT_EQ(p[1], as_float ? -3e5f : -65504.0f);
+    EXPECT_EQ(p[2], as_float ? 70000.0f : 65504.0f);
     EXPECT_EQ(p[3], 1.0f);
   }
+}
+
+// A film with every AOV, values that half cannot hold exactly (so a format mix-up shows), 7x5 so
+// 4x4 tiles leave partial tiles at the right and bottom edges.
+film all_aov_film() {
+  aov_set all;
+  all.position = all.albedo = all.uv = all.ids = true;
+  film f(7, 5, all);
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      const size_t i = f.index(x, y);
+      const float t = 0.1f + 0.013f * float(i);
+      f.color[i] = vec4(t, 2.0f * t, 1.0f / 3.0f, 1.0f);
+      f.depth[i] = x == 0 ? inf : 100.0f + 0.001f * float(i);
+      f.normal[i] = vec3(t, 0.7f, -t);
+      f.position[i] = vec3(1000.0f + 0.001f * float(i), -t, 3.0f);
+      f.albedo[i] = vec3(t, 0.5f, 0.25f);
+      f.uv[i] = vec2(t, 1.0f - t);
+      f.ids[i] = glm::ivec3(int(i), 70000 + int(i), x == 0 ? -1 : 3);
+    }
+  return f;
+}
+
+// Every part of an EXR: its spec and its pixels as float (exact for half and float).
+struct part_contents {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;
+};
+
+std::vector<part_contents> read_parts(const fs::path& file) {
+  std::vector<part_contents> parts;
+  auto in = OIIO::ImageInput::open(file.string());
+  EXPECT_TRUE(in) << OIIO::geterror();
+  if (!in) return parts;
+  for (int s = 0; in->seek_subimage(s, 0); ++s) {
+    part_contents p{in->spec(), {}};
+    p.pixels.resize(p.spec.image_pixels() * size_t(p.spec.nchannels));
+    EXPECT_TRUE(in->read_image(s, 0, 0, p.spec.nchannels, OIIO::TypeDesc::FLOAT, p.pixels.data()));
+    parts.push_back(std::move(p));
+  }
+  return parts;
+}
+
+// Channel name -> (format, values) over every part of a file.
+std::map<std::string, std::pair<OIIO::TypeDesc, std::vector<float>>> channels_of(const fs::path& file) {
+  std::map<std::string, std::pair<OIIO::TypeDesc, std::vector<float>>> out;
+  for (const part_contents& p : read_parts(file)) {
+    const size_t n = size_t(p.spec.nchannels);
+    for (size_t c = 0; c < n; ++c) {
+      auto& [format, values] = out[p.spec.channelnames[c]];
+      format = p.spec.channelformat(int(c));
+      for (size_t i = 0; i < p.spec.image_pixels(); ++i) values.push_back(p.pixels[i * n + c]);
+    }
+  }
+  return out;
+}
+
+TEST(exr_writer, each_colour_like_layer_takes_its_own_format_and_data_layers_stay_float) {
+  fs::path file = scratch_dir() / "formats.exr";
+  exr_settings s;
+  s.formats.beauty = sample_format::float32;
+  s.formats.albedo = sample_format::float32;  // N and uv stay half
+  write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+  const auto channels = channels_of(file);
+  ASSERT_EQ(channels.size(), 19u);
+  for (const auto& [name, contents] : channels) {
+    const bool half = name.rfind("N.", 0) == 0 || name.rfind("uv.", 0) == 0;
+    EXPECT_EQ(contents.first, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT) << name;
+  }
+  // Float keeps 0.1 + 0.013 exactly; half rounds it to 11 bits.
+  EXPECT_EQ(channels.at("R").second[0], 0.1f);
+  EXPECT_EQ(channels.at("albedo.R").second[0], 0.1f);
+  EXPECT_NE(channels.at("N.X").second[0], 0.1f);
+  EXPECT_NEAR(channels.at("N.X").second[0], 0.1f, 1e-4f);
+  EXPECT_EQ(channels.at("id.material").second[34], 70034.0f);  // beyond half's exact integers
+  EXPECT_EQ(channels.at("P.X").second[34], 1000.0f + 0.001f * 34.0f);
+}
+
+TEST(exr_writer, multipart_writes_one_named_part_per_layer_with_the_single_part_pixels) {
+  const fs::path single = scratch_dir() / "single.exr", multi = scratch_dir() / "multi.exr";
+  exr_metadata metadata;
+  metadata.attributes = {{"kiln/spp", "4"}};
+  exr_settings s;
+  write_exr(single.string(), all_aov_film(), s, metadata);
+  s.multipart = true;
+  write_exr(multi.string(), all_aov_film(), s, metadata);
+
+  const std::vector<part_contents> parts = read_parts(multi);
+  std::vector<std::string> names;
+  for (const part_contents& p : parts) {
+    names.push_back(p.spec.get_string_attribute("oiio:subimagename"));
+    EXPECT_EQ(p.spec.get_string_attribute("kiln/spp"), "4") << names.back();  // every part: the header
+    EXPECT_NE(p.spec.find_attribute("worldToCamera"), nullptr) << names.back();
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"rgba", "depth", "N", "P", "albedo", "uv", "id"}));
+  EXPECT_EQ(parts[0].spec.channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
+  EXPECT_EQ(parts[1].spec.channelnames, (std::vector<std::string>{"Z"}));
+  // OpenEXR stores a part's channels sorted by name.
+  EXPECT_EQ(parts[6].spec.channelnames,
+            (std::vector<std::string>{"id.instance", "id.material", "id.object"}));
+  EXPECT_EQ(read_parts(single).size(), 1u);
+
+  const auto a = channels_of(single), b = channels_of(multi);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [name, contents] : a) {
+    ASSERT_EQ(b.count(name), 1u) << name;
+    EXPECT_EQ(b.at(name).first, contents.first) << name;
+    const auto& va = contents.second;
+    const auto& vb = b.at(name).second;
+    ASSERT_EQ(va.size(), vb.size());
+    EXPECT_EQ(std::memcmp(va.data(), vb.data(), va.size() * sizeof(float)), 0) << name;  // +inf Z included
+  }
+}
+
+TEST(exr_writer, lossy_codecs_reach_only_colour_like_parts) {
+  for (const std::string codec : {"pxr24", "b44", "b44a", "dwaa", "dwab"}) {
+    fs::path file = scratch_dir() / ("lossy_" + codec + ".exr");
+    exr_settings s;
+    s.compression = codec;
+    try {
+      write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+      ADD_FAILURE() << codec << ": a single part with Z, P and ids was written lossily";
+    } catch (const error& e) {
+      EXPECT_EQ(e.kind(), error_kind::input);
+      EXPECT_NE(std::string(e.what()).find("--multipart"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(file));
+    s.multipart = true;
+    write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+    for (const part_contents& p : read_parts(file)) {
+      const std::string part = p.spec.get_string_attribute("oiio:subimagename");
+      const bool data = part == "depth" || part == "P" || part == "id";
+      EXPECT_EQ(p.spec.get_string_attribute("compression"), data ? "zip" : codec) << part;
+    }
+  }
+  // Without data layers a single part may use a lossy codec.
+  film beauty_only = all_aov_film();
+  beauty_only.aovs = aov_set{true, false, false};
+  exr_settings s;
+  s.compression = "dwab";
+  EXPECT_NO_THROW(check_exr_settings(beauty_only.aovs, s));
+  EXPECT_THROW(check_exr_settings(aov_set{}, s), error);  // the default holds Z
+}
+
+TEST(exr_writer, lossless_codecs_round_trip_every_bit_and_levels_are_recorded) {
+  const auto reference = channels_of([] {
+    fs::path file = scratch_dir() / "reference.exr";
+    write_exr(file.string(), all_aov_film(), exr_settings{}, exr_metadata{});
+    return file;
+  }());
+  for (const std::string codec : {"none", "rle", "zips", "zip", "piz"}) {
+    fs::path file = scratch_dir() / ("lossless_" + codec + ".exr");
+    exr_settings s;
+    s.compression = codec;
+    write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+    EXPECT_EQ(read_parts(file).front().spec.get_string_attribute("compression"), codec);
+    const auto channels = channels_of(file);
+    for (const auto& [name, contents] : reference)
+      EXPECT_EQ(std::memcmp(contents.second.data(), channels.at(name).second.data(),
+                            contents.second.size() * sizeof(float)),
+                0)
+          << codec << " " << name;
+  }
+  fs::path file = scratch_dir() / "dwa_level.exr";
+  exr_settings s;
+  s.compression = "dwaa";
+  s.compression_level = 200;
+  s.multipart = true;
+  write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+  EXPECT_EQ(read_parts(file).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 200.0f);
+}
+
+TEST(exr_writer, tiled_files_record_the_tile_size_and_scanline_files_none) {
+  for (int tile : {0, 4, 64}) {
+    for (bool multipart : {false, true}) {
+      fs::path file = scratch_dir() / ("tiles_" + std::to_string(tile) + (multipart ? "_multi.exr" : ".exr"));
+      exr_settings s;
+      s.tile_size = tile;
+      s.multipart = multipart;
+      write_exr(file.string(), all_aov_film(), s, exr_metadata{});
+      for (const part_contents& p : read_parts(file)) {
+        EXPECT_EQ(p.spec.tile_width, tile);
+        EXPECT_EQ(p.spec.tile_height, tile);
+      }
+      EXPECT_EQ(channels_of(file).at("id.object").second[34], 34.0f);
+    }
+  }
+}
+
+// kiln's own reader (used by kiln stitch) flattens parts and tiles into one channel list; writing
+// what it read gives back the same parts, tiles and values.
+TEST(exr_reader, reads_multipart_tiled_files_and_writes_them_back_unchanged) {
+  const fs::path single = scratch_dir() / "read_single.exr", multi = scratch_dir() / "read_multi.exr",
+                 copy = scratch_dir() / "read_copy.exr";
+  exr_settings s;
+  write_exr(single.string(), all_aov_film(), s, exr_metadata{});
+  s.multipart = true;
+  s.tile_size = 4;
+  write_exr(multi.string(), all_aov_film(), s, exr_metadata{});
+  const exr_image a = read_exr(single.string()), b = read_exr(multi.string());
+  EXPECT_EQ(b.channel_names.size(), 19u);
+  EXPECT_EQ(b.pixels.size(), a.pixels.size());
+  EXPECT_EQ(b.channel_names.front(), "R");
+  write_exr(copy.string(), b);
+  const std::vector<part_contents> original = read_parts(multi), copied = read_parts(copy);
+  ASSERT_EQ(copied.size(), 7u);
+  for (size_t k = 0; k < copied.size(); ++k) {
+    EXPECT_EQ(copied[k].spec.get_string_attribute("oiio:subimagename"),
+              original[k].spec.get_string_attribute("oiio:subimagename"));
+    EXPECT_EQ(copied[k].spec.tile_width, 4);
+    EXPECT_EQ(copied[k].spec.channelformats, original[k].spec.channelformats);
+    EXPECT_EQ(std::memcmp(copied[k].pixels.data(), original[k].pixels.data(),
+                          original[k].pixels.size() * sizeof(float)),
+              0);
+  }
+}
+
+// Known sRGB encodings (IEC 61966-2-1): linear 0.5 -> 0.7354 (code 188), 0.18 -> 0.4614 (118),
+// 0.214 -> 0.5000 (127.5, rounds to 128), the linear segment's end 0.0031308 -> 0.04045 (10).
+TEST(preview_writer, codes_follow_the_piecewise_srgb_curve_after_exposure_and_clamp) {
+  EXPECT_EQ(preview_code(0.5f, 0.0), 188);
+  EXPECT_EQ(preview_code(0.18f, 0.0), 118);
+  EXPECT_EQ(preview_code(0.0031308f, 0.0), 10);
+  EXPECT_EQ(preview_code(0.001f, 0.0), 3);   // 12.92 * 0.001 * 255 = 3.29
+  EXPECT_EQ(preview_code(0.25f, 1.0), 188);  // one stop up: 0.5
+  EXPECT_EQ(preview_code(1.0f, -1.0), 188);
+  EXPECT_EQ(preview_code(1.0f, 0.0), 255);
+  EXPECT_EQ(preview_code(7.0f, 0.0), 255);  // clamped
+  EXPECT_EQ(preview_code(-2.0f, 0.0), 0);
+  EXPECT_EQ(preview_code(std::nanf(""), 0.0), 0);
+  EXPECT_EQ(preview_format("a/b.PNG"), "png");
+  EXPECT_EQ(preview_format("b.jpeg"), "jpeg");
+  EXPECT_EQ(preview_format("b.jpg"), "jpeg");
+  EXPECT_EQ(preview_format("b.tif"), "");
 }
 
 TEST(exr_writer, unwritable_folder_is_an_io_error_and_leaves_nothing) {

@@ -1,0 +1,42 @@
+// How kiln stores an EXR: the sample format of each colour-like layer, the compression codec,
+// scanlines or tiles, and one part or one part per layer. Plain settings and the codec facts the
+// CLI and the writer share; knows no OpenImageIO. Depends on the standard library only.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace kiln {
+
+enum class sample_format { half, float32 };
+
+// The layers whose sample format may be chosen: values a compositor views or filters, for which
+// half's 11-bit mantissa is enough. Z, P and the ids (data layers) are always 32-bit float.
+struct layer_formats {
+  sample_format beauty = sample_format::half;  // R G B A
+  sample_format normal = sample_format::half;  // N.X N.Y N.Z
+  sample_format albedo = sample_format::half;  // albedo.R albedo.G albedo.B
+  sample_format uv = sample_format::half;      // uv.U uv.V
+};
+
+struct exr_settings {
+  layer_formats formats;
+  std::string compression = "zip";  // one of exr_compression_names()
+  // 0: the codec's default; zip and zips take 1-9 (zlib level), dwaa and dwab a positive
+  // dwaCompressionLevel (OpenEXR's default is 45).
+  int compression_level = 0;
+  int tile_size = 0;       // 0: scanlines; N: tiled with N×N tiles
+  bool multipart = false;  // one part per layer instead of one part with every channel
+};
+
+// none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab: what OpenEXR 3.1 offers.
+const std::vector<std::string>& exr_compression_names();
+
+// pxr24 (float rounded to 24 bits), b44 and b44a (half in 4×4 blocks) and dwaa and dwab (DCT)
+// change values; the others reproduce every bit.
+bool is_lossy_compression(const std::string& name);
+
+// Whether compression_level means something for the codec: zip/zips and dwaa/dwab.
+bool compression_takes_level(const std::string& name);
+
+}  // namespace kiln
