@@ -166,9 +166,12 @@ TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_override
        "overrides": {"max-depth": 4, "aovs": "beauty,Z"}},
       {"asset": "scenes/cornell_box.gltf", "camera": "0"}]})");
   const command_result result = run_kiln(
-      {"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string(), "-q"});
+      {"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string(), "-q",
+       "--compression", "piz", "--preview", "contact.png"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
-  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"cornell_box_0.exr", "sub/a.exr"}));
+  // --preview names the format only: each job's preview sits beside its EXR.
+  EXPECT_EQ(files_in(dir / "out"),
+            (std::vector<std::string>{"cornell_box_0.exr", "cornell_box_0.png", "sub/a.exr", "sub/a.png"}));
 
   const image a = read_image((dir / "out/sub/a.exr").string());
   EXPECT_EQ(a.spec.width, 40);
@@ -178,6 +181,7 @@ TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_override
   EXPECT_EQ(attribute(a, "kiln/aovs"), "beauty,Z");
   EXPECT_EQ(a.spec.nchannels, 5);  // R G B A Z
   EXPECT_EQ(attribute(a, "kiln/scene_file"), (dir / "scenes/cornell_box.gltf").string());
+  EXPECT_EQ(attribute(a, "compression"), "piz");  // the batch's storage options reach every job
 
   const image b = read_image((dir / "out/cornell_box_0.exr").string());
   EXPECT_EQ(b.spec.width, 16);

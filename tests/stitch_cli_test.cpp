@@ -129,7 +129,7 @@ stored_parts read_parts(const std::string& path) {
 TEST(stitch_cli, multipart_tiled_bands_stitch_to_the_full_render) {
   const std::string dir = scratch_folder("stitch_multipart");
   for (int bands : {3, 5}) {
-    const std::vector<std::string> layout = {"--multipart", "--tiled", "16"};
+    const std::vector<std::string> layout = {"--multipart", "--exr-tile-size", "16"};
     const std::string full = render(dir, "full.exr", layout);
     std::vector<std::string> args = {"stitch", dir + "/stitched.exr"};
     for (int i = 0; i < bands; ++i) {

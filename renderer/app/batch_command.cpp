@@ -59,6 +59,8 @@ std::string render_command_line(const render_options& o) {
   std::string line = "kiln render " + shell_quoted(o.input) + " -o " + shell_quoted(o.output);
   for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
     line += " " + shell_quoted(a);
+  if (!o.preview.empty())
+    line += " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
   return line;
 }
 
@@ -145,6 +147,9 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     }
     const fs::path output = out_dir / (spec.output.empty() ? default_output(spec) : spec.output);
     job.options.output = output.lexically_normal().string();
+    // --preview in a batch names the format only: each job's preview sits beside its EXR.
+    if (!job.options.preview.empty())
+      job.options.preview = fs::path(job.options.output).replace_extension(fs::path(job.options.preview).extension()).string();
     job.options.command_line = render_command_line(job.options);
     auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
     if (!inserted)

@@ -68,9 +68,8 @@ void add_exr_options(CLI::App& app, render_options& o) {
   app.add_option("--compression-level", o.exr.compression_level,
                  "zip/zips: zlib level 1-9 (default 4); dwaa/dwab: dwaCompressionLevel (default 45)")
       ->check(CLI::Range(1, 100000));
-  app.add_option("--tiled", o.exr.tile_size, "Tiled EXR with NxN tiles (default 64) instead of scanlines")
-      ->expected(0, 1)
-      ->default_str(std::to_string(default_exr_tile))
+  app.add_flag("--tiled", o.exr_tiled, "Tiled EXR (64x64 tiles unless --exr-tile-size) instead of scanlines");
+  app.add_option("--exr-tile-size", o.exr_tile_size, "Tiled EXR with NxN tiles (implies --tiled)")
       ->check(CLI::Range(1, 4096));
   app.add_flag("--multipart", o.exr.multipart,
                "One EXR part per layer (rgba, depth, N, P, albedo, uv, id), each with the full header");
@@ -89,6 +88,8 @@ void add_exr_options(CLI::App& app, render_options& o) {
 
 exr_settings resolve_exr_settings(const render_options& options) {
   exr_settings settings = options.exr;
+  if (options.exr_tiled || options.exr_tile_size > 0)
+    settings.tile_size = options.exr_tile_size > 0 ? options.exr_tile_size : default_exr_tile;
   const sample_format all = options.full_float ? sample_format::float32 : sample_format::half;
   settings.formats = {all, all, all, all};
   apply_channel_formats(options.channel_formats, settings.formats);

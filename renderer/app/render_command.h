@@ -43,6 +43,8 @@ struct render_options {
   std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
   // --compression, --compression-level, --tiled, --multipart; the formats come from resolve_exr_settings.
   exr_settings exr;
+  bool exr_tiled = false;  // --tiled
+  int exr_tile_size = 0;   // --exr-tile-size N (implies --tiled); 0: 64 when tiled
   std::string preview;  // --preview FILE.png|FILE.jpg; empty: none
   double preview_exposure = 0.0;
   aov_set aovs;  // --aovs; the default is beauty, Z and N

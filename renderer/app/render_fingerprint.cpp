@@ -77,7 +77,14 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
   add("--fov", number(o.fov_degrees));
   if (o.scene_index >= 0) add("--scene", std::to_string(o.scene_index));
   if (o.full_float) a.push_back("--float");
+  if (!o.channel_formats.empty()) add("--channel-format", o.channel_formats);
   add("--aovs", aov_list_name(o.aovs));
+  // How the file stores the pixels: a stored file in another layout is stale too.
+  add("--compression", o.exr.compression);
+  if (o.exr.compression_level > 0) add("--compression-level", std::to_string(o.exr.compression_level));
+  if (o.exr_tiled) a.push_back("--tiled");
+  if (o.exr_tile_size > 0) add("--exr-tile-size", std::to_string(o.exr_tile_size));
+  if (o.exr.multipart) a.push_back("--multipart");
   if (region == region_arguments::include) {
     if (o.crop)
       add("--crop", std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "," +

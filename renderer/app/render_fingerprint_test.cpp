@@ -40,6 +40,12 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"scene", [](render_options& o) { o.scene_index = 1; }},
       {"float", [](render_options& o) { o.full_float = true; }},
       {"aovs", [](render_options& o) { o.aovs.normal = false; }},
+      {"channel format", [](render_options& o) { o.channel_formats = "N=float"; }},
+      {"compression", [](render_options& o) { o.exr.compression = "piz"; }},
+      {"compression level", [](render_options& o) { o.exr.compression_level = 9; }},
+      {"tiled", [](render_options& o) { o.exr_tiled = true; }},
+      {"exr tile size", [](render_options& o) { o.exr_tile_size = 16; }},
+      {"multipart", [](render_options& o) { o.exr.multipart = true; }},
       {"crop",
        [](render_options& o) {
          o.crop = pixel_rect{0, 0, 8, 8};
@@ -106,6 +112,11 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   o.grid.resolution = glm::ivec3(4, 5, 6);
   o.min_throughput = 0.0123f;
   o.max_nodes = 77;
+  o.channel_formats = "beauty=float,uv=half";
+  o.exr.compression = "dwaa";
+  o.exr.compression_level = 60;
+  o.exr_tile_size = 32;
+  o.exr.multipart = true;
   const std::vector<std::string> args = canonical_render_arguments(o, region_arguments::include);
   render_options parsed;
   apply_render_arguments(parsed, args);
@@ -117,6 +128,11 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   EXPECT_EQ(parsed.min_throughput, o.min_throughput);
   EXPECT_EQ(parsed.camera, "Main Cam");
   EXPECT_EQ(parsed.tile_count, 3);
+  EXPECT_EQ(parsed.exr.compression, "dwaa");
+  EXPECT_EQ(parsed.exr.compression_level, 60);
+  EXPECT_EQ(parsed.exr_tile_size, 32);
+  EXPECT_TRUE(parsed.exr.multipart);
+  EXPECT_EQ(parsed.channel_formats, "beauty=float,uv=half");
   // Without the region the same settings lack only --tile.
   const std::vector<std::string> without = canonical_render_arguments(o, region_arguments::omit);
   EXPECT_EQ(without.size() + 2, args.size());

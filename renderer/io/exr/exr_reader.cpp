@@ -70,8 +70,8 @@ exr_image read_exr(const std::string& path) {
 }
 
 std::string exr_string_attribute(const exr_image& image, const std::string& name) {
-  if (!image.header) return {};
-  return image.header->spec.get_string_attribute(name);
+  if (!image.header || image.header->parts.empty()) return {};
+  return std::string(image.header->parts.front().get_string_attribute(name));
 }
 
 }  // namespace kiln

@@ -66,17 +66,18 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   const int channels = format == "png" ? 4 : 3;
   std::vector<unsigned char> codes(pixel_count * size_t(channels));
   for (size_t i = 0; i < pixel_count; ++i) {
+    const float a = std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
+    // PNG stores straight alpha, so its colour is unpremultiplied and a viewer's "over" is right;
+    // JPEG has no alpha and shows the premultiplied colour, i.e. the image over black.
+    const float unpremultiply = channels == 4 && a > 0.0f ? 1.0f / a : 1.0f;
     for (int c = 0; c < 3; ++c)
-      codes[i * size_t(channels) + size_t(c)] = preview_code(rgba[i * 4 + size_t(c)], exposure);
-    if (channels == 4) {
-      const float a = std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
-      codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
-    }
+      codes[i * size_t(channels) + size_t(c)] = preview_code(rgba[i * 4 + size_t(c)] * unpremultiply, exposure);
+    if (channels == 4) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
   }
   OIIO::ImageSpec out_spec(spec.width, spec.height, channels, OIIO::TypeDesc::UINT8);
   if (channels == 4) {
     out_spec.alpha_channel = 3;
-    // The codes are final: without this OpenImageIO would divide colour by alpha for PNG.
+    // The codes are already straight: without this OpenImageIO would divide colour by alpha again.
     out_spec.attribute("oiio:UnassociatedAlpha", 1);
   }
   out_spec.attribute("oiio:ColorSpace", "sRGB");

@@ -15,10 +15,11 @@ std::string preview_format(const std::string& path);
 unsigned char preview_code(float linear, double exposure);
 
 // Reads R, G, B, A (premultiplied) from the EXR at exr_path (the part holding them, in a
-// multi-part file) and writes preview_path atomically: R G B through preview_code, which shows the
-// colour over black; a PNG also keeps A as round(255 · clamp(A, 0, 1)), a JPEG has no alpha. The
-// preview covers the EXR's data window. Throws kiln::error (input) when the EXR has no R G B A,
-// (io) when the preview cannot be written.
+// multi-part file) and writes preview_path atomically. A PNG holds straight colour, R G B divided
+// by A where A > 0, through preview_code, and A as round(255 · clamp(A, 0, 1)); a JPEG holds the
+// premultiplied R G B through preview_code (the colour over black) and no alpha. The preview covers
+// the EXR's data window. Throws kiln::error (input) when the EXR has no R G B A, (io) when the
+// preview cannot be written.
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure);
 
 }  // namespace kiln
