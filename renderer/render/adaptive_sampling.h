@@ -6,16 +6,17 @@
 // Depends on core and render only; the tracing is a callback.
 #pragma once
 
-#include "render/camera_sample.h"
-
 #include <functional>
 #include <vector>
+
+#include "render/camera_sample.h"
 
 namespace kiln {
 
 struct adaptive_options {
-  float threshold = 0.0f;  // split where a channel (R, G, B, A) spans more than this; 0 = off
-  int max_depth = 2;       // splits per pixel at most: 2 means squares down to 1/4 pixel a side
+  float threshold = 0.0f;     // split where a channel (R, G, B, A) spans more than this; 0 = off
+  int max_depth = 2;          // splits per pixel at most: 2 means squares down to 1/4 pixel a side
+  bool collect_hits = false;  // fill adaptive_pixel::hits (for Cryptomatte)
 };
 
 constexpr int max_adaptive_depth = 8;
@@ -28,10 +29,18 @@ bool corners_differ(const camera_sample& a, const camera_sample& b, const camera
 // Traces the sample at film position (x, y) in pixels; must be a pure function of the position.
 using sample_tracer = std::function<camera_sample(double x, double y)>;
 
+// A corner sample that hit something (with finite radiance), and its weight in the pixel's mean.
+struct weighted_hit {
+  int32_t node = -1;
+  int32_t material = -1;
+  float weight = 0.0f;  // 1/4 of its square's area: the pixel's weights sum to exactly 1
+};
+
 // What a refined pixel contributes to the film.
 struct adaptive_pixel {
-  vec4 rgba{0.0f};    // area-weighted mean of the squares' corner means
-  camera_sample nearest;  // the nearest sample the pixel used: its depth, normal and other AOVs
+  vec4 rgba{0.0f};                 // area-weighted mean of the squares' corner means
+  camera_sample nearest;           // the nearest sample the pixel used: its depth, normal and other AOVs
+  std::vector<weighted_hit> hits;  // with collect_hits: each final square's corners that hit
 };
 
 // Per-thread scratch: the samples already traced inside the current pixel, on its finest grid,

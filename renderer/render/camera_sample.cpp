@@ -24,6 +24,8 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   camera_sample s;
   const ray start = generate_camera_ray(cam, px, py);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
+  // Orthographic rays run along the view axis from the window plane: their distance is planar.
+  if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
   ++counts.camera;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
   if (!h) {
@@ -53,7 +55,8 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
 }
 
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {
-  if (!out.depth.empty()) out.depth[i] = s.depth;
+  if (!out.depth.empty())
+    out.depth[i] = out.aovs.depth_kind == depth_mode::planar ? s.depth * s.view_cosine : s.depth;
   if (!out.normal.empty()) out.normal[i] = s.normal;
   if (!out.position.empty()) out.position[i] = s.position;
   if (!out.albedo.empty()) out.albedo[i] = s.albedo;

@@ -1,11 +1,5 @@
 #include "render/tile_renderer.h"
 
-#include "core/error.h"
-#include "render/adaptive_sampling.h"
-#include "render/camera_sample.h"
-#include "render/sample_pattern.h"
-#include "render/splat_film.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -20,6 +14,11 @@
 #include <mutex>
 #include <vector>
 
+#include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/sample_pattern.h"
+#include "render/splat_film.h"
 #include "shade/environment.h"
 #include "shade/texture_filter.h"
 
@@ -71,6 +70,16 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.albedo, out.albedo);
   copy(from.uv, out.uv);
   copy(from.ids, out.ids);
+  const size_t depth = size_t(from.aovs.crypto_depth);
+  auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
+    if (src.empty()) return;
+    for (int y = to.y0; y < to.y1; ++y)
+      for (int x = to.x0; x < to.x1; ++x)
+        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * depth, depth,
+                    dst.begin() + out.index(x - to.x0, y - to.y0) * depth);
+  };
+  copy_ranks(from.crypto_object, out.crypto_object);
+  copy_ranks(from.crypto_material, out.crypto_material);
   return out;
 }
 
@@ -80,6 +89,22 @@ ray_cone sample_cone(const view_camera& cam, int spp) {
   const pixel_cone pixel = camera_pixel_cone(cam);
   const double scale = std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1))));
   return {float(pixel.width * scale), float(pixel.spread * scale)};
+}
+
+// Which Cryptomatte layers the film keeps.
+struct matte_layers {
+  bool on[matte_layer_count] = {};
+  explicit matte_layers(const aov_set& a) : on{a.crypto_object, a.crypto_material} {}
+  bool any() const { return on[object_layer] || on[material_layer]; }
+};
+
+// The sample's id in each layer; false for a sample that hit nothing.
+bool sample_matte_ids(const matte_ids& mattes, int32_t node, int32_t material,
+                      uint32_t (&ids)[matte_layer_count]) {
+  if (node < 0) return false;
+  ids[object_layer] = matte_id(mattes.object_by_node, node);
+  ids[material_layer] = matte_id(mattes.material_by_source, material);
+  return true;
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
@@ -93,14 +118,17 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   for (int s = 0; s < spp; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
-    vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
-                                          : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
+    vec2 offset = settings.random_samples
+                      ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
+                      : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), cone, counts, settings.aovs.albedo);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
-    if (cs.finite) splat.add(settings.filter, offset, cs.rgba);
+    uint32_t ids[matte_layer_count];
+    const bool hit = sample_matte_ids(settings.mattes, cs.node, cs.material, ids);
+    if (cs.finite) splat.add(settings.filter, offset, cs.rgba, hit ? ids : nullptr);
     if (cs.depth < nearest.depth) nearest = cs;
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
@@ -120,28 +148,49 @@ struct tile_job {
 
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
-  pixel_splat splat(job.splats.reach());
+  pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
       render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
 }
 
+// Cryptomatte ranks of an adaptive pixel: its corner weights sum to exactly 1, so the summed weight
+// of an id is its coverage (and the coverages of a transparent background's pixel sum to alpha).
+void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i) {
+  std::vector<id_coverage>* ranks[matte_layer_count] = {&job.out.crypto_object, &job.out.crypto_material};
+  const size_t depth = size_t(job.out.aovs.crypto_depth);
+  for (int l = 0; l < matte_layer_count; ++l) {
+    if (ranks[l]->empty()) continue;
+    id_weights sums;
+    for (const weighted_hit& h : p.hits) {
+      uint32_t ids[matte_layer_count];
+      sample_matte_ids(job.settings.mattes, h.node, h.material, ids);
+      add_id_weight(sums, ids[l], h.weight);
+    }
+    store_ranks(sums, 1.0f, int(depth), ranks[l]->data() + i * depth);
+  }
+}
+
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
-void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
+void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch,
+                          ray_counts& counts) {
+  adaptive_options options = job.settings.adaptive;
+  options.collect_hits = matte_layers(job.settings.aovs).any();
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
-    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
-                               counts, job.settings.aovs.albedo);
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
+                               sample_cone(job.cam, 1), counts, job.settings.aovs.albedo);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       const size_t c = (y - job.out.y0) * row + (x - job.out.x0);
       const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
                                         job.corners[c + row + 1]};
-      adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
+      adaptive_pixel p = refine_pixel(x, y, corners, options, trace, scratch);
       size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
       store_nearest_sample(p.nearest, job.out, i);
+      if (options.collect_hits) store_adaptive_ranks(job, p, i);
     }
 }
 
@@ -170,7 +219,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   if (scene_needs_texture_filter(world))
     textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
-  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter);
+  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter,
+                    matte_layers(settings.aovs).on);
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, splats, corners};
 
@@ -195,20 +245,21 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       });
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t t = range.begin(); t != range.end(); ++t) {
-        const tile& tl = tiles[t];
-        ray_counts counts;
-        if (adaptive)
-          render_adaptive_tile(job, tl, scratch.local(), counts);
-        else
-          render_filtered_tile(job, tl, counts);
-        std::lock_guard<std::mutex> lock(merge_mutex);
-        total_counts += counts;
-        size_t done = ++tiles_done;
-        if (progress) progress(done, tiles.size());
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t t = range.begin(); t != range.end(); ++t) {
+                          const tile& tl = tiles[t];
+                          ray_counts counts;
+                          if (adaptive)
+                            render_adaptive_tile(job, tl, scratch.local(), counts);
+                          else
+                            render_filtered_tile(job, tl, counts);
+                          std::lock_guard<std::mutex> lock(merge_mutex);
+                          total_counts += counts;
+                          size_t done = ++tiles_done;
+                          if (progress) progress(done, tiles.size());
+                        }
+                      });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");

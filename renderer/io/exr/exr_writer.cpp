@@ -1,10 +1,6 @@
 #include "io/exr/exr_writer.h"
 
-#include "core/error.h"
-#include "io/exr/exr_header.h"
-
 #include <OpenImageIO/imageio.h>
-
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -12,9 +8,13 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <system_error>
+
+#include "core/error.h"
+#include "io/exr/cryptomatte.h"
+#include "io/exr/exr_header.h"
 
 namespace kiln {
 namespace fs = std::filesystem;
@@ -27,6 +27,28 @@ struct channel {
   OIIO::TypeDesc format;
   std::function<float(size_t)> value;
 };
+
+// One Cryptomatte layer: ⌈depth/2⌉ RGBA sets named <layer>00, <layer>01, ..., each holding two
+// ranks as (id, coverage, id, coverage); a rank past depth stays 0. Float: the ids are bit patterns.
+void add_cryptomatte_channels(std::vector<channel>& out, const std::string& layer,
+                              const std::vector<id_coverage>& ranks, int depth) {
+  const char* rgba[4] = {".R", ".G", ".B", ".A"};
+  for (int set = 0; 2 * set < depth; ++set) {
+    const std::string number = (set < 10 ? "0" : "") + std::to_string(set);
+    for (int c = 0; c < 4; ++c) {
+      const int rank = 2 * set + c / 2;
+      const bool id = c % 2 == 0;
+      out.push_back({layer + number + rgba[c], OIIO::TypeDesc::FLOAT, [&ranks, depth, rank, id](size_t i) {
+                       if (rank >= depth) return 0.0f;
+                       const id_coverage& r = ranks[i * size_t(depth) + size_t(rank)];
+                       if (!id) return r.coverage;
+                       float value;
+                       std::memcpy(&value, &r.id, sizeof value);
+                       return value;
+                     }});
+    }
+  }
+}
 
 // The channels of the film's AOVs, in the order of aov_list_name(). Z, P and the ids are always
 // float (distances and positions need the precision; ids must stay exact integers).
@@ -60,6 +82,10 @@ std::vector<channel> film_channels(const film& f, const exr_settings& settings) 
   const char* id_names[3] = {"id.object", "id.material", "id.instance"};
   for (int c = 0; c < 3 && a.ids; ++c)
     add(id_names[c], full, [&f, c](size_t i) { return float(f.ids[i][c]); });
+  if (a.crypto_object)
+    add_cryptomatte_channels(out, crypto_object_layer_name, f.crypto_object, a.crypto_depth);
+  if (a.crypto_material)
+    add_cryptomatte_channels(out, crypto_material_layer_name, f.crypto_material, a.crypto_depth);
   return out;
 }
 
@@ -161,7 +187,8 @@ void check_output_writable(const std::string& path) {
   fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw io_error(path, "output folder does not exist: " + folder.string());
-  if (::access(folder.c_str(), W_OK) != 0) throw io_error(path, "output folder is not writable: " + folder.string());
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw io_error(path, "output folder is not writable: " + folder.string());
   if (fs::is_directory(target, ec)) throw io_error(path, "output path is a folder");
   // The temporary file is renamed over the target: that must never replace a device, a pipe or
   // a socket.
