@@ -14,6 +14,7 @@
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
 #include "core/error.h"
+#include "io/exr/cryptomatte.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
 #include "io/gltf/gltf_loader.h"
@@ -225,29 +226,37 @@ void add_view_options(CLI::App& app, render_options& o) {
                  "baseline stratification is measured against)")
       ->check(CLI::IsMember({"stratified", "random"}))
       ->capture_default_str();
-  app.add_option("--filter", o.filter,
-                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
-                 "1.5 with sigma radius/3, blackman-harris 2)")
+  app.add_option(
+         "--filter", o.filter,
+         "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+         "1.5 with sigma radius/3, blackman-harris 2)")
       ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
       ->capture_default_str();
   app.add_option_function<float>(
       "--filter-radius",
       [&o](float r) {
-        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        if (!(r > 0.0f && r <= 16.0f))
+          throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
         o.filter_radius = r;
       },
       "Filter radius in pixels, in (0, 16] (default: the filter's own)");
-  app.add_option("--adaptive-threshold", o.adaptive_threshold,
-                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
-                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+  app.add_option(
+         "--adaptive-threshold", o.adaptive_threshold,
+         "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+         "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
       ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
-  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--camera", o.camera,
+                 "glTF camera by name or index (default: the first camera in the file)");
   app.add_option_function<std::string>(
       "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
@@ -358,12 +367,27 @@ void add_render_options(CLI::App& app, render_options& o) {
         std::string bad;
         std::optional<aov_set> aovs = parse_aov_list(text, &bad);
         if (!aovs)
-          throw CLI::ValidationError("--aovs", "unknown or repeated output " + bad +
-                                                   " (choose from beauty, Z, N, P, albedo, uv, id)");
+          throw CLI::ValidationError("--aovs",
+                                     "unknown or repeated output " + bad +
+                                         " (choose from beauty, Z, N, P, albedo, uv, id, crypto_object, "
+                                         "crypto_material, cryptomatte)");
+        // The other options fill in fields of the same set, whichever order they come in.
+        aovs->crypto_depth = o.aovs.crypto_depth;
+        aovs->depth_kind = o.aovs.depth_kind;
         o.aovs = *aovs;
       },
       "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
-      "(id.object, id.material, id.instance) (default beauty,Z,N)");
+      "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
+      "and material names; cryptomatte for both) (default beauty,Z,N)");
+  app.add_option_function<int>(
+         "--cryptomatte-depth", [&o](int depth) { o.aovs.crypto_depth = depth; },
+         "Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set (default 6)")
+      ->check(CLI::Range(1, max_cryptomatte_depth));
+  app.add_option_function<std::string>(
+         "--depth-mode", [&o](const std::string& mode) { o.aovs.depth_kind = *parse_depth_mode(mode); },
+         "What Z holds: distance (along the ray from the camera, the default) or planar (along the view "
+         "axis)")
+      ->check(CLI::IsMember({"distance", "planar"}));
   CLI::Option* crop = app.add_option_function<std::string>(
       "--crop",
       [&o](const std::string& text) {
@@ -386,7 +410,8 @@ void add_render_options(CLI::App& app, render_options& o) {
            int index = -1, count = 0;
            if (!(in >> index >> slash >> count) || slash != '/' || !(in >> std::ws).eof() || count < 1 ||
                index < 0 || index >= count)
-             throw CLI::ValidationError("--tile", "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
+             throw CLI::ValidationError("--tile",
+                                        "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
            o.tile_index = index;
            o.tile_count = count;
          },
@@ -419,7 +444,8 @@ prepared_scene prepare_scene(const render_options& options) {
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet) {
-    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings)
+      std::cerr << "kiln: warning: " << warning << '\n';
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
       std::cerr << "kiln: warning: dropped " << dropped << " degenerate triangle" << (dropped == 1 ? "" : "s")
                 << " (repeated vertices or zero area)\n";
@@ -445,7 +471,8 @@ render_settings make_render_settings(const render_options& options) {
   if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
     throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
-    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
+    throw input_error("", "--adaptive-threshold",
+                      "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -471,20 +498,26 @@ void run_render(const render_options& options) {
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel =
       make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
-  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  double build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
+  const cryptomatte_layer objects = cryptomatte_objects(world);
+  const cryptomatte_layer materials = cryptomatte_materials(world);
+  settings.mattes = {objects.id_by_key, materials.id_by_key};
   if (options.crop) {
     const pixel_rect& c = *options.crop;
     if (c.x1 > cam.width || c.y1 > cam.height)
-      throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
-                                          std::to_string(cam.height) + " image");
+      throw input_error("", "--crop",
+                        "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                            std::to_string(cam.height) + " image");
     settings.crop = c;
   }
   if (options.tile_count > 0) {
     if (options.tile_count > cam.height)
-      throw input_error("", "--tile", "cannot split " + std::to_string(cam.height) + " rows into " +
-                                          std::to_string(options.tile_count) + " bands");
+      throw input_error("", "--tile",
+                        "cannot split " + std::to_string(cam.height) + " rows into " +
+                            std::to_string(options.tile_count) + " bands");
     settings.crop = frame_band(options.tile_index, options.tile_count, cam.width, cam.height);
   }
   render_statistics stats;
@@ -511,13 +544,18 @@ void run_render(const render_options& options) {
       {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},
-      {"kiln/depth", "ray distance"},
+      {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
       {"kiln/aovs", aov_list_name(options.aovs)},
       {"kiln/scene_hash", file_hash_hex(options.input)},
   };
+  for (const auto* layer :
+       {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
+    if (layer)
+      for (auto& attribute : cryptomatte_attributes(*layer))
+        metadata.attributes.push_back(std::move(attribute));
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
   // A signal that arrives after the last pixel still stops the run before anything is written.
@@ -526,10 +564,10 @@ void run_render(const render_options& options) {
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
-    const std::string sampling =
-        settings.adaptive.threshold > 0.0f
-            ? "adaptive " + sampling_description(settings, true)
-            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
+    const std::string sampling = settings.adaptive.threshold > 0.0f
+                                     ? "adaptive " + sampling_description(settings, true)
+                                     : std::to_string(options.samples_per_pixel) + " spp, " +
+                                           sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
                  "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays; %llu non-finite samples "
@@ -537,8 +575,7 @@ void run_render(const render_options& options) {
                  cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
-                 (unsigned long long)stats.discarded_samples,
-                 options.output.c_str());
+                 (unsigned long long)stats.discarded_samples, options.output.c_str());
   }
 }
 
