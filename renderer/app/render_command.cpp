@@ -360,7 +360,7 @@ void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   app.add_flag("--float", o.full_float,
-               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
+               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P, id and Cryptomatte are always float)");
   app.add_option_function<std::string>(
       "--aovs",
       [&o](const std::string& text) {
