@@ -226,37 +226,29 @@ void add_view_options(CLI::App& app, render_options& o) {
                  "baseline stratification is measured against)")
       ->check(CLI::IsMember({"stratified", "random"}))
       ->capture_default_str();
-  app.add_option(
-         "--filter", o.filter,
-         "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
-         "1.5 with sigma radius/3, blackman-harris 2)")
+  app.add_option("--filter", o.filter,
+                 "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
+                 "1.5 with sigma radius/3, blackman-harris 2)")
       ->check(CLI::IsMember({"box", "tent", "gaussian", "blackman-harris"}))
       ->capture_default_str();
   app.add_option_function<float>(
       "--filter-radius",
       [&o](float r) {
-        if (!(r > 0.0f && r <= 16.0f))
-          throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
+        if (!(r > 0.0f && r <= 16.0f)) throw CLI::ValidationError("--filter-radius", "must be in (0, 16] pixels");
         o.filter_radius = r;
       },
       "Filter radius in pixels, in (0, 16] (default: the filter's own)");
-  app.add_option(
-         "--adaptive-threshold", o.adaptive_threshold,
-         "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
-         "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
+  app.add_option("--adaptive-threshold", o.adaptive_threshold,
+                 "Whitted's adaptive supersampling: split a pixel square while its corners differ by more than T "
+                 "in R, G, B or A, or hit different instances (0 = off; replaces --spp and --filter)")
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   app.add_option("--adaptive-depth", o.adaptive_depth, "Adaptive supersampling: most splits per pixel")
       ->check(CLI::Range(0, max_adaptive_depth))
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")
-      ->check(CLI::Range(1, 4096))
-      ->capture_default_str();
-  app.add_option("--camera", o.camera,
-                 "glTF camera by name or index (default: the first camera in the file)");
+  app.add_option("--threads", o.threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096))->capture_default_str();
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--camera", o.camera, "glTF camera by name or index (default: the first camera in the file)");
   app.add_option_function<std::string>(
       "--look-from", [&o](const std::string& s) { o.look_from = parse_triple(s, "--look-from"); },
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)");
@@ -360,7 +352,8 @@ void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   app.add_flag("--float", o.full_float,
-               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P, id and Cryptomatte are always float)");
+               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P, id and Cryptomatte are "
+               "always float)");
   app.add_option_function<std::string>(
       "--aovs",
       [&o](const std::string& text) {
@@ -410,8 +403,7 @@ void add_render_options(CLI::App& app, render_options& o) {
            int index = -1, count = 0;
            if (!(in >> index >> slash >> count) || slash != '/' || !(in >> std::ws).eof() || count < 1 ||
                index < 0 || index >= count)
-             throw CLI::ValidationError("--tile",
-                                        "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
+             throw CLI::ValidationError("--tile", "expects i/N with N >= 1 and 0 <= i < N, got '" + text + "'");
            o.tile_index = index;
            o.tile_count = count;
          },
@@ -444,8 +436,7 @@ prepared_scene prepare_scene(const render_options& options) {
   }
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!options.quiet) {
-    for (const std::string& warning : p.world.stats.warnings)
-      std::cerr << "kiln: warning: " << warning << '\n';
+    for (const std::string& warning : p.world.stats.warnings) std::cerr << "kiln: warning: " << warning << '\n';
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
       std::cerr << "kiln: warning: dropped " << dropped << " degenerate triangle" << (dropped == 1 ? "" : "s")
                 << " (repeated vertices or zero area)\n";
@@ -471,8 +462,7 @@ render_settings make_render_settings(const render_options& options) {
   if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
     throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
-    throw input_error("", "--adaptive-threshold",
-                      "adaptive supersampling averages over the pixel; drop --filter");
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling averages over the pixel; drop --filter");
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
@@ -498,8 +488,7 @@ void run_render(const render_options& options) {
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel =
       make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
-  double build_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
   const cryptomatte_layer objects = cryptomatte_objects(world);
@@ -508,16 +497,14 @@ void run_render(const render_options& options) {
   if (options.crop) {
     const pixel_rect& c = *options.crop;
     if (c.x1 > cam.width || c.y1 > cam.height)
-      throw input_error("", "--crop",
-                        "the region must lie inside the " + std::to_string(cam.width) + "x" +
-                            std::to_string(cam.height) + " image");
+      throw input_error("", "--crop", "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                                          std::to_string(cam.height) + " image");
     settings.crop = c;
   }
   if (options.tile_count > 0) {
     if (options.tile_count > cam.height)
-      throw input_error("", "--tile",
-                        "cannot split " + std::to_string(cam.height) + " rows into " +
-                            std::to_string(options.tile_count) + " bands");
+      throw input_error("", "--tile", "cannot split " + std::to_string(cam.height) + " rows into " +
+                                          std::to_string(options.tile_count) + " bands");
     settings.crop = frame_band(options.tile_index, options.tile_count, cam.width, cam.height);
   }
   render_statistics stats;
@@ -564,10 +551,10 @@ void run_render(const render_options& options) {
   write_exr(options.output, image, exr_settings{options.full_float}, metadata);
 
   if (!options.quiet) {
-    const std::string sampling = settings.adaptive.threshold > 0.0f
-                                     ? "adaptive " + sampling_description(settings, true)
-                                     : std::to_string(options.samples_per_pixel) + " spp, " +
-                                           sampling_description(settings, false) + " filter";
+    const std::string sampling =
+        settings.adaptive.threshold > 0.0f
+            ? "adaptive " + sampling_description(settings, true)
+            : std::to_string(options.samples_per_pixel) + " spp, " + sampling_description(settings, false) + " filter";
     std::fprintf(stderr,
                  "kiln: %dx%d, %s, %d threads: load %.3f s, build %.3f s, render %.3f s "
                  "(%llu camera, %llu shadow, %llu reflection, %llu refraction rays; %llu non-finite samples "
@@ -575,7 +562,8 @@ void run_render(const render_options& options) {
                  cam.width, cam.height, sampling.c_str(), stats.threads_used, load_seconds, build_seconds,
                  stats.seconds, (unsigned long long)stats.rays.camera, (unsigned long long)stats.rays.shadow,
                  (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction,
-                 (unsigned long long)stats.discarded_samples, options.output.c_str());
+                 (unsigned long long)stats.discarded_samples,
+                 options.output.c_str());
   }
 }
 

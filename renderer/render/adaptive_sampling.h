@@ -6,17 +6,18 @@
 // Depends on core and render only; the tracing is a callback.
 #pragma once
 
+#include "render/camera_sample.h"
+
 #include <functional>
 #include <vector>
-
-#include "render/camera_sample.h"
 
 namespace kiln {
 
 struct adaptive_options {
-  float threshold = 0.0f;     // split where a channel (R, G, B, A) spans more than this; 0 = off
-  int max_depth = 2;          // splits per pixel at most: 2 means squares down to 1/4 pixel a side
-  bool collect_hits = false;  // fill adaptive_pixel::hits (for Cryptomatte)
+  float threshold = 0.0f;  // split where a channel (R, G, B, A) spans more than this; 0 = off
+  int max_depth = 2;       // splits per pixel at most: 2 means squares down to 1/4 pixel a side
+  // Fill adaptive_pixel::hits (for Cryptomatte).
+  bool collect_hits = false;
 };
 
 constexpr int max_adaptive_depth = 8;
@@ -38,9 +39,10 @@ struct weighted_hit {
 
 // What a refined pixel contributes to the film.
 struct adaptive_pixel {
-  vec4 rgba{0.0f};                 // area-weighted mean of the squares' corner means
-  camera_sample nearest;           // the nearest sample the pixel used: its depth, normal and other AOVs
-  std::vector<weighted_hit> hits;  // with collect_hits: each final square's corners that hit
+  vec4 rgba{0.0f};    // area-weighted mean of the squares' corner means
+  camera_sample nearest;  // the nearest sample the pixel used: its depth, normal and other AOVs
+  // With collect_hits: the corners of each final square that hit something.
+  std::vector<weighted_hit> hits;
 };
 
 // Per-thread scratch: the samples already traced inside the current pixel, on its finest grid,

@@ -17,22 +17,25 @@ constexpr int max_cryptomatte_depth = 32;
 
 // One flag per AOV. The default is what kiln has always written: beauty, Z and N.
 struct aov_set {
-  bool beauty = true;            // R G B A: premultiplied colour, filtered
-  bool depth = true;             // Z: ray distance of the nearest sample
-  bool normal = true;            // N.X N.Y N.Z: world shading normal of the nearest sample
-  bool position = false;         // P.X P.Y P.Z: world position of the nearest sample's hit
-  bool albedo = false;           // albedo.R albedo.G albedo.B: base colour after textures and vertex colours
-  bool uv = false;               // uv.U uv.V: TEXCOORD_0 of the nearest sample's hit
-  bool ids = false;              // id.object id.material id.instance: glTF node, material, scene instance
-  bool crypto_object = false;    // CryptoObject00..: Cryptomatte ranks of the glTF node names
-  bool crypto_material = false;  // CryptoMaterial00..: Cryptomatte ranks of the material names
-  int crypto_depth = default_cryptomatte_depth;  // ranks (id, coverage pairs) kept per pixel
-  depth_mode depth_kind = depth_mode::distance;  // what Z holds
+  bool beauty = true;     // R G B A: premultiplied colour, filtered
+  bool depth = true;      // Z: ray distance (or planar depth) of the nearest sample
+  bool normal = true;     // N.X N.Y N.Z: world shading normal of the nearest sample
+  bool position = false;  // P.X P.Y P.Z: world position of the nearest sample's hit
+  bool albedo = false;    // albedo.R albedo.G albedo.B: base colour after textures and vertex colours
+  bool uv = false;        // uv.U uv.V: TEXCOORD_0 of the nearest sample's hit
+  bool ids = false;       // id.object id.material id.instance: glTF node, material, scene instance
+  // CryptoObject00.. and CryptoMaterial00..: Cryptomatte ranks of the glTF node and material names.
+  bool crypto_object = false;
+  bool crypto_material = false;
+  // Cryptomatte ranks (id, coverage pairs) kept per pixel.
+  int crypto_depth = default_cryptomatte_depth;
+  // What Z holds.
+  depth_mode depth_kind = depth_mode::distance;
 };
 
 // Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, crypto_object,
-// crypto_material, and cryptomatte for both; case-sensitive, each at most once, at least one). Returns empty
-// and sets *bad to the offending item otherwise.
+// crypto_material, and cryptomatte for both; case-sensitive, each at most once, at least one).
+// Returns empty and sets *bad to the offending item otherwise.
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad);
 
 // The canonical comma-separated list, in channel order: "beauty,Z,N" for the default (the

@@ -3,29 +3,30 @@
 // Depends on shade and render; never on a backend.
 #pragma once
 
-#include <cstdint>
-
 #include "render/film.h"
 #include "render/view_camera.h"
 #include "shade/ray_cone.h"
 #include "shade/whitted.h"
+
+#include <cstdint>
 
 namespace kiln {
 
 constexpr uint32_t no_instance = 0xFFFFFFFFu;  // the instance id of a sample that hit nothing
 
 struct camera_sample {
-  vec4 rgba{0.0f};           // premultiplied: (radiance, 1) on a hit or a visible background, 0 otherwise
-  float depth = inf;         // ray distance of the hit; +inf on a miss
-  float view_cosine = 1.0f;  // between the ray and the view axis: depth · view_cosine is the planar depth
-  vec3 normal{0.0f};         // world shading normal of the hit; 0 on a miss
+  vec4 rgba{0.0f};    // premultiplied: (radiance, 1) on a hit or a visible background, 0 otherwise
+  float depth = inf;  // ray distance of the hit; +inf on a miss
+  // Cosine between the ray and the view axis: depth · view_cosine is the planar depth.
+  float view_cosine = 1.0f;
+  vec3 normal{0.0f};  // world shading normal of the hit; 0 on a miss
   uint32_t instance = no_instance;
-  vec3 position{0.0f};    // world hit point; 0 on a miss
-  vec3 albedo{0.0f};      // base colour after textures and vertex colours (only when asked for); 0 on a miss
-  vec2 uv{0.0f};          // TEXCOORD_0; 0 on a miss
-  int32_t node = -1;      // glTF node of the instance hit; -1 on a miss
+  vec3 position{0.0f};  // world hit point; 0 on a miss
+  vec3 albedo{0.0f};    // base colour after textures and vertex colours (only when asked for); 0 on a miss
+  vec2 uv{0.0f};        // TEXCOORD_0; 0 on a miss
+  int32_t node = -1;    // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
-  bool finite = true;     // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
+  bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).

@@ -1,13 +1,12 @@
 // Filter kernels against their definitions, and the tile splat buffers' merge order.
 #include "render/reconstruction_filter.h"
+#include "render/splat_film.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
-#include "render/splat_film.h"
 
 namespace kiln {
 namespace {

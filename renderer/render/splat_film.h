@@ -6,12 +6,12 @@
 // additions therefore happen in one order for any schedule. Depends on core and render only.
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
 #include "render/film.h"
 #include "render/id_coverage.h"
 #include "render/reconstruction_filter.h"
+
+#include <cstdint>
+#include <vector>
 
 namespace kiln {
 

@@ -1,5 +1,11 @@
 #include "render/tile_renderer.h"
 
+#include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/sample_pattern.h"
+#include "render/splat_film.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -14,11 +20,6 @@
 #include <mutex>
 #include <vector>
 
-#include "core/error.h"
-#include "render/adaptive_sampling.h"
-#include "render/camera_sample.h"
-#include "render/sample_pattern.h"
-#include "render/splat_film.h"
 #include "shade/environment.h"
 #include "shade/texture_filter.h"
 
@@ -118,9 +119,8 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   for (int s = 0; s < spp; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
-    vec2 offset = settings.random_samples
-                      ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
-                      : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
+    vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
+                                          : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), cone, counts, settings.aovs.albedo);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
@@ -172,14 +172,13 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
-void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch,
-                          ray_counts& counts) {
+void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
   adaptive_options options = job.settings.adaptive;
   options.collect_hits = matte_layers(job.settings.aovs).any();
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
-    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
-                               sample_cone(job.cam, 1), counts, job.settings.aovs.albedo);
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
+                               counts, job.settings.aovs.albedo);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
@@ -245,21 +244,20 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       });
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t t = range.begin(); t != range.end(); ++t) {
-                          const tile& tl = tiles[t];
-                          ray_counts counts;
-                          if (adaptive)
-                            render_adaptive_tile(job, tl, scratch.local(), counts);
-                          else
-                            render_filtered_tile(job, tl, counts);
-                          std::lock_guard<std::mutex> lock(merge_mutex);
-                          total_counts += counts;
-                          size_t done = ++tiles_done;
-                          if (progress) progress(done, tiles.size());
-                        }
-                      });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t t = range.begin(); t != range.end(); ++t) {
+        const tile& tl = tiles[t];
+        ray_counts counts;
+        if (adaptive)
+          render_adaptive_tile(job, tl, scratch.local(), counts);
+        else
+          render_filtered_tile(job, tl, counts);
+        std::lock_guard<std::mutex> lock(merge_mutex);
+        total_counts += counts;
+        size_t done = ++tiles_done;
+        if (progress) progress(done, tiles.size());
+      }
+    });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");

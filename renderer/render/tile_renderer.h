@@ -5,9 +5,6 @@
 // Depends on shade (through the accelerator interface) and render; never on a backend.
 #pragma once
 
-#include <atomic>
-#include <functional>
-
 #include "render/adaptive_sampling.h"
 #include "render/film.h"
 #include "render/id_coverage.h"
@@ -15,20 +12,24 @@
 #include "render/view_camera.h"
 #include "shade/whitted.h"
 
+#include <atomic>
+#include <functional>
+
 namespace kiln {
 
 struct render_settings {
   int samples_per_pixel = 1;
-  bool random_samples = false;   // independent uniform samples instead of jittered strata
-  int threads = 0;               // 0: all cores
-  int tile_size = 32;            // pixels per tile side
+  bool random_samples = false;  // independent uniform samples instead of jittered strata
+  int threads = 0;      // 0: all cores
+  int tile_size = 32;   // pixels per tile side
   reconstruction_filter filter;  // how stratified samples become pixels (box 0.5: the pixel's mean)
-  adaptive_options adaptive;     // threshold > 0: Whitted's adaptive corner sampling instead of spp
+  adaptive_options adaptive;      // threshold > 0: Whitted's adaptive corner sampling instead of spp
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
-  aov_set aovs;                     // which outputs the film keeps beside the colour
-  matte_ids mattes;                 // the Cryptomatte id of each glTF node and material (with crypto_* AOVs)
+  aov_set aovs;  // which outputs the film keeps beside the colour
+  // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).
+  matte_ids mattes;
   // Renders and keeps only this region of the frame (empty: the whole frame). Its pixels are
   // bit-identical to the same pixels of a full render.
   pixel_rect crop;

@@ -1,6 +1,11 @@
 #include "io/exr/exr_writer.h"
 
+#include "core/error.h"
+#include "io/exr/cryptomatte.h"
+#include "io/exr/exr_header.h"
+
 #include <OpenImageIO/imageio.h>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -8,13 +13,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <limits>
+#include <functional>
 #include <system_error>
-
-#include "core/error.h"
-#include "io/exr/cryptomatte.h"
-#include "io/exr/exr_header.h"
 
 namespace kiln {
 namespace fs = std::filesystem;
@@ -187,8 +188,7 @@ void check_output_writable(const std::string& path) {
   fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw io_error(path, "output folder does not exist: " + folder.string());
-  if (::access(folder.c_str(), W_OK) != 0)
-    throw io_error(path, "output folder is not writable: " + folder.string());
+  if (::access(folder.c_str(), W_OK) != 0) throw io_error(path, "output folder is not writable: " + folder.string());
   if (fs::is_directory(target, ec)) throw io_error(path, "output path is a folder");
   // The temporary file is renamed over the target: that must never replace a device, a pipe or
   // a socket.

@@ -15,7 +15,8 @@
 namespace kiln {
 
 struct exr_settings {
-  bool full_float = false;  // RGBA, N, albedo and uv as 32-bit float; half otherwise. Z, P, ids always float.
+  // RGBA, N, albedo and uv as 32-bit float; half otherwise. Z, P, ids and Cryptomatte are always float.
+  bool full_float = false;
 };
 
 // What the header records besides the pixels.
