@@ -363,7 +363,7 @@ void add_render_options(CLI::App& app, render_options& o) {
           throw CLI::ValidationError("--aovs",
                                      "unknown or repeated output " + bad +
                                          " (choose from beauty, Z, N, P, albedo, uv, id, crypto_object, "
-                                         "crypto_material, cryptomatte)");
+                                         "crypto_material, cryptomatte, direct, reflection, refraction)");
         // The other options fill in fields of the same set, whichever order they come in.
         aovs->crypto_depth = o.aovs.crypto_depth;
         aovs->depth_kind = o.aovs.depth_kind;
@@ -371,7 +371,8 @@ void add_render_options(CLI::App& app, render_options& o) {
       },
       "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
       "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
-      "and material names; cryptomatte for both) (default beauty,Z,N)");
+      "and material names; cryptomatte for both), direct, reflection and refraction (the beauty split by "
+      "first event) (default beauty,Z,N)");
   app.add_option_function<int>(
          "--cryptomatte-depth", [&o](int depth) { o.aovs.crypto_depth = depth; },
          "Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set (default 6)")

@@ -22,6 +22,9 @@ constexpr aov_name aov_names[] = {
     {"id", &aov_set::ids},
     {"crypto_object", &aov_set::crypto_object},
     {"crypto_material", &aov_set::crypto_material},
+    {"direct", &aov_set::direct},
+    {"reflection", &aov_set::reflection},
+    {"refraction", &aov_set::refraction},
 };
 
 // Shorthand for both Cryptomatte layers.

@@ -27,6 +27,11 @@ struct aov_set {
   // CryptoObject00.. and CryptoMaterial00..: Cryptomatte ranks of the glTF node and material names.
   bool crypto_object = false;
   bool crypto_material = false;
+  // direct.RGB, reflection.RGB, refraction.RGB: the beauty split by first event (shade/whitted.h's
+  // light_split), filtered like it; the three sum to R G B.
+  bool direct = false;
+  bool reflection = false;
+  bool refraction = false;
   // Cryptomatte ranks (id, coverage pairs) kept per pixel.
   int crypto_depth = default_cryptomatte_depth;
   // What Z holds.
@@ -34,9 +39,12 @@ struct aov_set {
 };
 
 // Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, crypto_object,
-// crypto_material, and cryptomatte for both; case-sensitive, each at most once, at least one).
-// Returns empty and sets *bad to the offending item otherwise.
+// crypto_material, and cryptomatte for both, direct, reflection, refraction; case-sensitive, each at most
+// once, at least one). Returns empty and sets *bad to the offending item otherwise.
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad);
+
+// True when some output needs the light split.
+inline bool wants_light_split(const aov_set& a) { return a.direct || a.reflection || a.refraction; }
 
 // The canonical comma-separated list, in channel order: "beauty,Z,N" for the default (the
 // cryptomatte shorthand is listed as crypto_object,crypto_material).

@@ -47,6 +47,15 @@ TEST(aov_list, cryptomatte_is_shorthand_for_both_layers) {
   }
 }
 
+TEST(aov_list, light_split_names) {
+  std::optional<aov_set> aovs = parse_aov_list("refraction,beauty,direct", nullptr);
+  ASSERT_TRUE(aovs);
+  EXPECT_TRUE(aovs->direct && aovs->refraction && wants_light_split(*aovs));
+  EXPECT_FALSE(aovs->reflection);
+  EXPECT_EQ(aov_list_name(*aovs), "beauty,direct,refraction");
+  EXPECT_FALSE(wants_light_split(aov_set{}));
+}
+
 TEST(aov_list, depth_modes) {
   EXPECT_EQ(parse_depth_mode("distance"), depth_mode::distance);
   EXPECT_EQ(parse_depth_mode("planar"), depth_mode::planar);

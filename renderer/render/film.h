@@ -42,6 +42,11 @@ struct film {
   std::vector<vec2> uv;
   // The nearest sample's glTF node, material and scene instance as exact integers; -1 for background.
   std::vector<glm::ivec3> ids;
+  // The premultiplied colour split by first event (direct, reflection, refraction), filtered like
+  // it; empty unless asked for.
+  std::vector<vec3> direct;
+  std::vector<vec3> reflection;
+  std::vector<vec3> refraction;
   // Cryptomatte: aovs.crypto_depth ranks a pixel, coverage descending; empty unless asked for.
   std::vector<id_coverage> crypto_object;
   std::vector<id_coverage> crypto_material;
@@ -58,6 +63,9 @@ struct film {
     if (a.albedo) albedo.assign(n, vec3(0.0f));
     if (a.uv) uv.assign(n, vec2(0.0f));
     if (a.ids) ids.assign(n, glm::ivec3(-1));
+    if (a.direct) direct.assign(n, vec3(0.0f));
+    if (a.reflection) reflection.assign(n, vec3(0.0f));
+    if (a.refraction) refraction.assign(n, vec3(0.0f));
     if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
     if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }

@@ -22,20 +22,24 @@ struct pixel_splat {
   std::vector<float> weight;  // Σ w
   // Per Cryptomatte layer asked for, Σ w of the samples that hit each id (else empty).
   std::vector<id_weights> ids[matte_layer_count];
+  // With the light split: Σ w·(direct, reflection, refraction), three per window pixel (else empty).
+  std::vector<dvec3> split;
 
-  explicit pixel_splat(int r = 0, const bool (&layers)[matte_layer_count] = {});
+  explicit pixel_splat(int r = 0, const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
   void clear();
   // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel; sample_ids
   // holds its id in each layer, or is null for a sample that hit nothing (it only adds weight).
+  // sample_split is its colour by first event, (direct, reflection, refraction), used when the
+  // splat keeps the split.
   void add(const reconstruction_filter& f, vec2 offset, const vec4& value,
-           const uint32_t* sample_ids = nullptr);
+           const uint32_t* sample_ids = nullptr, const vec3* sample_split = nullptr);
 };
 
 class splat_film {
  public:
   // layers: the Cryptomatte layers whose id weights are folded beside the colour.
   splat_film(int width, int height, int tile_size, const reconstruction_filter& f,
-             const bool (&layers)[matte_layer_count] = {});
+             const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
 
   int reach() const { return reach_; }
 
@@ -63,6 +67,9 @@ class splat_film {
   // Cryptomatte layers, laid out like sum_ and slot_sum_; empty for a layer not asked for.
   std::vector<id_weights> id_sum_[matte_layer_count];
   std::vector<id_weights> slot_ids_[matte_layer_count];
+  // The light split, three per pixel and per slot; empty when not asked for.
+  std::vector<dvec3> split_sum_;
+  std::vector<dvec3> slot_split_;
 };
 
 }  // namespace kiln

@@ -71,6 +71,9 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.albedo, out.albedo);
   copy(from.uv, out.uv);
   copy(from.ids, out.ids);
+  copy(from.direct, out.direct);
+  copy(from.reflection, out.reflection);
+  copy(from.refraction, out.refraction);
   const size_t depth = size_t(from.aovs.crypto_depth);
   auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
     if (src.empty()) return;
@@ -121,14 +124,16 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
-                                           y + double(offset.y), cone, counts, settings.aovs.albedo);
+    camera_sample cs =
+        trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x), y + double(offset.y),
+                            cone, counts, settings.aovs.albedo, wants_light_split(settings.aovs));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
     uint32_t ids[matte_layer_count];
     const bool hit = sample_matte_ids(settings.mattes, cs.node, cs.material, ids);
-    if (cs.finite) splat.add(settings.filter, offset, cs.rgba, hit ? ids : nullptr);
+    const vec3 split[3] = {cs.split.direct, cs.split.reflection, cs.split.refraction};
+    if (cs.finite) splat.add(settings.filter, offset, cs.rgba, hit ? ids : nullptr, split);
     if (cs.depth < nearest.depth) nearest = cs;
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
@@ -148,7 +153,8 @@ struct tile_job {
 
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
-  pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on);
+  pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
+                    wants_light_split(job.settings.aovs));
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
       render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
@@ -162,7 +168,8 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
   for (int l = 0; l < matte_layer_count; ++l) {
     if (ranks[l]->empty()) continue;
     id_weights sums;
-    for (const weighted_hit& h : p.hits) {
+    for (const weighted_corner& h : p.corners) {
+      if (!h.hit) continue;
       uint32_t ids[matte_layer_count];
       sample_matte_ids(job.settings.mattes, h.node, h.material, ids);
       add_id_weight(sums, ids[l], h.weight);
@@ -171,14 +178,26 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
   }
 }
 
+// The light split of an adaptive pixel: the weighted mean of its final squares' corners.
+void store_adaptive_split(film& out, const adaptive_pixel& p, size_t i) {
+  std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
+  for (size_t c = 0; c < 3; ++c) {
+    if (parts[c]->empty()) continue;
+    vec3 mean(0.0f);
+    for (const weighted_corner& corner : p.corners) mean += corner.weight * corner.split[c];
+    (*parts[c])[i] = mean;
+  }
+}
+
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
 void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
   adaptive_options options = job.settings.adaptive;
-  options.collect_hits = matte_layers(job.settings.aovs).any();
+  options.collect_corners = matte_layers(job.settings.aovs).any() || wants_light_split(job.settings.aovs);
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
-    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
-                               counts, job.settings.aovs.albedo);
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
+                               sample_cone(job.cam, 1), counts, job.settings.aovs.albedo,
+                               wants_light_split(job.settings.aovs));
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
@@ -189,7 +208,8 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
       size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
       store_nearest_sample(p.nearest, job.out, i);
-      if (options.collect_hits) store_adaptive_ranks(job, p, i);
+      if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
+      if (wants_light_split(job.settings.aovs)) store_adaptive_split(job.out, p, i);
     }
 }
 
@@ -219,7 +239,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
   splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter,
-                    matte_layers(settings.aovs).on);
+                    matte_layers(settings.aovs).on, wants_light_split(settings.aovs));
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, splats, corners};
 
@@ -237,8 +257,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       tbb::parallel_for(region.y0, region.y1 + 1, [&](int y) {
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
-          corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
-              ctx, cam, settings.show_background, x, y, pixel, counts, settings.aovs.albedo);
+          corners[(y - region.y0) * row + (x - region.x0)] =
+              trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts,
+                                  settings.aovs.albedo, wants_light_split(settings.aovs));
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

@@ -1,7 +1,6 @@
 #include "io/exr/exr_writer.h"
 
 #include "core/error.h"
-#include "io/exr/cryptomatte.h"
 #include "io/exr/exr_header.h"
 
 #include <OpenImageIO/imageio.h>
@@ -13,9 +12,13 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <system_error>
+
+#include "core/error.h"
+#include "io/exr/cryptomatte.h"
+#include "io/exr/exr_header.h"
 
 namespace kiln {
 namespace fs = std::filesystem;
@@ -83,6 +86,15 @@ std::vector<channel> film_channels(const film& f, const exr_settings& settings) 
   const char* id_names[3] = {"id.object", "id.material", "id.instance"};
   for (int c = 0; c < 3 && a.ids; ++c)
     add(id_names[c], full, [&f, c](size_t i) { return float(f.ids[i][c]); });
+  // The light split: colour like R G B (half unless --float, saturating like it).
+  const std::pair<bool, const std::vector<vec3>*> parts[3] = {
+      {a.direct, &f.direct}, {a.reflection, &f.reflection}, {a.refraction, &f.refraction}};
+  const char* part_names[3] = {"direct", "reflection", "refraction"};
+  for (int p = 0; p < 3; ++p)
+    for (int c = 0; c < 3 && parts[p].first; ++c)
+      add(std::string(part_names[p]) + rgb[c], small, [buffer = parts[p].second, c, limit](size_t i) {
+        return std::clamp((*buffer)[i][c], -limit, limit);
+      });
   if (a.crypto_object)
     add_cryptomatte_channels(out, crypto_object_layer_name, f.crypto_object, a.crypto_depth);
   if (a.crypto_material)

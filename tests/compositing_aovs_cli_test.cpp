@@ -1,8 +1,9 @@
-// `kiln render --aovs cryptomatte` end to end, decoded the way a compositor does: the manifest
-// names exactly the scene's objects and materials with their MurmurHash3 ids, the coverages of a
-// pixel sum to its alpha, an object's matte equals the alpha of a render of that object alone, and
-// the channels are the same bytes for any thread count and for --tile bands. Also --depth-mode
-// planar against an analytic plane.
+// The compositing outputs of `kiln render` end to end. Cryptomatte, decoded the way a compositor
+// does: the manifest names exactly the scene's objects and materials with their MurmurHash3 ids,
+// the coverages of a pixel sum to its alpha, an object's matte equals the alpha of a render of that
+// object alone, and the channels are the same bytes for any thread count and for --tile bands.
+// --depth-mode planar against an analytic plane. The light split (direct, reflection, refraction)
+// sums to the beauty, leaves the beauty's bytes alone and is zero where no ray was spawned.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include <set>
 
 #include "io/exr/murmur3.h"
+#include "support/float_exr.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
@@ -56,10 +58,8 @@ std::string write_scene(const std::string& path, int parts) {
   return path;
 }
 
-struct image {
-  OIIO::ImageSpec spec;
-  std::vector<float> pixels;  // every channel as float (exact for the float channels compared here)
-
+// The file's channels as float, looked up by name.
+struct image : testing::float_exr {
   float at(size_t pixel, const std::string& channel) const {
     const int c = spec.channelindex(channel);
     EXPECT_GE(c, 0) << channel;
@@ -68,16 +68,7 @@ struct image {
   size_t count() const { return spec.image_pixels(); }
 };
 
-image read(const std::string& path) {
-  image out;
-  auto in = OIIO::ImageInput::open(path);
-  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
-  if (!in) return out;
-  out.spec = in->spec();
-  out.pixels.resize(out.spec.image_pixels() * size_t(out.spec.nchannels));
-  EXPECT_TRUE(in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
-  return out;
-}
+image read(const std::string& path) { return image{testing::read_float_exr(path)}; }
 
 // Renders scene to dir/name at 48x48 with 32-bit float colour and the given options.
 image render(const std::string& scene, const std::string& dir, const std::string& name,
@@ -362,6 +353,111 @@ TEST(depth_mode_cli, planar_depth_of_a_facing_plane_is_constant) {
   EXPECT_LE(planar_error, 5e-5);  // 1e-5 relative: float distances and cosines
   EXPECT_LE(distance_error, 5e-5);
   EXPECT_GT(distance_spread, 0.5);  // the corners are much farther along the ray
+}
+
+// The light split of the demo scenes: the three parts sum to R G B (float channels; the parts and the
+// beauty are folded separately, so they agree to float rounding, 1e-5 relative asserted), for each
+// filter and for adaptive sampling.
+TEST(light_split_cli, parts_sum_to_the_beauty) {
+  const std::string dir = scratch_folder("light_split");
+  const std::vector<std::vector<std::string>> samplings = {
+      {"--filter", "box", "--spp", "4"},
+      {"--filter", "blackman-harris", "--spp", "2", "--sampler", "random"},
+      {"--adaptive-threshold", "0.1", "--adaptive-depth", "2"},
+  };
+  for (const char* name : {"glass_showcase", "cornell_box"}) {
+    const std::string scene = std::string(KILN_SOURCE_DIR) + "/scenes/" + name + ".gltf";
+    for (const auto& sampling : samplings) {
+      std::vector<std::string> args = {"--aovs", "beauty,direct,reflection,refraction"};
+      args.insert(args.end(), sampling.begin(), sampling.end());
+      const image im = render(scene, dir, "split.exr", args);
+      float worst = 0.0f;
+      double reflected = 0.0, refracted = 0.0;
+      for (size_t p = 0; p < im.count(); ++p)
+        for (const char* c : {".R", ".G", ".B"}) {
+          const float beauty = im.at(p, std::string(c).substr(1));
+          const float parts = im.at(p, std::string("direct") + c) + im.at(p, std::string("reflection") + c) +
+                              im.at(p, std::string("refraction") + c);
+          worst = std::max(worst, std::abs(parts - beauty) / std::max(1.0f, std::abs(beauty)));
+          reflected += im.at(p, std::string("reflection") + c);
+          refracted += im.at(p, std::string("refraction") + c);
+        }
+      const std::string what = std::string(name) + " " + sampling[0] + " " + sampling[1];
+      EXPECT_LE(worst, 1e-5f) << what;
+      EXPECT_GT(reflected, 0.0) << what;  // both scenes hold mirrors
+      if (std::string(name) == "glass_showcase")
+        EXPECT_GT(refracted, 0.0) << what;
+      else
+        EXPECT_EQ(refracted, 0.0) << what;  // the Cornell box has nothing transmissive
+      std::printf("%s: max relative |direct + reflection + refraction - beauty| %.3g\n", what.c_str(), worst);
+    }
+  }
+}
+
+// Asking for the split changes no beauty byte, and the split channels do not depend on threads or
+// tiles either.
+TEST(light_split_cli, beauty_bytes_stay_and_split_is_deterministic) {
+  const std::string dir = scratch_folder("light_split_bytes");
+  const std::string scene = std::string(KILN_SOURCE_DIR) + "/scenes/glass_showcase.gltf";
+  const std::vector<std::string> base = {"--filter", "tent", "--spp", "2", "--tile-size", "6"};
+  auto with = [&](std::vector<std::string> extra) {
+    extra.insert(extra.end(), base.begin(), base.end());
+    return extra;
+  };
+  const image plain = render(scene, dir, "plain.exr", with({"--aovs", "beauty"}));
+  const image split = render(scene, dir, "split.exr",
+                             with({"--aovs", "beauty,direct,reflection,refraction", "--threads", "1"}));
+  const image split2 = render(scene, dir, "split2.exr",
+                              with({"--aovs", "beauty,direct,reflection,refraction", "--threads", "2"}));
+  const image band = render(scene, dir, "band.exr",
+                            with({"--aovs", "beauty,direct,reflection,refraction", "--tile", "1/2"}));
+  size_t differing = 0, split_differing = 0, band_differing = 0;
+  for (size_t p = 0; p < plain.count(); ++p) {
+    for (const char* c : {"R", "G", "B", "A"}) differing += plain.at(p, c) != split.at(p, c);
+    for (const char* part : {"direct", "reflection", "refraction"})
+      for (const char* c : {".R", ".G", ".B"}) {
+        const std::string channel = std::string(part) + c;
+        split_differing += split.at(p, channel) != split2.at(p, channel);
+        const size_t y = p / size_t(size);
+        if (int(y) >= band.spec.y && int(y) < band.spec.y + band.spec.height)
+          band_differing += split.at(p, channel) != band.at(p - size_t(band.spec.y) * size, channel);
+      }
+  }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(split_differing, 0u);
+  EXPECT_EQ(band_differing, 0u);
+}
+
+// A rough opaque quad seen partly through a half-transparent BLEND quad: nothing is reflected or
+// refracted, so reflection and refraction are exactly 0 and direct is the beauty, bit for bit.
+TEST(light_split_cli, rough_surfaces_are_all_direct) {
+  const std::string dir = scratch_folder("light_split_rough");
+  gltf_builder b;
+  const int rough =
+      b.add_material({{"pbrMetallicRoughness", {{"roughnessFactor", 1.0}, {"metallicFactor", 0.0}}}});
+  const int veil = b.add_material(
+      {{"alphaMode", "BLEND"},
+       {"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.2, 0.9, 0.3, 0.5}}, {"roughnessFactor", 1.0}, {"metallicFactor", 0.0}}}});
+  b.add_node(
+      {{"mesh", b.add_mesh({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3}, rough)}});
+  b.add_node({{"mesh", b.add_mesh({{-0.5f, -2, 0.5f}, {2, -2, 0.5f}, {2, 0.5f, 0.5f}}, {0, 1, 2}, veil)}});
+  b.add_camera({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
+  b.add_node({{"camera", 0}, {"translation", {0, 0, 4}}});
+  const std::string scene = dir + "/rough.gltf";
+  b.write(scene);
+  const image im = render(scene, dir, "rough.exr",
+                          {"--aovs", "beauty,direct,reflection,refraction", "--spp", "4", "--filter",
+                           "gaussian", "--background", "0.1,0.2,0.3"});
+  size_t lit = 0;
+  for (size_t p = 0; p < im.count(); ++p)
+    for (const char* c : {"R", "G", "B"}) {
+      EXPECT_EQ(im.at(p, std::string("direct.") + c), im.at(p, c)) << p;
+      EXPECT_EQ(im.at(p, std::string("reflection.") + c), 0.0f) << p;
+      EXPECT_EQ(im.at(p, std::string("refraction.") + c), 0.0f) << p;
+      lit += im.at(p, c) > 0.0f;
+    }
+  EXPECT_GT(lit, im.count());  // the scene is not black
 }
 
 }  // namespace
