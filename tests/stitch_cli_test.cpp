@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/float_exr.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -37,21 +38,8 @@ std::string render(const std::string& dir, const std::string& name, const std::v
   return dir + "/" + name;
 }
 
-struct image {
-  OIIO::ImageSpec spec;
-  std::vector<float> pixels;  // every channel converted to float, which is exact for half and float
-};
-
-image read(const std::string& path) {
-  image out;
-  auto in = OIIO::ImageInput::open(path);
-  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
-  if (!in) return out;
-  out.spec = in->spec();
-  out.pixels.resize(out.spec.image_pixels() * size_t(out.spec.nchannels));
-  EXPECT_TRUE(in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
-  return out;
-}
+using image = testing::float_exr;
+const auto read = testing::read_float_exr;
 
 TEST(stitch_cli, bands_cover_the_frame_rows_exactly_once) {
   const std::string dir = scratch_folder("stitch_bands");

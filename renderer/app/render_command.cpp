@@ -16,6 +16,7 @@
 #include "app/interrupt.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
+#include "io/exr/cryptomatte.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/exr_writer.h"
 #include "io/exr/preview_writer.h"
@@ -361,12 +362,28 @@ void add_image_options(CLI::App& app, render_options& o) {
         std::string bad;
         std::optional<aov_set> aovs = parse_aov_list(text, &bad);
         if (!aovs)
-          throw CLI::ValidationError("--aovs", "unknown or repeated output " + bad +
-                                                   " (choose from beauty, Z, N, P, albedo, uv, id)");
+          throw CLI::ValidationError("--aovs",
+                                     "unknown or repeated output " + bad +
+                                         " (choose from beauty, Z, N, P, albedo, uv, id, crypto_object, "
+                                         "crypto_material, cryptomatte, direct, reflection, refraction)");
+        // The other options fill in fields of the same set, whichever order they come in.
+        aovs->crypto_depth = o.aovs.crypto_depth;
+        aovs->depth_kind = o.aovs.depth_kind;
         o.aovs = *aovs;
       },
       "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
-      "(id.object, id.material, id.instance) (default beauty,Z,N)");
+      "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
+      "and material names; cryptomatte for both), direct, reflection and refraction (the beauty split by "
+      "first event) (default beauty,Z,N)");
+  app.add_option_function<int>(
+         "--cryptomatte-depth", [&o](int depth) { o.aovs.crypto_depth = depth; },
+         "Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set (default 6)")
+      ->check(CLI::Range(1, max_cryptomatte_depth));
+  app.add_option_function<std::string>(
+         "--depth-mode", [&o](const std::string& mode) { o.aovs.depth_kind = *parse_depth_mode(mode); },
+         "What Z holds: distance (along the ray from the camera, the default) or planar (along the view "
+         "axis)")
+      ->check(CLI::IsMember({"distance", "planar"}));
   CLI::Option* crop = app.add_option_function<std::string>(
       "--crop",
       [&o](const std::string& text) {
@@ -485,6 +502,9 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
+  const cryptomatte_layer objects = cryptomatte_objects(world);
+  const cryptomatte_layer materials = cryptomatte_materials(world);
+  settings.mattes = {objects.id_by_key, materials.id_by_key};
   if (options.crop) {
     const pixel_rect& c = *options.crop;
     if (c.x1 > cam.width || c.y1 > cam.height)
@@ -524,7 +544,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},
-      {"kiln/depth", "ray distance"},
+      {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
@@ -533,6 +553,11 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       {"kiln/input_hash", fingerprint.input_hash},
       {"kiln/settings_hash", fingerprint.settings_hash},
   };
+  for (const auto* layer :
+       {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
+    if (layer)
+      for (auto& attribute : cryptomatte_attributes(*layer))
+        metadata.attributes.push_back(std::move(attribute));
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
   // A signal that arrives after the last pixel still stops the run before anything is written.

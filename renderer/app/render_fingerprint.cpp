@@ -79,6 +79,8 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
   if (o.full_float) a.push_back("--float");
   if (!o.channel_formats.empty()) add("--channel-format", o.channel_formats);
   add("--aovs", aov_list_name(o.aovs));
+  add("--cryptomatte-depth", std::to_string(o.aovs.crypto_depth));
+  add("--depth-mode", o.aovs.depth_kind == depth_mode::planar ? "planar" : "distance");
   // How the file stores the pixels: a stored file in another layout is stale too.
   add("--compression", o.exr.compression);
   if (o.exr.compression_level > 0) add("--compression-level", std::to_string(o.exr.compression_level));

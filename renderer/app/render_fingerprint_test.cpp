@@ -40,6 +40,10 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"scene", [](render_options& o) { o.scene_index = 1; }},
       {"float", [](render_options& o) { o.full_float = true; }},
       {"aovs", [](render_options& o) { o.aovs.normal = false; }},
+      {"cryptomatte depth", [](render_options& o) { o.aovs.crypto_depth = 4; }},
+      {"depth mode", [](render_options& o) { o.aovs.depth_kind = depth_mode::planar; }},
+      {"cryptomatte", [](render_options& o) { o.aovs.crypto_object = true; }},
+      {"light split", [](render_options& o) { o.aovs.reflection = true; }},
       {"channel format", [](render_options& o) { o.channel_formats = "N=float"; }},
       {"compression", [](render_options& o) { o.exr.compression = "piz"; }},
       {"compression level", [](render_options& o) { o.exr.compression_level = 9; }},
@@ -117,6 +121,9 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   o.exr.compression_level = 60;
   o.exr_tile_size = 32;
   o.exr.multipart = true;
+  o.aovs.crypto_material = true;
+  o.aovs.crypto_depth = 8;
+  o.aovs.depth_kind = depth_mode::planar;
   const std::vector<std::string> args = canonical_render_arguments(o, region_arguments::include);
   render_options parsed;
   apply_render_arguments(parsed, args);
@@ -132,6 +139,9 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   EXPECT_EQ(parsed.exr.compression_level, 60);
   EXPECT_EQ(parsed.exr_tile_size, 32);
   EXPECT_TRUE(parsed.exr.multipart);
+  EXPECT_TRUE(parsed.aovs.crypto_material);
+  EXPECT_EQ(parsed.aovs.crypto_depth, 8);
+  EXPECT_EQ(parsed.aovs.depth_kind, depth_mode::planar);
   EXPECT_EQ(parsed.channel_formats, "beauty=float,uv=half");
   // Without the region the same settings lack only --tile.
   const std::vector<std::string> without = canonical_render_arguments(o, region_arguments::omit);

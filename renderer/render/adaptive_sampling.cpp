@@ -1,6 +1,7 @@
 #include "render/adaptive_sampling.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace kiln {
 
@@ -55,6 +56,16 @@ struct pixel_refiner {
       vec4 q2 = square(i, j + h, h, level + 1);
       vec4 q3 = square(i + h, j + h, h, level + 1);
       return 0.25f * (q0 + q1 + q2 + q3);
+    }
+    if (options.collect_corners) {
+      // Squares at level L cover 4^-L of the pixel; powers of two, so the weights are exact.
+      const float w = std::ldexp(0.25f, -2 * level);
+      for (const camera_sample* s : {&a, &b, &c, &d})
+        result.corners.push_back({s->instance != no_instance && s->finite,
+                                  s->node,
+                                  s->material,
+                                  w,
+                                  {s->split.direct, s->split.reflection, s->split.refraction}});
     }
     return 0.25f * (a.rgba + b.rgba + c.rgba + d.rgba);
   }

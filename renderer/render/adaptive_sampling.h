@@ -16,6 +16,8 @@ namespace kiln {
 struct adaptive_options {
   float threshold = 0.0f;  // split where a channel (R, G, B, A) spans more than this; 0 = off
   int max_depth = 2;       // splits per pixel at most: 2 means squares down to 1/4 pixel a side
+  // Fill adaptive_pixel::corners (for Cryptomatte and the light split).
+  bool collect_corners = false;
 };
 
 constexpr int max_adaptive_depth = 8;
@@ -28,10 +30,22 @@ bool corners_differ(const camera_sample& a, const camera_sample& b, const camera
 // Traces the sample at film position (x, y) in pixels; must be a pure function of the position.
 using sample_tracer = std::function<camera_sample(double x, double y)>;
 
+// A corner of a final square and its weight in the pixel's mean.
+struct weighted_corner {
+  bool hit = false;  // it hit something, with finite radiance
+  int32_t node = -1;
+  int32_t material = -1;
+  float weight = 0.0f;  // 1/4 of its square's area: the pixel's weights sum to exactly 1
+  // Its colour by first event: direct, reflection, refraction.
+  vec3 split[3] = {};
+};
+
 // What a refined pixel contributes to the film.
 struct adaptive_pixel {
   vec4 rgba{0.0f};    // area-weighted mean of the squares' corner means
   camera_sample nearest;  // the nearest sample the pixel used: its depth, normal and other AOVs
+  // With collect_corners: the corners of each final square.
+  std::vector<weighted_corner> corners;
 };
 
 // Per-thread scratch: the samples already traced inside the current pixel, on its finest grid,

@@ -28,5 +28,39 @@ TEST(aov_list, refuses_unknown_repeated_and_empty_names) {
   }
 }
 
+TEST(aov_list, cryptomatte_is_shorthand_for_both_layers) {
+  std::optional<aov_set> both = parse_aov_list("cryptomatte,beauty", nullptr);
+  ASSERT_TRUE(both);
+  EXPECT_TRUE(both->crypto_object && both->crypto_material);
+  EXPECT_FALSE(both->depth || both->ids);
+  EXPECT_EQ(aov_list_name(*both), "beauty,crypto_object,crypto_material");
+  std::optional<aov_set> one = parse_aov_list("crypto_material", nullptr);
+  ASSERT_TRUE(one);
+  EXPECT_FALSE(one->crypto_object);
+  EXPECT_TRUE(one->crypto_material);
+  EXPECT_EQ(aov_list_name(*one), "crypto_material");
+  for (const char* text : {"cryptomatte,crypto_object", "crypto_material,cryptomatte",
+                           "cryptomatte,cryptomatte", "CryptoObject"}) {
+    std::string bad;
+    EXPECT_FALSE(parse_aov_list(text, &bad)) << text;
+    EXPECT_FALSE(bad.empty()) << text;
+  }
+}
+
+TEST(aov_list, light_split_names) {
+  std::optional<aov_set> aovs = parse_aov_list("refraction,beauty,direct", nullptr);
+  ASSERT_TRUE(aovs);
+  EXPECT_TRUE(aovs->direct && aovs->refraction && wants_light_split(*aovs));
+  EXPECT_FALSE(aovs->reflection);
+  EXPECT_EQ(aov_list_name(*aovs), "beauty,direct,refraction");
+  EXPECT_FALSE(wants_light_split(aov_set{}));
+}
+
+TEST(aov_list, depth_modes) {
+  EXPECT_EQ(parse_depth_mode("distance"), depth_mode::distance);
+  EXPECT_EQ(parse_depth_mode("planar"), depth_mode::planar);
+  EXPECT_FALSE(parse_depth_mode("Planar"));
+}
+
 }  // namespace
 }  // namespace kiln

@@ -12,6 +12,7 @@ namespace {
 camera_sample discard(camera_sample s, ray_counts& counts) {
   ++counts.discarded_samples;
   s.rgba = vec4(0.0f);
+  s.split = light_split{};
   s.finite = false;
   return s;
 }
@@ -20,14 +21,17 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo) {
+                                  bool with_albedo, bool with_split) {
   camera_sample s;
   const ray start = generate_camera_ray(cam, px, py);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
+  // Orthographic rays run along the view axis from the window plane: their distance is planar.
+  if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
   ++counts.camera;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
   if (!h) {
     if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
+    if (with_split) s.split.direct = vec3(s.rgba);
     if (!is_finite(s.rgba)) return discard(s, counts);
     return s;
   }
@@ -46,14 +50,16 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
     inputs.filter = ctx.textures;
     s.albedo = evaluate_material(ctx.world, ctx.world.materials[sp.material], inputs).base_color;
   }
-  const vec3 radiance = shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit);
+  const vec3 radiance =
+      shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit, with_split ? &s.split : nullptr);
   if (!is_finite(radiance)) return discard(s, counts);
   s.rgba = vec4(radiance, 1.0f);
   return s;
 }
 
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {
-  if (!out.depth.empty()) out.depth[i] = s.depth;
+  if (!out.depth.empty())
+    out.depth[i] = out.aovs.depth_kind == depth_mode::planar ? s.depth * s.view_cosine : s.depth;
   if (!out.normal.empty()) out.normal[i] = s.normal;
   if (!out.position.empty()) out.position[i] = s.position;
   if (!out.albedo.empty()) out.albedo[i] = s.albedo;

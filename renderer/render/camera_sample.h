@@ -17,6 +17,8 @@ constexpr uint32_t no_instance = 0xFFFFFFFFu;  // the instance id of a sample th
 struct camera_sample {
   vec4 rgba{0.0f};    // premultiplied: (radiance, 1) on a hit or a visible background, 0 otherwise
   float depth = inf;  // ray distance of the hit; +inf on a miss
+  // Cosine between the ray and the view axis: depth · view_cosine is the planar depth.
+  float view_cosine = 1.0f;
   vec3 normal{0.0f};  // world shading normal of the hit; 0 on a miss
   uint32_t instance = no_instance;
   vec3 position{0.0f};  // world hit point; 0 on a miss
@@ -24,18 +26,21 @@ struct camera_sample {
   vec2 uv{0.0f};        // TEXCOORD_0; 0 on a miss
   int32_t node = -1;    // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
+  // With with_split: rgba's colour by first event.
+  light_split split;
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
 // cone is the ray's footprint at the camera (for texture filtering along the whole path).
-// with_albedo evaluates the material once more for the albedo AOV.
+// with_albedo evaluates the material once more for the albedo AOV; with_split fills split.
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo = false);
+                                  bool with_albedo = false, bool with_split = false);
 
-// Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that exist.
+// Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
+// exist; Z as out.aovs.depth_kind says.
 void store_nearest_sample(const camera_sample& s, film& out, size_t i);
 
 }  // namespace kiln

@@ -6,6 +6,7 @@
 #include "core/math.h"
 #include "render/aov_list.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace kiln {
@@ -16,6 +17,14 @@ struct pixel_rect {
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
   bool operator==(const pixel_rect& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
+};
+
+// One Cryptomatte rank: an id (the bits of the float the file stores) and the share of the pixel's
+// filter weight whose samples hit it. Coverage 0 marks an unused rank (its id is then 0).
+struct id_coverage {
+  uint32_t id = 0;
+  float coverage = 0.0f;
+  bool operator==(const id_coverage& o) const { return id == o.id && coverage == o.coverage; }
 };
 
 struct film {
@@ -33,6 +42,14 @@ struct film {
   std::vector<vec2> uv;
   // The nearest sample's glTF node, material and scene instance as exact integers; -1 for background.
   std::vector<glm::ivec3> ids;
+  // The premultiplied colour split by first event (direct, reflection, refraction), filtered like
+  // it; empty unless asked for.
+  std::vector<vec3> direct;
+  std::vector<vec3> reflection;
+  std::vector<vec3> refraction;
+  // Cryptomatte: aovs.crypto_depth ranks a pixel, coverage descending; empty unless asked for.
+  std::vector<id_coverage> crypto_object;
+  std::vector<id_coverage> crypto_material;
   aov_set aovs;  // what the file should hold
 
   film() = default;
@@ -46,6 +63,11 @@ struct film {
     if (a.albedo) albedo.assign(n, vec3(0.0f));
     if (a.uv) uv.assign(n, vec2(0.0f));
     if (a.ids) ids.assign(n, glm::ivec3(-1));
+    if (a.direct) direct.assign(n, vec3(0.0f));
+    if (a.reflection) reflection.assign(n, vec3(0.0f));
+    if (a.refraction) refraction.assign(n, vec3(0.0f));
+    if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
+    if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }

@@ -104,13 +104,15 @@ TEST(splat_film, box_half_pixel_puts_each_sample_in_its_own_pixel_only) {
 
 // Splats a fixed field of samples over a w×h image rendered in tiles of tile_size, visiting the
 // tiles in `reverse` order or not, pixels in raster order inside each tile (as the renderer does).
+// Every sample but some fourth ones hits an id in each Cryptomatte layer; the misses are transparent.
 film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bool reverse, bool constant) {
-  splat_film splats(w, h, tile_size, f);
+  const bool layers[matte_layer_count] = {true, true};
+  splat_film splats(w, h, tile_size, f, layers);
   std::vector<std::pair<int, int>> tiles;
   for (int ty = 0; ty < h; ty += tile_size)
     for (int tx = 0; tx < w; tx += tile_size) tiles.push_back({tx, ty});
   if (reverse) std::reverse(tiles.begin(), tiles.end());
-  pixel_splat splat(splats.reach());
+  pixel_splat splat(splats.reach(), layers);
   for (auto [tx, ty] : tiles)
     for (int y = ty; y < std::min(ty + tile_size, h); ++y)
       for (int x = tx; x < std::min(tx + tile_size, w); ++x) {
@@ -118,11 +120,15 @@ film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bo
         for (int s = 0; s < 4; ++s) {
           float v = constant ? 0.7f : std::sin(float(x * 13 + y * 7 + s * 3)) + 1.5f;
           vec2 o(0.1f + 0.27f * s, 0.8f - 0.21f * s);
-          splat.add(f, o, vec4(v, v * v, 1.0f / v, 1.0f));
+          const uint32_t ids[matte_layer_count] = {uint32_t(x * 3 + y + s) % 5, uint32_t(x + s) % 3};
+          const bool miss = !constant && s == 3 && (x + y) % 2 == 0;
+          splat.add(f, o, miss ? vec4(0.0f) : vec4(v, v * v, 1.0f / v, 1.0f), miss ? nullptr : ids);
         }
         splats.add(x, y, splat);
       }
-  film out(w, h);
+  aov_set aovs;
+  aovs.crypto_object = aovs.crypto_material = true;
+  film out(w, h, aovs);
   splats.resolve(out);
   return out;
 }
@@ -148,8 +154,20 @@ TEST(splat_film, bytes_do_not_depend_on_tile_size_or_tile_order) {
         EXPECT_EQ(
             std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)), 0)
             << filter_name(k) << " tiles of " << tile_size << (reverse ? " reversed" : "");
+        EXPECT_EQ(reference.crypto_object, other.crypto_object)
+            << filter_name(k) << " tiles of " << tile_size;
+        EXPECT_EQ(reference.crypto_material, other.crypto_material)
+            << filter_name(k) << " tiles of " << tile_size;
       }
     }
+    // Coverage is the share of the weight that hit: it sums to alpha in both layers.
+    const size_t depth = size_t(reference.aovs.crypto_depth);
+    for (size_t p = 0; p < reference.color.size(); ++p)
+      for (const std::vector<id_coverage>* layer : {&reference.crypto_object, &reference.crypto_material}) {
+        float sum = 0.0f;
+        for (size_t r = 0; r < depth; ++r) sum += (*layer)[p * depth + r].coverage;
+        EXPECT_NEAR(sum, reference.color[p].a, 1e-6f) << filter_name(k) << " pixel " << p;
+      }
     // The field is not constant, so a wrong order would show.
     EXPECT_NE(reference.color[0].r, reference.color[40].r);
   }

@@ -4,16 +4,26 @@
 
 namespace kiln {
 
-pixel_splat::pixel_splat(int r) : reach(r), sum(size_t(2 * r + 1) * (2 * r + 1)), weight(sum.size()) {
+pixel_splat::pixel_splat(int r, const bool (&layers)[matte_layer_count], bool with_split)
+    : reach(r),
+      sum(size_t(2 * r + 1) * (2 * r + 1)),
+      weight(sum.size()),
+      split(with_split ? 3 * sum.size() : 0) {
+  for (int l = 0; l < matte_layer_count; ++l)
+    if (layers[l]) ids[l].resize(sum.size());
   clear();
 }
 
 void pixel_splat::clear() {
   std::fill(sum.begin(), sum.end(), dvec4(0.0));
   std::fill(weight.begin(), weight.end(), 0.0f);
+  std::fill(split.begin(), split.end(), dvec3(0.0));
+  for (std::vector<id_weights>& layer : ids)
+    for (id_weights& w : layer) w.clear();
 }
 
-void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& value) {
+void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& value,
+                      const uint32_t* sample_ids, const vec3* sample_split) {
   constexpr int max_reach = 32;
   const int r = std::min(reach, max_reach);
   const int n = 2 * r + 1;
@@ -32,11 +42,18 @@ void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& v
       if (w == 0.0f) continue;
       sum[size_t(j) * n + i] += dvec4(value) * double(w);
       weight[size_t(j) * n + i] += w;
+      if (!split.empty() && sample_split)
+        for (size_t c = 0; c < 3; ++c)
+          split[3 * (size_t(j) * n + i) + c] += dvec3(sample_split[c]) * double(w);
+      if (!sample_ids) continue;
+      for (int l = 0; l < matte_layer_count; ++l)
+        if (!ids[l].empty()) add_id_weight(ids[l][size_t(j) * n + i], sample_ids[l], w);
     }
   }
 }
 
-splat_film::splat_film(int width, int height, int tile_size, const reconstruction_filter& f)
+splat_film::splat_film(int width, int height, int tile_size, const reconstruction_filter& f,
+                       const bool (&layers)[matte_layer_count], bool with_split)
     : width_(width),
       height_(height),
       tile_size_(std::max(1, tile_size)),
@@ -54,6 +71,15 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
       }
   slot_sum_.assign(size_t(slots), dvec4(0.0));
   slot_weight_.assign(size_t(slots), 0.0f);
+  if (with_split) {
+    split_sum_.assign(3 * sum_.size(), dvec3(0.0));
+    slot_split_.assign(3 * size_t(slots), dvec3(0.0));
+  }
+  for (int l = 0; l < matte_layer_count; ++l)
+    if (layers[l]) {
+      id_sum_[l].resize(sum_.size());
+      slot_ids_[l].resize(size_t(slots));
+    }
 }
 
 // True when every pixel within reach of (x, y) (inside the image) belongs to (x, y)'s tile.
@@ -78,17 +104,28 @@ void splat_film::add(int x, int y, const pixel_splat& splat) {
         // The tile renders its pixels in raster order, so this fold follows the source order.
         sum_[p] += splat.sum[from];
         weight_[p] += splat.weight[from];
+        if (!split_sum_.empty())
+          for (size_t c = 0; c < 3; ++c) split_sum_[3 * p + c] += splat.split[3 * from + c];
+        for (int l = 0; l < matte_layer_count; ++l)
+          if (!id_sum_[l].empty()) add_id_weights(id_sum_[l][p], splat.ids[l][from]);
       } else {
         // The source sits at (-i, -j) from the destination; slots run in source raster order.
         const size_t to = size_t(slot) + size_t(reach_ - j) * n + size_t(reach_ - i);
         slot_sum_[to] = splat.sum[from];
         slot_weight_[to] = splat.weight[from];
+        if (!slot_split_.empty())
+          for (size_t c = 0; c < 3; ++c) slot_split_[3 * to + c] = splat.split[3 * from + c];
+        for (int l = 0; l < matte_layer_count; ++l)
+          if (!slot_ids_[l].empty()) slot_ids_[l][to] = splat.ids[l][from];
       }
     }
   }
 }
 
 void splat_film::resolve(film& out) const {
+  std::vector<id_coverage>* ranks[matte_layer_count] = {&out.crypto_object, &out.crypto_material};
+  const size_t depth = size_t(out.aovs.crypto_depth);
+  id_weights ids;
   for (size_t p = 0; p < sum_.size(); ++p) {
     dvec4 sum = sum_[p];
     float weight = weight_[p];
@@ -98,6 +135,24 @@ void splat_film::resolve(film& out) const {
         weight += slot_weight_[k];
       }
     out.color[p] = weight > 0.0f ? vec4(sum / double(weight)) : vec4(0.0f);
+    if (!split_sum_.empty()) {
+      std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
+      for (size_t c = 0; c < 3; ++c) {
+        dvec3 part = split_sum_[3 * p + c];
+        if (slot_of_[p] >= 0)
+          for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k)
+            part += slot_split_[3 * k + c];
+        if (!parts[c]->empty()) (*parts[c])[p] = weight > 0.0f ? vec3(part / double(weight)) : vec3(0.0f);
+      }
+    }
+    for (int l = 0; l < matte_layer_count; ++l) {
+      if (id_sum_[l].empty() || ranks[l]->empty()) continue;
+      ids = id_sum_[l][p];
+      if (slot_of_[p] >= 0)
+        for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k)
+          add_id_weights(ids, slot_ids_[l][k]);
+      store_ranks(ids, weight, int(depth), ranks[l]->data() + p * depth);
+    }
   }
 }
 

@@ -71,6 +71,19 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.albedo, out.albedo);
   copy(from.uv, out.uv);
   copy(from.ids, out.ids);
+  copy(from.direct, out.direct);
+  copy(from.reflection, out.reflection);
+  copy(from.refraction, out.refraction);
+  const size_t depth = size_t(from.aovs.crypto_depth);
+  auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
+    if (src.empty()) return;
+    for (int y = to.y0; y < to.y1; ++y)
+      for (int x = to.x0; x < to.x1; ++x)
+        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * depth, depth,
+                    dst.begin() + out.index(x - to.x0, y - to.y0) * depth);
+  };
+  copy_ranks(from.crypto_object, out.crypto_object);
+  copy_ranks(from.crypto_material, out.crypto_material);
   return out;
 }
 
@@ -80,6 +93,22 @@ ray_cone sample_cone(const view_camera& cam, int spp) {
   const pixel_cone pixel = camera_pixel_cone(cam);
   const double scale = std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1))));
   return {float(pixel.width * scale), float(pixel.spread * scale)};
+}
+
+// Which Cryptomatte layers the film keeps.
+struct matte_layers {
+  bool on[matte_layer_count] = {};
+  explicit matte_layers(const aov_set& a) : on{a.crypto_object, a.crypto_material} {}
+  bool any() const { return on[object_layer] || on[material_layer]; }
+};
+
+// The sample's id in each layer; false for a sample that hit nothing.
+bool sample_matte_ids(const matte_ids& mattes, int32_t node, int32_t material,
+                      uint32_t (&ids)[matte_layer_count]) {
+  if (node < 0) return false;
+  ids[object_layer] = matte_id(mattes.object_by_node, node);
+  ids[material_layer] = matte_id(mattes.material_by_source, material);
+  return true;
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
@@ -95,12 +124,16 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
                                           : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
-                                           y + double(offset.y), cone, counts, settings.aovs.albedo);
+    camera_sample cs =
+        trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x), y + double(offset.y),
+                            cone, counts, settings.aovs.albedo, wants_light_split(settings.aovs));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
-    if (cs.finite) splat.add(settings.filter, offset, cs.rgba);
+    uint32_t ids[matte_layer_count];
+    const bool hit = sample_matte_ids(settings.mattes, cs.node, cs.material, ids);
+    const vec3 split[3] = {cs.split.direct, cs.split.reflection, cs.split.refraction};
+    if (cs.finite) splat.add(settings.filter, offset, cs.rgba, hit ? ids : nullptr, split);
     if (cs.depth < nearest.depth) nearest = cs;
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
@@ -120,28 +153,63 @@ struct tile_job {
 
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
-  pixel_splat splat(job.splats.reach());
+  pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
+                    wants_light_split(job.settings.aovs));
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
       render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
 }
 
+// Cryptomatte ranks of an adaptive pixel: its corner weights sum to exactly 1, so the summed weight
+// of an id is its coverage (and the coverages of a transparent background's pixel sum to alpha).
+void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i) {
+  std::vector<id_coverage>* ranks[matte_layer_count] = {&job.out.crypto_object, &job.out.crypto_material};
+  const size_t depth = size_t(job.out.aovs.crypto_depth);
+  for (int l = 0; l < matte_layer_count; ++l) {
+    if (ranks[l]->empty()) continue;
+    id_weights sums;
+    for (const weighted_corner& h : p.corners) {
+      if (!h.hit) continue;
+      uint32_t ids[matte_layer_count];
+      sample_matte_ids(job.settings.mattes, h.node, h.material, ids);
+      add_id_weight(sums, ids[l], h.weight);
+    }
+    store_ranks(sums, 1.0f, int(depth), ranks[l]->data() + i * depth);
+  }
+}
+
+// The light split of an adaptive pixel: the weighted mean of its final squares' corners.
+void store_adaptive_split(film& out, const adaptive_pixel& p, size_t i) {
+  std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
+  for (size_t c = 0; c < 3; ++c) {
+    if (parts[c]->empty()) continue;
+    vec3 mean(0.0f);
+    for (const weighted_corner& corner : p.corners) mean += corner.weight * corner.split[c];
+    (*parts[c])[i] = mean;
+  }
+}
+
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
 void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
+  adaptive_options options = job.settings.adaptive;
+  options.collect_corners = matte_layers(job.settings.aovs).any() || wants_light_split(job.settings.aovs);
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
-    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py, sample_cone(job.cam, 1),
-                               counts, job.settings.aovs.albedo);
+    return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
+                               sample_cone(job.cam, 1), counts, job.settings.aovs.albedo,
+                               wants_light_split(job.settings.aovs));
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       const size_t c = (y - job.out.y0) * row + (x - job.out.x0);
       const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
                                         job.corners[c + row + 1]};
-      adaptive_pixel p = refine_pixel(x, y, corners, job.settings.adaptive, trace, scratch);
+      adaptive_pixel p = refine_pixel(x, y, corners, options, trace, scratch);
       size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
       store_nearest_sample(p.nearest, job.out, i);
+      if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
+      if (wants_light_split(job.settings.aovs)) store_adaptive_split(job.out, p, i);
     }
 }
 
@@ -170,7 +238,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   if (scene_needs_texture_filter(world))
     textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
-  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter);
+  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter,
+                    matte_layers(settings.aovs).on, wants_light_split(settings.aovs));
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, splats, corners};
 
@@ -188,8 +257,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       tbb::parallel_for(region.y0, region.y1 + 1, [&](int y) {
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
-          corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
-              ctx, cam, settings.show_background, x, y, pixel, counts, settings.aovs.albedo);
+          corners[(y - region.y0) * row + (x - region.x0)] =
+              trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts,
+                                  settings.aovs.albedo, wants_light_split(settings.aovs));
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

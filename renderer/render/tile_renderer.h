@@ -7,6 +7,7 @@
 
 #include "render/adaptive_sampling.h"
 #include "render/film.h"
+#include "render/id_coverage.h"
 #include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
 #include "shade/whitted.h"
@@ -27,6 +28,8 @@ struct render_settings {
   shading_options shading;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
   aov_set aovs;  // which outputs the film keeps beside the colour
+  // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).
+  matte_ids mattes;
   // Renders and keeps only this region of the frame (empty: the whole frame). Its pixels are
   // bit-identical to the same pixels of a full render.
   pixel_rect crop;

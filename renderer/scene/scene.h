@@ -215,6 +215,8 @@ struct scene {
   std::vector<mesh> meshes;
   std::vector<quadric> quadrics;  // KILN_quadric definitions, each shared by its instances
   std::vector<instance> instances;
+  // The glTF file's node names by node index ("" when unnamed).
+  std::vector<std::string> node_names;
   std::vector<material> materials;  // never empty after loading: the last may be the default
   std::vector<texture> textures;
   std::vector<image> images;

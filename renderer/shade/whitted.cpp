@@ -146,13 +146,17 @@ namespace {
 // Emission, direct light, mirror and refraction at a fully covering surface.
 vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
                    const material_point& mp, int depth, float throughput, ray_counts& counts,
-                   const medium_stack& media, const ray_cone& cone) {
+                   const medium_stack& media, const ray_cone& cone, light_split* split) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
-  if (mp.unlit) return mp.base_color;
+  if (mp.unlit) {
+    if (split) split->direct += split->scale * mp.base_color;
+    return mp.base_color;
+  }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
 
   vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, counts);
+  if (split) split->direct += split->scale * radiance;
   if (depth >= ctx.options.max_depth) return radiance;
 
   const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
@@ -192,8 +196,10 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
             crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
                                             glm::dot(*direction, sp.geometric_normal))
                            : cone;
-        radiance += weight *
-                    trace_radiance(ctx, refracted, depth + 1, next_throughput, counts, crossing.beyond, bent);
+        const vec3 refraction = weight * trace_radiance(ctx, refracted, depth + 1, next_throughput, counts,
+                                                        crossing.beyond, bent);
+        if (split) split->refraction += split->scale * refraction;
+        radiance += refraction;
       }
     }
   }
@@ -211,8 +217,10 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
     reflected.kind = ray_kind::reflection;
     ++counts.reflection;
     // A reflected ray stays in the medium it came from.
-    radiance += reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput, counts, media,
-                                                reflected_cone(cone));
+    const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput,
+                                                            counts, media, reflected_cone(cone));
+    if (split) split->reflection += split->scale * reflection;
+    radiance += reflection;
   }
   return radiance;
 }
@@ -220,7 +228,8 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 }  // namespace
 
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
-                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone) {
+                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
+                   light_split* split) {
   const material& m = ctx.world.materials[unmapped.material];
   material_inputs inputs = material_inputs_at(unmapped);
   inputs.filter = ctx.textures;
@@ -228,14 +237,17 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
   surface_point sp = unmapped;
   apply_normal_map(ctx.world, m, inputs, sp);
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
-    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone);
+    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, split);
 
   // BLEND: the surface covers a share alpha of the ray; the rest continues unbent behind it (one
   // depth level, so stacked transparent layers stay bounded by max_depth).
   const float alpha = std::max(mp.alpha, 0.0f);
   vec3 radiance(0.0f);
-  if (alpha > 0.0f)
-    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone);
+  const float scale = split ? split->scale : 1.0f;
+  if (alpha > 0.0f) {
+    if (split) split->scale = scale * alpha;
+    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone, split);
+  }
   const float behind = throughput * (1.0f - alpha);
   if (depth < ctx.options.max_depth && behind >= ctx.options.min_throughput) {
     ray through;
@@ -244,9 +256,13 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
     through.origin =
         offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
     ++counts.transparency;
-    // The continued ray starts where this cone ends: its width so far carries on.
-    radiance += (1.0f - alpha) * trace_radiance(ctx, through, depth + 1, behind, counts, media, cone);
+    // The continued ray starts where this cone ends: its width so far carries on. It is still the
+    // camera's ray, so the split follows it to the surface behind.
+    if (split) split->scale = scale * (1.0f - alpha);
+    radiance +=
+        (1.0f - alpha) * trace_radiance_split(ctx, through, depth + 1, behind, counts, media, cone, split);
   }
+  if (split) split->scale = scale;
   return radiance;
 }
 
@@ -262,12 +278,23 @@ float distance_to_hit(const ray& start, const ray& r, const hit& h) {
 
 vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, float throughput,
                     ray_counts& counts, const medium_stack& media, const ray_cone& cone_in) {
+  return trace_radiance_split(ctx, r_in, depth, throughput, counts, media, cone_in, nullptr);
+}
+
+vec3 trace_radiance_split(const shading_context& ctx, const ray& r_in, int depth, float throughput,
+                          ray_counts& counts, const medium_stack& media, const ray_cone& cone_in,
+                          light_split* split) {
   ray r = r_in;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
   const ray_cone cone = h ? cone_at(cone_in, distance_to_hit(r_in, r, *h)) : cone_in;
-  if (media.empty())
-    return h ? shade_hit(ctx, r, *h, depth, throughput, counts, media, cone)
-             : environment_radiance(ctx.world, r.direction);
+  if (media.empty()) {
+    if (h)
+      return shade_surface(ctx, r, make_surface_point(ctx.world, *h, r, cone.width), depth, throughput,
+                           counts, media, cone, split);
+    const vec3 background = environment_radiance(ctx.world, r.direction);
+    if (split) split->direct += split->scale * background;
+    return background;
+  }
 
   // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
   // that leaves the scene from inside (an open mesh, no exit surface) is
@@ -279,6 +306,8 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, floa
   vec3 arriving =
       h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone)
         : environment_radiance(ctx.world, r.direction);
+  // Camera rays start outside every volume; should one not, its light counts as direct.
+  if (split) split->direct += split->scale * (absorption * arriving);
   return absorption * arriving;
 }
 

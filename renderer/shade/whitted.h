@@ -67,12 +67,24 @@ std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_coun
 // culled back faces (the ray cone keeps widening across them).
 float distance_to_hit(const ray& start, const ray& r, const hit& h);
 
+// A camera sample's radiance split by its first event: direct (emission, direct light and what is
+// seen straight through BLEND surfaces or past the scene), reflection (all that arrives through the
+// first mirror ray) and refraction (through the first refracted ray). The three sum to the radiance.
+struct light_split {
+  vec3 direct{0.0f};
+  vec3 reflection{0.0f};
+  vec3 refraction{0.0f};
+  float scale = 1.0f;  // the share of the camera ray being shaded (BLEND layers); shading only
+};
+
 // Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
 // media: the closed volumes r travels in (empty for camera rays). cone: r's ray cone at the hit
 // (the width sp's footprints were built with); reflected, refracted and continued rays carry it on.
+// With split, also adds the radiance to it by first event (scaled by split->scale); the returned
+// radiance is the same either way.
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
                    float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
-                   const ray_cone& cone = {});
+                   const ray_cone& cone = {}, light_split* split = nullptr);
 
 // Radiance arriving along r from the surface at h (the closest hit of r); cone is r's at the hit.
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
@@ -83,5 +95,11 @@ vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth
 // cone: r's ray cone at its origin.
 vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts,
                     const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
+
+// trace_radiance for a camera ray (or its continuation through BLEND surfaces) that also adds what
+// it sees to split by first event; the returned radiance is trace_radiance's.
+vec3 trace_radiance_split(const shading_context& ctx, const ray& r, int depth, float throughput,
+                          ray_counts& counts, const medium_stack& media, const ray_cone& cone,
+                          light_split* split);
 
 }  // namespace kiln

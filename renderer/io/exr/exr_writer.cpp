@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
+#include "io/exr/cryptomatte.h"
 #include "io/exr/exr_header.h"
 
 namespace kiln {
@@ -41,6 +42,29 @@ struct layer {
 
 OIIO::TypeDesc type_of(sample_format format) {
   return format == sample_format::float32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+}
+
+// One Cryptomatte layer: ⌈depth/2⌉ RGBA sets named <name>00, <name>01, ..., each holding two
+// ranks as (id, coverage, id, coverage); a rank past depth stays 0. Float: the ids are bit patterns.
+layer cryptomatte_layer_of(const std::string& name, const std::vector<id_coverage>& ranks, int depth) {
+  layer l{name, OIIO::TypeDesc::FLOAT, true, {}};
+  const char* rgba[4] = {".R", ".G", ".B", ".A"};
+  for (int set = 0; 2 * set < depth; ++set) {
+    const std::string number = (set < 10 ? "0" : "") + std::to_string(set);
+    for (int c = 0; c < 4; ++c) {
+      const int rank = 2 * set + c / 2;
+      const bool id = c % 2 == 0;
+      l.channels.push_back({name + number + rgba[c], [&ranks, depth, rank, id](size_t i) {
+                              if (rank >= depth) return 0.0f;
+                              const id_coverage& r = ranks[i * size_t(depth) + size_t(rank)];
+                              if (!id) return r.coverage;
+                              float value;
+                              std::memcpy(&value, &r.id, sizeof value);
+                              return value;
+                            }});
+    }
+  }
+  return l;
 }
 
 // The layers of the film's AOVs, in the order of aov_list_name(). New layers (e.g. cryptomatte's)
@@ -88,6 +112,23 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
       l.channels.push_back({id_names[c], [&f, c](size_t i) { return float(f.ids[i][c]); }});
     out.push_back(std::move(l));
   }
+  // The light split: colour like R G B, in the beauty's format and saturating like it.
+  const std::pair<bool, const std::vector<vec3>*> parts[3] = {
+      {a.direct, &f.direct}, {a.reflection, &f.reflection}, {a.refraction, &f.refraction}};
+  const char* part_names[3] = {"direct", "reflection", "refraction"};
+  for (int p = 0; p < 3; ++p) {
+    if (!parts[p].first) continue;
+    layer l{part_names[p], type_of(formats.beauty), false, {}};
+    const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
+    for (int c = 0; c < 3; ++c)
+      l.channels.push_back({std::string(part_names[p]) + rgb[c], [buffer = parts[p].second, c, limit](size_t i) {
+                              return std::clamp((*buffer)[i][c], -limit, limit);
+                            }});
+    out.push_back(std::move(l));
+  }
+  if (a.crypto_object) out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
+  if (a.crypto_material)
+    out.push_back(cryptomatte_layer_of(crypto_material_layer_name, f.crypto_material, a.crypto_depth));
   return out;
 }
 

@@ -459,6 +459,8 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
     warn_once(ctx, "skins and animations are ignored; meshes are rendered in their rest pose");
 
   out.quadrics = read_quadric_definitions(model, path);
+  out.node_names.reserve(model.nodes.size());
+  for (const tinygltf::Node& node : model.nodes) out.node_names.push_back(node.name);
   const int scene_index = chosen_scene(model, options, path);
   if (scene_index < 0)
     warn_once(ctx, "the file has no scenes; nothing is placed");
