@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "render/adaptive_sampling.h"
 #include "render/camera_sample.h"
+#include "render/flush_denormals.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
 
@@ -186,6 +187,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       corners.resize(row * (size_t(region.height()) + 1));
       const ray_cone pixel = sample_cone(cam, 1);  // a corner sample stands for a whole pixel
       tbb::parallel_for(region.y0, region.y1 + 1, [&](int y) {
+        const scoped_flush_denormals ftz;
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
           corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
@@ -196,6 +198,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
       for (size_t t = range.begin(); t != range.end(); ++t) {
         const tile& tl = tiles[t];
         ray_counts counts;
