@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "accel/embree/embree_options.h"
 #include "accel/grid/grid.h"
 #include "core/math.h"
 #include "render/aov_list.h"
@@ -46,6 +47,8 @@ struct render_options {
   bool show_background = false;
   std::string accel = "embree";  // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
+  embree_options embree;  // --bvh-quality, --bvh-compact
+  bool packets = false;   // --packets on|off: trace each tile's camera rays together
   std::string environment;  // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;

@@ -4,6 +4,7 @@
 #include "render/adaptive_sampling.h"
 #include "render/camera_sample.h"
 #include "render/flush_denormals.h"
+#include "render/primary_ray_batch.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
 
@@ -94,8 +95,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   for (int s = 0; s < spp; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
-    vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
-                                          : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
+    vec2 offset = pixel_sample_offset(settings.random_samples, uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs = trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x),
                                            y + double(offset.y), cone, counts, settings.aovs.albedo);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
@@ -122,9 +122,16 @@ struct tile_job {
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
   pixel_splat splat(job.splats.reach());
-  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+  // With packets, the camera rays of each run of rows are traced together first (same hits).
+  primary_ray_batch batch(job.ctx.accel);
+  const shading_context batched = with_accelerator(job.ctx, batch);
+  const shading_context& ctx = job.settings.packets ? batched : job.ctx;
+  int batch_end = tl.y0;
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
+    if (job.settings.packets && y == batch_end) batch_end = batch.prepare(job.cam, job.settings, tl.x0, tl.x1, y, tl.y1);
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
-      render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+      render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+  }
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
