@@ -101,6 +101,7 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
           {"build_seconds", m.build_seconds},
           {"first_pixel_seconds", p.load_seconds + m.build_seconds},
           {"render_seconds", m.render_seconds},
+          {"render_cpu_seconds", m.render_cpu_seconds},
           {"peak_rss_bytes",
            {{"after_build", m.peak_rss_after_build}, {"after_render", m.peak_rss_after_render}}},
           {"rss_bytes", {{"before_load", rss_before_load}, {"after_build", m.rss_after_build}}},

@@ -82,6 +82,17 @@ size_t current_resident_bytes() {
   return pages_resident * size_t(sysconf(_SC_PAGESIZE));
 }
 
+namespace {
+
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+}  // namespace
+
 size_t peak_resident_bytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -110,9 +121,12 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
   const int repeats = std::max(1, settings.repeats);
   for (int rep = 0; rep < repeats; ++rep) {
     render_statistics stats;
+    const double cpu_start = process_cpu_seconds();
     render_image(world, *accel, cam, render, &stats);
+    const double cpu = process_cpu_seconds() - cpu_start;
     accel->throw_if_failed();
     if (rep == 0 || stats.seconds < m.render_seconds) m.render_seconds = stats.seconds;
+    if (rep == 0 || cpu < m.render_cpu_seconds) m.render_cpu_seconds = cpu;
     m.rays = stats.rays;
     m.threads = stats.threads_used;
   }

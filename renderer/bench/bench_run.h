@@ -33,6 +33,9 @@ struct kind_measurement {
 struct bench_measurement {
   double build_seconds = 0.0;
   double render_seconds = 0.0;       // best of the repeats
+  // CPU time (user + system, all threads) of the render with the least of it: unlike wall time,
+  // it does not grow while other processes hold the cores, so A/B runs on a loaded machine compare.
+  double render_cpu_seconds = 0.0;
   double first_pixel_seconds = 0.0;  // load + build: how long until tracing starts
   size_t peak_rss_after_build = 0;   // bytes (getrusage maximum resident set size)
   size_t peak_rss_after_render = 0;
