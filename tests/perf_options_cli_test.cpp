@@ -21,8 +21,9 @@ using testing::scratch_folder;
 const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
 
 std::string render(const std::string& dir, const std::string& name, std::vector<std::string> extra) {
-  std::vector<std::string> args = {"render", demo_scene, "-o",  dir + "/" + name, "--width", "40", "--height",
-                                   "30",     "-q",       "--spp", "2",           "--aovs",  "beauty,Z,N,P,uv,id"};
+  std::vector<std::string> args = {
+      "render", demo_scene, "-o", dir + "/" + name, "--width",           "40", "--height", "30",
+      "-q",     "--spp",    "2",  "--aovs",         "beauty,Z,N,P,uv,id"};
   args.insert(args.end(), extra.begin(), extra.end());
   auto result = run_kiln(args);
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
@@ -71,7 +72,7 @@ TEST(perf_options_cli, every_build_setting_and_packets_leave_the_pixels_unchange
       }
 }
 
-TEST(perf_options_cli, packets_are_independent_of_threads_and_tile_size) {
+TEST(perf_options_cli, with_packets_the_demo_is_independent_of_threads_and_tile_size) {
   const std::string dir = scratch_folder("perf_packets_tiles");
   const stored_image reference = read(render(dir, "reference.exr", {"--threads", "1"}));
   int n = 0;
@@ -86,8 +87,8 @@ TEST(perf_options_cli, packets_are_independent_of_threads_and_tile_size) {
 }
 
 TEST(perf_options_cli, bad_values_exit_2_with_one_line) {
-  for (std::vector<std::string> bad : {std::vector<std::string>{"--bvh-quality", "best"},
-                                       std::vector<std::string>{"--packets", "yes"}}) {
+  for (std::vector<std::string> bad :
+       {std::vector<std::string>{"--bvh-quality", "best"}, std::vector<std::string>{"--packets", "yes"}}) {
     std::vector<std::string> args = {"render", demo_scene, "-o", scratch_folder("perf_bad") + "/x.exr"};
     args.insert(args.end(), bad.begin(), bad.end());
     auto result = run_kiln(args);
@@ -112,7 +113,8 @@ TEST(perf_options_cli, bench_json_records_the_settings_and_embree_memory) {
   // The camera rays were also replayed as coherent streams.
   bool camera_streamed = false;
   for (const auto& k : r["kinds"])
-    if (k["kind"] == "camera" && k["query"] == "intersect") camera_streamed = k.contains("bare_stream_mrays_per_s");
+    if (k["kind"] == "camera" && k["query"] == "intersect")
+      camera_streamed = k.contains("bare_stream_mrays_per_s");
   EXPECT_TRUE(camera_streamed);
 }
 

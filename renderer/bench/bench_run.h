@@ -32,7 +32,7 @@ struct kind_measurement {
 
 struct bench_measurement {
   double build_seconds = 0.0;
-  double render_seconds = 0.0;       // best of the repeats
+  double render_seconds = 0.0;  // best of the repeats
   // CPU time (user + system, all threads) of the render with the least of it: unlike wall time,
   // it does not grow while other processes hold the cores, so A/B runs on a loaded machine compare.
   double render_cpu_seconds = 0.0;

@@ -19,7 +19,8 @@ std::vector<ray> camera_grid(int n) {
     for (int x = 0; x < n; ++x) {
       ray r;
       r.origin = {0.0f, 0.0f, 12.0f};
-      r.direction = glm::normalize(vec3(8.0f * ((x + 0.5f) / n - 0.5f), 8.0f * ((y + 0.5f) / n - 0.5f), -12.0f));
+      r.direction =
+          glm::normalize(vec3(8.0f * ((x + 0.5f) / n - 0.5f), 8.0f * ((y + 0.5f) / n - 0.5f), -12.0f));
       r.kind = ray_kind::camera;
       rays.push_back(r);
     }
@@ -61,8 +62,8 @@ TEST(embree_packets, invalid_rays_in_a_stream_miss_and_leave_the_others_alone) {
   const scene s = test_scene();
   const embree_accelerator accel(s);
   std::vector<ray> rays = camera_grid(8);
-  rays[3].direction = vec3(0.0f);           // no direction
-  rays[5].tmin = std::nanf("");             // NaN extent
+  rays[3].direction = vec3(0.0f);  // no direction
+  rays[5].tmin = std::nanf("");    // NaN extent
   rays[6].origin.x = std::numeric_limits<float>::infinity();
   std::vector<std::optional<hit>> streamed(rays.size(), hit{});  // stale hits must be cleared
   accel.intersect_coherent(rays.data(), rays.size(), streamed.data());
