@@ -40,7 +40,8 @@ class primary_ray_batch final : public accelerator {
   mutable size_t next_ = 0;  // one batch serves one thread, in order
 };
 
-// ctx answering queries through accel instead of its own accelerator.
+// ctx answering queries through accel instead of its own accelerator (copies every other field of
+// shading_context; keep in step when one is added).
 inline shading_context with_accelerator(const shading_context& ctx, const accelerator& accel) {
   shading_context out{ctx.world, accel, ctx.options};
   out.see_through_shadows = ctx.see_through_shadows;
