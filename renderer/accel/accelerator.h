@@ -3,6 +3,7 @@
 // for the same ray, which is what makes one a correctness reference for the other.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 
 #include "core/ray.h"
@@ -16,6 +17,13 @@ class accelerator {
   // The closest hit with t in (r.tmin, r.tmax] (Embree's depth test), or empty for a miss or an
   // invalid ray.
   virtual std::optional<hit> intersect(const ray& r) const = 0;
+
+  // The closest hits of `count` rays that start close together and point alike (one tile's camera
+  // rays), in order: out[i] is exactly intersect(rays[i]). A backend that traces such rays faster
+  // together (Embree's ray streams) overrides it; the others answer one ray at a time.
+  virtual void intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {
+    for (size_t i = 0; i < count; ++i) out[i] = intersect(rays[i]);
+  }
 
   // True when anything blocks the segment (r.tmin, r.tmax]. Invalid rays report not occluded.
   virtual bool occluded(const ray& r) const = 0;

@@ -29,8 +29,9 @@ grid_options grid_options_for(accel_kind kind, const grid_options& grid) {
   return o;
 }
 
-std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind, const grid_options& grid) {
-  if (kind == accel_kind::embree) return std::make_unique<embree_accelerator>(s);
+std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind, const grid_options& grid,
+                                              const embree_options& embree) {
+  if (kind == accel_kind::embree) return std::make_unique<embree_accelerator>(s, embree);
   return std::make_unique<grid_accelerator>(s, grid_options_for(kind, grid));
 }
 

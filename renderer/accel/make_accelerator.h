@@ -7,6 +7,7 @@
 #include <string>
 
 #include "accel/accelerator.h"
+#include "accel/embree/embree_options.h"
 #include "accel/grid/grid.h"
 #include "scene/scene.h"
 
@@ -20,10 +21,12 @@ std::optional<accel_kind> parse_accel_kind(const std::string& name);
 
 // Builds the backend over s (which must outlive it). grid holds the grid settings of the
 // command line (--grid-*): the adaptive grid uses them as they are; the uniform grid uses the same
-// density and resolution without subdivision (max_depth 0); Embree ignores them.
+// density and resolution without subdivision (max_depth 0); Embree ignores them. embree holds the
+// BVH build settings (--bvh-quality, --bvh-compact), which the grids ignore.
 // Throws kiln::error (render) on failure.
 std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind,
-                                              const grid_options& grid = adaptive_grid_options());
+                                              const grid_options& grid = adaptive_grid_options(),
+                                              const embree_options& embree = {});
 
 // The grid options a backend of this kind is built with from the command line's settings.
 grid_options grid_options_for(accel_kind kind, const grid_options& grid);

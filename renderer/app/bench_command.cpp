@@ -59,7 +59,7 @@ totals sum_kinds(const bench_measurement& m, bool camera_and_shadow_only) {
 nlohmann::json report_json(const bench_options& o, const prepared_scene& p, const bench_measurement& m,
                            const std::string& label, size_t rss_before_load) {
   nlohmann::json kinds = nlohmann::json::array();
-  for (const kind_measurement& k : m.kinds)
+  for (const kind_measurement& k : m.kinds) {
     kinds.push_back({{"kind", k.kind},
                      {"query", k.query},
                      {"rays", k.rays},
@@ -67,6 +67,14 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
                      {"kiln_query_mrays_per_s", mrays(k.rays, k.kiln_seconds)},
                      {"kiln_query_over_bare", k.kiln_seconds > 0 ? k.bare_seconds / k.kiln_seconds : 0.0},
                      {"hits", k.kiln_hits}});
+    if (k.bare_stream_seconds > 0.0) {
+      nlohmann::json& j = kinds.back();
+      j["bare_stream_mrays_per_s"] = mrays(k.rays, k.bare_stream_seconds);
+      j["kiln_stream_mrays_per_s"] = mrays(k.rays, k.kiln_stream_seconds);
+      j["bare_stream_over_bare"] = k.bare_seconds / k.bare_stream_seconds;
+      j["kiln_stream_over_bare"] = k.kiln_stream_seconds > 0 ? k.bare_seconds / k.kiln_stream_seconds : 0.0;
+    }
+  }
   const totals all = sum_kinds(m, false);
   const size_t traced = all.rays;
   return {{"label", label},
@@ -79,6 +87,9 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
             {"logical_cores", std::thread::hardware_concurrency()}}},
           {"threads", m.threads},
           {"accel", o.accel},
+          {"bvh_quality", bvh_quality_name(o.view.embree.quality)},
+          {"bvh_compact", o.view.embree.compact},
+          {"packets", o.view.packets},
           {"camera", p.camera_description},
           {"width", p.cam.width},
           {"height", p.cam.height},
@@ -90,11 +101,13 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
           {"build_seconds", m.build_seconds},
           {"first_pixel_seconds", p.load_seconds + m.build_seconds},
           {"render_seconds", m.render_seconds},
+          {"render_cpu_seconds", m.render_cpu_seconds},
           {"peak_rss_bytes",
-           {{"after_build", m.peak_rss_after_build},
-            {"after_render", m.peak_rss_after_render}}},
+           {{"after_build", m.peak_rss_after_build}, {"after_render", m.peak_rss_after_render}}},
           {"rss_bytes", {{"before_load", rss_before_load}, {"after_build", m.rss_after_build}}},
           {"scene_memory_bytes", m.rss_after_build - std::min(m.rss_after_build, rss_before_load)},
+          {"build_rss_delta_bytes", m.rss_build_delta},
+          {"embree_bytes", {{"after_build", m.embree_bytes}, {"peak", m.embree_peak_bytes}}},
           {"rays",
            {{"camera", m.rays.camera},
             {"shadow", m.rays.shadow},
@@ -111,18 +124,24 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
 std::string report_csv(const nlohmann::json& r) {
   std::ostringstream out;
   out << "label,accel,threads,width,height,spp,kind,query,rays,bare_embree_mrays_per_s,kiln_mrays_per_s,"
-         "kiln_over_bare,load_s,build_s,render_s,peak_rss_mb\n";
+         "kiln_over_bare,load_s,build_s,render_s,peak_rss_mb,bvh_quality,bvh_compact,packets,embree_mb\n";
   auto row = [&](const std::string& kind, const std::string& query, const nlohmann::json& rays,
                  const nlohmann::json& bare, const nlohmann::json& kiln, const nlohmann::json& ratio) {
     out << r["label"].get<std::string>() << ',' << r["accel"].get<std::string>() << ',' << r["threads"] << ','
         << r["width"] << ',' << r["height"] << ',' << r["samples_per_pixel"] << ',' << kind << ',' << query
         << ',' << rays << ',' << bare << ',' << kiln << ',' << ratio << ',' << r["load_seconds"] << ','
         << r["build_seconds"] << ',' << r["render_seconds"] << ','
-        << double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6 << '\n';
+        << double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6 << ','
+        << r["bvh_quality"].get<std::string>() << ',' << r["bvh_compact"] << ',' << r["packets"] << ','
+        << double(r["embree_bytes"]["after_build"].get<size_t>()) / 1e6 << '\n';
   };
-  for (const auto& k : r["kinds"])
+  for (const auto& k : r["kinds"]) {
     row(k["kind"], k["query"], k["rays"], k["bare_embree_mrays_per_s"], k["kiln_query_mrays_per_s"],
         k["kiln_query_over_bare"]);
+    if (k.contains("bare_stream_mrays_per_s"))
+      row(k["kind"], "intersect_stream", k["rays"], k["bare_stream_mrays_per_s"],
+          k["kiln_stream_mrays_per_s"], k["kiln_stream_over_bare"]);
+  }
   row("render", "all", r["rays"]["queries"], r["bare_embree_mrays_per_s"], r["render_mrays_per_s"],
       r["render_over_bare"]);
   return out.str();
@@ -130,18 +149,28 @@ std::string report_csv(const nlohmann::json& r) {
 
 void print_summary(const nlohmann::json& r) {
   std::printf(
-      "%s: %dx%d, %d spp, %d threads, %s | load %.3f s, build %.3f s, render %.3f s | peak RSS %.1f MB\n",
+      "%s: %dx%d, %d spp, %d threads, %s (bvh %s%s, packets %s) | load %.3f s, build %.3f s, render %.3f s | "
+      "peak RSS %.1f MB, Embree %.1f MB\n",
       r["label"].get<std::string>().c_str(), r["width"].get<int>(), r["height"].get<int>(),
       r["samples_per_pixel"].get<int>(), r["threads"].get<int>(), r["accel"].get<std::string>().c_str(),
-      r["load_seconds"].get<double>(), r["build_seconds"].get<double>(), r["render_seconds"].get<double>(),
-      double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6);
+      r["bvh_quality"].get<std::string>().c_str(), r["bvh_compact"].get<bool>() ? ", compact" : "",
+      r["packets"].get<bool>() ? "on" : "off", r["load_seconds"].get<double>(),
+      r["build_seconds"].get<double>(), r["render_seconds"].get<double>(),
+      double(r["peak_rss_bytes"]["after_render"].get<size_t>()) / 1e6,
+      double(r["embree_bytes"]["after_build"].get<size_t>()) / 1e6);
   std::printf("  %-12s %-9s %10s %14s %14s %8s\n", "kind", "query", "rays", "bare Mrays/s", "kiln Mrays/s",
               "ratio");
-  for (const auto& k : r["kinds"])
+  for (const auto& k : r["kinds"]) {
     std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f\n", k["kind"].get<std::string>().c_str(),
                 k["query"].get<std::string>().c_str(), k["rays"].get<size_t>(),
                 k["bare_embree_mrays_per_s"].get<double>(), k["kiln_query_mrays_per_s"].get<double>(),
                 k["kiln_query_over_bare"].get<double>());
+    if (k.contains("bare_stream_mrays_per_s"))
+      std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (streams; ratio to the bare single-ray loop)\n",
+                  k["kind"].get<std::string>().c_str(), "stream", k["rays"].get<size_t>(),
+                  k["bare_stream_mrays_per_s"].get<double>(), k["kiln_stream_mrays_per_s"].get<double>(),
+                  k["kiln_stream_over_bare"].get<double>());
+  }
   std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (whole render, shading included)\n", "render", "all",
               r["rays"]["queries"].get<size_t>(), r["bare_embree_mrays_per_s"].get<double>(),
               r["render_mrays_per_s"].get<double>(), r["render_over_bare"].get<double>());
@@ -173,6 +202,7 @@ void run_bench_command(const bench_options& o) {
   bench_settings settings;
   settings.accel = o.accel;
   settings.repeats = o.repeats;
+  settings.embree = o.view.embree;
   const bench_measurement m = run_bench(prepared.world, prepared.cam, make_render_settings(o.view), settings);
   const std::string label =
       o.label.empty() ? std::filesystem::path(o.view.input).filename().string() : o.label;

@@ -176,8 +176,8 @@ int run_compare(const compare_options& o) {
   if (!o.json.empty()) check_output_writable(o.json);
   prepared_scene prepared = prepare_scene(o.view);
   const scene& world = prepared.world;
-  std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid);
-  std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against), o.view.grid);
+  std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid, o.view.embree);
+  std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against), o.view.grid, o.view.embree);
   const render_settings settings = make_render_settings(o.view);
 
   // One render asks both backends every query; a second renders the reference image alone.

@@ -345,6 +345,16 @@ void add_view_settings(CLI::App& app, render_options& o) {
   app.add_option("--max-pixels", o.max_pixels, "Refuse images with more pixels than this (width x height)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option_function<std::string>(
+         "--bvh-quality",
+         [&o](const std::string& name) { o.embree.quality = *parse_bvh_quality(name); },
+         "Embree BVH build quality: low, medium or high (default medium)")
+      ->check(CLI::IsMember({"low", "medium", "high"}));
+  app.add_flag("--bvh-compact", o.embree.compact, "Embree: compact BVH layout (less memory, slower rays)");
+  app.add_option_function<std::string>(
+         "--packets", [&o](const std::string& v) { o.packets = v == "on"; },
+         "Trace each tile's camera rays together as Embree packets: on or off (default off)")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_flag("-q,--quiet", o.quiet, "No progress line or summary");
 }
 
@@ -475,6 +485,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
   settings.texture_cache_mb = options.texture_cache_mb;
+  settings.packets = options.packets;
   settings.aovs = options.aovs;
   settings.cancel = &interrupt_requested();
   return settings;
@@ -497,9 +508,8 @@ void run_render(const render_options& options, const render_fingerprint* known) 
 
   auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel =
-      make_accelerator(world, *parse_accel_kind(options.accel), options.grid);
-  double build_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+      make_accelerator(world, *parse_accel_kind(options.accel), options.grid, options.embree);
+  double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   render_settings settings = make_render_settings(options);
   const cryptomatte_layer objects = cryptomatte_objects(world);
@@ -538,6 +548,9 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       {"kiln/scene_file", options.input},
       {"kiln/camera", camera_description},
       {"kiln/accelerator", options.accel},
+      {"kiln/bvh_quality", bvh_quality_name(options.embree.quality)},
+      {"kiln/bvh_compact", options.embree.compact ? "on" : "off"},
+      {"kiln/packets", options.packets ? "on" : "off"},
       {"kiln/samples_per_pixel", std::to_string(options.samples_per_pixel)},
       {"kiln/sampler", options.sampler},
       {"kiln/filter", sampling_description(settings, false)},

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "accel/embree/embree_options.h"
 #include "accel/grid/grid.h"
 #include "core/math.h"
 #include "io/exr/exr_storage.h"
@@ -54,7 +55,9 @@ struct render_options {
   bool show_background = false;
   std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
-  std::string environment;                      // equirectangular map file; empty: the --background colour
+  embree_options embree;  // --bvh-quality, --bvh-compact
+  bool packets = false;   // --packets on|off: trace each tile's camera rays together
+  std::string environment;  // equirectangular map file; empty: the --background colour
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
   int max_depth = 8;

@@ -96,6 +96,11 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
   add("--background", triple(o.background));
   if (o.show_background) a.push_back("--show-background");
   add("--accel", o.accel);
+  // Pixels do not depend on the BVH build, but a plan must reproduce the run; --packets can pick
+  // the other of two coincident surfaces, so it counts as a pixel setting.
+  add("--bvh-quality", bvh_quality_name(o.embree.quality));
+  if (o.embree.compact) a.push_back("--bvh-compact");
+  add("--packets", o.packets ? "on" : "off");
   add("--grid-density", number(o.grid.density));
   if (o.grid.resolution) add("--grid-resolution", triple(glm::dvec3(*o.grid.resolution)));
   add("--grid-max-items", std::to_string(o.grid.max_items_per_cell));

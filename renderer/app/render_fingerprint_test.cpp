@@ -44,6 +44,9 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"depth mode", [](render_options& o) { o.aovs.depth_kind = depth_mode::planar; }},
       {"cryptomatte", [](render_options& o) { o.aovs.crypto_object = true; }},
       {"light split", [](render_options& o) { o.aovs.reflection = true; }},
+      {"bvh quality", [](render_options& o) { o.embree.quality = bvh_quality::high; }},
+      {"bvh compact", [](render_options& o) { o.embree.compact = true; }},
+      {"packets", [](render_options& o) { o.packets = true; }},
       {"channel format", [](render_options& o) { o.channel_formats = "N=float"; }},
       {"compression", [](render_options& o) { o.exr.compression = "piz"; }},
       {"compression level", [](render_options& o) { o.exr.compression_level = 9; }},
@@ -123,6 +126,8 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   o.exr.multipart = true;
   o.aovs.crypto_material = true;
   o.aovs.crypto_depth = 8;
+  o.embree.quality = bvh_quality::low;
+  o.packets = true;
   o.aovs.depth_kind = depth_mode::planar;
   const std::vector<std::string> args = canonical_render_arguments(o, region_arguments::include);
   render_options parsed;
@@ -141,6 +146,8 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   EXPECT_TRUE(parsed.exr.multipart);
   EXPECT_TRUE(parsed.aovs.crypto_material);
   EXPECT_EQ(parsed.aovs.crypto_depth, 8);
+  EXPECT_EQ(parsed.embree.quality, bvh_quality::low);
+  EXPECT_TRUE(parsed.packets);
   EXPECT_EQ(parsed.aovs.depth_kind, depth_mode::planar);
   EXPECT_EQ(parsed.channel_formats, "beauty=float,uv=half");
   // Without the region the same settings lack only --tile.

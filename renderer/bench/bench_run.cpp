@@ -1,10 +1,10 @@
 #include "bench/bench_run.h"
 
 #include <sys/resource.h>
-#include <unistd.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +15,7 @@
 #include "accel/make_accelerator.h"
 #include "bench/ray_recorder.h"
 #include "core/error.h"
+#include "render/flush_denormals.h"
 
 namespace kiln {
 
@@ -44,9 +45,11 @@ std::pair<double, size_t> time_replay(tbb::task_arena& arena, const std::vector<
   std::atomic<size_t> hits{0};
   auto start = std::chrono::steady_clock::now();
   arena.execute([&] {
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, rays.size(), chunk),
-        [&](const tbb::blocked_range<size_t>& r) { hits += trace(rays.data() + r.begin(), r.size()); });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), chunk),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        const scoped_flush_denormals ftz;  // as in the render threads, for both loops
+                        hits += trace(rays.data() + r.begin(), r.size());
+                      });
   });
   return {seconds_since(start), hits.load()};
 }
@@ -54,18 +57,19 @@ std::pair<double, size_t> time_replay(tbb::task_arena& arena, const std::vector<
 // Times both loops over the same rays, alternating them so drift in machine load hits both alike,
 // after one untimed warm-up pass each; keeps the best time of each.
 template <typename bare_chunk, typename kiln_chunk>
-void time_both(kind_measurement& km, const std::vector<ray>& rays, int threads, int repeats,
-               const bare_chunk& bare, const kiln_chunk& kiln) {
+void time_both(double& bare_best, double& kiln_best, size_t& bare_hits, size_t& kiln_hits,
+               const std::vector<ray>& rays, int threads, int repeats, const bare_chunk& bare,
+               const kiln_chunk& kiln) {
   tbb::task_arena arena(threads);
   time_replay(arena, rays, bare);
   time_replay(arena, rays, kiln);
   for (int rep = 0; rep < repeats; ++rep) {
-    auto [kiln_seconds, kiln_hits] = time_replay(arena, rays, kiln);
-    auto [bare_seconds, bare_hits] = time_replay(arena, rays, bare);
-    if (rep == 0 || bare_seconds < km.bare_seconds) km.bare_seconds = bare_seconds;
-    if (rep == 0 || kiln_seconds < km.kiln_seconds) km.kiln_seconds = kiln_seconds;
-    km.bare_hits = bare_hits;
-    km.kiln_hits = kiln_hits;
+    auto [kiln_seconds, kiln_count] = time_replay(arena, rays, kiln);
+    auto [bare_seconds, bare_count] = time_replay(arena, rays, bare);
+    if (rep == 0 || bare_seconds < bare_best) bare_best = bare_seconds;
+    if (rep == 0 || kiln_seconds < kiln_best) kiln_best = kiln_seconds;
+    bare_hits = bare_count;
+    kiln_hits = kiln_count;
   }
 }
 
@@ -77,6 +81,17 @@ size_t current_resident_bytes() {
   statm >> pages_total >> pages_resident;
   return pages_resident * size_t(sysconf(_SC_PAGESIZE));
 }
+
+namespace {
+
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+}  // namespace
 
 size_t peak_resident_bytes() {
   rusage usage{};
@@ -95,17 +110,23 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
     if (inst.kind == shape_kind::mesh) m.placed_triangles += world.meshes[inst.shape].triangle_count();
 
   auto build_start = std::chrono::steady_clock::now();
-  std::unique_ptr<accelerator> accel = make_accelerator(world, *kind);
+  const size_t rss_before_build = current_resident_bytes();
+  std::unique_ptr<accelerator> accel =
+      make_accelerator(world, *kind, adaptive_grid_options(), settings.embree);
   m.build_seconds = seconds_since(build_start);
   m.peak_rss_after_build = peak_resident_bytes();
   m.rss_after_build = current_resident_bytes();
+  m.rss_build_delta = m.rss_after_build - std::min(m.rss_after_build, rss_before_build);
 
   const int repeats = std::max(1, settings.repeats);
   for (int rep = 0; rep < repeats; ++rep) {
     render_statistics stats;
+    const double cpu_start = process_cpu_seconds();
     render_image(world, *accel, cam, render, &stats);
+    const double cpu = process_cpu_seconds() - cpu_start;
     accel->throw_if_failed();
     if (rep == 0 || stats.seconds < m.render_seconds) m.render_seconds = stats.seconds;
+    if (rep == 0 || cpu < m.render_cpu_seconds) m.render_cpu_seconds = cpu;
     m.rays = stats.rays;
     m.threads = stats.threads_used;
   }
@@ -121,9 +142,11 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
   std::unique_ptr<embree_accelerator> own_embree;
   const auto* embree = dynamic_cast<const embree_accelerator*>(accel.get());
   if (!embree) {
-    own_embree = std::make_unique<embree_accelerator>(world);
+    own_embree = std::make_unique<embree_accelerator>(world, settings.embree);
     embree = own_embree.get();
   }
+  m.embree_bytes = embree->embree_bytes();
+  m.embree_peak_bytes = embree->embree_peak_bytes();
   for (int q = 0; q < 2; ++q) {
     const bool occlusion = q == 1;
     for (size_t k = 0; k < size_t(ray_kind_count); ++k) {
@@ -134,7 +157,7 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
       km.query = occlusion ? "occluded" : "intersect";
       km.rays = rays.size();
       time_both(
-          km, rays, m.threads, repeats,
+          km.bare_seconds, km.kiln_seconds, km.bare_hits, km.kiln_hits, rays, m.threads, repeats,
           [&](const ray* r, size_t n) { return embree->trace_bare(r, n, occlusion); },
           [&](const ray* r, size_t n) {
             size_t hits = 0;
@@ -142,6 +165,20 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
               hits += occlusion ? accel->occluded(r[i]) : accel->intersect(r[i]).has_value();
             return hits;
           });
+      if (k == size_t(ray_kind::camera) && !occlusion) {
+        // Packets: the recorded camera rays keep each thread's tile order, so chunks are coherent.
+        size_t bare_hits = 0, kiln_hits = 0;
+        time_both(
+            km.bare_stream_seconds, km.kiln_stream_seconds, bare_hits, kiln_hits, rays, m.threads, repeats,
+            [&](const ray* r, size_t n) { return embree->trace_bare_stream(r, n); },
+            [&](const ray* r, size_t n) {
+              thread_local std::vector<std::optional<hit>> hits;
+              hits.resize(n);
+              accel->intersect_coherent(r, n, hits.data());
+              return size_t(
+                  std::count_if(hits.begin(), hits.end(), [](const auto& h) { return h.has_value(); }));
+            });
+      }
       m.kinds.push_back(km);
     }
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/embree/embree_options.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "scene/scene.h"
@@ -23,17 +24,27 @@ struct kind_measurement {
   double kiln_seconds = 0.0;  // the same rays through kiln's accelerator (hit record included)
   size_t bare_hits = 0;
   size_t kiln_hits = 0;
+  // Camera rays only: the same rays as streams of 1024 (rtcIntersect1M, coherent flag) bare and
+  // through accelerator::intersect_coherent; 0 when not measured.
+  double bare_stream_seconds = 0.0;
+  double kiln_stream_seconds = 0.0;
 };
 
 struct bench_measurement {
   double build_seconds = 0.0;
-  double render_seconds = 0.0;       // best of the repeats
+  double render_seconds = 0.0;  // best of the repeats
+  // CPU time (user + system, all threads) of the render with the least of it: unlike wall time,
+  // it does not grow while other processes hold the cores, so A/B runs on a loaded machine compare.
+  double render_cpu_seconds = 0.0;
   double first_pixel_seconds = 0.0;  // load + build: how long until tracing starts
   size_t peak_rss_after_build = 0;   // bytes (getrusage maximum resident set size)
   size_t peak_rss_after_render = 0;
-  size_t rss_after_build = 0;  // current, not peak: the scene and its acceleration structure
-  size_t unique_triangles = 0;  // stored once per mesh
-  size_t placed_triangles = 0;  // summed over instances
+  size_t rss_after_build = 0;    // current, not peak: the scene and its acceleration structure
+  size_t rss_build_delta = 0;    // current RSS after the build minus before it
+  size_t embree_bytes = 0;       // Embree's memory monitor after the build (BVHs, vertex copies)
+  size_t embree_peak_bytes = 0;  // and its peak during the build
+  size_t unique_triangles = 0;   // stored once per mesh
+  size_t placed_triangles = 0;   // summed over instances
   size_t instances = 0;
   ray_counts rays;  // traced by the timed render
   int threads = 0;
@@ -43,6 +54,7 @@ struct bench_measurement {
 struct bench_settings {
   std::string accel = "embree";  // backend of the timed render (the bare loop is always Embree)
   int repeats = 3;               // timed renders and replays; the best is reported
+  embree_options embree;         // BVH build settings of the timed backend and the bare loop
 };
 
 // Builds the backend, renders `repeats` times, records one more render's rays and replays them.

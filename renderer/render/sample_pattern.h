@@ -49,4 +49,9 @@ inline vec2 random_sample_offset(uint32_t x, uint32_t y, uint32_t s) {
   return vec2(hash_to_unit(pixel, s, 0x1B873593U), hash_to_unit(pixel, s, 0xCC9E2D51U));
 }
 
+// The offset of sample s of a pixel under the chosen sampler: random, or stratified into spp.
+inline vec2 pixel_sample_offset(bool random, uint32_t x, uint32_t y, uint32_t s, uint32_t spp) {
+  return random ? random_sample_offset(x, y, s) : sample_offset(x, y, s, spp);
+}
+
 }  // namespace kiln

@@ -3,6 +3,8 @@
 #include "core/error.h"
 #include "render/adaptive_sampling.h"
 #include "render/camera_sample.h"
+#include "render/flush_denormals.h"
+#include "render/primary_ray_batch.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
 
@@ -122,8 +124,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   for (int s = 0; s < spp; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
-    vec2 offset = settings.random_samples ? random_sample_offset(uint32_t(x), uint32_t(y), uint32_t(s))
-                                          : sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
+    vec2 offset = pixel_sample_offset(settings.random_samples, uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
     camera_sample cs =
         trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x), y + double(offset.y),
                             cone, counts, settings.aovs.albedo, wants_light_split(settings.aovs));
@@ -155,9 +156,17 @@ struct tile_job {
 void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     wants_light_split(job.settings.aovs));
-  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+  // With packets, the camera rays of each run of rows are traced together first (same hits).
+  primary_ray_batch batch(job.ctx.accel);
+  const shading_context batched = with_accelerator(job.ctx, batch);
+  const shading_context& ctx = job.settings.packets ? batched : job.ctx;
+  int batch_end = tl.y0;
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
+    if (job.settings.packets && y == batch_end)
+      batch_end = batch.prepare(job.cam, job.settings, tl.x0, tl.x1, y, tl.y1);
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
-      render_pixel(job.ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+      render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+  }
 }
 
 // Cryptomatte ranks of an adaptive pixel: its corner weights sum to exactly 1, so the summed weight
@@ -255,6 +264,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       corners.resize(row * (size_t(region.height()) + 1));
       const ray_cone pixel = sample_cone(cam, 1);  // a corner sample stands for a whole pixel
       tbb::parallel_for(region.y0, region.y1 + 1, [&](int y) {
+        const scoped_flush_denormals ftz;
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
           corners[(y - region.y0) * row + (x - region.x0)] =
@@ -266,6 +276,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
       for (size_t t = range.begin(); t != range.end(); ++t) {
         const tile& tl = tiles[t];
         ray_counts counts;

@@ -26,6 +26,9 @@ struct render_settings {
   adaptive_options adaptive;      // threshold > 0: Whitted's adaptive corner sampling instead of spp
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
+  // Camera rays of a tile traced together (accelerator::intersect_coherent) before shading; the
+  // image is the same either way. Adaptive sampling traces its samples one at a time.
+  bool packets = false;
   float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
   aov_set aovs;  // which outputs the film keeps beside the colour
   // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).

@@ -1,5 +1,13 @@
 #include "accel/embree/embree_accelerator.h"
 
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <string>
+#include <vector>
+
 #include "accel/embree/embree_error_log.h"
 #include "accel/embree/embree_quadrics.h"
 #include "core/error.h"
@@ -7,13 +15,26 @@
 #include "geometry/triangle.h"
 #include "shade/alpha_coverage.h"
 
-#include <embree3/rtcore.h>
-
-#include <cstring>
-#include <string>
-#include <vector>
-
 namespace kiln {
+
+namespace {
+
+// Embree's memory monitor: bytes it holds now and at most (it reports frees as negative sizes).
+struct embree_memory {
+  std::atomic<int64_t> bytes{0};
+  std::atomic<int64_t> peak_bytes{0};
+};
+
+bool count_embree_memory(void* user, ssize_t bytes, bool /*post*/) {
+  auto& m = *static_cast<embree_memory*>(user);
+  const int64_t now = m.bytes += int64_t(bytes);
+  int64_t peak = m.peak_bytes.load();
+  while (now > peak && !m.peak_bytes.compare_exchange_weak(peak, now)) {
+  }
+  return true;  // never refuse an allocation
+}
+
+}  // namespace
 
 // Embree reports errors through a C callback; the log records the first message and kiln throws
 // after the Embree call has returned: after each build stage, and after rendering.
@@ -23,6 +44,8 @@ struct embree_accelerator::state {
   std::vector<RTCScene> mesh_scenes;
   std::vector<RTCScene> quadric_scenes;  // one user-geometry scene per used quadric definition
   embree_error_log errors;
+  embree_memory memory;
+  bool has_quadrics = false;  // rtcIntersect1M cannot carry the world ray quadric callbacks read
 
   void throw_if_failed(const std::string& during) const { errors.throw_if_any(during); }
 
@@ -37,6 +60,18 @@ struct embree_accelerator::state {
 };
 
 namespace {
+
+RTCBuildQuality embree_quality(bvh_quality q) {
+  return q == bvh_quality::low    ? RTC_BUILD_QUALITY_LOW
+         : q == bvh_quality::high ? RTC_BUILD_QUALITY_HIGH
+                                  : RTC_BUILD_QUALITY_MEDIUM;
+}
+
+// The build settings every scene (each mesh's and the top level) gets.
+void apply_build_options(RTCScene scene, const embree_options& o) {
+  rtcSetSceneBuildQuality(scene, embree_quality(o.quality));
+  rtcSetSceneFlags(scene, o.compact ? RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_NONE);
+}
 
 // Intersection and occlusion filter for meshes placed with an alphaMode MASK material: a candidate
 // hit where alpha < alphaCutoff is rejected, so the surface is neither seen nor casts a shadow.
@@ -58,9 +93,12 @@ void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
 // Builds the BVH of one mesh in its own object space. Positions are copied into an Embree-owned
 // buffer because Embree reads vertices as 16-byte loads and needs padding past the last one.
 // With alpha_filter the mask rule of the instances' materials is applied to every candidate hit.
-RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_filter) {
+RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_filter,
+                          const embree_options& options) {
   RTCScene mesh_scene = rtcNewScene(device);
+  apply_build_options(mesh_scene, options);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(geometry, embree_quality(options.quality));
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(float) * 3, m.positions.size()));
   if (vertices) std::memcpy(vertices, m.positions.data(), m.positions.size() * sizeof(vec3));
@@ -102,36 +140,76 @@ RTCRay to_embree(const ray& r) {
   return out;
 }
 
+// The query of one ray, with no hit yet.
+RTCRayHit embree_query(const ray& r) {
+  RTCRayHit query{};
+  query.ray = to_embree(r);
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return query;
+}
+
+// kiln's hit record of an answered query of r.
+std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r) {
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  hit h;
+  h.t = query.ray.tfar;
+  h.instance_id = query.hit.instID[0];
+  h.primitive_id = query.hit.primID;
+  h.u = query.hit.u;
+  h.v = query.hit.v;
+  const instance& inst = world.instances[h.instance_id];
+  if (inst.kind == shape_kind::quadric) {
+    // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
+    quadric_world_point w = quadric_world_hit(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
+    h.geometric_normal = w.normal;
+    h.u = w.uv.x;
+    h.v = w.uv.y;
+    return h;
+  }
+  h.geometric_normal = triangle_world_normal(inst, world.meshes[inst.shape], h.primitive_id);
+  return h;
+}
+
 }  // namespace
 
-embree_accelerator::embree_accelerator(const scene& s) : state_(std::make_unique<state>()), scene_(s) {
+embree_accelerator::embree_accelerator(const scene& s, const embree_options& options)
+    : state_(std::make_unique<state>()), scene_(s), options_(options) {
   state_->device = rtcNewDevice("verbose=0");
   if (!state_->device)
-    throw error(error_kind::render, "", "", "cannot create Embree device (error " +
-                                                std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    throw error(
+        error_kind::render, "", "",
+        "cannot create Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   state_->errors.attach(state_->device);
+  rtcSetDeviceMemoryMonitorFunction(state_->device, &count_embree_memory, &state_->memory);
 
   // Unique meshes first, built once, however many instances place them.
   state_->mesh_scenes.assign(s.meshes.size(), nullptr);
   std::vector<bool> used(s.meshes.size(), false);
   std::vector<bool> used_quadric(s.quadrics.size(), false);
-  for (const instance& inst : s.instances) (inst.kind == shape_kind::quadric ? used_quadric : used)[inst.shape] = true;
+  for (const instance& inst : s.instances)
+    (inst.kind == shape_kind::quadric ? used_quadric : used)[inst.shape] = true;
   const std::vector<bool> masked = meshes_needing_alpha_filter(s);
   for (size_t i = 0; i < s.meshes.size(); ++i)
     if (used[i] && s.meshes[i].triangle_count() > 0)
-      state_->mesh_scenes[i] = build_mesh_scene(state_->device, s.meshes[i], masked[i] ? &s : nullptr);
+      state_->mesh_scenes[i] =
+          build_mesh_scene(state_->device, s.meshes[i], masked[i] ? &s : nullptr, options_);
   state_->throw_if_failed("building mesh BVHs");
   // Each quadric definition is one user-geometry scene, however many nodes place it.
   state_->quadric_scenes.assign(s.quadrics.size(), nullptr);
   for (size_t i = 0; i < s.quadrics.size(); ++i)
-    if (used_quadric[i]) state_->quadric_scenes[i] = build_quadric_scene(state_->device, s.quadrics[i]);
+    if (used_quadric[i]) {
+      state_->quadric_scenes[i] = build_quadric_scene(state_->device, s.quadrics[i]);
+      state_->has_quadrics = true;
+    }
   state_->throw_if_failed("building quadric geometry");
 
   state_->top = rtcNewScene(state_->device);
+  apply_build_options(state_->top, options_);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const instance& inst = s.instances[i];
-    RTCScene shape =
-        inst.kind == shape_kind::quadric ? state_->quadric_scenes[inst.shape] : state_->mesh_scenes[inst.shape];
+    RTCScene shape = inst.kind == shape_kind::quadric ? state_->quadric_scenes[inst.shape]
+                                                      : state_->mesh_scenes[inst.shape];
     if (!shape) continue;
     RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geometry, shape);
@@ -155,30 +233,38 @@ std::optional<hit> embree_accelerator::intersect(const ray& r) const {
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
   context.world_ray = &r;
-  RTCRayHit query{};
-  query.ray = to_embree(r);
-  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit query = embree_query(r);
   rtcIntersect1(state_->top, &context.embree, &query);
-  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return kiln_hit(scene_, query, r);
+}
 
-  hit h;
-  h.t = query.ray.tfar;
-  h.instance_id = query.hit.instID[0];
-  h.primitive_id = query.hit.primID;
-  h.u = query.hit.u;
-  h.v = query.hit.v;
-  const instance& inst = scene_.instances[h.instance_id];
-  if (inst.kind == shape_kind::quadric) {
-    // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
-    quadric_world_point w = quadric_world_hit(inst, scene_.quadrics[inst.shape], r, h.t, h.primitive_id);
-    h.geometric_normal = w.normal;
-    h.u = w.uv.x;
-    h.v = w.uv.y;
-    return h;
+void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {
+  if (state_->has_quadrics) return accelerator::intersect_coherent(rays, count, out);
+  // Invalid rays never reach Embree; the stream holds the others in order.
+  thread_local std::vector<RTCRayHit> queries;
+  thread_local std::vector<uint32_t> index;
+  queries.clear();
+  index.clear();
+  for (size_t i = 0; i < count; ++i) {
+    out[i].reset();
+    if (!is_valid(rays[i])) continue;
+    queries.push_back(embree_query(rays[i]));
+    index.push_back(uint32_t(i));
   }
-  h.geometric_normal = triangle_world_normal(inst, scene_.meshes[inst.shape], h.primitive_id);
-  return h;
+  if (queries.empty()) return;
+  kiln_intersect_context context;
+  rtcInitIntersectContext(&context.embree);
+  context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  context.world = &scene_;
+  rtcIntersect1M(state_->top, &context.embree, queries.data(), unsigned(queries.size()), sizeof(RTCRayHit));
+  for (size_t k = 0; k < queries.size(); ++k) out[index[k]] = kiln_hit(scene_, queries[k], rays[index[k]]);
+}
+
+size_t embree_accelerator::embree_bytes() const {
+  return size_t(std::max<int64_t>(0, state_->memory.bytes.load()));
+}
+size_t embree_accelerator::embree_peak_bytes() const {
+  return size_t(std::max<int64_t>(0, state_->memory.peak_bytes.load()));
 }
 
 bool embree_accelerator::occluded(const ray& r) const {
@@ -213,14 +299,25 @@ size_t embree_accelerator::trace_bare(const ray* rays, size_t count, bool occlus
       rtcOccluded1(state_->top, &context.embree, &query);
       hits += query.tfar < 0.0f;
     } else {
-      RTCRayHit query{};
-      query.ray = to_embree(rays[i]);
-      query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit query = embree_query(rays[i]);
       rtcIntersect1(state_->top, &context.embree, &query);
       hits += query.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
   }
+  return hits;
+}
+
+size_t embree_accelerator::trace_bare_stream(const ray* rays, size_t count) const {
+  thread_local std::vector<RTCRayHit> queries;
+  queries.resize(count);
+  for (size_t i = 0; i < count; ++i) queries[i] = embree_query(rays[i]);
+  kiln_intersect_context context;
+  rtcInitIntersectContext(&context.embree);
+  context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  context.world = &scene_;
+  rtcIntersect1M(state_->top, &context.embree, queries.data(), unsigned(count), sizeof(RTCRayHit));
+  size_t hits = 0;
+  for (const RTCRayHit& q : queries) hits += q.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   return hits;
 }
 

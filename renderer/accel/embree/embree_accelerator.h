@@ -8,6 +8,7 @@
 #include <string>
 
 #include "accel/accelerator.h"
+#include "accel/embree/embree_options.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -18,24 +19,37 @@ std::string embree_version();
 class embree_accelerator final : public accelerator {
  public:
   // Builds every BVH. Throws kiln::error (render) when Embree reports an error.
-  explicit embree_accelerator(const scene& s);
+  explicit embree_accelerator(const scene& s, const embree_options& options = {});
   ~embree_accelerator() override;
   embree_accelerator(const embree_accelerator&) = delete;
   embree_accelerator& operator=(const embree_accelerator&) = delete;
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  // One rtcIntersect1M stream with the coherent flag (Embree traces it as packets of the CPU's
+  // native width). Scenes with quadrics answer one ray at a time: their user geometry reads the
+  // world ray from the intersect context, which holds one ray.
+  void intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const override;
+
+  const embree_options& options() const { return options_; }
+  // Bytes Embree holds now (BVHs and its copies of the vertices and indices) and at most so far,
+  // from its memory monitor callback.
+  size_t embree_bytes() const;
+  size_t embree_peak_bytes() const;
 
   // Bare traversal for benchmarks: rtcIntersect1 (or rtcOccluded1 when occlusion) on each ray with
   // this accelerator's BVH and intersect context, and nothing else: no hit record, no shading.
   // Returns how many rays hit (or were blocked). The yardstick kiln's own queries are measured by.
   size_t trace_bare(const ray* rays, size_t count, bool occlusion) const;
+  // The bare loop of intersect_coherent: the rays as one coherent rtcIntersect1M stream.
+  size_t trace_bare_stream(const ray* rays, size_t count) const;
   void throw_if_failed() const override;
 
  private:
   struct state;
   std::unique_ptr<state> state_;
   const scene& scene_;
+  embree_options options_;
 };
 
 }  // namespace kiln

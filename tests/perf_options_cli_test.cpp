@@ -1,0 +1,122 @@
+// The speed options end to end: `--bvh-quality`, `--bvh-compact` and `--packets` are recorded in the
+// EXR header and in kiln bench's JSON, refuse bad values with one line, and leave the pixels byte
+// for byte as the default render's (the demo scene has no coincident surfaces, the one case where
+// packets may pick the other surface of a tie; see README "Performance").
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+using testing::lines;
+using testing::run_kiln;
+using testing::scratch_folder;
+
+const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
+
+std::string render(const std::string& dir, const std::string& name, std::vector<std::string> extra) {
+  std::vector<std::string> args = {
+      "render", demo_scene, "-o", dir + "/" + name, "--width",           "40", "--height", "30",
+      "-q",     "--spp",    "2",  "--aovs",         "beauty,Z,N,P,uv,id"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  auto result = run_kiln(args);
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  return dir + "/" + name;
+}
+
+struct stored_image {
+  OIIO::ImageSpec spec;
+  std::vector<unsigned char> bytes;  // as stored (half and float)
+};
+
+stored_image read(const std::string& path) {
+  stored_image out;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return out;
+  out.spec = in->spec();
+  out.bytes.resize(out.spec.image_bytes(true));
+  in->read_image(0, 0, 0, out.spec.nchannels, OIIO::TypeUnknown, out.bytes.data());
+  return out;
+}
+
+TEST(perf_options_cli, defaults_are_recorded_in_the_header) {
+  const stored_image a = read(render(scratch_folder("perf_default"), "a.exr", {}));
+  EXPECT_EQ(a.spec.get_string_attribute("kiln/bvh_quality"), "medium");
+  EXPECT_EQ(a.spec.get_string_attribute("kiln/bvh_compact"), "off");
+  EXPECT_EQ(a.spec.get_string_attribute("kiln/packets"), "off");
+}
+
+TEST(perf_options_cli, every_build_setting_and_packets_leave_the_pixels_unchanged) {
+  const std::string dir = scratch_folder("perf_settings");
+  const stored_image reference = read(render(dir, "reference.exr", {}));
+  ASSERT_FALSE(reference.bytes.empty());
+  int n = 0;
+  for (const char* quality : {"low", "medium", "high"})
+    for (bool compact : {false, true})
+      for (const char* packets : {"off", "on"}) {
+        std::vector<std::string> args = {"--bvh-quality", quality, "--packets", packets};
+        if (compact) args.push_back("--bvh-compact");
+        const stored_image img = read(render(dir, std::to_string(n++) + ".exr", args));
+        SCOPED_TRACE(std::string(quality) + (compact ? " compact " : " ") + packets);
+        EXPECT_EQ(img.spec.get_string_attribute("kiln/bvh_quality"), quality);
+        EXPECT_EQ(img.spec.get_string_attribute("kiln/bvh_compact"), compact ? "on" : "off");
+        EXPECT_EQ(img.spec.get_string_attribute("kiln/packets"), packets);
+        ASSERT_EQ(img.bytes.size(), reference.bytes.size());
+        EXPECT_EQ(std::memcmp(img.bytes.data(), reference.bytes.data(), img.bytes.size()), 0);
+      }
+}
+
+TEST(perf_options_cli, with_packets_the_demo_is_independent_of_threads_and_tile_size) {
+  const std::string dir = scratch_folder("perf_packets_tiles");
+  const stored_image reference = read(render(dir, "reference.exr", {"--threads", "1"}));
+  int n = 0;
+  for (const char* threads : {"1", "2", "3"})
+    for (const char* tile : {"1", "5", "32", "64"}) {
+      SCOPED_TRACE(std::string(threads) + " threads, tile " + tile);
+      const stored_image img = read(render(dir, std::to_string(n++) + ".exr",
+                                           {"--packets", "on", "--threads", threads, "--tile-size", tile}));
+      ASSERT_EQ(img.bytes.size(), reference.bytes.size());
+      EXPECT_EQ(std::memcmp(img.bytes.data(), reference.bytes.data(), img.bytes.size()), 0);
+    }
+}
+
+TEST(perf_options_cli, bad_values_exit_2_with_one_line) {
+  for (std::vector<std::string> bad :
+       {std::vector<std::string>{"--bvh-quality", "best"}, std::vector<std::string>{"--packets", "yes"}}) {
+    std::vector<std::string> args = {"render", demo_scene, "-o", scratch_folder("perf_bad") + "/x.exr"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    auto result = run_kiln(args);
+    EXPECT_EQ(result.exit_code, 2) << bad[0];
+    EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(bad[0]), std::string::npos) << result.stderr_text;
+  }
+}
+
+TEST(perf_options_cli, bench_json_records_the_settings_and_embree_memory) {
+  const std::string json = scratch_folder("perf_bench") + "/bench.json";
+  auto result = run_kiln({"bench", demo_scene, "--width", "32", "--height", "24", "--repeat", "1", "-q",
+                          "--bvh-quality", "high", "--bvh-compact", "--packets", "on", "--json", json});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  std::ifstream in(json);
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r["bvh_quality"], "high");
+  EXPECT_EQ(r["bvh_compact"], true);
+  EXPECT_EQ(r["packets"], true);
+  EXPECT_GT(r["embree_bytes"]["after_build"].get<size_t>(), 0u);
+  EXPECT_GE(r["embree_bytes"]["peak"].get<size_t>(), r["embree_bytes"]["after_build"].get<size_t>());
+  // The camera rays were also replayed as coherent streams.
+  bool camera_streamed = false;
+  for (const auto& k : r["kinds"])
+    if (k["kind"] == "camera" && k["query"] == "intersect")
+      camera_streamed = k.contains("bare_stream_mrays_per_s");
+  EXPECT_TRUE(camera_streamed);
+}
+
+}  // namespace
+}  // namespace kiln
