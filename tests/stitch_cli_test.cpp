@@ -5,6 +5,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -80,6 +82,11 @@ TEST(stitch_cli, stitched_bands_equal_the_full_render) {
   EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("R")), OIIO::TypeDesc::HALF);
   EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("Z")), OIIO::TypeDesc::FLOAT);
   EXPECT_EQ(b.spec.get_string_attribute("kiln/aovs"), "beauty,Z,N,id");  // the first band's header
+  // The stitched frame carries the full render's settings hash (a band's own names its --tile),
+  // so `kiln batch --resume` takes it for that render's output.
+  EXPECT_EQ(b.spec.get_string_attribute("kiln/settings_hash"), a.spec.get_string_attribute("kiln/settings_hash"));
+  EXPECT_NE(read(dir + "/band0.exr").spec.get_string_attribute("kiln/settings_hash"),
+            a.spec.get_string_attribute("kiln/settings_hash"));
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   // Bytes, not values: NaN-free, but background Z is +inf and the comparison must be exact.
   EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
@@ -166,6 +173,19 @@ TEST(stitch_cli, overlapping_or_incomplete_inputs_exit_2_naming_the_file) {
     EXPECT_NE(result.stderr_text.find(c.problem), std::string::npos) << result.stderr_text;
   }
   EXPECT_FALSE(std::ifstream(dir + "/out.exr").good());  // nothing written
+}
+
+// Bands of two different renders (here: other depth limits) cover the frame but are refused.
+TEST(stitch_cli, bands_rendered_with_other_settings_exit_2_naming_the_file) {
+  const std::string dir = scratch_folder("stitch_mixed");
+  const std::string top = render(dir, "top.exr", {"--tile", "0/2"});
+  const std::string bottom = render(dir, "bottom.exr", {"--tile", "1/2", "--max-depth", "3"});
+  auto result = run_kiln({"stitch", dir + "/out.exr", top, bottom});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find(bottom), std::string::npos) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("kiln/frame_settings_hash"), std::string::npos) << result.stderr_text;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
 }
 
 TEST(stitch_cli, bad_tile_requests_exit_2_with_one_line) {

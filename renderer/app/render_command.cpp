@@ -565,6 +565,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       {"kiln/scene_hash", file_hash_hex(options.input)},
       {"kiln/input_hash", fingerprint.input_hash},
       {"kiln/settings_hash", fingerprint.settings_hash},
+      {"kiln/frame_settings_hash", fingerprint.frame_settings_hash},
   };
   for (const auto* layer :
        {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})

@@ -140,10 +140,12 @@ render_fingerprint make_fingerprint(const render_options& options) {
     inputs.add("environment");
     inputs.add(file_hash_hex(options.environment));
   }
-  fnv1a settings;
+  fnv1a settings, frame;
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::include))
     settings.add(argument);
-  return {inputs.hex(), settings.hex()};
+  for (const std::string& argument : canonical_render_arguments(options, region_arguments::omit))
+    frame.add(argument);
+  return {inputs.hex(), settings.hex(), frame.hex()};
 }
 
 }  // namespace kiln

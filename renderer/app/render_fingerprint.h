@@ -21,6 +21,9 @@ std::vector<std::string> canonical_render_arguments(const render_options& option
 struct render_fingerprint {
   std::string input_hash;     // the asset's bytes, every buffer and image file it names, the environment map
   std::string settings_hash;  // the canonical arguments, region included
+  // The same without --crop/--tile: equal for every region of one frame, and the settings hash of
+  // the frame they stitch into.
+  std::string frame_settings_hash;
 };
 
 // FNV-1a (64 bit) in 16 hex digits of the file's bytes; of nothing when it cannot be read.

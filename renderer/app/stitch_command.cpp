@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_stitch.h"
 #include "io/exr/exr_writer.h"
@@ -21,7 +22,22 @@ void run_stitch(const stitch_options& options) {
   check_output_writable(options.output);  // before reading, which may take long for big frames
   std::vector<exr_image> regions;
   for (const std::string& path : options.inputs) regions.push_back(read_exr(path));
-  write_exr(options.output, stitch_regions(options.inputs, regions));
+  exr_image frame = stitch_regions(options.inputs, regions);
+  // Regions of one frame share its inputs and every setting but the region; kiln's own regions say
+  // so in their headers, and those that disagree are refused rather than joined into a frame that
+  // no render could make.
+  const char* same[2] = {"kiln/input_hash", "kiln/frame_settings_hash"};
+  for (size_t k = 1; k < regions.size(); ++k)
+    for (const char* name : same)
+      if (exr_string_attribute(regions[k], name) != exr_string_attribute(regions[0], name))
+        throw input_error(options.inputs[k], name,
+                          "rendered from other inputs or settings than " + options.inputs[0] + " (" + name +
+                              " differs)");
+  // The stitched frame records the settings hash of the full-frame render it equals, so
+  // `kiln batch --resume` sees it as that render's output.
+  const std::string frame_hash = exr_string_attribute(regions[0], "kiln/frame_settings_hash");
+  if (!frame_hash.empty()) set_exr_string_attribute(frame, "kiln/settings_hash", frame_hash);
+  write_exr(options.output, frame);
 }
 
 }  // namespace kiln

@@ -74,4 +74,10 @@ std::string exr_string_attribute(const exr_image& image, const std::string& name
   return std::string(image.header->parts.front().get_string_attribute(name));
 }
 
+void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value) {
+  auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
+  for (OIIO::ImageSpec& part : header->parts) part.attribute(name, value);
+  image.header = std::move(header);
+}
+
 }  // namespace kiln

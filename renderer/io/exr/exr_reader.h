@@ -32,4 +32,8 @@ exr_image read_exr(const std::string& path);
 // The header's string attribute name (e.g. "kiln/settings_hash"), empty when it has none.
 std::string exr_string_attribute(const exr_image& image, const std::string& name);
 
+// Sets the string attribute name on every part of image's header (a copy: other images that
+// share the header keep theirs).
+void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value);
+
 }  // namespace kiln
