@@ -6,6 +6,7 @@
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -150,12 +151,38 @@ std::vector<bool> mip_mapped_uses(const scene& s) {
   return used;
 }
 
+// One ImageCache and TextureSystem for the whole process, never destroyed. OpenImageIO keeps each
+// cache's per-thread state in thread-specific storage that ImageCache::destroy does not clear on
+// the other threads, so a later cache in the same process (the next asset of `kiln batch`) found
+// the freed state of the last one on every thread that had used it: decr_tiles' assertion, or a
+// crash. Renders use it one at a time, each under file names of its own (a render number), and
+// invalidate their files when done, which frees their tiles.
+struct process_texture_system {
+  OIIO::ImageCache* cache = nullptr;
+  OIIO::TextureSystem* system = nullptr;
+  std::atomic<uint64_t> renders{0};
+};
+
+process_texture_system& shared_texture_system() {
+  static process_texture_system* shared = [] {
+    auto* p = new process_texture_system;  // deliberately never freed (see above)
+    p->cache = OIIO::ImageCache::create(false);
+    p->cache->attribute("autotile", 64);
+    p->cache->attribute("forcefloat", 1);
+    p->cache->attribute("deduplicate", 0);
+    p->system = OIIO::TextureSystem::create(false, p->cache);
+    return p;
+  }();
+  return *shared;
+}
+
 }  // namespace
 
 struct texture_filter::impl {
   OIIO::ImageCache* cache = nullptr;
   OIIO::TextureSystem* system = nullptr;
   std::vector<memory_source> sources;  // per image and encoding; never reallocated after setup
+  std::vector<OIIO::ustring> files;    // this render's names in the shared cache
   struct lookup {
     OIIO::TextureSystem::TextureHandle* handle = nullptr;
     OIIO::TextureOpt options;
@@ -163,22 +190,21 @@ struct texture_filter::impl {
   std::vector<lookup> lookups;  // per texture and encoding (see slot())
 
   ~impl() {
-    if (system) OIIO::TextureSystem::destroy(system);
-    if (cache) OIIO::ImageCache::destroy(cache);
+    // Closes the files and drops their tiles; the names are never used again.
+    for (const OIIO::ustring& name : files) cache->invalidate(name, true);
   }
 };
 
 texture_filter::texture_filter(const scene& s, float cache_mb) : impl_(std::make_unique<impl>()) {
-  // A private cache: nothing is shared with other renders or with the loader's decoding. The
-  // in-memory scanline images are cut into 64² tiles as they are read. Their pyramids are built
-  // here rather than by the cache's automip, which resamples texel by texel through the cache and,
-  // with a cache smaller than the textures, recomputes evicted levels over and over.
-  impl_->cache = OIIO::ImageCache::create(false);
+  // Nothing is shared with the loader's decoding. The in-memory scanline images are cut into 64²
+  // tiles as they are read. Their pyramids are built here rather than by the cache's automip, which
+  // resamples texel by texel through the cache and, with a cache smaller than the textures,
+  // recomputes evicted levels over and over.
+  process_texture_system& shared = shared_texture_system();
+  impl_->cache = shared.cache;
+  impl_->system = shared.system;
   impl_->cache->attribute("max_memory_MB", cache_mb);
-  impl_->cache->attribute("autotile", 64);
-  impl_->cache->attribute("forcefloat", 1);
-  impl_->cache->attribute("deduplicate", 0);
-  impl_->system = OIIO::TextureSystem::create(false, impl_->cache);
+  const std::string prefix = "kiln:render" + std::to_string(shared.renders++) + "/image/";
 
   // Pyramids only for the (image, encoding) pairs that a mip-mapped sampler reads.
   const std::vector<bool> used = mip_mapped_uses(s);
@@ -200,12 +226,13 @@ texture_filter::texture_filter(const scene& s, float cache_mb) : impl_(std::make
     for (texel_encoding e : {texel_encoding::linear, texel_encoding::srgb}) {
       const memory_source& source = impl_->sources[slot(tex.image, e)];
       if (!used[slot(uint32_t(t), e)] || !source.pixels) continue;
-      const OIIO::ustring name("kiln:image/" + std::to_string(tex.image) +
+      const OIIO::ustring name(prefix + std::to_string(tex.image) +
                                (e == texel_encoding::srgb ? "/srgb" : "/linear"));
       OIIO::ImageSpec config;
       const memory_source* source_pointer = &source;
       config.attribute(source_attribute, OIIO::TypeDesc::PTR, &source_pointer);
       impl_->cache->add_file(name, create_memory_input, &config);
+      impl_->files.push_back(name);
       impl::lookup& l = impl_->lookups[slot(uint32_t(t), e)];
       l.handle = impl_->system->get_texture_handle(name);
       l.options.swrap = to_oiio(tex.sampling.wrap_s);

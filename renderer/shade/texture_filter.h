@@ -1,5 +1,6 @@
 // Mip-mapped texture filtering for minification through OpenImageIO's TextureSystem: each decoded
-// scene image is served to a private ImageCache from memory (no files), as linear float (sRGB
+// scene image is served from memory (no files) to one ImageCache the process keeps for all its
+// renders (each under names of its own, invalidated when its filter goes), as linear float (sRGB
 // decoded before any mip level is built, so levels average linear values), with automip on.
 // Lookups are pure functions of the image and the footprint, whatever the cache holds.
 // Depends on scene (and OpenImageIO, hidden in the .cpp); never on a backend.
