@@ -1,7 +1,7 @@
 // Writes the generated scenes of kiln's benchmark suite as binary glTF (.glb): closed UV spheres
 // of about 10k, 100k, 1M and 4M triangles; one 10k- and one 100k-triangle sphere instanced 1000
-// times (and the 100k one placed once, the memory baseline); and 10k
-// analytic spheres (KILN_quadric) sharing one definition. Each has a camera and a point light, so
+// times (and the 100k one placed once, the memory baseline); and 10k analytic spheres
+// (KILN_quadric) sharing one definition. Each has a camera and a point light, so
 // `kiln bench` renders camera and shadow rays on it. A tool, not part of the renderer.
 // With --tessellation it writes instead the exact-versus-tessellated set: a sphere, a capped
 // cylinder and a torus as KILN_quadric, and as meshes of about 10^2 ... 10^6 triangles, all under
