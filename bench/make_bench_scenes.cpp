@@ -1,6 +1,7 @@
 // Writes the generated scenes of kiln's benchmark suite as binary glTF (.glb): closed UV spheres
-// of about 10k, 100k, 1M and 4M triangles; one 10k-triangle sphere instanced 1000 times; and 10k
-// analytic spheres (KILN_quadric) sharing one definition. Each has a camera and a point light, so
+// of about 10k, 100k, 1M and 4M triangles; one 10k- and one 100k-triangle sphere instanced 1000
+// times (and the 100k one placed once, the memory baseline); and 10k analytic spheres
+// (KILN_quadric) sharing one definition. Each has a camera and a point light, so
 // `kiln bench` renders camera and shadow rays on it. A tool, not part of the renderer.
 // With --tessellation it writes instead the exact-versus-tessellated set: a sphere, a capped
 // cylinder and a torus as KILN_quadric, and as meshes of about 10^2 ... 10^6 triangles, all under
@@ -134,7 +135,7 @@ void single_mesh(const std::string& path, size_t triangles) {
   w.write(path);
 }
 
-// n³ copies of one mesh on a lattice: 1000 placements of 10k triangles.
+// n³ copies of one mesh on a lattice, e.g. 1000 placements of 10k triangles.
 void instanced(const std::string& path, size_t triangles, int n) {
   glb_writer w;
   const int mesh = w.add_mesh(sphere_of(triangles));
@@ -284,6 +285,9 @@ int main(int argc, char** argv) {
   single_mesh((folder / "mesh_1m.glb").string(), 1000000);
   if (!skip_4m) single_mesh((folder / "mesh_4m.glb").string(), 4000000);
   instanced((folder / "instanced_1000x10k.glb").string(), 10000, 10);
+  // The memory check: 1000 placements of the 100k mesh against one placement of it.
+  instanced((folder / "instanced_1x100k.glb").string(), 100000, 1);
+  instanced((folder / "instanced_1000x100k.glb").string(), 100000, 10);
   quadric_spheres((folder / "quadric_spheres_10k.glb").string(), 10000);
   return 0;
 }

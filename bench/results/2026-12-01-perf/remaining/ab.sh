@@ -1,0 +1,13 @@
+#!/bin/bash
+# Alternated A/B renders: each round runs every variant once, in order.
+# Usage: ab.sh ROUNDS COMMON_RENDER_ARGS... -- 'LABEL|ENV|EXTRA ARGS' ...
+# Prints one line per run: round, label, process CPU s (user+sys), wall s, render-phase wall s.
+# ENV is a list of NAME=VALUE (or empty), for the measurement-only switches of embree_flags.patch.
+R=$1; shift; ARGS=(); while [ "$1" != "--" ]; do ARGS+=("$1"); shift; done; shift
+K=${KILN:-build/renderer/app/kiln}; T=${TMPDIR:-/tmp}
+for r in $(seq "$R"); do for v in "$@"; do
+  IFS='|' read -r label envs extra <<< "$v"
+  env $envs /usr/bin/time -f "%U %S %e" -o "$T/ab_time.txt" $K render "${ARGS[@]}" $extra -o "$T/ab_$label.exr" 2> "$T/ab_log.txt"
+  read -r u s w < "$T/ab_time.txt"
+  echo "$r $label $(echo "$u + $s" | bc) $w $(grep -o 'render [0-9.]* s' "$T/ab_log.txt" | awk '{print $2}')"
+done; done
