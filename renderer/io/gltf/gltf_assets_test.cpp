@@ -208,8 +208,6 @@ std::map<std::string, std::string> invalid_index(const fs::path& index) {
 
 // The damage classes that make a render wrong or unsafe: these files must be refused.
 bool must_refuse(const std::string& file, const std::string& codes) {
-  // The validator reads every image; kiln reads only those a material samples, and none does here.
-  if (file == "image/not_found.gltf") return false;
   for (const char* code : {"IO_ERROR", "UNRESOLVED_REFERENCE", "ACCESSOR_INDEX_OOB", "GLB_", "INVALID_JSON",
                            "BUFFER_", "ACCESSOR_TOO_LONG", "NODE_LOOP"})
     if (codes.find(code) != std::string::npos) return true;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/error.h"
 #include "io/gltf/gltf_common.h"
 
 namespace kiln::gltf_internal {
@@ -106,6 +107,21 @@ std::set<std::string> unused_image_files(const json& doc, const std::vector<bool
   }
   for (const std::string& file : needed) unused.erase(file);
   return unused;
+}
+
+void refuse_missing_image_files(const json& doc, const std::string& folder_prefix, const std::string& file) {
+  auto images = doc.find("images");
+  if (images == doc.end() || !images->is_array()) return;
+  for (size_t i = 0; i < images->size(); ++i) {
+    const std::string uri = external_uri((*images)[i]);
+    if (uri.empty()) continue;
+    std::error_code ec;
+    // tinygltf tries the URI with '+' as a space and as itself; either file will do.
+    if (std::filesystem::exists(folder_prefix + percent_decoded(plus_as_space(uri)), ec) ||
+        std::filesystem::exists(folder_prefix + percent_decoded(uri), ec))
+      continue;
+    throw input_error(file, "/images/" + std::to_string(i) + "/uri", "cannot read image file '" + uri + "'");
+  }
 }
 
 }  // namespace kiln::gltf_internal

@@ -20,6 +20,11 @@ std::vector<bool> images_used_by_materials(const nlohmann::json& doc);
 std::set<std::string> unused_image_files(const nlohmann::json& doc, const std::vector<bool>& used,
                                          const std::string& folder_prefix);
 
+// Throws kiln::error (input) naming file and /images/i/uri when an external image's file does not
+// exist, used or not: a broken reference is an error even where its bytes would not be read.
+void refuse_missing_image_files(const nlohmann::json& doc, const std::string& folder_prefix,
+                                const std::string& file);
+
 // The canonical form of a path, the key of unused_image_files(); the path itself when it cannot
 // be resolved.
 std::string canonical_key(const std::string& path);

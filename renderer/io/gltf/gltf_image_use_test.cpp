@@ -61,13 +61,20 @@ void expect_kept_bytes(const std::string& path, bool first, bool second) {
   expect_orange_2x2(load_gltf(path));
 }
 
-TEST(GltfImageUse, UnusedMissingImageFileLoads) {
+// A broken reference is refused even where its bytes would not be read.
+TEST(GltfImageUse, UnusedMissingImageFileIsStillRefused) {
   temp_folder dir;
   write_png(dir, "used.png", orange);
   const gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "used.png"}}, json{{"uri", "gone.png"}}}));
   const std::string path = b.write_gltf(dir);
-  expect_orange_2x2(load_gltf(path));
+  try {
+    load_gltf(path);
+    ADD_FAILURE() << "a missing image file loaded";
+  } catch (const error& e) {
+    EXPECT_NE(std::string(e.what()).find("/images/1/uri: cannot read image file 'gone.png'"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(GltfImageUse, UnusedGarbageImageFileIsNotKept) {

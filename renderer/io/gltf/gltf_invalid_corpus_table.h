@@ -91,8 +91,7 @@ inline const std::vector<corpus_expectation>& invalid_corpus_expectations() {
       {"image/invalid_data_uri.gltf", outcome::refuse, "/images/0/uri",
        "the data URI's base64 payload is malformed"},
       {"image/invalid_image_data.gltf", outcome::load, "", "the file has no scenes; nothing is placed"},
-      // No material samples the image, so its file is never read (a missing used image is refused).
-      {"image/not_found.gltf", outcome::load, "", "the file has no scenes; nothing is placed"},
+      {"image/not_found.gltf", outcome::refuse, "/images/0/uri", "cannot read image file 'not_found.png'"},
       {"image/png_eos.gltf", outcome::load, "", "the file has no scenes; nothing is placed"},
       {"image/unresolved_buffer_view.gltf", outcome::refuse, "/images/0/bufferView",
        "/bufferViews/0 does not exist (file has 0"},

@@ -26,7 +26,7 @@ struct fs_context {
   std::string folder_prefix;  // canonical asset folder (symlinks resolved), ending in '/'
   bool allow_outside = false;
   // Filled by the JSON pre-pass: images no material samples are neither read nor kept, so a
-  // large unused image file costs no memory (and a missing one is no error).
+  // large unused image file costs no memory (a missing one is still refused, by the pre-pass).
   std::vector<bool> image_used;              // by image index
   std::set<std::string> unused_image_files;  // canonical paths only unused images name
 };
@@ -251,6 +251,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   check_what_tinygltf_refuses(doc, path, sources);
   context.image_used = images_used_by_materials(doc);
   context.unused_image_files = unused_image_files(doc, context.image_used, context.folder_prefix);
+  refuse_missing_image_files(doc, context.folder_prefix, path);
 }
 
 }  // namespace
