@@ -336,6 +336,9 @@ TEST(GltfLoaderErrors, MissingBin) {
 TEST(GltfLoaderErrors, MissingImageFile) {
   gltf_builder b = single_triangle();
   b.doc["images"] = json::array({json{{"uri", "gone.png"}}});
+  b.doc["textures"] = json::array({json{{"source", 0}}});
+  b.doc["materials"] = json::array({json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   expect_error(b, {"/images/0/uri", "cannot read image file 'gone.png'"});
 }
 

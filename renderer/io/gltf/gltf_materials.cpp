@@ -92,6 +92,10 @@ int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_rema
   int32_t& slot = remap.images[static_cast<size_t>(gltf_image)];
   if (slot >= 0) return slot;
   const tinygltf::Image& img = model.images[static_cast<size_t>(gltf_image)];
+  // tinygltf only warns when an external image is missing; a broken reference is an error.
+  if (img.bufferView < 0 && img.image.empty())
+    throw input_error(file, pointer_join(pointer("images", gltf_image), "uri"),
+                      "cannot read image file '" + img.uri + "'");
   const std::string name = !img.name.empty() ? img.name : img.uri;
   out.images.push_back(decode_image(encoded_bytes(model, img), name, file, pointer("images", gltf_image),
                                     remap.max_texels));

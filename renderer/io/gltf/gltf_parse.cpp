@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_image_use.h"
 #include "io/gltf/gltf_precheck.h"
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <system_error>
 
 namespace kiln::gltf_internal {
@@ -23,6 +25,10 @@ namespace fs = std::filesystem;
 struct fs_context {
   std::string folder_prefix;  // canonical asset folder (symlinks resolved), ending in '/'
   bool allow_outside = false;
+  // Filled by the JSON pre-pass: images no material samples are neither read nor kept, so a
+  // large unused image file costs no memory (a missing one is still refused, by the pre-pass).
+  std::vector<bool> image_used;              // by image index
+  std::set<std::string> unused_image_files;  // canonical paths only unused images name
 };
 
 // True when path, with ".", ".." and symbolic links resolved, lies inside the asset's folder. A
@@ -83,6 +89,8 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     return false;
   }
   const auto* context = static_cast<const fs_context*>(user);
+  // No bytes: tinygltf then leaves the image empty (a warning kiln ignores) and goes on.
+  if (context->unused_image_files.count(canonical_key(path)) > 0) return true;
   if (!context->allow_outside && !inside_asset_folder(path, *context)) {
     if (err) *err += "refers to a file outside the asset's folder (allow with --allow-outside-files)";
     return false;
@@ -101,12 +109,16 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
 }
 
 // Keeps encoded image bytes so that only images a used material references get decoded (by
-// OpenImageIO, later). For an image in a bufferView, tinygltf hands over a pointer it never
-// bounds-checked against the buffer, so those bytes are not touched here.
-bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                        const unsigned char* bytes, int size, void*) {
+// OpenImageIO, later); the bytes of an image no material samples (a data URI) are dropped. For an
+// image in a bufferView, tinygltf hands over a pointer it never bounds-checked against the
+// buffer, so those bytes are not touched here.
+bool keep_encoded_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void* user) {
   image->as_is = true;
   if (image->bufferView >= 0) return true;
+  const auto& used = static_cast<const fs_context*>(user)->image_used;
+  if (index >= 0 && static_cast<size_t>(index) < used.size() && !used[static_cast<size_t>(index)])
+    return true;
   if (bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
@@ -196,9 +208,10 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
 // Checks the JSON before tinygltf parses it: size and nesting within the limits, the node count
 // within its limit, and every buffer and image URI inside the asset's folder. glTF URIs are
 // relative references: an absolute path or a file: URI is never followed; ".." that leaves the
-// folder only with the allow option. Each refusal names the JSON pointer.
+// folder only with the allow option. Each refusal names the JSON pointer. Records in context
+// which images materials sample.
 void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path,
-                               const fs_context& context, const gltf_limits& limits,
+                               fs_context& context, const gltf_limits& limits,
                                const buffer_sources& sources) {
   if (size > limits.max_json_bytes)
     throw input_error(path, "", "JSON is " + std::to_string(size) + " bytes, over the limit of " +
@@ -236,6 +249,9 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   // bufferViews), so it is reported first.
   check_required_extensions_in_json(doc, path);
   check_what_tinygltf_refuses(doc, path, sources);
+  context.image_used = images_used_by_materials(doc);
+  context.unused_image_files = unused_image_files(doc, context.image_used, context.folder_prefix);
+  refuse_missing_image_files(doc, context.folder_prefix, path);
 }
 
 }  // namespace
@@ -266,7 +282,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   const bool is_glb = ends_with_glb(path) || has_glb_magic(bytes);
   parser.SetFsCallbacks(
       tinygltf::FsCallbacks{&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &context});
-  parser.SetImageLoader(&keep_encoded_image, nullptr);
+  parser.SetImageLoader(&keep_encoded_image, &context);
 
   tinygltf::Model model;
   std::string err;

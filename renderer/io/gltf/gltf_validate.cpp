@@ -175,13 +175,11 @@ void validate_textures(const tinygltf::Model& model, const std::string& file) {
   for (size_t i = 0; i < model.images.size(); ++i) {
     const tinygltf::Image& img = model.images[i];
     const std::string where = pointer("images", static_cast<int64_t>(i));
-    if (img.bufferView != -1) {
+    // An image without bytes is refused where a material samples it (resolve_image): the
+    // bytes of images nothing samples are never read.
+    if (img.bufferView != -1)
       check_ref(img.bufferView, model.bufferViews.size(), false, "bufferViews", file,
                 pointer_join(where, "bufferView"));
-    } else if (img.image.empty()) {
-      // tinygltf only warns when an external image is missing; a broken reference is an error.
-      throw input_error(file, pointer_join(where, "uri"), "cannot read image file '" + img.uri + "'");
-    }
   }
   for (size_t i = 0; i < model.samplers.size(); ++i) {
     const tinygltf::Sampler& s = model.samplers[i];
