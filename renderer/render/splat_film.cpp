@@ -1,5 +1,8 @@
 #include "render/splat_film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace kiln {
@@ -125,8 +128,10 @@ void splat_film::add(int x, int y, const pixel_splat& splat) {
 void splat_film::resolve(film& out) const {
   std::vector<id_coverage>* ranks[matte_layer_count] = {&out.crypto_object, &out.crypto_material};
   const size_t depth = size_t(out.aovs.crypto_depth);
+  // Rows in parallel: every pixel is resolved from its own sums alone.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, sum_.size(), 4096), [&](const tbb::blocked_range<size_t>& rows) {
   id_weights ids;
-  for (size_t p = 0; p < sum_.size(); ++p) {
+  for (size_t p = rows.begin(); p < rows.end(); ++p) {
     dvec4 sum = sum_[p];
     float weight = weight_[p];
     if (slot_of_[p] >= 0)
@@ -154,6 +159,7 @@ void splat_film::resolve(film& out) const {
       store_ranks(ids, weight, int(depth), ranks[l]->data() + p * depth);
     }
   }
+  });
 }
 
 }  // namespace kiln

@@ -12,6 +12,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -235,28 +236,41 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const bool adaptive = settings.adaptive.threshold > 0.0f;
   const pixel_rect region =
       adaptive ? crop : render_region(crop, filter_reach(settings.filter), cam.width, cam.height);
-  film out(region.width(), region.height(), settings.aovs);
+  const int tile_size = std::max(1, settings.tile_size);
+  const std::vector<tile> tiles = make_tiles(region, tile_size);
+  const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+  tbb::task_arena arena(threads);
+  // The film, the splat accumulator and the texture pyramids are set up side by side on the
+  // render's threads: zeroing the buffers and building the pyramids come before the first pixel,
+  // and done on one thread they held two-thread renders well under twice the speed of one.
+  film out;
+  std::unique_ptr<splat_film> splats;
+  std::unique_ptr<texture_filter> textures;
+  arena.execute([&] {
+    tbb::parallel_invoke(
+        [&] { out = film(region.width(), region.height(), settings.aovs); },
+        [&] {
+          splats = std::make_unique<splat_film>(adaptive ? 0 : region.width(), adaptive ? 0 : region.height(),
+                                                tile_size, settings.filter, matte_layers(settings.aovs).on,
+                                                wants_light_split(settings.aovs));
+        },
+        [&] {
+          if (scene_needs_texture_filter(world))
+            textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
+        });
+  });
   out.x0 = region.x0;
   out.y0 = region.y0;
   out.full_width = cam.width;
   out.full_height = cam.height;
-  const int tile_size = std::max(1, settings.tile_size);
-  const std::vector<tile> tiles = make_tiles(region, tile_size);
-  const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  std::unique_ptr<texture_filter> textures;
-  if (scene_needs_texture_filter(world))
-    textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
   shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
-  splat_film splats(adaptive ? 0 : out.width, adaptive ? 0 : out.height, tile_size, settings.filter,
-                    matte_layers(settings.aovs).on, wants_light_split(settings.aovs));
   std::vector<camera_sample> corners;
-  const tile_job job{ctx, cam, settings, out, splats, corners};
+  const tile_job job{ctx, cam, settings, out, *splats, corners};
 
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
   auto cancelled = [&settings] { return cancel_requested(settings); };
-  tbb::task_arena arena(threads);
   arena.execute([&] {
     // Adaptive sampling starts from the (W+1)×(H+1) pixel corners, each traced once.
     if (adaptive) {
@@ -293,7 +307,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");
-  if (!adaptive) splats.resolve(out);
+  if (!adaptive) arena.execute([&] { splats->resolve(out); });
   if (!(region == crop)) out = crop_film(out, crop);
 
   if (stats) {

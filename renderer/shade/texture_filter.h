@@ -16,7 +16,8 @@ namespace kiln {
 class texture_filter {
  public:
   // Registers every texture of s (which must outlive the filter). cache_mb bounds OpenImageIO's
-  // tile cache (it grows to at least twice the largest automipped image).
+  // tile cache (it grows to at least twice the largest automipped image). The mip pyramids are
+  // built in parallel on the calling thread's TBB arena; the result does not depend on its size.
   explicit texture_filter(const scene& s, float cache_mb = 256.0f);
   ~texture_filter();
   texture_filter(const texture_filter&) = delete;
