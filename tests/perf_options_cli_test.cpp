@@ -118,5 +118,22 @@ TEST(perf_options_cli, bench_json_records_the_settings_and_embree_memory) {
   EXPECT_TRUE(camera_streamed);
 }
 
+TEST(perf_options_cli, bench_reports_no_streams_for_quadric_scenes) {
+  // Quadric user geometry answers single rays only: a stream would miss every quadric and report
+  // a speed for rays that never met one. The single-ray rows must still find the quadrics.
+  const std::string json = scratch_folder("perf_bench_quadrics") + "/bench.json";
+  auto result = run_kiln({"bench", std::string(KILN_SOURCE_DIR) + "/scenes/quadric_showcase.gltf", "--width",
+                          "32", "--height", "24", "--repeat", "1", "-q", "--json", json});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  std::ifstream in(json);
+  const nlohmann::json r = nlohmann::json::parse(in);
+  size_t camera_hits = 0;
+  for (const auto& k : r["kinds"]) {
+    EXPECT_FALSE(k.contains("bare_stream_mrays_per_s")) << k.dump();
+    if (k["kind"] == "camera" && k["query"] == "intersect") camera_hits = k["hits"].get<size_t>();
+  }
+  EXPECT_GT(camera_hits, 32u * 24u / 4u);  // the showcase fills most of the frame with quadrics
+}
+
 }  // namespace
 }  // namespace kiln

@@ -165,7 +165,7 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
               hits += occlusion ? accel->occluded(r[i]) : accel->intersect(r[i]).has_value();
             return hits;
           });
-      if (k == size_t(ray_kind::camera) && !occlusion) {
+      if (k == size_t(ray_kind::camera) && !occlusion && embree->streams_supported()) {
         // Packets: the recorded camera rays keep each thread's tile order, so chunks are coherent.
         size_t bare_hits = 0, kiln_hits = 0;
         time_both(

@@ -25,7 +25,8 @@ struct kind_measurement {
   size_t bare_hits = 0;
   size_t kiln_hits = 0;
   // Camera rays only: the same rays as streams of 1024 (rtcIntersect1M, coherent flag) bare and
-  // through accelerator::intersect_coherent; 0 when not measured.
+  // through accelerator::intersect_coherent; 0 when not measured, and never for scenes with
+  // quadrics, whose user geometry answers single rays only.
   double bare_stream_seconds = 0.0;
   double kiln_stream_seconds = 0.0;
 };

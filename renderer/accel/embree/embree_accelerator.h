@@ -41,8 +41,12 @@ class embree_accelerator final : public accelerator {
   // this accelerator's BVH and intersect context, and nothing else: no hit record, no shading.
   // Returns how many rays hit (or were blocked). The yardstick kiln's own queries are measured by.
   size_t trace_bare(const ray* rays, size_t count, bool occlusion) const;
-  // The bare loop of intersect_coherent: the rays as one coherent rtcIntersect1M stream.
+  // The bare loop of intersect_coherent: the rays as one coherent rtcIntersect1M stream. Only
+  // where streams_supported().
   size_t trace_bare_stream(const ray* rays, size_t count) const;
+  // False for scenes with quadrics: their user geometry answers one ray at a time, so a stream
+  // would miss every quadric.
+  bool streams_supported() const;
   void throw_if_failed() const override;
 
  private:
