@@ -113,7 +113,12 @@ film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bo
     for (int tx = 0; tx < w; tx += tile_size) tiles.push_back({tx, ty});
   if (reverse) std::reverse(tiles.begin(), tiles.end());
   pixel_splat splat(splats.reach(), layers);
-  for (auto [tx, ty] : tiles)
+  aov_set aovs;
+  aovs.crypto_object = aovs.crypto_material = true;
+  film out(w, h, aovs);
+  tile_sums sums;
+  for (auto [tx, ty] : tiles) {
+    splats.begin_tile(sums, tx, ty, std::min(tx + tile_size, w), std::min(ty + tile_size, h));
     for (int y = ty; y < std::min(ty + tile_size, h); ++y)
       for (int x = tx; x < std::min(tx + tile_size, w); ++x) {
         splat.clear();
@@ -124,11 +129,10 @@ film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bo
           const bool miss = !constant && s == 3 && (x + y) % 2 == 0;
           splat.add(f, o, miss ? vec4(0.0f) : vec4(v, v * v, 1.0f / v, 1.0f), miss ? nullptr : ids);
         }
-        splats.add(x, y, splat);
+        splats.add(x, y, splat, sums);
       }
-  aov_set aovs;
-  aovs.crypto_object = aovs.crypto_material = true;
-  film out(w, h, aovs);
+    splats.finish_tile(sums, out);
+  }
   splats.resolve(out);
   return out;
 }

@@ -1,5 +1,7 @@
 #include "render/splat_film.h"
 
+#include "core/check.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -62,9 +64,9 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
       tile_size_(std::max(1, tile_size)),
       reach_(filter_reach(f)),
       window_((2 * reach_ + 1) * (2 * reach_ + 1)),
-      sum_(size_t(width) * height, dvec4(0.0)),
-      weight_(size_t(width) * height, 0.0f),
+      with_split_(with_split),
       slot_of_(size_t(width) * height, -1) {
+  for (int l = 0; l < matte_layer_count; ++l) layers_[l] = layers[l];
   int64_t slots = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
@@ -74,15 +76,9 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
       }
   slot_sum_.assign(size_t(slots), dvec4(0.0));
   slot_weight_.assign(size_t(slots), 0.0f);
-  if (with_split) {
-    split_sum_.assign(3 * sum_.size(), dvec3(0.0));
-    slot_split_.assign(3 * size_t(slots), dvec3(0.0));
-  }
+  if (with_split) slot_split_.assign(3 * size_t(slots), dvec3(0.0));
   for (int l = 0; l < matte_layer_count; ++l)
-    if (layers[l]) {
-      id_sum_[l].resize(sum_.size());
-      slot_ids_[l].resize(size_t(slots));
-    }
+    if (layers[l]) slot_ids_[l].resize(size_t(slots));
 }
 
 // True when every pixel within reach of (x, y) (inside the image) belongs to (x, y)'s tile.
@@ -92,7 +88,25 @@ bool splat_film::within_one_tile(int x, int y) const {
          same(std::max(0, y - reach_), std::min(height_ - 1, y + reach_));
 }
 
-void splat_film::add(int x, int y, const pixel_splat& splat) {
+void splat_film::begin_tile(tile_sums& t, int x0, int y0, int x1, int y1) const {
+  // A tile off the grid would let a source fold into a pixel outside t.
+  KILN_CHECK(x0 % tile_size_ == 0 && y0 % tile_size_ == 0 && x0 < x1 && y0 < y1 &&
+             x1 == std::min(x0 + tile_size_, width_) && y1 == std::min(y0 + tile_size_, height_));
+  t.x0 = x0;
+  t.y0 = y0;
+  t.width = x1 - x0;
+  t.height = y1 - y0;
+  const size_t n = size_t(t.width) * t.height;
+  t.sum.assign(n, dvec4(0.0));
+  t.weight.assign(n, 0.0f);
+  t.split.assign(with_split_ ? 3 * n : 0, dvec3(0.0));
+  for (int l = 0; l < matte_layer_count; ++l) {
+    t.ids[l].resize(layers_[l] ? n : 0);
+    for (id_weights& w : t.ids[l]) w.clear();
+  }
+}
+
+void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
   const int n = 2 * reach_ + 1;
   for (int j = -reach_; j <= reach_; ++j) {
     const int py = y + j;
@@ -104,13 +118,15 @@ void splat_film::add(int x, int y, const pixel_splat& splat) {
       const size_t p = size_t(py) * width_ + px;
       const int64_t slot = slot_of_[p];
       if (slot < 0) {
-        // The tile renders its pixels in raster order, so this fold follows the source order.
-        sum_[p] += splat.sum[from];
-        weight_[p] += splat.weight[from];
-        if (!split_sum_.empty())
-          for (size_t c = 0; c < 3; ++c) split_sum_[3 * p + c] += splat.split[3 * from + c];
+        // (px, py)'s whole reach lies in one tile, which holds the source: this tile. The tile
+        // renders its pixels in raster order, so this fold follows the source order.
+        const size_t q = t.index(px, py);
+        t.sum[q] += splat.sum[from];
+        t.weight[q] += splat.weight[from];
+        if (!t.split.empty())
+          for (size_t c = 0; c < 3; ++c) t.split[3 * q + c] += splat.split[3 * from + c];
         for (int l = 0; l < matte_layer_count; ++l)
-          if (!id_sum_[l].empty()) add_id_weights(id_sum_[l][p], splat.ids[l][from]);
+          if (!t.ids[l].empty()) add_id_weights(t.ids[l][q], splat.ids[l][from]);
       } else {
         // The source sits at (-i, -j) from the destination; slots run in source raster order.
         const size_t to = size_t(slot) + size_t(reach_ - j) * n + size_t(reach_ - i);
@@ -125,40 +141,64 @@ void splat_film::add(int x, int y, const pixel_splat& splat) {
   }
 }
 
-void splat_film::resolve(film& out) const {
+namespace {
+
+// One pixel's folded sums, divided by its weight into the film.
+void store_pixel(film& out, size_t p, const dvec4& sum, float weight, const dvec3* split,
+                 const id_weights* const (&ids)[matte_layer_count]) {
+  out.color[p] = weight > 0.0f ? vec4(sum / double(weight)) : vec4(0.0f);
+  if (split) {
+    std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
+    for (size_t c = 0; c < 3; ++c)
+      if (!parts[c]->empty()) (*parts[c])[p] = weight > 0.0f ? vec3(split[c] / double(weight)) : vec3(0.0f);
+  }
   std::vector<id_coverage>* ranks[matte_layer_count] = {&out.crypto_object, &out.crypto_material};
   const size_t depth = size_t(out.aovs.crypto_depth);
-  // Rows in parallel: every pixel is resolved from its own sums alone.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, sum_.size(), 4096), [&](const tbb::blocked_range<size_t>& rows) {
-  id_weights ids;
-  for (size_t p = rows.begin(); p < rows.end(); ++p) {
-    dvec4 sum = sum_[p];
-    float weight = weight_[p];
-    if (slot_of_[p] >= 0)
-      for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k) {
+  for (int l = 0; l < matte_layer_count; ++l)
+    if (ids[l] && !ranks[l]->empty()) store_ranks(*ids[l], weight, int(depth), ranks[l]->data() + p * depth);
+}
+
+}  // namespace
+
+void splat_film::finish_tile(const tile_sums& t, film& out) const {
+  for (int y = t.y0; y < t.y0 + t.height; ++y)
+    for (int x = t.x0; x < t.x0 + t.width; ++x) {
+      const size_t p = size_t(y) * width_ + x;
+      if (slot_of_[p] >= 0) continue;  // a border pixel: resolve() folds it
+      const size_t q = t.index(x, y);
+      const id_weights* ids[matte_layer_count] = {};
+      for (int l = 0; l < matte_layer_count; ++l)
+        if (!t.ids[l].empty()) ids[l] = &t.ids[l][q];
+      store_pixel(out, p, t.sum[q], t.weight[q], t.split.empty() ? nullptr : &t.split[3 * q], ids);
+    }
+}
+
+void splat_film::resolve(film& out) const {
+  // Border pixels in parallel: each is folded from its own slots alone, in slot (source) order.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, slot_of_.size(), 4096), [&](const tbb::blocked_range<size_t>& rows) {
+    id_weights ids[matte_layer_count];
+    for (size_t p = rows.begin(); p < rows.end(); ++p) {
+      if (slot_of_[p] < 0) continue;
+      const size_t first = size_t(slot_of_[p]), end = first + size_t(window_);
+      dvec4 sum(0.0);
+      float weight = 0.0f;
+      dvec3 split[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
+      for (size_t k = first; k < end; ++k) {
         sum += slot_sum_[k];
         weight += slot_weight_[k];
       }
-    out.color[p] = weight > 0.0f ? vec4(sum / double(weight)) : vec4(0.0f);
-    if (!split_sum_.empty()) {
-      std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
-      for (size_t c = 0; c < 3; ++c) {
-        dvec3 part = split_sum_[3 * p + c];
-        if (slot_of_[p] >= 0)
-          for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k)
-            part += slot_split_[3 * k + c];
-        if (!parts[c]->empty()) (*parts[c])[p] = weight > 0.0f ? vec3(part / double(weight)) : vec3(0.0f);
+      if (with_split_)
+        for (size_t c = 0; c < 3; ++c)
+          for (size_t k = first; k < end; ++k) split[c] += slot_split_[3 * k + c];
+      const id_weights* id_sums[matte_layer_count] = {};
+      for (int l = 0; l < matte_layer_count; ++l) {
+        if (slot_ids_[l].empty()) continue;
+        ids[l].clear();
+        for (size_t k = first; k < end; ++k) add_id_weights(ids[l], slot_ids_[l][k]);
+        id_sums[l] = &ids[l];
       }
+      store_pixel(out, p, sum, weight, with_split_ ? split : nullptr, id_sums);
     }
-    for (int l = 0; l < matte_layer_count; ++l) {
-      if (id_sum_[l].empty() || ranks[l]->empty()) continue;
-      ids = id_sum_[l][p];
-      if (slot_of_[p] >= 0)
-        for (size_t k = size_t(slot_of_[p]), end = k + size_t(window_); k < end; ++k)
-          add_id_weights(ids, slot_ids_[l][k]);
-      store_ranks(ids, weight, int(depth), ranks[l]->data() + p * depth);
-    }
-  }
   });
 }
 

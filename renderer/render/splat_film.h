@@ -1,8 +1,9 @@
 // Filtered reconstruction whose bytes do not depend on threads or tile size. Each pixel's value is
 // a left fold, in raster order of the source pixels within the filter's reach, of what each source
 // pixel's samples contribute to it (P(q→p), summed in sample order). A pixel whose reach lies in
-// one tile is folded by that tile as it renders (it visits the sources in raster order); a pixel
-// near a tile border keeps one slot per source and is folded after the parallel loop. Float
+// one tile is folded by that tile as it renders, in a tile-sized accumulator (it visits the sources
+// in raster order), and resolved when the tile ends; a pixel near a tile border keeps one slot per
+// source and is folded after the parallel loop. Float
 // additions therefore happen in one order for any schedule. Depends on core and render only.
 #pragma once
 
@@ -35,6 +36,20 @@ struct pixel_splat {
            const uint32_t* sample_ids = nullptr, const vec3* sample_split = nullptr);
 };
 
+// The sums of the pixels one tile folds itself (those whose whole reach lies in the tile), laid
+// out over the tile alone: tile-sized, so it stays in cache, and the film needs no full-frame
+// accumulator for them. One per render task, reused tile after tile (see splat_film::begin_tile).
+class tile_sums {
+ private:
+  friend class splat_film;
+  int x0 = 0, y0 = 0, width = 0, height = 0;  // the tile, in film coordinates
+  std::vector<dvec4> sum;
+  std::vector<float> weight;
+  std::vector<id_weights> ids[matte_layer_count];
+  std::vector<dvec3> split;
+  size_t index(int x, int y) const { return size_t(y - y0) * width + (x - x0); }
+};
+
 class splat_film {
  public:
   // layers: the Cryptomatte layers whose id weights are folded beside the colour.
@@ -43,32 +58,34 @@ class splat_film {
 
   int reach() const { return reach_; }
 
-  // Hands over source pixel (x, y)'s contributions. Within a tile, call in raster order; pixels of
-  // different tiles may be added concurrently.
-  void add(int x, int y, const pixel_splat& splat);
+  // Starts the tile [x0, x1) × [y0, y1) of the tile_size grid (film coordinates) in t.
+  void begin_tile(tile_sums& t, int x0, int y0, int x1, int y1) const;
+  // Hands over source pixel (x, y)'s contributions; (x, y) lies in t's tile. Within a tile, call
+  // in raster order; pixels of different tiles may be added concurrently.
+  void add(int x, int y, const pixel_splat& splat, tile_sums& t);
+  // Resolves t's tile's own pixels into out (as resolve() describes), after its last add().
+  void finish_tile(const tile_sums& t, film& out) const;
 
   // Writes colour = Σ w·L / Σ w into out (0 where no sample has weight), and each Cryptomatte
   // layer's ranks with coverage = Σ w (hits of the id) / Σ w: the same weights and the same fold
-  // as the colour, so coverage sums to alpha where the background is transparent. Call after
-  // every add().
+  // as the colour, so coverage sums to alpha where the background is transparent. This resolves
+  // the tile-border pixels; call after every tile's finish_tile().
   void resolve(film& out) const;
 
  private:
   bool within_one_tile(int x, int y) const;
 
   int width_, height_, tile_size_, reach_, window_;
+  bool layers_[matte_layer_count] = {};
+  bool with_split_ = false;
   // Sums in double: a few very bright samples (near the float maximum) must not overflow a pixel
   // to +inf although each sample and their mean are finite.
-  std::vector<dvec4> sum_;  // pixels folded by their own tile
-  std::vector<float> weight_;
   std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere
   std::vector<dvec4> slot_sum_;   // per border pixel, one slot per source, raster order
   std::vector<float> slot_weight_;
-  // Cryptomatte layers, laid out like sum_ and slot_sum_; empty for a layer not asked for.
-  std::vector<id_weights> id_sum_[matte_layer_count];
+  // Cryptomatte layers, laid out like slot_sum_; empty for a layer not asked for.
   std::vector<id_weights> slot_ids_[matte_layer_count];
-  // The light split, three per pixel and per slot; empty when not asked for.
-  std::vector<dvec3> split_sum_;
+  // The light split, three per slot; empty when not asked for.
   std::vector<dvec3> slot_split_;
 };
 

@@ -117,7 +117,8 @@ bool sample_matte_ids(const matte_ids& mattes, int32_t node, int32_t material,
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
 // sample decides depth, normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
-                  int y, pixel_splat& splat, splat_film& splats, film& out, ray_counts& counts) {
+                  int y, pixel_splat& splat, splat_film& splats, tile_sums& sums, film& out,
+                  ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   const ray_cone cone = sample_cone(cam, spp);
   camera_sample nearest;
@@ -139,7 +140,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (cs.depth < nearest.depth) nearest = cs;
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
-  splats.add(x - out.x0, y - out.y0, splat);
+  splats.add(x - out.x0, y - out.y0, splat, sums);
   store_nearest_sample(nearest, out, out.index(x - out.x0, y - out.y0));
 }
 
@@ -154,9 +155,10 @@ struct tile_job {
 };
 
 // Stratified samples, splatted through the reconstruction filter.
-void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& counts) {
+void render_filtered_tile(const tile_job& job, const tile& tl, tile_sums& sums, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     wants_light_split(job.settings.aovs));
+  job.splats.begin_tile(sums, tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0);
   // With packets, the camera rays of each run of rows are traced together first (same hits).
   primary_ray_batch batch(job.ctx.accel);
   const shading_context batched = with_accelerator(job.ctx, batch);
@@ -166,8 +168,9 @@ void render_filtered_tile(const tile_job& job, const tile& tl, ray_counts& count
     if (job.settings.packets && y == batch_end)
       batch_end = batch.prepare(job.cam, job.settings, tl.x0, tl.x1, y, tl.y1);
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
-      render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, job.out, counts);
+      render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, sums, job.out, counts);
   }
+  job.splats.finish_tile(sums, job.out);
 }
 
 // Cryptomatte ranks of an adaptive pixel: its corner weights sum to exactly 1, so the summed weight
@@ -289,6 +292,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       });
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
+    tbb::enumerable_thread_specific<tile_sums> sums;  // reused tile after tile: no per-tile allocation
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
       for (size_t t = range.begin(); t != range.end(); ++t) {
@@ -297,7 +301,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
         if (adaptive)
           render_adaptive_tile(job, tl, scratch.local(), counts);
         else
-          render_filtered_tile(job, tl, counts);
+          render_filtered_tile(job, tl, sums.local(), counts);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
         size_t done = ++tiles_done;
