@@ -65,8 +65,11 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
       reach_(filter_reach(f)),
       window_((2 * reach_ + 1) * (2 * reach_ + 1)),
       with_split_(with_split),
-      slot_of_(size_t(width) * height, -1) {
+      // A filter that reaches no neighbour (box 0.5, the default) leaves no pixel on a tile
+      // border: no slots, and no frame-sized index to zero.
+      slot_of_(reach_ > 0 ? size_t(width) * height : 0, -1) {
   for (int l = 0; l < matte_layer_count; ++l) layers_[l] = layers[l];
+  if (slot_of_.empty()) return;
   int64_t slots = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
@@ -116,7 +119,7 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
       if (px < 0 || px >= width_) continue;
       const size_t from = size_t(j + reach_) * n + size_t(i + reach_);
       const size_t p = size_t(py) * width_ + px;
-      const int64_t slot = slot_of_[p];
+      const int64_t slot = slot_of(p);
       if (slot < 0) {
         // (px, py)'s whole reach lies in one tile, which holds the source: this tile. The tile
         // renders its pixels in raster order, so this fold follows the source order.
@@ -164,7 +167,7 @@ void splat_film::finish_tile(const tile_sums& t, film& out) const {
   for (int y = t.y0; y < t.y0 + t.height; ++y)
     for (int x = t.x0; x < t.x0 + t.width; ++x) {
       const size_t p = size_t(y) * width_ + x;
-      if (slot_of_[p] >= 0) continue;  // a border pixel: resolve() folds it
+      if (slot_of(p) >= 0) continue;  // a border pixel: resolve() folds it
       const size_t q = t.index(x, y);
       const id_weights* ids[matte_layer_count] = {};
       for (int l = 0; l < matte_layer_count; ++l)

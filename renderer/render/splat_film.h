@@ -80,7 +80,8 @@ class splat_film {
   bool with_split_ = false;
   // Sums in double: a few very bright samples (near the float maximum) must not overflow a pixel
   // to +inf although each sample and their mean are finite.
-  std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere
+  std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere (empty: none)
+  int64_t slot_of(size_t p) const { return slot_of_.empty() ? -1 : slot_of_[p]; }
   std::vector<dvec4> slot_sum_;   // per border pixel, one slot per source, raster order
   std::vector<float> slot_weight_;
   // Cryptomatte layers, laid out like slot_sum_; empty for a layer not asked for.
