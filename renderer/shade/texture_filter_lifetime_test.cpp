@@ -6,9 +6,6 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "shade/texture_filter.h"
