@@ -3,9 +3,11 @@
 // pixel's exact coverage is known and alpha must follow it.
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
+#include "render/camera_sample.h"
 #include "render/sample_pattern.h"
 #include "render/tile_renderer.h"
 #include "shade/environment.h"
+#include "shade/texture_filter.h"
 #include "support/gltf_builder.h"
 
 #include <gtest/gtest.h>
@@ -103,21 +105,22 @@ TEST(filter_image, default_box_is_bit_identical_to_the_direct_mean_of_the_sample
   settings.show_background = true;
   settings.tile_size = 7;
   film image = render_image(world, accel, cam, settings);
-  // The reference: each pixel's own samples summed in sample order (in double, as the film sums),
-  // divided by spp.
-  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world)};
+  // The reference: each pixel's own camera samples summed in sample order (in double, as the film
+  // sums), divided by spp.
+  std::unique_ptr<texture_filter> textures;
+  if (scene_needs_texture_filter(world)) textures = std::make_unique<texture_filter>(world, 256.0f);
+  shading_options shading = settings.shading;
+  shading.highlight_footprint_scale = float(1.0 / sample_cone_scale(5));
+  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get()};
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
       dvec4 sum(0.0);
       ray_counts counts;
       for (int s = 0; s < 5; ++s) {
         vec2 o = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), 5u);
-        ray r = generate_camera_ray(cam, x + double(o.x), y + double(o.y));
-        std::optional<hit> h = find_visible_hit(ctx, r, counts);
-        if (h)
-          sum += dvec4(vec4(shade_surface(ctx, r, make_surface_point(world, *h, r), 0, 1.0f, counts), 1.0f));
-        else
-          sum += dvec4(vec4(environment_radiance(world, r.direction), 1.0f));
+        sum += dvec4(trace_camera_sample(ctx, cam, true, x + double(o.x), y + double(o.y), sample_cone(cam, 5),
+                                         counts)
+                         .rgba);
       }
       vec4 expected = vec4(sum / 5.0);
       ASSERT_EQ(std::memcmp(&image.color[image.index(x, y)], &expected, sizeof(vec4)), 0) << x << "," << y;

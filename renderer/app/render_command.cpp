@@ -290,6 +290,11 @@ void add_view_settings(CLI::App& app, render_options& o) {
   app.add_flag(
       "--show-background", o.show_background,
       "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)");
+  app.add_option("--transmission-alpha", o.transmission_alpha,
+                 "What glass contributes to alpha: opaque (it holds out, what it shows is baked in) or "
+                 "transparent (refraction reaching a background the camera does not show is transparent)")
+      ->check(CLI::IsMember({"opaque", "transparent"}))
+      ->capture_default_str();
   app.add_option("--max-depth", o.max_depth, "Maximum reflection depth")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
@@ -482,6 +487,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;
+  settings.shading.transmission_transparent = options.transmission_alpha == "transparent";
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
   settings.texture_cache_mb = options.texture_cache_mb;
@@ -557,6 +563,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
       {"kiln/adaptive", settings.adaptive.threshold > 0.0f ? sampling_description(settings, true) : "off"},
       {"kiln/max_depth", std::to_string(options.max_depth)},
       {"kiln/background", format_vec(options.background)},
+      {"kiln/transmission_alpha", options.transmission_alpha},
       {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},

@@ -53,6 +53,7 @@ struct render_options {
   int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
   vec3 background{0.0f};
   bool show_background = false;
+  std::string transmission_alpha = "opaque";  // --transmission-alpha opaque|transparent
   std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   embree_options embree;  // --bvh-quality, --bvh-compact

@@ -95,6 +95,7 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
   }
   add("--background", triple(o.background));
   if (o.show_background) a.push_back("--show-background");
+  if (o.transmission_alpha != "opaque") add("--transmission-alpha", o.transmission_alpha);
   add("--accel", o.accel);
   // Pixels do not depend on the BVH build, but a plan must reproduce the run; --packets can pick
   // the other of two coincident surfaces, so it counts as a pixel setting.

@@ -60,6 +60,7 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"tile", [](render_options& o) { o.tile_index = 1, o.tile_count = 4; }},
       {"background", [](render_options& o) { o.background = vec3(0.5f); }},
       {"show background", [](render_options& o) { o.show_background = true; }},
+      {"transmission alpha", [](render_options& o) { o.transmission_alpha = "transparent"; }},
       {"accel", [](render_options& o) { o.accel = "grid"; }},
       {"grid density", [](render_options& o) { o.grid.density = 4.0; }},
       {"grid resolution", [](render_options& o) { o.grid.resolution = glm::ivec3(8); }},
@@ -115,6 +116,7 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   o.tile_count = 3;
   o.background = vec3(0.1f, 0.2f, 0.3f);
   o.show_background = true;
+  o.transmission_alpha = "transparent";
   o.accel = "adaptive-grid";
   o.grid.resolution = glm::ivec3(4, 5, 6);
   o.min_throughput = 0.0123f;
@@ -139,6 +141,7 @@ TEST(render_fingerprint, canonical_arguments_parse_back_to_the_same_settings) {
   EXPECT_EQ(parsed.fov_degrees, o.fov_degrees);
   EXPECT_EQ(parsed.min_throughput, o.min_throughput);
   EXPECT_EQ(parsed.camera, "Main Cam");
+  EXPECT_EQ(parsed.transmission_alpha, "transparent");
   EXPECT_EQ(parsed.tile_count, 3);
   EXPECT_EQ(parsed.exr.compression, "dwaa");
   EXPECT_EQ(parsed.exr.compression_level, 60);

@@ -78,6 +78,11 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
 bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
                                vec3& dp_du, vec3& dp_dv);
 
+// A bound on the world-space curvature (1 / length) of the surface at the same hit: how fast the
+// world normal turns per unit of world distance along the surface, the larger of two orthogonal
+// tangents, by central differences. 0 where the surface is flat or the estimate is not finite.
+float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
+
 // The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
 // centre (coefficients[i] multiplies sⁱ; leading coefficient 1).
 struct torus_ray_quartic {

@@ -190,4 +190,22 @@ bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray
   return is_finite(dp_du) && is_finite(dp_dv);
 }
 
+float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
+  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
+  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
+  const quadric_surface s = quadric_surface_at(q, part, o + double(t) * d);
+  const dvec3 tangents[2] = {s.dpdu, glm::cross(s.normal, s.dpdu)};
+  const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
+  double curvature = 0.0;
+  for (const dvec3& tangent : tangents) {
+    const quadric_surface a = quadric_surface_at(q, part, s.point + h * tangent);
+    const quadric_surface b = quadric_surface_at(q, part, s.point - h * tangent);
+    const dvec3 turn = glm::normalize(inst.world_from_object_normal * a.normal) -
+                       glm::normalize(inst.world_from_object_normal * b.normal);
+    const double distance = glm::length(transform_vector(inst.world_from_object, a.point - b.point));
+    if (distance > 0.0) curvature = std::max(curvature, glm::length(turn) / distance);
+  }
+  return std::isfinite(curvature) ? float(curvature) : 0.0f;
+}
+
 }  // namespace kiln

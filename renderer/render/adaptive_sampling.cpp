@@ -60,12 +60,18 @@ struct pixel_refiner {
     if (options.collect_corners) {
       // Squares at level L cover 4^-L of the pixel; powers of two, so the weights are exact.
       const float w = std::ldexp(0.25f, -2 * level);
-      for (const camera_sample* s : {&a, &b, &c, &d})
-        result.corners.push_back({s->instance != no_instance && s->finite,
-                                  s->node,
-                                  s->material,
-                                  w,
-                                  {s->split.direct, s->split.reflection, s->split.refraction}});
+      for (const camera_sample* s : {&a, &b, &c, &d}) {
+        weighted_corner corner;
+        corner.weight = w;
+        corner.split[0] = s->split.direct;
+        corner.split[1] = s->split.reflection;
+        corner.split[2] = s->split.refraction;
+        if (s->finite) {
+          std::copy(s->layers, s->layers + s->layer_count, corner.layers);
+          corner.layer_count = s->layer_count;
+        }
+        result.corners.push_back(corner);
+      }
     }
     return 0.25f * (a.rgba + b.rgba + c.rgba + d.rgba);
   }

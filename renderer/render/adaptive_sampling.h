@@ -32,12 +32,12 @@ using sample_tracer = std::function<camera_sample(double x, double y)>;
 
 // A corner of a final square and its weight in the pixel's mean.
 struct weighted_corner {
-  bool hit = false;  // it hit something, with finite radiance
-  int32_t node = -1;
-  int32_t material = -1;
   float weight = 0.0f;  // 1/4 of its square's area: the pixel's weights sum to exactly 1
   // Its colour by first event: direct, reflection, refraction.
   vec3 split[3] = {};
+  // The instances it covers (none for a miss or a sample with non-finite radiance).
+  path_layer layers[max_path_layers];
+  int layer_count = 0;
 };
 
 // What a refined pixel contributes to the film.

@@ -1,5 +1,7 @@
 #include "render/camera_sample.h"
 
+#include <algorithm>
+
 #include "shade/environment.h"
 #include "shade/material_eval.h"
 
@@ -13,6 +15,7 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   ++counts.discarded_samples;
   s.rgba = vec4(0.0f);
   s.split = light_split{};
+  s.layer_count = 0;
   s.finite = false;
   return s;
 }
@@ -36,8 +39,10 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
     return s;
   }
   const ray_cone at_hit = cone_at(cone, distance_to_hit(start, r, *h));
-  surface_point sp = make_surface_point(ctx.world, *h, r, at_hit.width);
-  // The geometry AOVs keep the hit even when its radiance has to be discarded.
+  const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
+  const surface_point& sp = p.sp;
+  // The geometry AOVs keep the hit even when its radiance has to be discarded. N is the normal the
+  // shading used: after the normal map and the bend toward the viewer.
   s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
   if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
   s.instance = h->instance_id;
@@ -45,15 +50,18 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   s.uv = sp.uv0;
   s.node = int32_t(ctx.world.instances[h->instance_id].node);
   s.material = ctx.world.materials[sp.material].source_index;
-  if (with_albedo) {
-    material_inputs inputs = material_inputs_at(sp);
-    inputs.filter = ctx.textures;
-    s.albedo = evaluate_material(ctx.world, ctx.world.materials[sp.material], inputs).base_color;
-  }
-  const vec3 radiance =
-      shade_surface(ctx, r, sp, 0, 1.0f, counts, medium_stack{}, at_hit, with_split ? &s.split : nullptr);
+  if (with_albedo) s.albedo = p.mp.base_color;
+  camera_path path;
+  path.background_visible = show_background;
+  path.transmission_transparent = ctx.options.transmission_transparent;
+  path.split = with_split ? &s.split : nullptr;
+  const vec3 radiance = shade_prepared(ctx, r, p, 0, 1.0f, counts, medium_stack{}, at_hit, &path);
+  std::copy(path.layers, path.layers + path.layer_count, s.layers);
+  s.layer_count = path.layer_count;
+  // Opaque paths keep alpha exactly 1 (1 − 0).
+  const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
   if (!is_finite(radiance)) return discard(s, counts);
-  s.rgba = vec4(radiance, 1.0f);
+  s.rgba = vec4(radiance, alpha);
   return s;
 }
 

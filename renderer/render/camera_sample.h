@@ -15,7 +15,9 @@ namespace kiln {
 constexpr uint32_t no_instance = 0xFFFFFFFFu;  // the instance id of a sample that hit nothing
 
 struct camera_sample {
-  vec4 rgba{0.0f};    // premultiplied: (radiance, 1) on a hit or a visible background, 0 otherwise
+  // Premultiplied: (radiance, alpha), alpha the camera path's coverage (1 for opaque hits and a
+  // visible background, less through BLEND surfaces or transparent glass over nothing), 0 on a miss.
+  vec4 rgba{0.0f};
   float depth = inf;  // ray distance of the hit; +inf on a miss
   // Cosine between the ray and the view axis: depth · view_cosine is the planar depth.
   float view_cosine = 1.0f;
@@ -28,6 +30,9 @@ struct camera_sample {
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
   // With with_split: rgba's colour by first event.
   light_split split;
+  // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
+  path_layer layers[max_path_layers];
+  int layer_count = 0;
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 

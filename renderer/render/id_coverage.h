@@ -14,6 +14,15 @@ namespace kiln {
 // The two Cryptomatte layers kiln writes, as indices into per-layer arrays.
 enum matte_layer : int { object_layer = 0, material_layer = 1, matte_layer_count = 2 };
 
+// The ids one sample covers in each layer, with the share of the sample each covers (1 for an
+// opaque hit; through BLEND surfaces several, summing to the sample's alpha).
+constexpr int max_sample_mattes = 8;
+struct sample_mattes {
+  uint32_t ids[max_sample_mattes][matte_layer_count] = {};
+  float coverage[max_sample_mattes] = {};
+  int count = 0;  // 0: the sample hit nothing
+};
+
 // Summed filter weight of the samples that hit one id.
 struct id_weight {
   uint32_t id = 0;

@@ -125,9 +125,13 @@ film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bo
         for (int s = 0; s < 4; ++s) {
           float v = constant ? 0.7f : std::sin(float(x * 13 + y * 7 + s * 3)) + 1.5f;
           vec2 o(0.1f + 0.27f * s, 0.8f - 0.21f * s);
-          const uint32_t ids[matte_layer_count] = {uint32_t(x * 3 + y + s) % 5, uint32_t(x + s) % 3};
+          sample_mattes ids;
+          ids.ids[0][object_layer] = uint32_t(x * 3 + y + s) % 5;
+          ids.ids[0][material_layer] = uint32_t(x + s) % 3;
+          ids.coverage[0] = 1.0f;
+          ids.count = 1;
           const bool miss = !constant && s == 3 && (x + y) % 2 == 0;
-          splat.add(f, o, miss ? vec4(0.0f) : vec4(v, v * v, 1.0f / v, 1.0f), miss ? nullptr : ids);
+          splat.add(f, o, miss ? vec4(0.0f) : vec4(v, v * v, 1.0f / v, 1.0f), miss ? nullptr : &ids);
         }
         splats.add(x, y, splat, sums);
       }

@@ -28,7 +28,7 @@ void pixel_splat::clear() {
 }
 
 void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& value,
-                      const uint32_t* sample_ids, const vec3* sample_split) {
+                      const sample_mattes* mattes, const vec3* sample_split) {
   constexpr int max_reach = 32;
   const int r = std::min(reach, max_reach);
   const int n = 2 * r + 1;
@@ -50,9 +50,11 @@ void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& v
       if (!split.empty() && sample_split)
         for (size_t c = 0; c < 3; ++c)
           split[3 * (size_t(j) * n + i) + c] += dvec3(sample_split[c]) * double(w);
-      if (!sample_ids) continue;
+      if (!mattes) continue;
       for (int l = 0; l < matte_layer_count; ++l)
-        if (!ids[l].empty()) add_id_weight(ids[l][size_t(j) * n + i], sample_ids[l], w);
+        if (!ids[l].empty())
+          for (int k = 0; k < mattes->count; ++k)
+            add_id_weight(ids[l][size_t(j) * n + i], mattes->ids[k][l], w * mattes->coverage[k]);
     }
   }
 }

@@ -28,12 +28,13 @@ struct pixel_splat {
 
   explicit pixel_splat(int r = 0, const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
   void clear();
-  // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel; sample_ids
-  // holds its id in each layer, or is null for a sample that hit nothing (it only adds weight).
+  // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel; mattes
+  // holds the ids it covers in each layer with their coverage, or is null for a sample that hit
+  // nothing (it only adds weight): an id's weight grows by w × its coverage.
   // sample_split is its colour by first event, (direct, reflection, refraction), used when the
   // splat keeps the split.
   void add(const reconstruction_filter& f, vec2 offset, const vec4& value,
-           const uint32_t* sample_ids = nullptr, const vec3* sample_split = nullptr);
+           const sample_mattes* mattes = nullptr, const vec3* sample_split = nullptr);
 };
 
 // The sums of the pixels one tile folds itself (those whose whole reach lies in the tile), laid

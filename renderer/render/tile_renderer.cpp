@@ -90,14 +90,6 @@ film crop_film(const film& from, const pixel_rect& to) {
   return out;
 }
 
-// The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
-// stands for a sub-pixel), no narrower than 1/8 pixel (as pbrt-v4 scales its camera differentials).
-ray_cone sample_cone(const view_camera& cam, int spp) {
-  const pixel_cone pixel = camera_pixel_cone(cam);
-  const double scale = std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1))));
-  return {float(pixel.width * scale), float(pixel.spread * scale)};
-}
-
 // Which Cryptomatte layers the film keeps.
 struct matte_layers {
   bool on[matte_layer_count] = {};
@@ -105,13 +97,18 @@ struct matte_layers {
   bool any() const { return on[object_layer] || on[material_layer]; }
 };
 
-// The sample's id in each layer; false for a sample that hit nothing.
-bool sample_matte_ids(const matte_ids& mattes, int32_t node, int32_t material,
-                      uint32_t (&ids)[matte_layer_count]) {
-  if (node < 0) return false;
-  ids[object_layer] = matte_id(mattes.object_by_node, node);
-  ids[material_layer] = matte_id(mattes.material_by_source, material);
-  return true;
+// The ids of the instances a sample covers, in each layer; count 0 for a sample that hit nothing.
+static_assert(max_sample_mattes == max_path_layers, "a sample's mattes are its path's layers");
+sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_layer* layers, int count) {
+  sample_mattes out;
+  for (int k = 0; k < count; ++k) {
+    const instance& inst = world.instances[layers[k].instance];
+    out.ids[k][object_layer] = matte_id(mattes.object_by_node, int32_t(inst.node));
+    out.ids[k][material_layer] = matte_id(mattes.material_by_source, world.materials[inst.material].source_index);
+    out.coverage[k] = layers[k].coverage;
+  }
+  out.count = count;
+  return out;
 }
 
 // Renders every stratified sample of one pixel and splats it through the filter. The nearest
@@ -121,6 +118,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
                   ray_counts& counts) {
   const int spp = settings.samples_per_pixel;
   const ray_cone cone = sample_cone(cam, spp);
+  const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
   for (int s = 0; s < spp; ++s) {
@@ -133,10 +131,13 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
-    uint32_t ids[matte_layer_count];
-    const bool hit = sample_matte_ids(settings.mattes, cs.node, cs.material, ids);
     const vec3 split[3] = {cs.split.direct, cs.split.reflection, cs.split.refraction};
-    if (cs.finite) splat.add(settings.filter, offset, cs.rgba, hit ? ids : nullptr, split);
+    if (cs.finite) {
+      const bool hit = cs.layer_count > 0;
+      sample_mattes mattes;
+      if (hit && splat_wants_mattes) mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
+      splat.add(settings.filter, offset, cs.rgba, hit ? &mattes : nullptr, split);
+    }
     if (cs.depth < nearest.depth) nearest = cs;
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
@@ -182,10 +183,8 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
     if (ranks[l]->empty()) continue;
     id_weights sums;
     for (const weighted_corner& h : p.corners) {
-      if (!h.hit) continue;
-      uint32_t ids[matte_layer_count];
-      sample_matte_ids(job.settings.mattes, h.node, h.material, ids);
-      add_id_weight(sums, ids[l], h.weight);
+      const sample_mattes mattes = mattes_of(job.ctx.world, job.settings.mattes, h.layers, h.layer_count);
+      for (int k = 0; k < mattes.count; ++k) add_id_weight(sums, mattes.ids[k][l], h.weight * mattes.coverage[k]);
     }
     store_ranks(sums, 1.0f, int(depth), ranks[l]->data() + i * depth);
   }
@@ -228,6 +227,14 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
 
 }  // namespace
 
+double sample_cone_scale(int spp) { return std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1)))); }
+
+ray_cone sample_cone(const view_camera& cam, int spp) {
+  const pixel_cone pixel = camera_pixel_cone(cam);
+  const double scale = sample_cone_scale(spp);
+  return {float(pixel.width * scale), float(pixel.spread * scale)};
+}
+
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
                   const render_settings& settings, render_statistics* stats,
                   const progress_callback& progress) {
@@ -266,7 +273,10 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   out.y0 = region.y0;
   out.full_width = cam.width;
   out.full_height = cam.height;
-  shading_context ctx{world, accel, settings.shading, scene_has_see_through(world), textures.get()};
+  shading_options shading = settings.shading;
+  // Adaptive samples carry the whole pixel's cone (sample_cone(cam, 1)).
+  shading.highlight_footprint_scale = adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
+  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get()};
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 

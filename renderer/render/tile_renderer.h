@@ -52,6 +52,12 @@ struct render_statistics {
 // never concurrently.
 using progress_callback = std::function<void(size_t done, size_t total)>;
 
+// The cone each camera ray carries: the pixel's, narrowed for supersampling by 1/√spp (each sample
+// stands for a sub-pixel), no narrower than 1/8 pixel (as pbrt-v4 scales its camera differentials).
+ray_cone sample_cone(const view_camera& cam, int spp);
+// The factor sample_cone narrows the pixel's cone by.
+double sample_cone_scale(int spp);
+
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
                   const render_settings& settings, render_statistics* stats = nullptr,
                   const progress_callback& progress = {});

@@ -100,7 +100,20 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
   const double half_vertical = glm::radians(0.5 * yfov);
   const double half_horizontal = std::atan(std::tan(half_vertical) * double(width) / double(height));
   double distance = radius / std::sin(std::min(half_vertical, half_horizontal));
-  return make_look_at_camera(centre + dvec3(0, 0, distance), centre, dvec3(0, 1, 0), yfov, width, height);
+  // A flat scene seen edge-on would show nothing: such a scene is looked at from above (flat in
+  // x-z, e.g. a ground plane) or from +X (flat in y-z) instead.
+  dvec3 from(0, 0, 1), up(0, 1, 0);
+  if (!scene_bounds.empty()) {
+    const dvec3 extent = scene_bounds.diagonal();
+    const double flat = 1e-6 * glm::length(extent);
+    if (extent.y <= flat && extent.x > flat) {
+      from = dvec3(0, 1, 0);
+      up = dvec3(0, 0, -1);
+    } else if (extent.x <= flat && extent.y > flat) {
+      from = dvec3(1, 0, 0);
+    }
+  }
+  return make_look_at_camera(centre + distance * from, centre, up, yfov, width, height);
 }
 
 ray generate_camera_ray(const view_camera& cam, double px, double py) {

@@ -101,6 +101,25 @@ TEST(view_camera, default_camera_frames_every_corner_of_the_scene_bounds) {
   }
 }
 
+TEST(view_camera, default_camera_never_looks_at_a_flat_scene_edge_on) {
+  // A ground plane (flat in x-z) is seen from above, a wall in y-z from +X; anything else from +Z.
+  const struct {
+    dvec3 lower, upper, view;
+  } cases[] = {{{-1, 0, -1}, {1, 0, 1}, {0, -1, 0}},
+               {{0, -1, -1}, {0, 1, 1}, {-1, 0, 0}},
+               {{-1, -1, 0}, {1, 1, 0}, {0, 0, -1}},
+               {{-1, -1, -1}, {1, 1, 1}, {0, 0, -1}}};
+  for (const auto& c : cases) {
+    bounds3 box;
+    box.extend(c.lower);
+    box.extend(c.upper);
+    const view_camera cam = make_default_camera(box, 32, 32);
+    EXPECT_NEAR(glm::dot(cam.view, c.view), 1.0, 1e-12) << c.view.x << "," << c.view.y << "," << c.view.z;
+    const ray r = generate_camera_ray(cam, 16, 16);
+    EXPECT_NEAR(glm::length(glm::cross(dvec3(r.direction), c.view)), 0.0, 1e-6);
+  }
+}
+
 TEST(view_camera, impossible_cameras_are_input_errors) {
   EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0), dvec3(0, 1, 0), 45, 10, 10), error);
   EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 1, 0), dvec3(0, 1, 0), 45, 10, 10), error);

@@ -72,7 +72,14 @@ vec3 fresnel_schlick(const vec3& f0, float cos_theta) {
   return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
-vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l) {
+float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature) {
+  const float light_angle =
+      std::isinf(light_distance) || !(light_distance > 0.0f) ? 0.0f : width / light_distance;
+  return 0.25f * spread + 0.25f * light_angle + 0.5f * curvature * width;
+}
+
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                   float footprint_alpha) {
   float n_dot_l = glm::dot(n, l);
   float n_dot_v = glm::dot(n, v);
   if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
@@ -82,6 +89,8 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
 
   // GGX distribution and height-correlated Smith visibility (glTF appendix B).
   float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+  if (footprint_alpha > 0.0f)
+    alpha = std::min(std::sqrt(alpha * alpha + footprint_alpha * footprint_alpha), 1.0f);
   float a2 = alpha * alpha;
   float d_denominator = n_dot_h * n_dot_h * (a2 - 1.0f) + 1.0f;
   float distribution = a2 / (pi * d_denominator * d_denominator);

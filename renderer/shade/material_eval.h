@@ -61,6 +61,18 @@ vec3 specular_f0(const material_point& mp);
 vec3 fresnel_schlick(const vec3& f0, float cos_theta);
 
 // BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.
-vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l);
+// footprint_alpha widens the GGX lobe to sqrt(α² + footprint_alpha²) (see highlight_footprint_alpha).
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                   float footprint_alpha = 0.0f);
+
+// The GGX alpha a punctual light's highlight needs so that it covers at least the footprint it is
+// seen through, instead of a sub-pixel spike of up to ~1e4 that no sample count resolves (a delta
+// light on a near-delta surface). Over the footprint the half vector turns by half the view's
+// spread and half the light's angle across the footprint's width, and the normal by curvature ×
+// width; the lobe's width is set to half of that range. spread, width: the ray cone at the hit
+// (radians, world units); light_distance: infinite for directional lights; curvature: 1 / length.
+// The widened lobe keeps GGX's normalisation, so a highlight's energy is kept, only spread, and it
+// sharpens as the footprint shrinks (more samples, higher resolution): images converge with spp.
+float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature);
 
 }  // namespace kiln

@@ -76,6 +76,7 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
                                          float cone_width) {
   quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   surface_point sp;
+  sp.instance = h.instance_id;
   sp.position = w.point;
   sp.position_error = w.error;
   sp.material = inst.material;
@@ -87,14 +88,52 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   sp.front_face = glm::dot(w.normal, r.direction) < 0.0f;
   sp.geometric_normal = sp.front_face ? w.normal : -w.normal;
   sp.shading_normal = sp.geometric_normal;
+  sp.smooth_normal = sp.geometric_normal;
+  sp.smooth_position = sp.position;
   vec3 dp_du, dp_dv;
   if (cone_width > 0.0f &&
       quadric_world_uv_jacobian(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id, dp_du, dp_dv)) {
     sp.footprint0 =
         footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
     sp.footprint1 = sp.footprint0;
+    if (s.materials[inst.material].roughness_factor < curvature_roughness_limit)
+      sp.curvature = quadric_world_curvature(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   }
   return sp;
+}
+
+// The triangle's curvature as its vertex normals describe it (world units): the largest turn of the
+// normal per unit length along an edge.
+float triangle_curvature(const instance& inst, const mesh& m, const uint32_t* idx) {
+  dvec3 p[3], n[3];
+  for (int k = 0; k < 3; ++k) {
+    p[k] = transform_point(inst.world_from_object, dvec3(m.positions[idx[k]]));
+    n[k] = glm::normalize(inst.world_from_object_normal * dvec3(m.normals[idx[k]]));
+  }
+  double curvature = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double length = glm::length(p[(k + 1) % 3] - p[k]);
+    if (length > 0.0) curvature = std::max(curvature, glm::length(n[(k + 1) % 3] - n[k]) / length);
+  }
+  return std::isfinite(curvature) ? float(curvature) : 0.0f;
+}
+
+// Hanika's shadow-terminator offset in object space: from the hit to the blend, by barycentrics,
+// of its projections onto the vertices' tangent planes, each taken only where that plane lies
+// above the hit (outward: concave parts keep the flat point). front: normals as stored (true) or
+// flipped toward a back-face ray.
+dvec3 smooth_surface_lift(const mesh& m, const uint32_t* idx, float u, float v, bool front) {
+  const double w[3] = {1.0 - double(u) - double(v), double(u), double(v)};
+  dvec3 p(0.0);
+  for (int k = 0; k < 3; ++k) p += w[k] * dvec3(m.positions[idx[k]]);
+  dvec3 lift(0.0);
+  for (int k = 0; k < 3; ++k) {
+    dvec3 n = glm::normalize(dvec3(m.normals[idx[k]]));
+    if (!front) n = -n;
+    const double height = glm::dot(p - dvec3(m.positions[idx[k]]), n);
+    if (height < 0.0 && std::isfinite(height)) lift -= w[k] * height * n;
+  }
+  return lift;
 }
 
 }  // namespace
@@ -106,6 +145,7 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
   const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
 
   surface_point sp;
+  sp.instance = h.instance_id;
   surface_position pos = triangle_hit_position(inst, m, h.primitive_id, h.u, h.v);
   sp.position = pos.point;
   sp.position_error = pos.error;
@@ -146,7 +186,18 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
   if (glm::dot(ns, ng) < 0.0f) ns = glm::normalize(ns - 2.0f * glm::dot(ns, ng) * ng);
   sp.geometric_normal = ng;
   sp.shading_normal = ns;
+  sp.smooth_normal = ns;
+  sp.smooth_position = sp.position;
+  if (!m.normals.empty()) {
+    const dvec3 lift = smooth_surface_lift(m, idx, h.u, h.v, sp.front_face);
+    if (lift != dvec3(0.0)) {
+      const dvec3 world_lift = transform_vector(inst.world_from_object, lift);
+      if (is_finite(world_lift)) sp.smooth_position = vec3(dvec3(sp.position) + world_lift);
+    }
+  }
   if (cone_width > 0.0f) {
+    if (!m.normals.empty() && s.materials[inst.material].roughness_factor < curvature_roughness_limit)
+      sp.curvature = triangle_curvature(inst, m, idx);
     const vec3 direction = glm::normalize(r.direction);
     if (!m.texcoords0.empty())
       sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);

@@ -14,6 +14,17 @@ struct surface_point {
   vec3 position_error{0.0f};    // per-axis bound on the rounding error of position
   vec3 geometric_normal{0.0f};  // unit, facing the incoming ray
   vec3 shading_normal{0.0f};    // unit, interpolated, on the same side as geometric_normal
+  // The interpolated vertex normal before any normal map (geometric_normal without vertex normals
+  // or on quadrics): the horizon of the smooth surface the mesh approximates, for the light test.
+  vec3 smooth_normal{0.0f};
+  // A point on that smooth surface above the flat triangle where it bulges outward (Hanika, "Hacking
+  // the Shadow Terminator", Ray Tracing Gems II, ch. 4); position elsewhere. Shadow rays start
+  // here, so a low-poly convex mesh does not shadow itself along its terminator.
+  vec3 smooth_position{0.0f};
+  // How fast the normal turns per world unit along the surface (1 / radius of curvature), for
+  // filtering sharp highlights over the ray cone's footprint; 0 when flat or not estimated (rough
+  // materials, no footprint).
+  float curvature = 0.0f;
   vec2 uv0{0.0f};
   vec2 uv1{0.0f};      // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
   vec4 color0{1.0f};   // COLOR_0, white when the mesh has none
@@ -22,6 +33,7 @@ struct surface_point {
   uv_footprint footprint0;
   uv_footprint footprint1;
   uint32_t material = 0;
+  uint32_t instance = 0;   // the scene instance hit
   bool front_face = true;  // the ray arrived on glTF's front side
 };
 
@@ -30,6 +42,10 @@ template <typename T>
 T interpolate(const T& a0, const T& a1, const T& a2, float u, float v) {
   return (1.0f - u - v) * a0 + u * a1 + v * a2;
 }
+
+// Materials with a roughness factor below this get a curvature estimate (see surface_point); a
+// rougher highlight is already wider than any footprint the estimate would widen it to.
+constexpr float curvature_roughness_limit = 0.3f;
 
 // Builds the shading point of a hit for the ray that found it. cone_width is the ray cone's width
 // at the hit (world units, see shade/ray_cone.h); 0 leaves the UV footprints empty.

@@ -7,6 +7,7 @@
 #include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/normal_mapping.h"
+#include "shade/shading_normal.h"
 #include "shade/shadow_transmittance.h"
 
 namespace kiln {
@@ -42,17 +43,22 @@ vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts
 }
 
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                  const vec3& to_viewer, ray_counts& counts) {
+                  const vec3& to_viewer, const ray_cone& cone, ray_counts& counts) {
   vec3 total(0.0f);
   for (const light& l : ctx.world.lights) {
     light_sample ls = sample_light(l, sp.position);
     if (ls.irradiance == vec3(0.0f)) continue;
-    // A light behind the geometric surface cannot reach it, whatever the
-    // shading normal says.
-    if (glm::dot(sp.geometric_normal, ls.direction) <= 0.0f) continue;
+    // A light behind the surface cannot reach it, whatever the shading normal says. The surface is
+    // the smooth one the vertex normals describe, not the flat facet: facets just past a low-poly
+    // mesh's terminator still face the light there, and their shadow rays start on that smooth
+    // surface (sp.smooth_position), above the neighbouring facets.
+    if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) continue;
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
     if (cos_theta <= 0.0f) continue;
-    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction);
+    const float scale = ctx.options.highlight_footprint_scale;
+    const float footprint_alpha =
+        highlight_footprint_alpha(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
+    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha);
     if (f == vec3(0.0f)) continue;
 
     if (!l.casts_shadows) {
@@ -60,7 +66,10 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
       continue;
     }
     ray shadow;
-    shadow.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
+    // Always off the facet's front: a light just below the facet's plane is still above the smooth
+    // surface the ray starts on.
+    shadow.origin =
+        offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
     shadow.direction = ls.direction;
     shadow.kind = ray_kind::shadow;
     shadow.tmax = std::isinf(ls.distance)
@@ -143,20 +152,47 @@ std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_coun
 
 namespace {
 
+float mean_component(const vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
+
+// The camera path's split, when it keeps one (null inside a refraction it follows for alpha).
+light_split* split_of(camera_path* path) { return path ? path->split : nullptr; }
+
+// Adds what a camera path sees directly (emission, direct light, background) to its split.
+void add_direct(camera_path* path, const vec3& radiance) {
+  if (path && path->split) path->split->direct += path->share * radiance;
+}
+
+// The refracted ray of shade_covered: traced as the camera's own path (so the background it reaches
+// counts as transparent, scaled by the share the refraction carries) when transmission is
+// transparent, else as an ordinary secondary ray that sees the environment.
+vec3 trace_refraction(const shading_context& ctx, const ray& refracted, int depth, float throughput,
+                      ray_counts& counts, const medium_stack& beyond, const ray_cone& cone,
+                      const vec3& weight, camera_path* path) {
+  if (!path || !path->transmission_transparent)
+    return trace_radiance(ctx, refracted, depth, throughput, counts, beyond, cone);
+  camera_path through = *path;
+  through.share = path->share * mean_component(weight);
+  through.split = nullptr;        // the caller files all of it under refraction
+  through.record_layers = false;  // what glass shows bent belongs to the glass's matte
+  const vec3 radiance = trace_camera_path(ctx, refracted, depth, throughput, counts, beyond, cone, &through);
+  path->transparency = through.transparency;
+  return radiance;
+}
+
 // Emission, direct light, mirror and refraction at a fully covering surface.
 vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
                    const material_point& mp, int depth, float throughput, ray_counts& counts,
-                   const medium_stack& media, const ray_cone& cone, light_split* split) {
+                   const medium_stack& media, const ray_cone& cone, camera_path* path) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) {
-    if (split) split->direct += split->scale * mp.base_color;
+    add_direct(path, mp.base_color);
     return mp.base_color;
   }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
 
-  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, counts);
-  if (split) split->direct += split->scale * radiance;
+  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, cone, counts);
+  add_direct(path, radiance);
   if (depth >= ctx.options.max_depth) return radiance;
 
   const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
@@ -196,9 +232,9 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
             crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
                                             glm::dot(*direction, sp.geometric_normal))
                            : cone;
-        const vec3 refraction = weight * trace_radiance(ctx, refracted, depth + 1, next_throughput, counts,
-                                                        crossing.beyond, bent);
-        if (split) split->refraction += split->scale * refraction;
+        const vec3 refraction = weight * trace_refraction(ctx, refracted, depth + 1, next_throughput, counts,
+                                                          crossing.beyond, bent, weight, path);
+        if (light_split* split = split_of(path)) split->refraction += path->share * refraction;
         radiance += refraction;
       }
     }
@@ -219,34 +255,76 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
     // A reflected ray stays in the medium it came from.
     const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput,
                                                             counts, media, reflected_cone(cone));
-    if (split) split->reflection += split->scale * reflection;
+    if (light_split* split = split_of(path)) split->reflection += path->share * reflection;
     radiance += reflection;
   }
   return radiance;
 }
 
+// shade_covered on a camera path: the surface covers its share of the sample, less what escapes
+// through it (transparent transmission) into the background.
+vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surface_point& sp,
+                           const material_point& mp, int depth, float throughput, ray_counts& counts,
+                           const medium_stack& media, const ray_cone& cone, camera_path* path) {
+  if (!path) return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, nullptr);
+  const float escaped_before = path->transparency;
+  const vec3 radiance = shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, path);
+  if (path->record_layers) path->cover(sp.instance, path->share - (path->transparency - escaped_before));
+  return radiance;
+}
+
 }  // namespace
 
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
-                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
-                   light_split* split) {
+void camera_path::cover(uint32_t instance, float coverage) {
+  if (!(coverage > 0.0f)) return;
+  for (int i = 0; i < layer_count; ++i)
+    if (layers[i].instance == instance) {
+      layers[i].coverage += coverage;
+      return;
+    }
+  if (layer_count == max_path_layers) {
+    layers[layer_count - 1].coverage += coverage;  // deeper layers than that are folded into the last
+    return;
+  }
+  layers[layer_count++] = {instance, coverage};
+}
+
+shading_point prepare_shading(const shading_context& ctx, const ray& r, const surface_point& unmapped) {
   const material& m = ctx.world.materials[unmapped.material];
   material_inputs inputs = material_inputs_at(unmapped);
   inputs.filter = ctx.textures;
-  material_point mp = evaluate_material(ctx.world, m, inputs);
-  surface_point sp = unmapped;
-  apply_normal_map(ctx.world, m, inputs, sp);
+  shading_point p{unmapped, evaluate_material(ctx.world, m, inputs)};
+  apply_normal_map(ctx.world, m, inputs, p.sp);
+  p.sp.shading_normal =
+      bend_toward_viewer(p.sp.geometric_normal, -glm::normalize(r.direction), p.sp.shading_normal);
+  return p;
+}
+
+vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
+                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
+                   camera_path* path) {
+  return shade_prepared(ctx, r, prepare_shading(ctx, r, unmapped), depth, throughput, counts, media, cone,
+                        path);
+}
+
+vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared, int depth,
+                    float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
+                    camera_path* path) {
+  const material& m = ctx.world.materials[prepared.sp.material];
+  const surface_point& sp = prepared.sp;
+  const material_point& mp = prepared.mp;
   if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
-    return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, split);
+    return shade_covered_on_path(ctx, r, sp, mp, depth, throughput, counts, media, cone, path);
 
   // BLEND: the surface covers a share alpha of the ray; the rest continues unbent behind it (one
   // depth level, so stacked transparent layers stay bounded by max_depth).
   const float alpha = std::max(mp.alpha, 0.0f);
   vec3 radiance(0.0f);
-  const float scale = split ? split->scale : 1.0f;
+  const float share = path ? path->share : 1.0f;
   if (alpha > 0.0f) {
-    if (split) split->scale = scale * alpha;
-    radiance += alpha * shade_covered(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone, split);
+    if (path) path->share = share * alpha;
+    radiance +=
+        alpha * shade_covered_on_path(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone, path);
   }
   const float behind = throughput * (1.0f - alpha);
   if (depth < ctx.options.max_depth && behind >= ctx.options.min_throughput) {
@@ -257,12 +335,17 @@ vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point
         offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
     ++counts.transparency;
     // The continued ray starts where this cone ends: its width so far carries on. It is still the
-    // camera's ray, so the split follows it to the surface behind.
-    if (split) split->scale = scale * (1.0f - alpha);
+    // camera's ray, so its path (split, alpha, mattes) follows it to the surface behind.
+    if (path) path->share = share * (1.0f - alpha);
     radiance +=
-        (1.0f - alpha) * trace_radiance_split(ctx, through, depth + 1, behind, counts, media, cone, split);
+        (1.0f - alpha) * trace_camera_path(ctx, through, depth + 1, behind, counts, media, cone, path);
+  } else if (path && path->record_layers) {
+    // The part behind is not traced (depth or throughput limit): it stays covered by this surface,
+    // as opaque black, so the mattes still sum to alpha.
+    path->share = share * (1.0f - alpha);
+    path->cover(sp.instance, path->share);
   }
-  if (split) split->scale = scale;
+  if (path) path->share = share;
   return radiance;
 }
 
@@ -278,21 +361,35 @@ float distance_to_hit(const ray& start, const ray& r, const hit& h) {
 
 vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, float throughput,
                     ray_counts& counts, const medium_stack& media, const ray_cone& cone_in) {
-  return trace_radiance_split(ctx, r_in, depth, throughput, counts, media, cone_in, nullptr);
+  return trace_camera_path(ctx, r_in, depth, throughput, counts, media, cone_in, nullptr);
 }
 
-vec3 trace_radiance_split(const shading_context& ctx, const ray& r_in, int depth, float throughput,
-                          ray_counts& counts, const medium_stack& media, const ray_cone& cone_in,
-                          light_split* split) {
+namespace {
+
+// What a ray that leaves the scene brings back: the environment, except on a camera path that does
+// not show the background, where that share of the sample is transparent (alpha 0, no colour).
+vec3 escape(const shading_context& ctx, const ray& r, camera_path* path, float weight = 1.0f) {
+  if (path && !path->background_visible) {
+    path->transparency += path->share * weight;
+    return vec3(0.0f);
+  }
+  return environment_radiance(ctx.world, r.direction);
+}
+
+}  // namespace
+
+vec3 trace_camera_path(const shading_context& ctx, const ray& r_in, int depth, float throughput,
+                       ray_counts& counts, const medium_stack& media, const ray_cone& cone_in,
+                       camera_path* path) {
   ray r = r_in;
   std::optional<hit> h = find_visible_hit(ctx, r, counts);
   const ray_cone cone = h ? cone_at(cone_in, distance_to_hit(r_in, r, *h)) : cone_in;
   if (media.empty()) {
     if (h)
       return shade_surface(ctx, r, make_surface_point(ctx.world, *h, r, cone.width), depth, throughput,
-                           counts, media, cone, split);
-    const vec3 background = environment_radiance(ctx.world, r.direction);
-    if (split) split->direct += split->scale * background;
+                           counts, media, cone, path);
+    const vec3 background = escape(ctx, r, path);
+    add_direct(path, background);
     return background;
   }
 
@@ -303,11 +400,25 @@ vec3 trace_radiance_split(const shading_context& ctx, const ray& r_in, int depth
   const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
   vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
   if (absorption == vec3(0.0f)) return vec3(0.0f);
-  vec3 arriving =
-      h ? shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone)
-        : environment_radiance(ctx.world, r.direction);
+  vec3 arriving(0.0f);
+  if (!h) {
+    arriving = escape(ctx, r, path, mean_component(absorption));
+  } else if (path) {
+    // The camera's path goes on through the volume, its share attenuated like its radiance; the
+    // split files what arrives once, below.
+    camera_path inner = *path;
+    inner.split = nullptr;
+    inner.share = path->share * mean_component(absorption);
+    arriving = shade_surface(ctx, r, make_surface_point(ctx.world, *h, r, cone.width), depth,
+                             throughput * max_component(absorption), counts, media, cone, &inner);
+    inner.split = path->split;
+    inner.share = path->share;
+    *path = inner;
+  } else {
+    arriving = shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone);
+  }
   // Camera rays start outside every volume; should one not, its light counts as direct.
-  if (split) split->direct += split->scale * (absorption * arriving);
+  add_direct(path, absorption * arriving);
   return absorption * arriving;
 }
 

@@ -9,6 +9,7 @@
 #include "accel/accelerator.h"
 #include "scene/scene.h"
 #include "shade/dielectric.h"
+#include "shade/material_eval.h"
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_filter.h"
@@ -21,6 +22,15 @@ struct shading_options {
   // Whitted's mirror is perfect; a glTF surface's mirror term fades linearly from full strength
   // at roughness 0 to nothing at this roughness (rougher surfaces keep only their GGX highlight).
   float mirror_roughness_limit = 0.25f;
+  // What glass (KHR_materials_transmission) contributes to alpha. false: it holds out, like any
+  // surface (alpha 1; what is seen through it, the environment included, is baked into the colour).
+  // true: light refracted through it that reaches a background the camera does not show is
+  // transparent, so glass over nothing comps over a plate (Cycles' "transparent glass").
+  bool transmission_transparent = false;
+  // A punctual light's highlight is widened to the pixel's footprint (material_eval.h,
+  // highlight_footprint_alpha), not a supersample's: the ray cones shrink by 1/√spp, so the
+  // renderer sets this to the inverse of that factor. A highlight then converges with spp.
+  float highlight_footprint_scale = 1.0f;
 };
 
 // Rays traced by kind, for statistics and benchmarks.
@@ -74,17 +84,59 @@ struct light_split {
   vec3 direct{0.0f};
   vec3 reflection{0.0f};
   vec3 refraction{0.0f};
-  float scale = 1.0f;  // the share of the camera ray being shaded (BLEND layers); shading only
 };
+
+// A surface a camera sample covers, and how much of the sample it covers.
+struct path_layer {
+  uint32_t instance = 0;
+  float coverage = 0.0f;
+};
+constexpr int max_path_layers = 8;
+
+// The camera's own path through a sample: the ray itself, its continuations behind BLEND surfaces
+// and, with transmission_transparent, its refractions. Alpha is coverage × opacity along it: what
+// reaches a background the camera does not show is transparency (no colour, alpha 0), so a sample
+// through BLEND layers α1, α2, ... over nothing has alpha 1 − Π(1 − αi). Every surface met covers
+// its share less what escapes through it, so the layers' coverages plus the transparency sum to 1
+// and Cryptomatte coverage sums to alpha.
+struct camera_path {
+  bool background_visible = false;        // --show-background: the background is opaque, never escaped into
+  bool transmission_transparent = false;  // refraction that reaches the background is transparent too
+  light_split* split = nullptr;           // filled by first event when asked for
+  float share = 1.0f;                     // the part of the sample being shaded (BLEND layers)
+  bool record_layers = true;              // false inside a refraction: what glass shows is the glass's
+  float transparency = 0.0f;              // the part of the sample that escaped
+  path_layer layers[max_path_layers];     // in the order met; a deeper layer folds into the last
+  int layer_count = 0;
+
+  // Adds coverage to instance's layer.
+  void cover(uint32_t instance, float coverage);
+};
+
+// A hit made ready to shade: the material evaluated there, and the shading normal as shading uses
+// it (the normal map applied, then bent toward the viewer where it faces away: see
+// shade/shading_normal.h). The camera's N and albedo AOVs read it.
+struct shading_point {
+  surface_point sp;
+  material_point mp;
+};
+
+// The shading point of sp, as seen along r (sp was built from r's closest hit).
+shading_point prepare_shading(const shading_context& ctx, const ray& r, const surface_point& sp);
+
+// shade_surface for a point prepare_shading has made ready.
+vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& p, int depth,
+                    float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
+                    const ray_cone& cone = {}, camera_path* path = nullptr);
 
 // Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
 // media: the closed volumes r travels in (empty for camera rays). cone: r's ray cone at the hit
 // (the width sp's footprints were built with); reflected, refracted and continued rays carry it on.
-// With split, also adds the radiance to it by first event (scaled by split->scale); the returned
-// radiance is the same either way.
+// path: r is (a continuation of) a camera ray; its alpha, mattes and split are filled in (the
+// returned radiance is premultiplied by the path's coverage).
 vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
                    float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
-                   const ray_cone& cone = {}, light_split* split = nullptr);
+                   const ray_cone& cone = {}, camera_path* path = nullptr);
 
 // Radiance arriving along r from the surface at h (the closest hit of r); cone is r's at the hit.
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
@@ -96,10 +148,9 @@ vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth
 vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts,
                     const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
 
-// trace_radiance for a camera ray (or its continuation through BLEND surfaces) that also adds what
-// it sees to split by first event; the returned radiance is trace_radiance's.
-vec3 trace_radiance_split(const shading_context& ctx, const ray& r, int depth, float throughput,
-                          ray_counts& counts, const medium_stack& media, const ray_cone& cone,
-                          light_split* split);
+// trace_radiance for the camera's own path (a camera ray, or its continuation behind a BLEND surface
+// or through transparent transmission): a miss is transparent unless the path shows the background.
+vec3 trace_camera_path(const shading_context& ctx, const ray& r, int depth, float throughput,
+                       ray_counts& counts, const medium_stack& media, const ray_cone& cone, camera_path* path);
 
 }  // namespace kiln
