@@ -70,6 +70,12 @@ uv_footprint triangle_footprint(const instance& inst, const mesh& m, const uint3
   return footprint_from_jacobian(dp_du, dp_dv, n, direction, cone_width);
 }
 
+// Whether a hit on material m needs a curvature estimate: its roughness may be below
+// curvature_roughness_limit (a texture can lower any factor).
+bool may_be_smooth(const material& m) {
+  return m.roughness_factor < curvature_roughness_limit || m.metallic_roughness_texture.present();
+}
+
 // A quadric hit: the point projected onto the exact surface with its error bound, the gradient
 // normal (shading normal = geometric normal: the surface is exact) and the parametric UV.
 surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
@@ -96,26 +102,25 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
     sp.footprint0 =
         footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
     sp.footprint1 = sp.footprint0;
-    if (s.materials[inst.material].roughness_factor < curvature_roughness_limit)
+    if (may_be_smooth(s.materials[inst.material]))
       sp.curvature = quadric_world_curvature(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   }
   return sp;
 }
 
-// The triangle's curvature as its vertex normals describe it (world units): the largest turn of the
-// normal per unit length along an edge.
+// The triangle's curvature as its vertex normals describe it: the largest turn of the normal per
+// unit length along an edge, in object space (glTF normals are unit), carried to world units by the
+// instance's mean scale (the cube root of its determinant; exact for uniform scales).
 float triangle_curvature(const instance& inst, const mesh& m, const uint32_t* idx) {
-  dvec3 p[3], n[3];
+  float curvature = 0.0f;
   for (int k = 0; k < 3; ++k) {
-    p[k] = transform_point(inst.world_from_object, dvec3(m.positions[idx[k]]));
-    n[k] = glm::normalize(inst.world_from_object_normal * dvec3(m.normals[idx[k]]));
+    const uint32_t a = idx[k], b = idx[(k + 1) % 3];
+    const float length = glm::length(m.positions[b] - m.positions[a]);
+    if (length > 0.0f) curvature = std::max(curvature, glm::length(m.normals[b] - m.normals[a]) / length);
   }
-  double curvature = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double length = glm::length(p[(k + 1) % 3] - p[k]);
-    if (length > 0.0) curvature = std::max(curvature, glm::length(n[(k + 1) % 3] - n[k]) / length);
-  }
-  return std::isfinite(curvature) ? float(curvature) : 0.0f;
+  const double scale = std::cbrt(std::abs(glm::determinant(dmat3(inst.world_from_object))));
+  const float world = scale > 0.0 ? float(curvature / scale) : 0.0f;
+  return std::isfinite(world) ? world : 0.0f;
 }
 
 // Hanika's shadow-terminator offset in object space: from the hit to the blend, by barycentrics,
@@ -196,7 +201,7 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
     }
   }
   if (cone_width > 0.0f) {
-    if (!m.normals.empty() && s.materials[inst.material].roughness_factor < curvature_roughness_limit)
+    if (!m.normals.empty() && may_be_smooth(s.materials[inst.material]))
       sp.curvature = triangle_curvature(inst, m, idx);
     const vec3 direction = glm::normalize(r.direction);
     if (!m.texcoords0.empty())

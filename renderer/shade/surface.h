@@ -43,8 +43,9 @@ T interpolate(const T& a0, const T& a1, const T& a2, float u, float v) {
   return (1.0f - u - v) * a0 + u * a1 + v * a2;
 }
 
-// Materials with a roughness factor below this get a curvature estimate (see surface_point); a
-// rougher highlight is already wider than any footprint the estimate would widen it to.
+// Materials whose roughness may fall below this (by factor or texture) get a curvature estimate (see
+// surface_point); a rougher highlight is already wider than any footprint the estimate would widen
+// it to.
 constexpr float curvature_roughness_limit = 0.3f;
 
 // Builds the shading point of a hit for the ray that found it. cone_width is the ray cone's width
