@@ -24,6 +24,7 @@
 #include "render/frame_bands.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
+#include "render/view_range.h"
 
 namespace kiln {
 
@@ -458,6 +459,12 @@ prepared_scene prepare_scene(const render_options& options) {
   }
 
   p.cam = choose_view(options, p.world, p.camera_description);
+  // Before any accelerator is built, for every backend and every client (render, batch, compare,
+  // bench): no coordinate a ray can reach may pass Embree's limit.
+  if (options.look_from)
+    check_view_range(p.world, p.cam, "", "--look-from");
+  else
+    check_view_range(p.world, p.cam, p.world.source, "camera '" + p.camera_description + "'");
   if (p.world.lights.empty()) {
     add_default_light(p.world, p.cam);
     if (!options.quiet) std::cerr << "kiln: the file has no lights; using a headlight at the camera\n";
