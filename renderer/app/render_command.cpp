@@ -22,6 +22,7 @@
 #include "io/exr/preview_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/frame_bands.h"
+#include "render/render_space.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
 #include "render/view_range.h"
@@ -469,6 +470,8 @@ prepared_scene prepare_scene(const render_options& options) {
     add_default_light(p.world, p.cam);
     if (!options.quiet) std::cerr << "kiln: the file has no lights; using a headlight at the camera\n";
   }
+  // Every client traces in camera-relative render space (render/render_space.h).
+  move_to_render_space(p.world, p.cam);
   return p;
 }
 
@@ -549,8 +552,8 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   }
 
   exr_metadata metadata;
-  metadata.world_to_camera = world_to_camera(cam);
-  metadata.world_to_ndc = world_to_ndc(cam);
+  metadata.world_to_camera = world_to_camera(world_space_view(cam, world));
+  metadata.world_to_ndc = world_to_ndc(world_space_view(cam, world));
   metadata.attributes = {
       {"kiln/scene_file", options.input},
       {"kiln/camera", camera_description},
