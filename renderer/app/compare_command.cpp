@@ -11,6 +11,7 @@
 #include "app/cli_checks.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
+#include "render/render_space.h"
 
 namespace kiln {
 
@@ -190,8 +191,8 @@ int run_compare(const compare_options& o) {
 
   if (!o.mask.empty()) {
     exr_metadata metadata;
-    metadata.world_to_camera = world_to_camera(prepared.cam);
-    metadata.world_to_ndc = world_to_ndc(prepared.cam);
+    metadata.world_to_camera = world_to_camera(world_space_view(prepared.cam, prepared.world));
+    metadata.world_to_ndc = world_to_ndc(world_space_view(prepared.cam, prepared.world));
     metadata.attributes = {{"kiln/scene_file", o.view.input}, {"kiln/mask", o.accel + " vs " + o.against}};
     write_exr(o.mask, image.mask, exr_settings{}, metadata);
   }

@@ -22,8 +22,10 @@
 #include "io/exr/preview_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/frame_bands.h"
+#include "render/render_space.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
+#include "render/view_range.h"
 
 namespace kiln {
 
@@ -463,10 +465,18 @@ prepared_scene prepare_scene(const render_options& options) {
   }
 
   p.cam = choose_view(options, p.world, p.camera_description);
+  // Before any accelerator is built, for every backend and every client (render, batch, compare,
+  // bench): no coordinate a ray can reach may pass Embree's limit.
+  if (options.look_from)
+    check_view_range(p.world, p.cam, "", "--look-from");
+  else
+    check_view_range(p.world, p.cam, p.world.source, "camera '" + p.camera_description + "'");
   if (p.world.lights.empty()) {
     add_default_light(p.world, p.cam);
     if (!options.quiet) std::cerr << "kiln: the file has no lights; using a headlight at the camera\n";
   }
+  // Every client traces in camera-relative render space (render/render_space.h).
+  move_to_render_space(p.world, p.cam);
   return p;
 }
 
@@ -548,8 +558,8 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   }
 
   exr_metadata metadata;
-  metadata.world_to_camera = world_to_camera(cam);
-  metadata.world_to_ndc = world_to_ndc(cam);
+  metadata.world_to_camera = world_to_camera(world_space_view(cam, world));
+  metadata.world_to_ndc = world_to_ndc(world_space_view(cam, world));
   metadata.attributes = {
       {"kiln/scene_file", options.input},
       {"kiln/camera", camera_description},

@@ -22,12 +22,21 @@ struct ray {
   ray_kind kind = ray_kind::other;
 };
 
-// True when a ray can be handed to a traversal backend: finite origin and direction, a
-// non-zero direction, and a non-empty, non-NaN extent. Embree's default build does not
-// filter invalid rays, so this check is mandatory.
+// The largest origin or direction component a traversal backend takes: Embree 3.13's FLT_LARGE
+// (RayK::valid() in kernels/common/ray.h). The scene checks keep kiln's rays far below it
+// (scene/coordinate_range.h); this is the last line of defence.
+constexpr float max_ray_component = 1.844e18f;
+
+// True when a ray can be handed to a traversal backend: finite origin and direction within
+// max_ray_component, a non-zero direction, and a non-empty, non-NaN extent. Embree's default
+// build does not filter invalid rays (this one asserts on them), so this check is mandatory.
 inline bool is_valid(const ray& r) {
-  return is_finite(r.origin) && is_finite(r.direction) && glm::dot(r.direction, r.direction) > 0.0f &&
-         !std::isnan(r.tmin) && !std::isnan(r.tmax) && r.tmin >= 0.0f && r.tmin <= r.tmax;
+  const vec3 o = glm::abs(r.origin), d = glm::abs(r.direction);
+  // The comparisons are false for NaN, so they also refuse non-finite components.
+  const bool in_range = o.x <= max_ray_component && o.y <= max_ray_component && o.z <= max_ray_component &&
+                        d.x <= max_ray_component && d.y <= max_ray_component && d.z <= max_ray_component;
+  return in_range && glm::dot(r.direction, r.direction) > 0.0f && !std::isnan(r.tmin) &&
+         !std::isnan(r.tmax) && r.tmin >= 0.0f && r.tmin <= r.tmax;
 }
 
 // The closest intersection of a ray with the scene, identical across backends.

@@ -46,7 +46,7 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
   if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
   s.instance = h->instance_id;
-  s.position = sp.position;
+  s.position = vec3(dvec3(sp.position) + ctx.world.render_origin);  // render space -> world
   s.uv = sp.uv0;
   s.node = int32_t(ctx.world.instances[h->instance_id].node);
   s.material = ctx.world.materials[sp.material].source_index;

@@ -224,6 +224,10 @@ struct scene {
   std::vector<camera> cameras;
   environment env;
   load_statistics stats;
+  // The world position of the origin of the space the scene's instances, lights and cameras are
+  // stored in: zero as loaded (world space); the camera's eye once the scene is moved into
+  // camera-relative render space (render/render_space.h). Positions given to the user add it.
+  dvec3 render_origin{0.0};
 };
 
 // World-space bounds of every instance.

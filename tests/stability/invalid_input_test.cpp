@@ -75,6 +75,26 @@ TEST(stability_invalid_input, non_finite_rays_are_refused_and_shade_to_a_finite_
   EXPECT_GT(naive_nan_hits, 0);
 }
 
+// Embree 3.13 asserts (this build aborts) on a finite ray whose origin or direction has a component
+// past FLT_LARGE = 1.844e18; the guard refuses it, and a ray just inside still traces.
+TEST(stability_invalid_input, rays_beyond_embree_range_never_reach_embree) {
+  scene s;
+  s.materials.emplace_back();
+  testing::add_box(s, vec3(-1, -1, -1), vec3(1, 1, 1), 0);
+  const embree_accelerator accel(s);
+  const ray far_origin = testing::make_ray({0.2f, 0.3f, 1e19f}, {0, 0, -1});
+  ray long_direction = testing::make_ray({0.2f, 0.3f, 5.0f}, {0, 0, -1});
+  long_direction.direction.z = -1e19f;  // accelerators take directions of any length
+  for (const ray& r : {far_origin, long_direction}) {
+    EXPECT_FALSE(is_valid(r));
+    EXPECT_FALSE(accel.intersect(r));
+    EXPECT_FALSE(accel.occluded(r));
+  }
+  const ray inside = testing::make_ray({0.2f, 0.3f, 1e18f}, {0, 0, -1});
+  EXPECT_TRUE(is_valid(inside));
+  EXPECT_TRUE(accel.occluded(inside));
+}
+
 TEST(stability_invalid_input, the_loader_refuses_a_nan_vertex) {
   testing::gltf_builder b;
   b.add_node({{"mesh", b.add_mesh({{0, 0, 0}, {1, nan_f, 0}, {0, 1, 0}}, {0, 1, 2})}});

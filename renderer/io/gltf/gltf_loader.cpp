@@ -13,6 +13,7 @@
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
+#include "scene/coordinate_range.h"
 
 #include <algorithm>
 #include <map>
@@ -55,6 +56,32 @@ dmat4 local_transform(const tinygltf::Node& node) {
   return trs_matrix(t.size() == 3 ? dvec3(t[0], t[1], t[2]) : dvec3(0.0),
                     r.size() == 4 ? dvec4(r[0], r[1], r[2], r[3]) : dvec4(0, 0, 0, 1),
                     s.size() == 3 ? dvec3(s[0], s[1], s[2]) : dvec3(1.0));
+}
+
+// What a range problem of a node's world transform points at: the node's own matrix, translation
+// or scale when that alone is out of range, else the node itself (its parents' transforms share
+// the blame).
+std::string range_pointer(const tinygltf::Node& node, int node_index) {
+  const std::string base = pointer("nodes", node_index);
+  if (node.matrix.size() == 16)
+    return transform_range_problem(local_transform(node)) ? pointer_join(base, "matrix") : base;
+  const auto& t = node.translation;
+  if (t.size() == 3 && !(std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) <= max_coordinate))
+    return pointer_join(base, "translation");
+  const auto& s = node.scale;
+  if (s.size() == 3 &&
+      transform_range_problem(trs_matrix(dvec3(0.0), dvec4(0, 0, 0, 1), dvec3(s[0], s[1], s[2]))))
+    return pointer_join(base, "scale");
+  return base;
+}
+
+// Refuses a world position (camera, light) beyond max_coordinate; the node names the culprit.
+void check_node_position(build_context& ctx, int node_index, const dmat4& world, const char* what) {
+  const double reach = std::max({std::abs(world[3][0]), std::abs(world[3][1]), std::abs(world[3][2])});
+  if (reach <= max_coordinate) return;
+  throw input_error(ctx.file, range_pointer(ctx.model.nodes[static_cast<size_t>(node_index)], node_index),
+                    std::string("the ") + what + " lies at " + format_coordinate(reach) +
+                        ", beyond kiln's coordinate limit of " + format_coordinate(max_coordinate));
 }
 
 std::string primitive_pointer(int mesh_index, int prim_index) {
@@ -157,6 +184,11 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
     m.bounds.extend(pc);
   }
   if (m.indices.empty()) return -1;
+  // Object-space coordinates past the limit would put rays or boxes beyond Embree's range.
+  if (!(max_abs_coordinate(m.bounds) <= max_coordinate))
+    throw input_error(ctx.file, pointer_join(attributes, "POSITION"),
+                      "a position reaches " + format_coordinate(max_abs_coordinate(m.bounds)) +
+                          ", beyond kiln's coordinate limit of " + format_coordinate(max_coordinate));
 
   auto normal = prim.attributes.find("NORMAL");
   if (normal != prim.attributes.end()) {
@@ -242,7 +274,7 @@ int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
 
 // Places every primitive of the node's mesh at `world`; false (nothing placed) when `world` is
 // singular. Primitives are built first, so their data is checked even when nothing is placed.
-bool place_primitives(build_context& ctx, int node_index, const dmat4& world) {
+bool place_primitives(build_context& ctx, int node_index, const dmat4& world, const std::string& where) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
   const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(node.mesh)];
   instance inst;
@@ -251,6 +283,9 @@ bool place_primitives(build_context& ctx, int node_index, const dmat4& world) {
   inst.world_from_object = world;
   finish_instance_transform(inst);
   const bool singular = !is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0;
+  if (!singular)
+    if (auto problem = transform_range_problem(world))
+      throw input_error(ctx.file, where, "its world transform is out of range: " + *problem);
   for (size_t p = 0; p < src.primitives.size(); ++p) {
     const int32_t shape = mesh_for(ctx, node.mesh, static_cast<int>(p));
     if (shape < 0 || singular) continue;
@@ -270,14 +305,16 @@ void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
                                ctx.max_instances};
   const auto instances = read_gpu_instances(ctx.model, node_index, ctx.quantized, budget, ctx.file);
   if (!instances) {
-    if (!place_primitives(ctx, node_index, world))
+    if (!place_primitives(ctx, node_index, world, range_pointer(node, node_index)))
       warn_once(ctx,
                 pointer("nodes", node_index) + ": singular transform (zero scale); its mesh is not placed");
     return;
   }
   size_t singular = 0;
+  const std::string where =
+      pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), gpu_instancing_extension);
   for (const dmat4& node_from_instance : *instances)
-    singular += !place_primitives(ctx, node_index, world * node_from_instance);
+    singular += !place_primitives(ctx, node_index, world * node_from_instance, where);
   if (singular != 0)
     warn_once(ctx, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"),
                                 gpu_instancing_extension) +
@@ -297,6 +334,9 @@ void place_quadric(build_context& ctx, int node_index, const quadric_placement& 
   if (!is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0)
     throw input_error(ctx.file, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension),
                       "the node's transform is not invertible (zero scale); a quadric cannot be placed by it");
+  if (auto problem = transform_range_problem(world))
+    throw input_error(ctx.file, range_pointer(ctx.model.nodes[static_cast<size_t>(node_index)], node_index),
+                      "its world transform is out of range: " + *problem);
   ctx.out.instances.push_back(inst);
   ctx.instance_gltf_material.push_back(placement.material);
 }
@@ -314,6 +354,7 @@ void place_camera(build_context& ctx, int node_index, const dmat4& world) {
               pointer("nodes", node_index) + ": camera node transform is singular; the camera is skipped");
     return;
   }
+  check_node_position(ctx, node_index, world, "camera");
   camera cam;
   cam.name = !src.name.empty() ? src.name : node.name;
   cam.world_from_camera = dmat4(dvec4(x, 0.0), dvec4(y, 0.0), dvec4(z, 0.0), dvec4(dvec3(world[3]), 1.0));
@@ -324,6 +365,14 @@ void place_camera(build_context& ctx, int node_index, const dmat4& world) {
     cam.znear = static_cast<float>(src.perspective.znear);
   } else {
     cam.kind = projection::orthographic;
+    // The view's half-extents become ray origins: they obey the coordinate limit too.
+    for (const auto& [key, value] :
+         {std::pair{"xmag", src.orthographic.xmag}, std::pair{"ymag", src.orthographic.ymag}})
+      if (!(std::abs(value) <= max_coordinate))
+        throw input_error(ctx.file,
+                          pointer_join(pointer_join(pointer("cameras", node.camera), "orthographic"), key),
+                          format_coordinate(value) + " is beyond kiln's coordinate limit of " +
+                              format_coordinate(max_coordinate));
     cam.xmag = static_cast<float>(src.orthographic.xmag);
     cam.ymag = static_cast<float>(src.orthographic.ymag);
     cam.znear = static_cast<float>(src.orthographic.znear);
@@ -345,6 +394,7 @@ void place_light(build_context& ctx, int node_index, int light_index, const dmat
   l.range = static_cast<float>(src.range);
   l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
   l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+  if (l.kind != light_kind::directional) check_node_position(ctx, node_index, world, "light");
   l.position = transform_point(world, dvec3(0.0));
   const dvec3 dir = transform_vector(world, dvec3(0.0, 0.0, -1.0));
   const double len = glm::length(dir);

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "geometry/quadric.h"
 #include "io/gltf/gltf_common.h"
+#include "scene/coordinate_range.h"
 
 namespace kiln::gltf_internal {
 
@@ -198,6 +199,10 @@ quadric read_definition(const tinygltf::Value& value, const std::string& where, 
       break;
   }
   q.bounds = quadric_bounds(q);
+  // The canonical object space is where Embree's user geometry is bounded and rays arrive.
+  if (!(max_abs_coordinate(q.bounds) <= max_coordinate))
+    in.fail("", "its bounds reach " + format_coordinate(max_abs_coordinate(q.bounds)) +
+                    ", beyond kiln's coordinate limit of " + format_coordinate(max_coordinate));
   return q;
 }
 
