@@ -157,6 +157,48 @@ TEST(batch_cli, a_broken_asset_fails_alone_and_the_summary_says_why) {
   EXPECT_EQ(quiet.stderr_text, "");
 }
 
+// Each job runs in its own process: one that crashes for real (abort(), through the test-only
+// KILN_TEST_ABORT_ASSET hook of kiln's main) is recorded as crashed with its signal, the later
+// jobs still render, the summary is written, and --resume re-tries it once and finishes.
+TEST(batch_cli, a_job_that_crashes_is_recorded_with_its_signal_and_the_batch_goes_on) {
+  const fs::path dir = scratch_folder("batch_crash");
+  const std::string a = copy_scene(dir / "assets", "a.gltf");
+  const std::string crash = copy_scene(dir / "assets", "crash.gltf");
+  const std::string c = copy_scene(dir / "assets", "c.gltf");
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const std::vector<std::string> args = batch_args({a, crash, c, "--out-dir", out, "--summary", summary, "--resume"});
+  ::setenv("KILN_TEST_ABORT_ASSET", "crash.gltf", 1);
+  const command_result first = run_kiln(args);
+  const command_result resumed = run_kiln(args);
+  ::unsetenv("KILN_TEST_ABORT_ASSET");
+
+  EXPECT_EQ(first.exit_code, 1) << first.stderr_text;
+  const std::vector<std::string> progress = lines(first.stderr_text);
+  ASSERT_EQ(progress.size(), 6u) << first.stderr_text;
+  EXPECT_EQ(progress[2].rfind("kiln batch: [2/3] crash crashed ", 0), 0u) << progress[2];
+  EXPECT_NE(progress[2].find("SIGABRT (signal 6)"), std::string::npos) << progress[2];
+  EXPECT_EQ(progress[4].rfind("kiln batch: [3/3] c rendered ", 0), 0u) << progress[4];
+  EXPECT_EQ(files_in(out), (std::vector<std::string>{"a.exr", "c.exr"}));
+
+  // The resumed run skips the finished jobs, tries the crashed one again, and still finishes.
+  EXPECT_EQ(resumed.exit_code, 1) << resumed.stderr_text;
+  const json again = read_json(summary);
+  EXPECT_EQ(statuses(again), (std::vector<std::string>{"skipped", "crashed", "skipped"}));
+  EXPECT_EQ(again["jobs"][1]["signal"]["name"], "SIGABRT");
+  EXPECT_EQ(again["jobs"][1]["signal"]["number"], SIGABRT);
+  EXPECT_TRUE(again["jobs"][0]["signal"].is_null());
+  EXPECT_NE(again["jobs"][1]["error"].get<std::string>().find("crashed: SIGABRT"), std::string::npos);
+  EXPECT_EQ(again["totals"]["crashed"], 1);
+  EXPECT_EQ(again["totals"]["skipped"], 2);
+  EXPECT_EQ(again["exit_code"], 1);
+
+  // Once the cause is gone, resuming renders only that job.
+  const command_result fixed = run_kiln(args);
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.stderr_text;
+  EXPECT_EQ(statuses(read_json(summary)), (std::vector<std::string>{"skipped", "rendered", "skipped"}));
+  expect_same_pixels(out + "/a.exr", out + "/crash.exr");
+}
+
 TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_overrides) {
   const fs::path dir = scratch_folder("batch_json");
   copy_scene(dir / "scenes");

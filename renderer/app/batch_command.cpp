@@ -88,6 +88,7 @@ void add_batch_options(CLI::App& app, batch_options& o) {
       "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
   add_view_settings(app, o.defaults);
   add_image_options(app, o.defaults);
+  add_progress_interval_option(app, o.defaults);
   app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();

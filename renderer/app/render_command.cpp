@@ -166,15 +166,24 @@ void add_default_light(scene& world, const view_camera& cam) {
   world.lights.push_back(headlight);
 }
 
-// A single progress line with percentage and ETA, shown only when stderr is a terminal.
-progress_callback make_progress(bool enabled) {
-  if (!enabled || !::isatty(STDERR_FILENO)) return {};
+// Progress with percentage and ETA: on a terminal one line that rewrites itself, otherwise (a farm
+// log, a pipe to kiln batch) one line every interval seconds, so a log shows a render is alive.
+progress_callback make_progress(bool enabled, double interval) {
+  if (!enabled) return {};
+  const bool terminal = ::isatty(STDERR_FILENO);
   auto start = std::chrono::steady_clock::now();
-  return [start](size_t done, size_t total) {
+  double next_line = interval;
+  return [start, terminal, interval, next_line](size_t done, size_t total) mutable {
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     double eta = done ? elapsed * double(total - done) / double(done) : 0.0;
-    std::fprintf(stderr, "\rkiln: rendering %3d%%  ETA %6.1f s ", int(100.0 * done / total), eta);
-    if (done == total) std::fprintf(stderr, "\n");
+    if (terminal) {
+      std::fprintf(stderr, "\rkiln: rendering %3d%%  ETA %6.1f s ", int(100.0 * done / total), eta);
+      if (done == total) std::fprintf(stderr, "\n");
+    } else {
+      if (elapsed < next_line || done == total) return;
+      next_line = elapsed + interval;
+      std::fprintf(stderr, "kiln: rendering %3d%%  ETA %.1f s\n", int(100.0 * done / total), eta);
+    }
     std::fflush(stderr);
   };
 }
@@ -362,6 +371,25 @@ void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   add_image_options(app, o);
+  add_progress_interval_option(app, o);
+  // Internal: kiln batch runs each job as `kiln render ... --batch-command-line LINE` in a child
+  // process; LINE is the job's own command line for the EXR header. Hidden from --help.
+  app.add_option_function<std::string>(
+         "--batch-command-line",
+         [&o](const std::string& line) {
+           o.command_line = line;
+           o.batch_job = true;
+           o.summary_line = false;  // the batch prints its own line per job
+         },
+         "")
+      ->group("");
+}
+
+void add_progress_interval_option(CLI::App& app, render_options& o) {
+  app.add_option("--progress-interval", o.progress_interval,
+                 "Seconds between progress lines when stderr is not a terminal (a log or a pipe)")
+      ->check(CLI::Range(0.01, 86400.0))
+      ->capture_default_str();
 }
 
 void add_image_options(CLI::App& app, render_options& o) {
@@ -533,7 +561,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   render_statistics stats;
   film image;
   try {
-    image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet));
+    image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet, options.progress_interval));
     accel->throw_if_failed();  // an error Embree reported during traversal fails the render
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
