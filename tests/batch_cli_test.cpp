@@ -199,6 +199,46 @@ TEST(batch_cli, a_job_that_crashes_is_recorded_with_its_signal_and_the_batch_goe
   expect_same_pixels(out + "/a.exr", out + "/crash.exr");
 }
 
+// A folder (or a FIFO) where an asset belongs is bad input: exit 2 naming it, for render,
+// compare and every way a batch takes assets, before anything is read or rendered.
+TEST(batch_cli, a_folder_or_fifo_as_the_asset_is_bad_input_for_render_batch_and_compare) {
+  const fs::path dir = scratch_folder("batch_folder_asset");
+  copy_scene(dir / "assets/good");
+  const std::string folder = (dir / "assets/folder.gltf").string();
+  fs::create_directories(folder);
+  const std::string fifo = (dir / "assets/pipe.gltf").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string out = (dir / "out").string();
+  auto expect_refused = [&](const std::vector<std::string>& args, const std::string& named,
+                            const std::string& kind) {
+    const command_result r = run_kiln(args);
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(lines(r.stderr_text).size(), 1u) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find(named + " is " + kind + ", not a glTF file"), std::string::npos)
+        << r.stderr_text;
+  };
+  for (const auto& [path, kind] : {std::pair{folder, std::string("a folder")}, std::pair{fifo, std::string("a FIFO")}}) {
+    // render names the file first: "kiln: PATH: a folder, not a glTF file (.gltf or .glb)".
+    const command_result r = run_kiln({"render", path, "-o", out + "/x.exr", "--width", "8", "--height", "8"});
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(r.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
+    const command_result c = run_kiln({"compare", path, "--width", "8", "--height", "8"});
+    EXPECT_EQ(c.exit_code, 2) << c.stderr_text;
+    EXPECT_EQ(c.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
+    expect_refused(batch_args({path, "--out-dir", out, "--plan-only", (dir / "plan.json").string()}), path, kind);
+    expect_refused(batch_args({path, "--out-dir", out}), path, kind);
+  }
+  expect_refused(batch_args({(dir / "assets/*").string(), "--out-dir", out}), (dir / "assets/folder.gltf").string(),
+                 "a folder");
+  write_file(dir / "jobs.json", R"([{"asset": "assets/good/cornell_box.gltf"}, {"asset": "assets"}])");
+  expect_refused(batch_args({"--manifest", (dir / "jobs.json").string(), "--out-dir", out}),
+                 (dir / "assets").string(), "a folder");
+  write_file(dir / "jobs.csv", "asset\nassets/good/cornell_box.gltf\nassets/pipe.gltf\n");
+  expect_refused(batch_args({"--manifest", (dir / "jobs.csv").string(), "--out-dir", out}), fifo, "a FIFO");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "plan.json"));
+}
+
 TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_overrides) {
   const fs::path dir = scratch_folder("batch_json");
   copy_scene(dir / "scenes");

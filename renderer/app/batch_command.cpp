@@ -8,6 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "app/asset_file.h"
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
 #include "app/render_fingerprint.h"
@@ -128,6 +129,8 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     specs.insert(specs.end(), manifest.jobs.begin(), manifest.jobs.end());
   }
   if (specs.empty()) throw input_error("", "kiln batch", "no jobs: give assets, glob patterns or --manifest");
+  // A folder (or FIFO, device) is bad input for the whole batch; a missing file fails its job alone.
+  for (const batch_job_spec& spec : specs) check_asset_file(spec.asset, spec.where);
 
   const fs::path out_dir = fs::absolute(options.out_dir).lexically_normal();
   std::vector<batch_job> jobs;

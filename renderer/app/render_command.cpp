@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "accel/make_accelerator.h"
+#include "app/asset_file.h"
 #include "app/cli_checks.h"
 #include "app/exr_options.h"
 #include "app/interrupt.h"
@@ -458,6 +459,7 @@ void add_image_options(CLI::App& app, render_options& o) {
 }
 
 prepared_scene prepare_scene(const render_options& options) {
+  check_asset_file(options.input);
   prepared_scene p;
   auto load_start = std::chrono::steady_clock::now();
   gltf_load_options load_options;
@@ -520,6 +522,7 @@ render_settings make_render_settings(const render_options& options) {
 }
 
 void run_render(const render_options& options, const render_fingerprint* known) {
+  check_asset_file(options.input);  // before the fingerprint reads it
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
