@@ -354,6 +354,47 @@ TEST(batch_cli, resume_skips_up_to_date_outputs_and_renders_stale_or_truncated_o
   EXPECT_EQ(files_in(out), (std::vector<std::string>{"first.exr", "second.exr"}));
 }
 
+// A job is up to date only when every output it asks for is there and complete: a preview that
+// is missing (deleted, newly asked for, lost between the EXR and the preview) or truncated makes
+// the job render again.
+TEST(batch_cli, resume_renders_a_job_whose_requested_preview_is_missing_or_incomplete) {
+  const fs::path dir = scratch_folder("batch_resume_preview");
+  const std::string a = copy_scene(dir / "a", "first.gltf");
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const std::string exr = out + "/first.exr";
+  auto run = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {a, "--out-dir", out, "--resume", "--summary", summary, "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const command_result r = run_kiln(batch_args(args));
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return statuses(read_json(summary)).at(0);
+  };
+  const std::vector<std::string> png = {"--preview", "p.png"}, jpeg = {"--preview", "p.jpg"};
+  EXPECT_EQ(run({}), "rendered");
+  EXPECT_EQ(run(png), "rendered");  // newly asked for
+  ASSERT_TRUE(fs::exists(out + "/first.png"));
+  EXPECT_EQ(run(png), "skipped");
+  const auto id = identity(exr);
+  fs::remove(out + "/first.png");  // deleted, or lost by a kill after the EXR's rename
+  EXPECT_EQ(run(png), "rendered");
+  EXPECT_NE(identity(exr), id);
+  ASSERT_TRUE(fs::exists(out + "/first.png"));
+  fs::resize_file(out + "/first.png", fs::file_size(out + "/first.png") - 20);
+  EXPECT_EQ(run(png), "rendered");
+  EXPECT_EQ(run(png), "skipped");
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run(jpeg), "skipped");
+  fs::resize_file(out + "/first.jpg", fs::file_size(out + "/first.jpg") - 2);  // a JPEG cut short decodes grey
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run(jpeg), "skipped");
+  // A preview of another size (an older, larger render under the same name) is not this job's.
+  const command_result big = run_kiln({"render", a, "-o", (dir / "big.exr").string(), "--width", "30",
+                                       "--height", "20", "-q", "--preview", out + "/first.jpg"});
+  ASSERT_EQ(big.exit_code, 0) << big.stderr_text;
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run({}), "skipped");  // no preview asked for: the EXR alone decides
+}
+
 // Jobs of about a second each, so a signal sent when the first output appears lands mid-batch.
 void write_slow_manifest(const fs::path& dir) {
   copy_scene(dir / "scenes");

@@ -13,6 +13,7 @@
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
+#include "io/exr/preview_writer.h"
 
 namespace kiln {
 
@@ -58,7 +59,7 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
   const auto start = std::chrono::steady_clock::now();
   try {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options))) {
+    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options), job.options.preview)) {
       result.status = job_status::skipped;
       result.seconds = seconds_since(start);
       return result;
@@ -122,13 +123,18 @@ nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vecto
 
 }  // namespace
 
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint) {
+bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
+                       const std::string& preview) {
   std::error_code ec;
   if (!fs::is_regular_file(output, ec)) return false;
   try {
     const exr_image image = read_exr(output);  // every pixel: a truncated file fails here
-    return exr_string_attribute(image, "kiln/input_hash") == fingerprint.input_hash &&
-           exr_string_attribute(image, "kiln/settings_hash") == fingerprint.settings_hash;
+    if (exr_string_attribute(image, "kiln/input_hash") != fingerprint.input_hash ||
+        exr_string_attribute(image, "kiln/settings_hash") != fingerprint.settings_hash)
+      return false;
+    // The preview is written after the EXR, so a kill in between leaves the EXR alone.
+    return preview.empty() || (fs::is_regular_file(preview, ec) &&
+                               preview_complete(preview, image.data_window.width(), image.data_window.height()));
   } catch (const error&) {
     return false;
   }

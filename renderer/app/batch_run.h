@@ -15,9 +15,11 @@ namespace kiln {
 // not_started when the batch stopped before it.
 enum class job_status { rendered, skipped, failed, crashed, interrupted, not_started };
 
-// True when output exists, every pixel reads back, and its kiln/input_hash and
-// kiln/settings_hash equal the fingerprint's.
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint);
+// True when output exists, every pixel reads back, its kiln/input_hash and kiln/settings_hash
+// equal the fingerprint's, and, when the job asks for a preview, that preview is complete at the
+// EXR's size: every output a job asks for must be there.
+bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
+                       const std::string& preview);
 
 // Runs the jobs; writes the summary (when summary is not empty) whatever happens. Returns the exit
 // code: 0 all rendered or skipped, 1 any failed or crashed, 128 + signal when interrupted.
