@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -477,6 +478,96 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
       run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", fresh, "-q"});
   ASSERT_EQ(clean.exit_code, 0) << clean.stderr_text;
   for (const char* name : {"/a.exr", "/b.exr", "/c.exr"}) expect_same_pixels(out + name, fresh + name);
+}
+
+// Starts kiln with args in the background, stderr into err_file; returns its pid.
+pid_t start_kiln(std::vector<std::string> args, const std::string& err_file) {
+  args.insert(args.begin(), KILN_BINARY);
+  std::vector<char*> argv;
+  for (std::string& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(err, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+int wait_exit_code(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// True while some process holds an exclusive flock on path.
+bool locked(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return false;
+  const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+  ::close(fd);
+  return busy;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A running batch locks its --out-dir: a second batch on it is refused with exit 2 (or waits with
+// --wait-for-lock, then runs), and so is a render into it; the lock file goes when the batch ends.
+TEST(batch_cli, a_second_batch_or_a_render_into_a_running_batchs_folder_is_refused) {
+  const fs::path dir = scratch_folder("batch_lock");
+  write_slow_manifest(dir);
+  const std::string out = (dir / "out").string(), lock = out + "/.kiln-batch.lock";
+  const pid_t slow = start_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", out, "-q"},
+                                (dir / "slow.err").string());
+  ASSERT_GT(slow, 0);
+  for (int i = 0; i < 6000 && !locked(lock); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(locked(lock));
+
+  const std::string asset = (dir / "scenes/cornell_box.gltf").string();
+  const command_result second = run_kiln(batch_args({asset, "--out-dir", out, "--summary", (dir / "second.json").string()}));
+  EXPECT_EQ(second.exit_code, 2) << second.stderr_text;
+  EXPECT_EQ(second.stderr_text, "kiln: " + out + ": the output folder is in use by another kiln batch (pid " +
+                                    std::to_string(slow) +
+                                    "); wait for it to finish, give another --out-dir, or pass --wait-for-lock\n");
+  EXPECT_FALSE(fs::exists(dir / "second.json"));
+  for (const std::string& target : {out + "/cornell_box.exr", out + "/sub/deeper/x.exr"}) {
+    const command_result render = run_kiln({"render", asset, "-o", target, "--width", "8", "--height", "8", "-q"});
+    EXPECT_EQ(render.exit_code, 2) << render.stderr_text;
+    EXPECT_NE(render.stderr_text.find(target + ": the folder " + out + " is the output folder of another kiln batch (pid " +
+                                      std::to_string(slow) + ")"),
+              std::string::npos)
+        << render.stderr_text;
+    EXPECT_FALSE(fs::exists(target));
+  }
+  // A render elsewhere is not affected.
+  EXPECT_EQ(run_kiln({"render", asset, "-o", (dir / "elsewhere.exr").string(), "--width", "8", "--height", "8", "-q"})
+                .exit_code,
+            0);
+
+  // --wait-for-lock waits for the first batch (stopped here by SIGTERM) and then renders.
+  const pid_t waiting = start_kiln(batch_args({asset, "--out-dir", out, "--wait-for-lock", "--summary",
+                                               (dir / "waited.json").string()}),
+                                   (dir / "waiting.err").string());
+  for (int i = 0; i < 2000 && read_text((dir / "waiting.err").string()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(read_text((dir / "waiting.err").string()),
+            "kiln batch: waiting for another kiln batch (pid " + std::to_string(slow) + ") to release " + out + "\n");
+  EXPECT_FALSE(fs::exists(dir / "waited.json"));
+  ASSERT_EQ(::kill(slow, SIGTERM), 0);
+  EXPECT_EQ(wait_exit_code(slow), 128 + SIGTERM);
+  EXPECT_EQ(wait_exit_code(waiting), 0) << read_text((dir / "waiting.err").string());
+  EXPECT_EQ(statuses(read_json(dir / "waited.json")), (std::vector<std::string>{"rendered"}));
+  EXPECT_FALSE(fs::exists(lock));  // removed by whoever held it last
 }
 
 TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) {

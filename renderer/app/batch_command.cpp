@@ -11,6 +11,7 @@
 #include "app/asset_file.h"
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
+#include "app/output_lock.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -96,6 +97,8 @@ void add_batch_options(CLI::App& app, batch_options& o) {
   app.add_flag(
       "--resume", o.resume,
       "Skip jobs whose output exists, reads back complete and records the same input and settings hashes");
+  app.add_flag("--wait-for-lock", o.wait_for_lock,
+               "When another batch holds --out-dir, wait for it instead of refusing (exit 2)");
   app.add_option("--summary", o.summary,
                  "Write a JSON summary of every job (also after a failure or a signal)");
   app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
@@ -181,6 +184,7 @@ int run_batch(const batch_options& options) {
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
+  const output_folder_lock lock(absolute_path(options.out_dir), options.wait_for_lock);
   return run_batch_jobs(jobs, options.resume, options.summary, options.defaults.quiet);
 }
 

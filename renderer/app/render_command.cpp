@@ -15,6 +15,7 @@
 #include "app/cli_checks.h"
 #include "app/exr_options.h"
 #include "app/interrupt.h"
+#include "app/output_lock.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/cryptomatte.h"
@@ -523,6 +524,11 @@ render_settings make_render_settings(const render_options& options) {
 
 void run_render(const render_options& options, const render_fingerprint* known) {
   check_asset_file(options.input);  // before the fingerprint reads it
+  // A running batch owns its output folder; its own jobs (children) write there.
+  if (!options.batch_job) {
+    check_not_in_locked_folder(options.output);
+    if (!options.preview.empty()) check_not_in_locked_folder(options.preview);
+  }
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
