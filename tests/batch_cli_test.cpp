@@ -15,11 +15,14 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <thread>
 
+#include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -568,6 +571,94 @@ TEST(batch_cli, a_second_batch_or_a_render_into_a_running_batchs_folder_is_refus
   EXPECT_EQ(wait_exit_code(waiting), 0) << read_text((dir / "waiting.err").string());
   EXPECT_EQ(statuses(read_json(dir / "waited.json")), (std::vector<std::string>{"rendered"}));
   EXPECT_FALSE(fs::exists(lock));  // removed by whoever held it last
+}
+
+struct timed_line {
+  double at = 0.0;  // seconds after the start
+  std::string text;
+};
+
+// Runs kiln with stderr into a pipe (not a terminal) and stamps each line as it arrives;
+// seconds is the whole run.
+std::vector<timed_line> run_kiln_timed(const std::vector<std::string>& args, double& seconds) {
+  auto quote = [](const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+  };
+  std::string command = quote(KILN_BINARY);
+  for (const std::string& a : args) command += " " + quote(a);
+  command += " 2>&1 >/dev/null </dev/null";
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  std::vector<timed_line> out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  EXPECT_NE(pipe, nullptr);
+  if (!pipe) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) {
+    std::string text = buffer;
+    if (!text.empty() && text.back() == '\n') text.pop_back();
+    out.push_back({since(), text});
+  }
+  EXPECT_EQ(::pclose(pipe), 0);
+  seconds = since();
+  return out;
+}
+
+// A wall that fills the view: every pixel costs the same, so the work done predicts the rest.
+std::string write_uniform_scene(const fs::path& path) {
+  testing::gltf_builder b;
+  const int material = b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}}});
+  const int mesh = b.add_mesh({{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}}, {0, 1, 2, 0, 2, 3}, material);
+  b.add_node({{"mesh", mesh}});
+  b.write(path.string());
+  return path.string();
+}
+
+// Off a terminal, a render prints a progress line every --progress-interval with an ETA from the
+// work done; the first ETA is within a factor of 3 of the time that really remained. In a batch
+// the job's lines (progress and messages) come prefixed with the job.
+TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_their_job) {
+  const fs::path dir = scratch_folder("batch_progress");
+  const std::string asset = write_uniform_scene(dir / "uniform.gltf");
+  const std::vector<std::string> view = {"--look-from", "0,0,5", "--look-at", "0,0,0", "--width", "160",
+                                         "--height",    "120",   "--spp",     "400", "--threads", "2",
+                                         "--progress-interval", "0.5"};
+  std::vector<std::string> render = {"render", asset, "-o", (dir / "u.exr").string()};
+  render.insert(render.end(), view.begin(), view.end());
+  double seconds = 0.0;
+  const std::vector<timed_line> got = run_kiln_timed(render, seconds);
+  const std::regex line(R"(kiln: rendering +(\d+)%  ETA (\d+\.\d) s)");
+  std::vector<std::pair<double, double>> etas;  // (arrived, ETA)
+  int last_percent = -1;
+  for (const timed_line& l : got) {
+    std::smatch m;
+    if (l.text.rfind("kiln: rendering ", 0) != 0) continue;
+    ASSERT_TRUE(std::regex_match(l.text, m, line)) << l.text;
+    const int percent = std::stoi(m[1]);
+    EXPECT_GE(percent, last_percent);
+    EXPECT_LT(percent, 100);
+    last_percent = percent;
+    etas.push_back({l.at, std::stod(m[2])});
+  }
+  ASSERT_GE(etas.size(), 2u) << "render took " << seconds << " s";
+  const double remaining = seconds - etas[0].first;
+  EXPECT_LE(etas[0].second, 3.0 * remaining) << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+  EXPECT_GE(etas[0].second, remaining / 3.0) << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+
+  std::vector<std::string> batch = {"batch", asset, "--out-dir", (dir / "out").string()};
+  batch.insert(batch.end(), view.begin(), view.end());
+  const std::vector<timed_line> batch_lines = run_kiln_timed(batch, seconds);
+  size_t progress_lines = 0;
+  for (const timed_line& l : batch_lines) {
+    EXPECT_EQ(l.text.rfind("kiln batch: ", 0), 0u) << l.text;
+    if (l.text.rfind("kiln batch: [1/1] uniform: rendering ", 0) == 0) ++progress_lines;
+  }
+  EXPECT_GE(progress_lines, 2u);
+  ASSERT_FALSE(batch_lines.empty());
+  // The asset has no lights: the render's note about the headlight names the job.
+  EXPECT_EQ(batch_lines[0].text, "kiln batch: [1/1] uniform: the file has no lights; using a headlight at the camera");
 }
 
 TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) {

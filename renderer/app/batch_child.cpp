@@ -52,6 +52,8 @@ struct relay {
   void line(std::string text) {
     if (!text.empty() && text.back() == '\r') text.pop_back();
     if (text.rfind(progress_prefix, 0) == 0) {
+      if (!held.empty()) print(held);  // the render goes on: the message was not its last
+      held.clear();
       if (quiet) return;
       const std::string rest = text.substr(std::strlen(progress_prefix));
       if (terminal) {

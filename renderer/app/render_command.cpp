@@ -16,6 +16,7 @@
 #include "app/exr_options.h"
 #include "app/interrupt.h"
 #include "app/output_lock.h"
+#include "app/progress_report.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/cryptomatte.h"
@@ -166,28 +167,6 @@ void add_default_light(scene& world, const view_camera& cam) {
   headlight.intensity = float(pi * distance * distance);
   headlight.casts_shadows = false;
   world.lights.push_back(headlight);
-}
-
-// Progress with percentage and ETA: on a terminal one line that rewrites itself, otherwise (a farm
-// log, a pipe to kiln batch) one line every interval seconds, so a log shows a render is alive.
-progress_callback make_progress(bool enabled, double interval) {
-  if (!enabled) return {};
-  const bool terminal = ::isatty(STDERR_FILENO);
-  auto start = std::chrono::steady_clock::now();
-  double next_line = interval;
-  return [start, terminal, interval, next_line](size_t done, size_t total) mutable {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double eta = done ? elapsed * double(total - done) / double(done) : 0.0;
-    if (terminal) {
-      std::fprintf(stderr, "\rkiln: rendering %3d%%  ETA %6.1f s ", int(100.0 * done / total), eta);
-      if (done == total) std::fprintf(stderr, "\n");
-    } else {
-      if (elapsed < next_line || done == total) return;
-      next_line = elapsed + interval;
-      std::fprintf(stderr, "kiln: rendering %3d%%  ETA %.1f s\n", int(100.0 * done / total), eta);
-    }
-    std::fflush(stderr);
-  };
 }
 
 std::string format_vec(const vec3& v) {
@@ -569,12 +548,14 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   }
   render_statistics stats;
   film image;
+  render_progress progress;
+  settings.progress = &progress;
   try {
-    image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet, options.progress_interval));
+    const progress_report report(progress, !options.quiet, options.progress_interval);
+    image = render_image(world, *accel, cam, settings, &stats);
     accel->throw_if_failed();  // an error Embree reported during traversal fails the render
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
-    if (::isatty(STDERR_FILENO) && !options.quiet) std::fprintf(stderr, "\n");  // end the progress line
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   }
 
