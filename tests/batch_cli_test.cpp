@@ -243,6 +243,28 @@ TEST(batch_cli, a_folder_or_fifo_as_the_asset_is_bad_input_for_render_batch_and_
   EXPECT_FALSE(fs::exists(dir / "plan.json"));
 }
 
+// Names with spaces, quotes and any script are job names as they are (the farm takes them);
+// a path with a control character or bytes that are not UTF-8 cannot pass through JSON or a
+// task line, so the batch refuses it with exit 2 before anything renders.
+TEST(batch_cli, names_with_spaces_are_kept_and_unprintable_paths_are_refused) {
+  const fs::path dir = scratch_folder("batch_names");
+  const std::string spaced = copy_scene(dir / "assets", "my shot 'v2'.gltf");
+  const std::string plan = (dir / "plan.json").string(), out = (dir / "out").string();
+  const command_result planned = run_kiln(batch_args({spaced, "--out-dir", out, "--plan-only", plan}));
+  ASSERT_EQ(planned.exit_code, 0) << planned.stderr_text;
+  EXPECT_EQ(read_json(plan)["jobs"][0]["name"], "my shot 'v2'");
+  for (const std::string bad : {"tab\there.gltf", "latin1 \xe9.gltf"}) {
+    const std::string asset = copy_scene(dir / "assets", bad);
+    const command_result r = run_kiln(batch_args({asset, "--out-dir", out, "--plan-only", plan + "2"}));
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(lines(r.stderr_text).size(), 1u) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find(bad.find('\t') != std::string::npos ? "contains a control character" : "is not valid UTF-8"),
+              std::string::npos)
+        << r.stderr_text;
+    EXPECT_FALSE(fs::exists(plan + "2"));
+  }
+}
+
 TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_overrides) {
   const fs::path dir = scratch_folder("batch_json");
   copy_scene(dir / "scenes");

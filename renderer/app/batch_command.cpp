@@ -23,6 +23,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Why text cannot be a job's asset, output or name, or "": every name a batch accepts must pass
+// through JSON (the plan, the summary) and one shell-quoted line of a farm's task list.
+std::string unprintable(const std::string& text) {
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) return "contains a control character";
+    // UTF-8: a lead byte, then as many continuation bytes (10xxxxxx) as it announces.
+    const size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (length == 0 || i + length > text.size()) return "is not valid UTF-8";
+    for (size_t k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return "is not valid UTF-8";
+    i += length;
+  }
+  return "";
+}
+
 bool is_pattern(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
 
 // glob(3) ourselves, so a quoted pattern works and the order is the same on every shell (sorted).
@@ -168,6 +184,9 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
                                                                : relative.replace_extension().string();
     if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+    for (const std::string* text : {&job.options.input, &job.options.output})
+      if (const std::string why = unprintable(*text); !why.empty())
+        throw input_error("", spec.where, "the path " + nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) + " " + why);
     jobs.push_back(std::move(job));
   }
   return jobs;
