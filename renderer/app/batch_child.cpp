@@ -27,6 +27,7 @@ std::string exact_number(double value) {
 }
 
 constexpr const char* progress_prefix = "kiln: rendering ";
+constexpr size_t max_error_bytes = 1000;
 
 // Forwards the child's lines to stderr under the job's label. The latest message line is held
 // back until the next one (or the end): when the child fails, it is the error, printed once by the
@@ -84,6 +85,8 @@ struct relay {
     held.clear();
     if (!failed && !last.empty()) print(last);
     if (last.rfind("kiln: ", 0) == 0) last.erase(0, 6);
+    // A library's assertion can be long; the summary keeps its start.
+    if (last.size() > max_error_bytes) last = last.substr(0, max_error_bytes) + "...";
     return failed ? last : std::string();
   }
 };

@@ -180,7 +180,11 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
   if (!summary.empty()) {
     try {
       write_text_atomically(
-          summary, summary_json(jobs, results, exit_code, seconds_since(batch_start)).dump(2) + "\n");
+          summary, summary_json(jobs, results, exit_code, seconds_since(batch_start))
+                       // A job's message may quote bytes that are not UTF-8 (from a file's
+                       // contents): they become U+FFFD instead of losing the summary.
+                       .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                   "\n");
     } catch (const error& e) {
       std::fprintf(stderr, "kiln: %s\n", e.what());
       return exit_code ? exit_code : 1;

@@ -63,7 +63,6 @@ void progress_report::watch() {
     else
       std::fprintf(stderr, "kiln: %s\n", text.c_str());
     std::fflush(stderr);
-    printed_ = true;
   };
   while (!wake_.wait_for(lock, look_every, [this] { return stop_; })) {
     if (!started && progress_.pixels_total.load() > 0) {
@@ -75,7 +74,13 @@ void progress_report::watch() {
     next_line = elapsed + interval_;
     print(false);
   }
-  if (terminal_ && printed_) print(true);  // the last state, and the line ends
+  // On a terminal the last state (100% when the render completed) ends the line, even when the
+  // render was over before the first refresh.
+  if (terminal_ && progress_.pixels_total.load() > 0) {
+    if (!started) first_pixel = clock_type::now();
+    started = true;
+    print(true);
+  }
 }
 
 }  // namespace kiln

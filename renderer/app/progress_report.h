@@ -34,7 +34,6 @@ class progress_report {
   const bool terminal_;
   const double interval_;
   bool stop_ = false;
-  bool printed_ = false;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread thread_;
