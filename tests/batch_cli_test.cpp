@@ -13,9 +13,9 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -170,7 +170,8 @@ TEST(batch_cli, a_job_that_crashes_is_recorded_with_its_signal_and_the_batch_goe
   const std::string crash = copy_scene(dir / "assets", "crash.gltf");
   const std::string c = copy_scene(dir / "assets", "c.gltf");
   const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
-  const std::vector<std::string> args = batch_args({a, crash, c, "--out-dir", out, "--summary", summary, "--resume"});
+  const std::vector<std::string> args =
+      batch_args({a, crash, c, "--out-dir", out, "--summary", summary, "--resume"});
   ::setenv("KILN_TEST_ABORT_ASSET", "crash.gltf", 1);
   const command_result first = run_kiln(args);
   const command_result resumed = run_kiln(args);
@@ -221,19 +222,22 @@ TEST(batch_cli, a_folder_or_fifo_as_the_asset_is_bad_input_for_render_batch_and_
     EXPECT_NE(r.stderr_text.find(named + " is " + kind + ", not a glTF file"), std::string::npos)
         << r.stderr_text;
   };
-  for (const auto& [path, kind] : {std::pair{folder, std::string("a folder")}, std::pair{fifo, std::string("a FIFO")}}) {
+  for (const auto& [path, kind] :
+       {std::pair{folder, std::string("a folder")}, std::pair{fifo, std::string("a FIFO")}}) {
     // render names the file first: "kiln: PATH: a folder, not a glTF file (.gltf or .glb)".
-    const command_result r = run_kiln({"render", path, "-o", out + "/x.exr", "--width", "8", "--height", "8"});
+    const command_result r =
+        run_kiln({"render", path, "-o", out + "/x.exr", "--width", "8", "--height", "8"});
     EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
     EXPECT_EQ(r.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
     const command_result c = run_kiln({"compare", path, "--width", "8", "--height", "8"});
     EXPECT_EQ(c.exit_code, 2) << c.stderr_text;
     EXPECT_EQ(c.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
-    expect_refused(batch_args({path, "--out-dir", out, "--plan-only", (dir / "plan.json").string()}), path, kind);
+    expect_refused(batch_args({path, "--out-dir", out, "--plan-only", (dir / "plan.json").string()}), path,
+                   kind);
     expect_refused(batch_args({path, "--out-dir", out}), path, kind);
   }
-  expect_refused(batch_args({(dir / "assets/*").string(), "--out-dir", out}), (dir / "assets/folder.gltf").string(),
-                 "a folder");
+  expect_refused(batch_args({(dir / "assets/*").string(), "--out-dir", out}),
+                 (dir / "assets/folder.gltf").string(), "a folder");
   write_file(dir / "jobs.json", R"([{"asset": "assets/good/cornell_box.gltf"}, {"asset": "assets"}])");
   expect_refused(batch_args({"--manifest", (dir / "jobs.json").string(), "--out-dir", out}),
                  (dir / "assets").string(), "a folder");
@@ -258,7 +262,8 @@ TEST(batch_cli, names_with_spaces_are_kept_and_unprintable_paths_are_refused) {
     const command_result r = run_kiln(batch_args({asset, "--out-dir", out, "--plan-only", plan + "2"}));
     EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
     EXPECT_EQ(lines(r.stderr_text).size(), 1u) << r.stderr_text;
-    EXPECT_NE(r.stderr_text.find(bad.find('\t') != std::string::npos ? "contains a control character" : "is not valid UTF-8"),
+    EXPECT_NE(r.stderr_text.find(bad.find('\t') != std::string::npos ? "contains a control character"
+                                                                     : "is not valid UTF-8"),
               std::string::npos)
         << r.stderr_text;
     EXPECT_FALSE(fs::exists(plan + "2"));
@@ -410,7 +415,8 @@ TEST(batch_cli, resume_renders_a_job_whose_requested_preview_is_missing_or_incom
   EXPECT_EQ(run(png), "skipped");
   EXPECT_EQ(run(jpeg), "rendered");
   EXPECT_EQ(run(jpeg), "skipped");
-  fs::resize_file(out + "/first.jpg", fs::file_size(out + "/first.jpg") - 2);  // a JPEG cut short decodes grey
+  fs::resize_file(out + "/first.jpg",
+                  fs::file_size(out + "/first.jpg") - 2);  // a JPEG cut short decodes grey
   EXPECT_EQ(run(jpeg), "rendered");
   EXPECT_EQ(run(jpeg), "skipped");
   // A preview of another size (an older, larger render under the same name) is not this job's.
@@ -559,34 +565,40 @@ TEST(batch_cli, a_second_batch_or_a_render_into_a_running_batchs_folder_is_refus
   ASSERT_TRUE(locked(lock));
 
   const std::string asset = (dir / "scenes/cornell_box.gltf").string();
-  const command_result second = run_kiln(batch_args({asset, "--out-dir", out, "--summary", (dir / "second.json").string()}));
+  const command_result second =
+      run_kiln(batch_args({asset, "--out-dir", out, "--summary", (dir / "second.json").string()}));
   EXPECT_EQ(second.exit_code, 2) << second.stderr_text;
-  EXPECT_EQ(second.stderr_text, "kiln: " + out + ": the output folder is in use by another kiln batch (pid " +
-                                    std::to_string(slow) +
-                                    "); wait for it to finish, give another --out-dir, or pass --wait-for-lock\n");
+  EXPECT_EQ(second.stderr_text,
+            "kiln: " + out + ": the output folder is in use by another kiln batch (pid " +
+                std::to_string(slow) +
+                "); wait for it to finish, give another --out-dir, or pass --wait-for-lock\n");
   EXPECT_FALSE(fs::exists(dir / "second.json"));
   for (const std::string& target : {out + "/cornell_box.exr", out + "/sub/deeper/x.exr"}) {
-    const command_result render = run_kiln({"render", asset, "-o", target, "--width", "8", "--height", "8", "-q"});
+    const command_result render =
+        run_kiln({"render", asset, "-o", target, "--width", "8", "--height", "8", "-q"});
     EXPECT_EQ(render.exit_code, 2) << render.stderr_text;
-    EXPECT_NE(render.stderr_text.find(target + ": the folder " + out + " is the output folder of another kiln batch (pid " +
+    EXPECT_NE(render.stderr_text.find(target + ": the folder " + out +
+                                      " is the output folder of another kiln batch (pid " +
                                       std::to_string(slow) + ")"),
               std::string::npos)
         << render.stderr_text;
     EXPECT_FALSE(fs::exists(target));
   }
   // A render elsewhere is not affected.
-  EXPECT_EQ(run_kiln({"render", asset, "-o", (dir / "elsewhere.exr").string(), "--width", "8", "--height", "8", "-q"})
+  EXPECT_EQ(run_kiln({"render", asset, "-o", (dir / "elsewhere.exr").string(), "--width", "8", "--height",
+                      "8", "-q"})
                 .exit_code,
             0);
 
   // --wait-for-lock waits for the first batch (stopped here by SIGTERM) and then renders.
-  const pid_t waiting = start_kiln(batch_args({asset, "--out-dir", out, "--wait-for-lock", "--summary",
-                                               (dir / "waited.json").string()}),
-                                   (dir / "waiting.err").string());
+  const pid_t waiting = start_kiln(
+      batch_args({asset, "--out-dir", out, "--wait-for-lock", "--summary", (dir / "waited.json").string()}),
+      (dir / "waiting.err").string());
   for (int i = 0; i < 2000 && read_text((dir / "waiting.err").string()).empty(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  EXPECT_EQ(read_text((dir / "waiting.err").string()),
-            "kiln batch: waiting for another kiln batch (pid " + std::to_string(slow) + ") to release " + out + "\n");
+  EXPECT_EQ(read_text((dir / "waiting.err").string()), "kiln batch: waiting for another kiln batch (pid " +
+                                                           std::to_string(slow) + ") to release " + out +
+                                                           "\n");
   EXPECT_FALSE(fs::exists(dir / "waited.json"));
   ASSERT_EQ(::kill(slow, SIGTERM), 0);
   EXPECT_EQ(wait_exit_code(slow), 128 + SIGTERM);
@@ -612,7 +624,9 @@ std::vector<timed_line> run_kiln_timed(const std::vector<std::string>& args, dou
   for (const std::string& a : args) command += " " + quote(a);
   command += " 2>&1 >/dev/null </dev/null";
   const auto start = std::chrono::steady_clock::now();
-  auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  auto since = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   std::vector<timed_line> out;
   FILE* pipe = ::popen(command.c_str(), "r");
   EXPECT_NE(pipe, nullptr);
@@ -631,8 +645,10 @@ std::vector<timed_line> run_kiln_timed(const std::vector<std::string>& args, dou
 // A wall that fills the view: every pixel costs the same, so the work done predicts the rest.
 std::string write_uniform_scene(const fs::path& path) {
   testing::gltf_builder b;
-  const int material = b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}}});
-  const int mesh = b.add_mesh({{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}}, {0, 1, 2, 0, 2, 3}, material);
+  const int material =
+      b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}}});
+  const int mesh =
+      b.add_mesh({{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}}, {0, 1, 2, 0, 2, 3}, material);
   b.add_node({{"mesh", mesh}});
   b.write(path.string());
   return path.string();
@@ -644,9 +660,20 @@ std::string write_uniform_scene(const fs::path& path) {
 TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_their_job) {
   const fs::path dir = scratch_folder("batch_progress");
   const std::string asset = write_uniform_scene(dir / "uniform.gltf");
-  const std::vector<std::string> view = {"--look-from", "0,0,5", "--look-at", "0,0,0", "--width", "160",
-                                         "--height",    "120",   "--spp",     "400", "--threads", "2",
-                                         "--progress-interval", "0.5"};
+  const std::vector<std::string> view = {"--look-from",
+                                         "0,0,5",
+                                         "--look-at",
+                                         "0,0,0",
+                                         "--width",
+                                         "160",
+                                         "--height",
+                                         "120",
+                                         "--spp",
+                                         "400",
+                                         "--threads",
+                                         "2",
+                                         "--progress-interval",
+                                         "0.5"};
   std::vector<std::string> render = {"render", asset, "-o", (dir / "u.exr").string()};
   render.insert(render.end(), view.begin(), view.end());
   double seconds = 0.0;
@@ -666,8 +693,10 @@ TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_t
   }
   ASSERT_GE(etas.size(), 2u) << "render took " << seconds << " s";
   const double remaining = seconds - etas[0].first;
-  EXPECT_LE(etas[0].second, 3.0 * remaining) << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
-  EXPECT_GE(etas[0].second, remaining / 3.0) << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+  EXPECT_LE(etas[0].second, 3.0 * remaining)
+      << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+  EXPECT_GE(etas[0].second, remaining / 3.0)
+      << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
 
   std::vector<std::string> batch = {"batch", asset, "--out-dir", (dir / "out").string()};
   batch.insert(batch.end(), view.begin(), view.end());
@@ -680,7 +709,8 @@ TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_t
   EXPECT_GE(progress_lines, 2u);
   ASSERT_FALSE(batch_lines.empty());
   // The asset has no lights: the render's note about the headlight names the job.
-  EXPECT_EQ(batch_lines[0].text, "kiln batch: [1/1] uniform: the file has no lights; using a headlight at the camera");
+  EXPECT_EQ(batch_lines[0].text,
+            "kiln batch: [1/1] uniform: the file has no lights; using a headlight at the camera");
 }
 
 TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) {

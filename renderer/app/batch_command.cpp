@@ -186,7 +186,11 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
     for (const std::string* text : {&job.options.input, &job.options.output})
       if (const std::string why = unprintable(*text); !why.empty())
-        throw input_error("", spec.where, "the path " + nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) + " " + why);
+        throw input_error(
+            "", spec.where,
+            "the path " +
+                nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) + " " +
+                why);
     jobs.push_back(std::move(job));
   }
   return jobs;

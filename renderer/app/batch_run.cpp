@@ -85,8 +85,8 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
     } else {
       result.status = job_status::crashed;
       result.signal = child.signal;
-      result.error = "crashed: " + signal_name(child.signal) + " (signal " + std::to_string(child.signal) + ")" +
-                     (child.error.empty() ? "" : "; last message: " + child.error);
+      result.error = "crashed: " + signal_name(child.signal) + " (signal " + std::to_string(child.signal) +
+                     ")" + (child.error.empty() ? "" : "; last message: " + child.error);
     }
   } else if (child.exit_code == 0) {
     result.status = job_status::rendered;
@@ -94,7 +94,8 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
     result.status = job_status::interrupted;
   } else {
     result.status = job_status::failed;
-    if (result.error.empty()) result.error = "the job's process exited with " + std::to_string(child.exit_code);
+    if (result.error.empty())
+      result.error = "the job's process exited with " + std::to_string(child.exit_code);
   }
   return result;
 }
@@ -102,19 +103,20 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
 nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vector<job_result>& results,
                             int exit_code, double seconds) {
   nlohmann::json list = nlohmann::json::array();
-  std::map<std::string, int> counts{
-      {"rendered", 0}, {"skipped", 0}, {"failed", 0}, {"crashed", 0}, {"interrupted", 0}, {"not_started", 0}};
+  std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0},     {"failed", 0},
+                                    {"crashed", 0},  {"interrupted", 0}, {"not_started", 0}};
   for (size_t i = 0; i < jobs.size(); ++i) {
     const job_result& r = results[i];
     ++counts[status_name(r.status)];
-    list.push_back({{"name", jobs[i].name},
-                    {"asset", jobs[i].options.input},
-                    {"output", jobs[i].options.output},
-                    {"status", status_name(r.status)},
-                    {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
-                    {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
-                                        : nlohmann::json(nullptr)},
-                    {"seconds", r.seconds}});
+    list.push_back(
+        {{"name", jobs[i].name},
+         {"asset", jobs[i].options.input},
+         {"output", jobs[i].options.output},
+         {"status", status_name(r.status)},
+         {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
+         {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
+                             : nlohmann::json(nullptr)},
+         {"seconds", r.seconds}});
   }
   nlohmann::json totals = {{"jobs", jobs.size()}, {"seconds", seconds}};
   for (const auto& [name, count] : counts) totals[name] = count;
@@ -133,8 +135,9 @@ bool output_up_to_date(const std::string& output, const render_fingerprint& fing
         exr_string_attribute(image, "kiln/settings_hash") != fingerprint.settings_hash)
       return false;
     // The preview is written after the EXR, so a kill in between leaves the EXR alone.
-    return preview.empty() || (fs::is_regular_file(preview, ec) &&
-                               preview_complete(preview, image.data_window.width(), image.data_window.height()));
+    return preview.empty() ||
+           (fs::is_regular_file(preview, ec) &&
+            preview_complete(preview, image.data_window.width(), image.data_window.height()));
   } catch (const error&) {
     return false;
   }
@@ -148,7 +151,8 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
   bool interrupted = false;
   for (size_t i = 0; i < jobs.size() && !interrupted; ++i) {
     if (interrupt_requested()) break;  // a signal between jobs: the rest are not started
-    const std::string label = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs.size()) + "] " + jobs[i].name;
+    const std::string label =
+        "[" + std::to_string(i + 1) + "/" + std::to_string(jobs.size()) + "] " + jobs[i].name;
     results[i] = run_job(jobs[i], resume, label, quiet);
     const job_result& r = results[i];
     if (r.status == job_status::not_started) break;  // a signal just before its start
@@ -179,12 +183,12 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
                                     : 0;
   if (!summary.empty()) {
     try {
-      write_text_atomically(
-          summary, summary_json(jobs, results, exit_code, seconds_since(batch_start))
-                       // A job's message may quote bytes that are not UTF-8 (from a file's
-                       // contents): they become U+FFFD instead of losing the summary.
-                       .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-                   "\n");
+      write_text_atomically(summary,
+                            summary_json(jobs, results, exit_code, seconds_since(batch_start))
+                                    // A job's message may quote bytes that are not UTF-8 (from a file's
+                                    // contents): they become U+FFFD instead of losing the summary.
+                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                "\n");
     } catch (const error& e) {
       std::fprintf(stderr, "kiln: %s\n", e.what());
       return exit_code ? exit_code : 1;

@@ -54,16 +54,19 @@ output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
         throw input_error(folder, "",
                           "the output folder is in use by " + holder +
                               "; wait for it to finish, give another --out-dir, or pass --wait-for-lock");
-      if (!told) std::fprintf(stderr, "kiln batch: waiting for %s to release %s\n", holder.c_str(), folder.c_str());
+      if (!told)
+        std::fprintf(stderr, "kiln batch: waiting for %s to release %s\n", holder.c_str(), folder.c_str());
       told = true;
       // Polled, not a blocking flock: the first SIGINT/SIGTERM must end the wait.
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (interrupt_requested())
-        throw error(error_kind::interrupted, folder, "", "interrupted while waiting for the output folder's lock");
+        throw error(error_kind::interrupted, folder, "",
+                    "interrupted while waiting for the output folder's lock");
       continue;
     }
     // The previous holder unlinks the file when it ends: a lock on the file it unlinked is no lock.
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (::fstat(fd, &held) != 0 || ::stat(path_.c_str(), &named) != 0 || held.st_ino != named.st_ino ||
         held.st_dev != named.st_dev) {
       ::close(fd);

@@ -34,7 +34,9 @@ double estimate_eta(uint64_t done, uint64_t total, double seconds_rendering) {
 }
 
 progress_report::progress_report(const render_progress& progress, bool enabled, double interval_seconds)
-    : progress_(progress), terminal_(::isatty(STDERR_FILENO)), interval_(terminal_ ? terminal_interval : interval_seconds) {
+    : progress_(progress),
+      terminal_(::isatty(STDERR_FILENO)),
+      interval_(terminal_ ? terminal_interval : interval_seconds) {
   if (enabled) thread_ = std::thread([this] { watch(); });
 }
 
@@ -57,7 +59,8 @@ void progress_report::watch() {
   auto print = [&](bool final_line) {
     const uint64_t total = progress_.pixels_total.load(), done = progress_.pixels_done.load();
     const double rendering = std::chrono::duration<double>(clock_type::now() - first_pixel).count();
-    const std::string text = progress_text(done, total, started ? estimate_eta(done, total, rendering) : -1.0);
+    const std::string text =
+        progress_text(done, total, started ? estimate_eta(done, total, rendering) : -1.0);
     if (terminal_)
       std::fprintf(stderr, "\rkiln: %s %s", text.c_str(), final_line ? "\n" : "");
     else

@@ -74,7 +74,7 @@ struct render_options {
   bool quiet = false;
   bool summary_line = true;  // the closing line with timings and ray counts (kiln batch prints its own)
   double progress_interval = 5.0;  // seconds between progress lines when stderr is not a terminal
-  bool batch_job = false;  // run by `kiln batch` as one of its jobs (hidden --batch-command-line)
+  bool batch_job = false;          // run by `kiln batch` as one of its jobs (hidden --batch-command-line)
   std::string command_line;
 };
 

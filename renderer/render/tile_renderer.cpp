@@ -155,7 +155,8 @@ struct tile_job {
 };
 
 void count_row_done(const render_settings& settings, const tile& tl) {
-  if (settings.progress) settings.progress->pixels_done.fetch_add(uint64_t(tl.x1 - tl.x0), std::memory_order_relaxed);
+  if (settings.progress)
+    settings.progress->pixels_done.fetch_add(uint64_t(tl.x1 - tl.x0), std::memory_order_relaxed);
 }
 
 // Stratified samples, splatted through the reconstruction filter.
@@ -277,7 +278,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 
-  if (settings.progress) settings.progress->pixels_total = uint64_t(region.width()) * uint64_t(region.height());
+  if (settings.progress)
+    settings.progress->pixels_total = uint64_t(region.width()) * uint64_t(region.height());
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};
