@@ -6,19 +6,23 @@
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <thread>
 
+#include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -157,6 +161,115 @@ TEST(batch_cli, a_broken_asset_fails_alone_and_the_summary_says_why) {
   EXPECT_EQ(quiet.stderr_text, "");
 }
 
+// Each job runs in its own process: one that crashes for real (abort(), through the test-only
+// KILN_TEST_ABORT_ASSET hook of kiln's main) is recorded as crashed with its signal, the later
+// jobs still render, the summary is written, and --resume re-tries it once and finishes.
+TEST(batch_cli, a_job_that_crashes_is_recorded_with_its_signal_and_the_batch_goes_on) {
+  const fs::path dir = scratch_folder("batch_crash");
+  const std::string a = copy_scene(dir / "assets", "a.gltf");
+  const std::string crash = copy_scene(dir / "assets", "crash.gltf");
+  const std::string c = copy_scene(dir / "assets", "c.gltf");
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const std::vector<std::string> args =
+      batch_args({a, crash, c, "--out-dir", out, "--summary", summary, "--resume"});
+  ::setenv("KILN_TEST_ABORT_ASSET", "crash.gltf", 1);
+  const command_result first = run_kiln(args);
+  const command_result resumed = run_kiln(args);
+  ::unsetenv("KILN_TEST_ABORT_ASSET");
+
+  EXPECT_EQ(first.exit_code, 1) << first.stderr_text;
+  const std::vector<std::string> progress = lines(first.stderr_text);
+  ASSERT_EQ(progress.size(), 6u) << first.stderr_text;
+  EXPECT_EQ(progress[2].rfind("kiln batch: [2/3] crash crashed ", 0), 0u) << progress[2];
+  EXPECT_NE(progress[2].find("SIGABRT (signal 6)"), std::string::npos) << progress[2];
+  EXPECT_EQ(progress[4].rfind("kiln batch: [3/3] c rendered ", 0), 0u) << progress[4];
+  EXPECT_EQ(files_in(out), (std::vector<std::string>{"a.exr", "c.exr"}));
+
+  // The resumed run skips the finished jobs, tries the crashed one again, and still finishes.
+  EXPECT_EQ(resumed.exit_code, 1) << resumed.stderr_text;
+  const json again = read_json(summary);
+  EXPECT_EQ(statuses(again), (std::vector<std::string>{"skipped", "crashed", "skipped"}));
+  EXPECT_EQ(again["jobs"][1]["signal"]["name"], "SIGABRT");
+  EXPECT_EQ(again["jobs"][1]["signal"]["number"], SIGABRT);
+  EXPECT_TRUE(again["jobs"][0]["signal"].is_null());
+  EXPECT_NE(again["jobs"][1]["error"].get<std::string>().find("crashed: SIGABRT"), std::string::npos);
+  EXPECT_EQ(again["totals"]["crashed"], 1);
+  EXPECT_EQ(again["totals"]["skipped"], 2);
+  EXPECT_EQ(again["exit_code"], 1);
+
+  // Once the cause is gone, resuming renders only that job.
+  const command_result fixed = run_kiln(args);
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.stderr_text;
+  EXPECT_EQ(statuses(read_json(summary)), (std::vector<std::string>{"skipped", "rendered", "skipped"}));
+  expect_same_pixels(out + "/a.exr", out + "/crash.exr");
+}
+
+// A folder (or a FIFO) where an asset belongs is bad input: exit 2 naming it, for render,
+// compare and every way a batch takes assets, before anything is read or rendered.
+TEST(batch_cli, a_folder_or_fifo_as_the_asset_is_bad_input_for_render_batch_and_compare) {
+  const fs::path dir = scratch_folder("batch_folder_asset");
+  copy_scene(dir / "assets/good");
+  const std::string folder = (dir / "assets/folder.gltf").string();
+  fs::create_directories(folder);
+  const std::string fifo = (dir / "assets/pipe.gltf").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string out = (dir / "out").string();
+  auto expect_refused = [&](const std::vector<std::string>& args, const std::string& named,
+                            const std::string& kind) {
+    const command_result r = run_kiln(args);
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(lines(r.stderr_text).size(), 1u) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find(named + " is " + kind + ", not a glTF file"), std::string::npos)
+        << r.stderr_text;
+  };
+  for (const auto& [path, kind] :
+       {std::pair{folder, std::string("a folder")}, std::pair{fifo, std::string("a FIFO")}}) {
+    // render names the file first: "kiln: PATH: a folder, not a glTF file (.gltf or .glb)".
+    const command_result r =
+        run_kiln({"render", path, "-o", out + "/x.exr", "--width", "8", "--height", "8"});
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(r.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
+    const command_result c = run_kiln({"compare", path, "--width", "8", "--height", "8"});
+    EXPECT_EQ(c.exit_code, 2) << c.stderr_text;
+    EXPECT_EQ(c.stderr_text, "kiln: " + path + ": " + kind + ", not a glTF file (.gltf or .glb)\n");
+    expect_refused(batch_args({path, "--out-dir", out, "--plan-only", (dir / "plan.json").string()}), path,
+                   kind);
+    expect_refused(batch_args({path, "--out-dir", out}), path, kind);
+  }
+  expect_refused(batch_args({(dir / "assets/*").string(), "--out-dir", out}),
+                 (dir / "assets/folder.gltf").string(), "a folder");
+  write_file(dir / "jobs.json", R"([{"asset": "assets/good/cornell_box.gltf"}, {"asset": "assets"}])");
+  expect_refused(batch_args({"--manifest", (dir / "jobs.json").string(), "--out-dir", out}),
+                 (dir / "assets").string(), "a folder");
+  write_file(dir / "jobs.csv", "asset\nassets/good/cornell_box.gltf\nassets/pipe.gltf\n");
+  expect_refused(batch_args({"--manifest", (dir / "jobs.csv").string(), "--out-dir", out}), fifo, "a FIFO");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "plan.json"));
+}
+
+// Names with spaces, quotes and any script are job names as they are (the farm takes them);
+// a path with a control character or bytes that are not UTF-8 cannot pass through JSON or a
+// task line, so the batch refuses it with exit 2 before anything renders.
+TEST(batch_cli, names_with_spaces_are_kept_and_unprintable_paths_are_refused) {
+  const fs::path dir = scratch_folder("batch_names");
+  const std::string spaced = copy_scene(dir / "assets", "my shot 'v2'.gltf");
+  const std::string plan = (dir / "plan.json").string(), out = (dir / "out").string();
+  const command_result planned = run_kiln(batch_args({spaced, "--out-dir", out, "--plan-only", plan}));
+  ASSERT_EQ(planned.exit_code, 0) << planned.stderr_text;
+  EXPECT_EQ(read_json(plan)["jobs"][0]["name"], "my shot 'v2'");
+  for (const std::string bad : {"tab\there.gltf", "latin1 \xe9.gltf"}) {
+    const std::string asset = copy_scene(dir / "assets", bad);
+    const command_result r = run_kiln(batch_args({asset, "--out-dir", out, "--plan-only", plan + "2"}));
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(lines(r.stderr_text).size(), 1u) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find(bad.find('\t') != std::string::npos ? "contains a control character"
+                                                                     : "is not valid UTF-8"),
+              std::string::npos)
+        << r.stderr_text;
+    EXPECT_FALSE(fs::exists(plan + "2"));
+  }
+}
+
 TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_overrides) {
   const fs::path dir = scratch_folder("batch_json");
   copy_scene(dir / "scenes");
@@ -272,6 +385,48 @@ TEST(batch_cli, resume_skips_up_to_date_outputs_and_renders_stale_or_truncated_o
   EXPECT_EQ(files_in(out), (std::vector<std::string>{"first.exr", "second.exr"}));
 }
 
+// A job is up to date only when every output it asks for is there and complete: a preview that
+// is missing (deleted, newly asked for, lost between the EXR and the preview) or truncated makes
+// the job render again.
+TEST(batch_cli, resume_renders_a_job_whose_requested_preview_is_missing_or_incomplete) {
+  const fs::path dir = scratch_folder("batch_resume_preview");
+  const std::string a = copy_scene(dir / "a", "first.gltf");
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const std::string exr = out + "/first.exr";
+  auto run = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {a, "--out-dir", out, "--resume", "--summary", summary, "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const command_result r = run_kiln(batch_args(args));
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return statuses(read_json(summary)).at(0);
+  };
+  const std::vector<std::string> png = {"--preview", "p.png"}, jpeg = {"--preview", "p.jpg"};
+  EXPECT_EQ(run({}), "rendered");
+  EXPECT_EQ(run(png), "rendered");  // newly asked for
+  ASSERT_TRUE(fs::exists(out + "/first.png"));
+  EXPECT_EQ(run(png), "skipped");
+  const auto id = identity(exr);
+  fs::remove(out + "/first.png");  // deleted, or lost by a kill after the EXR's rename
+  EXPECT_EQ(run(png), "rendered");
+  EXPECT_NE(identity(exr), id);
+  ASSERT_TRUE(fs::exists(out + "/first.png"));
+  fs::resize_file(out + "/first.png", fs::file_size(out + "/first.png") - 20);
+  EXPECT_EQ(run(png), "rendered");
+  EXPECT_EQ(run(png), "skipped");
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run(jpeg), "skipped");
+  fs::resize_file(out + "/first.jpg",
+                  fs::file_size(out + "/first.jpg") - 2);  // a JPEG cut short decodes grey
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run(jpeg), "skipped");
+  // A preview of another size (an older, larger render under the same name) is not this job's.
+  const command_result big = run_kiln({"render", a, "-o", (dir / "big.exr").string(), "--width", "30",
+                                       "--height", "20", "-q", "--preview", out + "/first.jpg"});
+  ASSERT_EQ(big.exit_code, 0) << big.stderr_text;
+  EXPECT_EQ(run(jpeg), "rendered");
+  EXPECT_EQ(run({}), "skipped");  // no preview asked for: the EXR alone decides
+}
+
 // Jobs of about a second each, so a signal sent when the first output appears lands mid-batch.
 void write_slow_manifest(const fs::path& dir) {
   copy_scene(dir / "scenes");
@@ -354,6 +509,208 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
       run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", fresh, "-q"});
   ASSERT_EQ(clean.exit_code, 0) << clean.stderr_text;
   for (const char* name : {"/a.exr", "/b.exr", "/c.exr"}) expect_same_pixels(out + name, fresh + name);
+}
+
+// Starts kiln with args in the background, stderr into err_file; returns its pid.
+pid_t start_kiln(std::vector<std::string> args, const std::string& err_file) {
+  args.insert(args.begin(), KILN_BINARY);
+  std::vector<char*> argv;
+  for (std::string& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(err, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+int wait_exit_code(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// True while some process holds an exclusive flock on path.
+bool locked(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return false;
+  const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+  ::close(fd);
+  return busy;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A running batch locks its --out-dir: a second batch on it is refused with exit 2 (or waits with
+// --wait-for-lock, then runs), and so is a render into it; the lock file goes when the batch ends.
+TEST(batch_cli, a_second_batch_or_a_render_into_a_running_batchs_folder_is_refused) {
+  const fs::path dir = scratch_folder("batch_lock");
+  write_slow_manifest(dir);
+  const std::string out = (dir / "out").string(), lock = out + "/.kiln-batch.lock";
+  const pid_t slow = start_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", out, "-q"},
+                                (dir / "slow.err").string());
+  ASSERT_GT(slow, 0);
+  for (int i = 0; i < 6000 && !locked(lock); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(locked(lock));
+
+  const std::string asset = (dir / "scenes/cornell_box.gltf").string();
+  const command_result second =
+      run_kiln(batch_args({asset, "--out-dir", out, "--summary", (dir / "second.json").string()}));
+  EXPECT_EQ(second.exit_code, 2) << second.stderr_text;
+  EXPECT_EQ(second.stderr_text,
+            "kiln: " + out + ": the output folder is in use by another kiln batch (pid " +
+                std::to_string(slow) +
+                "); wait for it to finish, give another --out-dir, or pass --wait-for-lock\n");
+  EXPECT_FALSE(fs::exists(dir / "second.json"));
+  for (const std::string& target : {out + "/cornell_box.exr", out + "/sub/deeper/x.exr"}) {
+    const command_result render =
+        run_kiln({"render", asset, "-o", target, "--width", "8", "--height", "8", "-q"});
+    EXPECT_EQ(render.exit_code, 2) << render.stderr_text;
+    EXPECT_NE(render.stderr_text.find(target + ": the folder " + out +
+                                      " is the output folder of another kiln batch (pid " +
+                                      std::to_string(slow) + ")"),
+              std::string::npos)
+        << render.stderr_text;
+    EXPECT_FALSE(fs::exists(target));
+  }
+  // A render elsewhere is not affected.
+  EXPECT_EQ(run_kiln({"render", asset, "-o", (dir / "elsewhere.exr").string(), "--width", "8", "--height",
+                      "8", "-q"})
+                .exit_code,
+            0);
+
+  // --wait-for-lock waits for the first batch (stopped here by SIGTERM) and then renders.
+  const pid_t waiting = start_kiln(
+      batch_args({asset, "--out-dir", out, "--wait-for-lock", "--summary", (dir / "waited.json").string()}),
+      (dir / "waiting.err").string());
+  for (int i = 0; i < 2000 && read_text((dir / "waiting.err").string()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(read_text((dir / "waiting.err").string()), "kiln batch: waiting for another kiln batch (pid " +
+                                                           std::to_string(slow) + ") to release " + out +
+                                                           "\n");
+  EXPECT_FALSE(fs::exists(dir / "waited.json"));
+  ASSERT_EQ(::kill(slow, SIGTERM), 0);
+  EXPECT_EQ(wait_exit_code(slow), 128 + SIGTERM);
+  EXPECT_EQ(wait_exit_code(waiting), 0) << read_text((dir / "waiting.err").string());
+  EXPECT_EQ(statuses(read_json(dir / "waited.json")), (std::vector<std::string>{"rendered"}));
+  EXPECT_FALSE(fs::exists(lock));  // removed by whoever held it last
+}
+
+struct timed_line {
+  double at = 0.0;  // seconds after the start
+  std::string text;
+};
+
+// Runs kiln with stderr into a pipe (not a terminal) and stamps each line as it arrives;
+// seconds is the whole run.
+std::vector<timed_line> run_kiln_timed(const std::vector<std::string>& args, double& seconds) {
+  auto quote = [](const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+  };
+  std::string command = quote(KILN_BINARY);
+  for (const std::string& a : args) command += " " + quote(a);
+  command += " 2>&1 >/dev/null </dev/null";
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<timed_line> out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  EXPECT_NE(pipe, nullptr);
+  if (!pipe) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) {
+    std::string text = buffer;
+    if (!text.empty() && text.back() == '\n') text.pop_back();
+    out.push_back({since(), text});
+  }
+  EXPECT_EQ(::pclose(pipe), 0);
+  seconds = since();
+  return out;
+}
+
+// A wall that fills the view: every pixel costs the same, so the work done predicts the rest.
+std::string write_uniform_scene(const fs::path& path) {
+  testing::gltf_builder b;
+  const int material =
+      b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}}});
+  const int mesh =
+      b.add_mesh({{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}}, {0, 1, 2, 0, 2, 3}, material);
+  b.add_node({{"mesh", mesh}});
+  b.write(path.string());
+  return path.string();
+}
+
+// Off a terminal, a render prints a progress line every --progress-interval with an ETA from the
+// work done; the first ETA is within a factor of 3 of the time that really remained. In a batch
+// the job's lines (progress and messages) come prefixed with the job.
+TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_their_job) {
+  const fs::path dir = scratch_folder("batch_progress");
+  const std::string asset = write_uniform_scene(dir / "uniform.gltf");
+  const std::vector<std::string> view = {"--look-from",
+                                         "0,0,5",
+                                         "--look-at",
+                                         "0,0,0",
+                                         "--width",
+                                         "160",
+                                         "--height",
+                                         "120",
+                                         "--spp",
+                                         "400",
+                                         "--threads",
+                                         "2",
+                                         "--progress-interval",
+                                         "0.5"};
+  std::vector<std::string> render = {"render", asset, "-o", (dir / "u.exr").string()};
+  render.insert(render.end(), view.begin(), view.end());
+  double seconds = 0.0;
+  const std::vector<timed_line> got = run_kiln_timed(render, seconds);
+  const std::regex line(R"(kiln: rendering +(\d+)%  ETA (\d+\.\d) s)");
+  std::vector<std::pair<double, double>> etas;  // (arrived, ETA)
+  int last_percent = -1;
+  for (const timed_line& l : got) {
+    std::smatch m;
+    if (l.text.rfind("kiln: rendering ", 0) != 0) continue;
+    ASSERT_TRUE(std::regex_match(l.text, m, line)) << l.text;
+    const int percent = std::stoi(m[1]);
+    EXPECT_GE(percent, last_percent);
+    EXPECT_LT(percent, 100);
+    last_percent = percent;
+    etas.push_back({l.at, std::stod(m[2])});
+  }
+  ASSERT_GE(etas.size(), 2u) << "render took " << seconds << " s";
+  const double remaining = seconds - etas[0].first;
+  EXPECT_LE(etas[0].second, 3.0 * remaining)
+      << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+  EXPECT_GE(etas[0].second, remaining / 3.0)
+      << "first ETA " << etas[0].second << " s, " << remaining << " s remained";
+
+  std::vector<std::string> batch = {"batch", asset, "--out-dir", (dir / "out").string()};
+  batch.insert(batch.end(), view.begin(), view.end());
+  const std::vector<timed_line> batch_lines = run_kiln_timed(batch, seconds);
+  size_t progress_lines = 0;
+  for (const timed_line& l : batch_lines) {
+    EXPECT_EQ(l.text.rfind("kiln batch: ", 0), 0u) << l.text;
+    if (l.text.rfind("kiln batch: [1/1] uniform: rendering ", 0) == 0) ++progress_lines;
+  }
+  EXPECT_GE(progress_lines, 2u);
+  ASSERT_FALSE(batch_lines.empty());
+  // The asset has no lights: the render's note about the headlight names the job.
+  EXPECT_EQ(batch_lines[0].text,
+            "kiln batch: [1/1] uniform: the file has no lights; using a headlight at the camera");
 }
 
 TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) {

@@ -8,8 +8,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "app/asset_file.h"
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
+#include "app/output_lock.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -20,6 +22,22 @@ namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Why text cannot be a job's asset, output or name, or "": every name a batch accepts must pass
+// through JSON (the plan, the summary) and one shell-quoted line of a farm's task list.
+std::string unprintable(const std::string& text) {
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) return "contains a control character";
+    // UTF-8: a lead byte, then as many continuation bytes (10xxxxxx) as it announces.
+    const size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (length == 0 || i + length > text.size()) return "is not valid UTF-8";
+    for (size_t k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return "is not valid UTF-8";
+    i += length;
+  }
+  return "";
+}
 
 bool is_pattern(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
 
@@ -88,12 +106,15 @@ void add_batch_options(CLI::App& app, batch_options& o) {
       "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
   add_view_settings(app, o.defaults);
   add_image_options(app, o.defaults);
+  add_progress_interval_option(app, o.defaults);
   app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();
   app.add_flag(
       "--resume", o.resume,
       "Skip jobs whose output exists, reads back complete and records the same input and settings hashes");
+  app.add_flag("--wait-for-lock", o.wait_for_lock,
+               "When another batch holds --out-dir, wait for it instead of refusing (exit 2)");
   app.add_option("--summary", o.summary,
                  "Write a JSON summary of every job (also after a failure or a signal)");
   app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
@@ -127,6 +148,8 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     specs.insert(specs.end(), manifest.jobs.begin(), manifest.jobs.end());
   }
   if (specs.empty()) throw input_error("", "kiln batch", "no jobs: give assets, glob patterns or --manifest");
+  // A folder (or FIFO, device) is bad input for the whole batch; a missing file fails its job alone.
+  for (const batch_job_spec& spec : specs) check_asset_file(spec.asset, spec.where);
 
   const fs::path out_dir = fs::absolute(options.out_dir).lexically_normal();
   std::vector<batch_job> jobs;
@@ -161,6 +184,13 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
                                                                : relative.replace_extension().string();
     if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+    for (const std::string* text : {&job.options.input, &job.options.output})
+      if (const std::string why = unprintable(*text); !why.empty())
+        throw input_error(
+            "", spec.where,
+            "the path " +
+                nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) + " " +
+                why);
     jobs.push_back(std::move(job));
   }
   return jobs;
@@ -177,6 +207,7 @@ int run_batch(const batch_options& options) {
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
+  const output_folder_lock lock(absolute_path(options.out_dir), options.wait_for_lock);
   return run_batch_jobs(jobs, options.resume, options.summary, options.defaults.quiet);
 }
 

@@ -21,6 +21,7 @@ struct batch_options {
   std::string manifest;             // .json or .csv; empty: none
   std::string out_dir;
   bool resume = false;
+  bool wait_for_lock = false;  // another batch holds --out-dir: wait instead of refusing
   std::string summary;  // JSON summary path; empty: none
   std::string plan;     // --plan-only: write the job plan here and render nothing
 };

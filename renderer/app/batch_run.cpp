@@ -7,11 +7,13 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "app/batch_child.h"
 #include "app/interrupt.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
+#include "io/exr/preview_writer.h"
 
 namespace kiln {
 
@@ -27,6 +29,8 @@ const char* status_name(job_status s) {
       return "skipped";
     case job_status::failed:
       return "failed";
+    case job_status::crashed:
+      return "crashed";
     case job_status::interrupted:
       return "interrupted";
     case job_status::not_started:
@@ -38,6 +42,7 @@ const char* status_name(job_status s) {
 struct job_result {
   job_status status = job_status::not_started;
   std::string error;
+  int signal = 0;  // crashed: the signal that killed the job's process
   double seconds = 0.0;
 };
 
@@ -45,49 +50,73 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Renders (or skips) one job; every failure becomes the job's error, only a signal escapes.
-job_result run_job(const batch_job& job, bool resume) {
+bool is_interrupt(int signo) { return signo == SIGINT || signo == SIGTERM; }
+
+// Renders (or skips) one job in its own process; every failure, a crash included, becomes the
+// job's status and error.
+job_result run_job(const batch_job& job, bool resume, const std::string& label, bool quiet) {
   job_result result;
   const auto start = std::chrono::steady_clock::now();
   try {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    const render_fingerprint fingerprint = make_fingerprint(job.options);
-    if (resume && output_up_to_date(job.options.output, fingerprint)) {
+    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options), job.options.preview)) {
       result.status = job_status::skipped;
-    } else {
-      std::error_code ec;
-      fs::create_directories(fs::path(job.options.output).parent_path(), ec);
-      run_render(job.options, &fingerprint);
-      result.status = job_status::rendered;
+      result.seconds = seconds_since(start);
+      return result;
     }
-  } catch (const error& e) {
-    result.status = e.kind() == error_kind::interrupted ? job_status::interrupted : job_status::failed;
-    result.error = e.what();
-  } catch (const std::bad_alloc&) {
-    result.status = job_status::failed;
-    result.error = "out of memory";
   } catch (const std::exception& e) {
     result.status = job_status::failed;
     result.error = e.what();
+    result.seconds = seconds_since(start);
+    return result;
   }
+  std::error_code ec;
+  fs::create_directories(fs::path(job.options.output).parent_path(), ec);
+  const child_outcome child = run_job_in_child(job, label, quiet);
   result.seconds = seconds_since(start);
+  result.error = child.error;
+  if (!child.started) {
+    result.status = interrupt_requested() ? job_status::not_started : job_status::failed;
+  } else if (child.signal) {
+    // A second SIGINT/SIGTERM kills the child on purpose; any other signal is a crash.
+    if (interrupt_requested() && is_interrupt(child.signal)) {
+      result.status = job_status::interrupted;
+      result.error = "render interrupted, nothing written";
+    } else {
+      result.status = job_status::crashed;
+      result.signal = child.signal;
+      result.error = "crashed: " + signal_name(child.signal) + " (signal " + std::to_string(child.signal) +
+                     ")" + (child.error.empty() ? "" : "; last message: " + child.error);
+    }
+  } else if (child.exit_code == 0) {
+    result.status = job_status::rendered;
+  } else if (interrupt_requested() && child.exit_code > 128 && is_interrupt(child.exit_code - 128)) {
+    result.status = job_status::interrupted;
+  } else {
+    result.status = job_status::failed;
+    if (result.error.empty())
+      result.error = "the job's process exited with " + std::to_string(child.exit_code);
+  }
   return result;
 }
 
 nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vector<job_result>& results,
                             int exit_code, double seconds) {
   nlohmann::json list = nlohmann::json::array();
-  std::map<std::string, int> counts{
-      {"rendered", 0}, {"skipped", 0}, {"failed", 0}, {"interrupted", 0}, {"not_started", 0}};
+  std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0},     {"failed", 0},
+                                    {"crashed", 0},  {"interrupted", 0}, {"not_started", 0}};
   for (size_t i = 0; i < jobs.size(); ++i) {
     const job_result& r = results[i];
     ++counts[status_name(r.status)];
-    list.push_back({{"name", jobs[i].name},
-                    {"asset", jobs[i].options.input},
-                    {"output", jobs[i].options.output},
-                    {"status", status_name(r.status)},
-                    {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
-                    {"seconds", r.seconds}});
+    list.push_back(
+        {{"name", jobs[i].name},
+         {"asset", jobs[i].options.input},
+         {"output", jobs[i].options.output},
+         {"status", status_name(r.status)},
+         {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
+         {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
+                             : nlohmann::json(nullptr)},
+         {"seconds", r.seconds}});
   }
   nlohmann::json totals = {{"jobs", jobs.size()}, {"seconds", seconds}};
   for (const auto& [name, count] : counts) totals[name] = count;
@@ -96,13 +125,19 @@ nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vecto
 
 }  // namespace
 
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint) {
+bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
+                       const std::string& preview) {
   std::error_code ec;
   if (!fs::is_regular_file(output, ec)) return false;
   try {
     const exr_image image = read_exr(output);  // every pixel: a truncated file fails here
-    return exr_string_attribute(image, "kiln/input_hash") == fingerprint.input_hash &&
-           exr_string_attribute(image, "kiln/settings_hash") == fingerprint.settings_hash;
+    if (exr_string_attribute(image, "kiln/input_hash") != fingerprint.input_hash ||
+        exr_string_attribute(image, "kiln/settings_hash") != fingerprint.settings_hash)
+      return false;
+    // The preview is written after the EXR, so a kill in between leaves the EXR alone.
+    return preview.empty() ||
+           (fs::is_regular_file(preview, ec) &&
+            preview_complete(preview, image.data_window.width(), image.data_window.height()));
   } catch (const error&) {
     return false;
   }
@@ -116,15 +151,18 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
   bool interrupted = false;
   for (size_t i = 0; i < jobs.size() && !interrupted; ++i) {
     if (interrupt_requested()) break;  // a signal between jobs: the rest are not started
-    results[i] = run_job(jobs[i], resume);
+    const std::string label =
+        "[" + std::to_string(i + 1) + "/" + std::to_string(jobs.size()) + "] " + jobs[i].name;
+    results[i] = run_job(jobs[i], resume, label, quiet);
     const job_result& r = results[i];
+    if (r.status == job_status::not_started) break;  // a signal just before its start
     interrupted = r.status == job_status::interrupted;
     ++done;
     if (r.status == job_status::rendered) {
       ++rendered;
       render_seconds += r.seconds;
     }
-    if (r.status == job_status::failed) ++failed;
+    if (r.status == job_status::failed || r.status == job_status::crashed) ++failed;
     if (quiet) continue;
     std::fprintf(stderr, "kiln batch: [%zu/%zu] %s %s %.2f s%s%s\n", i + 1, jobs.size(), jobs[i].name.c_str(),
                  status_name(r.status), r.seconds, r.error.empty() ? "" : ": ", r.error.c_str());
@@ -145,8 +183,12 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
                                     : 0;
   if (!summary.empty()) {
     try {
-      write_text_atomically(
-          summary, summary_json(jobs, results, exit_code, seconds_since(batch_start)).dump(2) + "\n");
+      write_text_atomically(summary,
+                            summary_json(jobs, results, exit_code, seconds_since(batch_start))
+                                    // A job's message may quote bytes that are not UTF-8 (from a file's
+                                    // contents): they become U+FFFD instead of losing the summary.
+                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                "\n");
     } catch (const error& e) {
       std::fprintf(stderr, "kiln: %s\n", e.what());
       return exit_code ? exit_code : 1;

@@ -11,15 +11,18 @@
 
 namespace kiln {
 
-// What happened to a job; not_started when the batch stopped before it.
-enum class job_status { rendered, skipped, failed, interrupted, not_started };
+// What happened to a job; crashed when a signal killed its process (it counts as failed);
+// not_started when the batch stopped before it.
+enum class job_status { rendered, skipped, failed, crashed, interrupted, not_started };
 
-// True when output exists, every pixel reads back, and its kiln/input_hash and
-// kiln/settings_hash equal the fingerprint's.
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint);
+// True when output exists, every pixel reads back, its kiln/input_hash and kiln/settings_hash
+// equal the fingerprint's, and, when the job asks for a preview, that preview is complete at the
+// EXR's size: every output a job asks for must be there.
+bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
+                       const std::string& preview);
 
 // Runs the jobs; writes the summary (when summary is not empty) whatever happens. Returns the exit
-// code: 0 all rendered or skipped, 1 any failed, 128 + signal when interrupted.
+// code: 0 all rendered or skipped, 1 any failed or crashed, 128 + signal when interrupted.
 int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary, bool quiet);
 
 }  // namespace kiln

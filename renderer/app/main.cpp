@@ -2,10 +2,15 @@
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
 // 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render;
 // `kiln batch` exits 1 when any job failed).
+#include <sys/prctl.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "app/batch_command.h"
@@ -21,6 +26,16 @@ namespace {
 constexpr int exit_success = 0;
 constexpr int exit_failure = 1;
 constexpr int exit_bad_input = 2;
+
+// A job of kiln batch: it stops (SIGTERM, handled like any) when the batch dies, so a killed
+// batch leaves no render running on its own. KILN_TEST_ABORT_ASSET (test only, see
+// tests/batch_cli_test.cpp) makes the job whose asset has that file name call abort(), a real
+// crash for the batch to survive.
+void start_batch_job(const kiln::render_options& job) {
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  const char* abort_asset = std::getenv("KILN_TEST_ABORT_ASSET");
+  if (abort_asset && std::filesystem::path(job.input).filename() == abort_asset) std::abort();
+}
 
 std::string join_arguments(int argc, char** argv) {
   std::string line;
@@ -79,7 +94,10 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (render_command->parsed()) kiln::run_render(render);
+    if (render_command->parsed()) {
+      if (render.batch_job) start_batch_job(render);
+      kiln::run_render(render);
+    }
     if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
     if (bench_command->parsed()) kiln::run_bench_command(bench);
     if (stitch_command->parsed()) kiln::run_stitch(stitch);

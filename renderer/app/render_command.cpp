@@ -11,9 +11,12 @@
 #include <sstream>
 
 #include "accel/make_accelerator.h"
+#include "app/asset_file.h"
 #include "app/cli_checks.h"
 #include "app/exr_options.h"
 #include "app/interrupt.h"
+#include "app/output_lock.h"
+#include "app/progress_report.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/cryptomatte.h"
@@ -166,19 +169,6 @@ void add_default_light(scene& world, const view_camera& cam) {
   headlight.intensity = float(pi * distance * distance);
   headlight.casts_shadows = false;
   world.lights.push_back(headlight);
-}
-
-// A single progress line with percentage and ETA, shown only when stderr is a terminal.
-progress_callback make_progress(bool enabled) {
-  if (!enabled || !::isatty(STDERR_FILENO)) return {};
-  auto start = std::chrono::steady_clock::now();
-  return [start](size_t done, size_t total) {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double eta = done ? elapsed * double(total - done) / double(done) : 0.0;
-    std::fprintf(stderr, "\rkiln: rendering %3d%%  ETA %6.1f s ", int(100.0 * done / total), eta);
-    if (done == total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  };
 }
 
 std::string format_vec(const vec3& v) {
@@ -369,6 +359,25 @@ void add_render_options(CLI::App& app, render_options& o) {
   add_view_options(app, o);
   app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
   add_image_options(app, o);
+  add_progress_interval_option(app, o);
+  // Internal: kiln batch runs each job as `kiln render ... --batch-command-line LINE` in a child
+  // process; LINE is the job's own command line for the EXR header. Hidden from --help.
+  app.add_option_function<std::string>(
+         "--batch-command-line",
+         [&o](const std::string& line) {
+           o.command_line = line;
+           o.batch_job = true;
+           o.summary_line = false;  // the batch prints its own line per job
+         },
+         "")
+      ->group("");
+}
+
+void add_progress_interval_option(CLI::App& app, render_options& o) {
+  app.add_option("--progress-interval", o.progress_interval,
+                 "Seconds between progress lines when stderr is not a terminal (a log or a pipe)")
+      ->check(CLI::Range(0.01, 86400.0))
+      ->capture_default_str();
 }
 
 void add_image_options(CLI::App& app, render_options& o) {
@@ -437,6 +446,7 @@ void add_image_options(CLI::App& app, render_options& o) {
 }
 
 prepared_scene prepare_scene(const render_options& options) {
+  check_asset_file(options.input);
   prepared_scene p;
   auto load_start = std::chrono::steady_clock::now();
   gltf_load_options load_options;
@@ -508,6 +518,12 @@ render_settings make_render_settings(const render_options& options) {
 }
 
 void run_render(const render_options& options, const render_fingerprint* known) {
+  check_asset_file(options.input);  // before the fingerprint reads it
+  // A running batch owns its output folder; its own jobs (children) write there.
+  if (!options.batch_job) {
+    check_not_in_locked_folder(options.output);
+    if (!options.preview.empty()) check_not_in_locked_folder(options.preview);
+  }
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
   check_output_writable(options.output);
@@ -548,12 +564,14 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   }
   render_statistics stats;
   film image;
+  render_progress progress;
+  settings.progress = &progress;
   try {
-    image = render_image(world, *accel, cam, settings, &stats, make_progress(!options.quiet));
+    const progress_report report(progress, !options.quiet, options.progress_interval);
+    image = render_image(world, *accel, cam, settings, &stats);
     accel->throw_if_failed();  // an error Embree reported during traversal fails the render
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
-    if (::isatty(STDERR_FILENO) && !options.quiet) std::fprintf(stderr, "\n");  // end the progress line
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   }
 

@@ -74,6 +74,8 @@ struct render_options {
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
   bool quiet = false;
   bool summary_line = true;  // the closing line with timings and ray counts (kiln batch prints its own)
+  double progress_interval = 5.0;  // seconds between progress lines when stderr is not a terminal
+  bool batch_job = false;          // run by `kiln batch` as one of its jobs (hidden --batch-command-line)
   std::string command_line;
 };
 
@@ -86,6 +88,9 @@ void add_view_settings(CLI::App& app, render_options& options);
 
 // What render adds to the view options besides -o: --float, --aovs, --crop, --tile, --accel.
 void add_image_options(CLI::App& app, render_options& options);
+
+// --progress-interval (render and batch).
+void add_progress_interval_option(CLI::App& app, render_options& options);
 
 // Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);

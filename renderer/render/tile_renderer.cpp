@@ -155,6 +155,11 @@ struct tile_job {
   const std::vector<camera_sample>& corners;  // adaptive only: (W+1)×(H+1) pixel corners
 };
 
+void count_row_done(const render_settings& settings, const tile& tl) {
+  if (settings.progress)
+    settings.progress->pixels_done.fetch_add(uint64_t(tl.x1 - tl.x0), std::memory_order_relaxed);
+}
+
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const tile& tl, tile_sums& sums, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
@@ -170,6 +175,7 @@ void render_filtered_tile(const tile_job& job, const tile& tl, tile_sums& sums, 
       batch_end = batch.prepare(job.cam, job.settings, tl.x0, tl.x1, y, tl.y1);
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
       render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, sums, job.out, counts);
+    count_row_done(job.settings, tl);
   }
   job.splats.finish_tile(sums, job.out);
 }
@@ -211,7 +217,7 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
                                sample_cone(job.cam, 1), counts, job.settings.aovs.albedo,
                                wants_light_split(job.settings.aovs));
   };
-  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y)
+  for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       const size_t c = (y - job.out.y0) * row + (x - job.out.x0);
       const camera_sample corners[4] = {job.corners[c], job.corners[c + 1], job.corners[c + row],
@@ -223,6 +229,8 @@ void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch&
       if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
       if (wants_light_split(job.settings.aovs)) store_adaptive_split(job.out, p, i);
     }
+    count_row_done(job.settings, tl);
+  }
 }
 
 }  // namespace
@@ -280,6 +288,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 
+  if (settings.progress)
+    settings.progress->pixels_total = uint64_t(region.width()) * uint64_t(region.height());
   std::mutex merge_mutex;
   ray_counts total_counts;
   std::atomic<size_t> tiles_done{0};

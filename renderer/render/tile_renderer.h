@@ -17,6 +17,14 @@
 
 namespace kiln {
 
+// Work done so far, for progress reports and ETAs: pixels finished, counted row by row inside the
+// tiles as they go, so the fraction is the work done (not the tiles done: with T threads, T tiles
+// are nearly done when the first one ends). render_image sets the total before the first pixel.
+struct render_progress {
+  std::atomic<uint64_t> pixels_done{0};
+  std::atomic<uint64_t> pixels_total{0};
+};
+
 struct render_settings {
   int samples_per_pixel = 1;
   bool random_samples = false;  // independent uniform samples instead of jittered strata
@@ -39,6 +47,8 @@ struct render_settings {
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
   // (or sample batch) and render_image throws kiln::error of kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
+  // When set, render_image counts the pixels it finishes here (read from any thread).
+  render_progress* progress = nullptr;
 };
 
 struct render_statistics {

@@ -60,7 +60,8 @@ class FarmTest(unittest.TestCase):
         self.assert_plan_error({"version": 2, "jobs": []}, "/version: expected 1, got 2")
         self.assert_plan_error({"version": 1, "jobs": []}, "/jobs: expected a non-empty array")
         self.assert_plan_error({"version": 1, "jobs": [self.job(), self.job()]}, "/jobs/1/name: 'a' is not unique")
-        self.assert_plan_error({"version": 1, "jobs": [self.job(name="../x")]}, "/jobs/0/name: '../x' must be")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(name="a\tb")]},
+                               '/jobs/0/name: "a\\tb" contains a control character')
         self.assert_plan_error({"version": 1, "jobs": [self.job(asset="scenes/x.gltf")]},
                                "/jobs/0/asset: 'scenes/x.gltf' is not an absolute path")
         self.assert_plan_error({"version": 1, "jobs": [self.job(), self.job("b", output=self.job()["output"])]},
@@ -99,7 +100,7 @@ class FarmTest(unittest.TestCase):
             lines = f.read().splitlines()
         self.assertEqual(len(lines), 6)
         self.assertEqual(shlex.split(lines[4]), [KILN, "render", CORNELL, "-o",
-                                                 os.path.join(self.dir, "tiles", "b.1of3.exr"), "--tile", "1/3",
+                                                 os.path.join(self.dir, "tiles", "0001-b.1of3.exr"), "--tile", "1/3",
                                                  "--width", "40", "--height", "10", "--spp", "2", "--threads", "2",
                                                  "--float"])
         self.assertEqual(shlex.split(lines[0])[-2:], ["--threads", "3"])  # the plan left threads open
@@ -108,12 +109,12 @@ class FarmTest(unittest.TestCase):
                 continue  # band 2 of b stays missing
             subprocess.run(shlex.split(line) + ["-q"], check=True)
         for i in range(3):
-            header = kiln_farm.read_exr_header(os.path.join(self.dir, "tiles", f"a.{i}of3.exr"))
+            header = kiln_farm.read_exr_header(os.path.join(self.dir, "tiles", f"0000-a.{i}of3.exr"))
             y0, y1 = kiln_farm.band_rows(i, 3, 10)
             self.assertEqual(header["data_window"], [0, y0, 39, y1 - 1])
             self.assertEqual(header["display_window"], [0, 0, 39, 9])
         # Damage band 0 of b: cut it short.
-        damaged = os.path.join(self.dir, "tiles", "b.0of3.exr")
+        damaged = os.path.join(self.dir, "tiles", "0001-b.0of3.exr")
         with open(damaged, "rb") as f:
             data = f.read()
         with open(damaged, "wb") as f:
@@ -143,6 +144,19 @@ class FarmTest(unittest.TestCase):
         diff = subprocess.run(["idiff", "-q", "-fail", "0", "-failpercent", "0", "-warn", "0", "-a", reference,
                                a["output"]], capture_output=True)
         self.assertEqual(diff.returncode, 0, diff.stdout)
+
+    def test_any_name_kiln_batch_makes_is_accepted_and_gets_safe_band_files(self):
+        # kiln batch names a job by its output under --out-dir: spaces, folders, quotes, any script.
+        names = ["my shot", "sub dir/a b", "it's $HOME", "ünïcødé 名前", "-leading", ".hidden", "a_b", "a b"]
+        jobs = [self.job(n, output=os.path.join(self.dir, "out", f"{k}.exr")) for k, n in enumerate(names)]
+        plan = kiln_farm.load_plan(self.write_plan({"version": 1, "jobs": jobs}))
+        tasks = kiln_farm.build_tasks(plan, KILN, 2, 1, self.dir)
+        tiles = [argv[argv.index("-o") + 1] for _, _, argv in tasks]
+        self.assertEqual(len(set(tiles)), len(tiles))  # "a_b" and "a b" do not collide
+        for tile in tiles:
+            self.assertEqual(os.path.dirname(tile), os.path.join(self.dir, "tiles"))
+            self.assertRegex(os.path.basename(tile), r"^[0-9]{4}-[A-Za-z0-9_.+-]+\.[01]of2\.exr$")
+        self.assertEqual(os.path.basename(tiles[2]), "0001-sub_dir_a_b.0of2.exr")
 
     def test_one_band_is_moved_into_place(self):
         path = self.write_plan({"version": 1, "jobs": [self.job("whole")]})

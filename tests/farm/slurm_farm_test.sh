@@ -147,13 +147,29 @@ echo "farm: a failing first attempt is retried; a missing asset is reported in v
 
 # kiln batch --plan-only resolves a manifest into the same plan format: run it when available.
 if "$kiln" batch --help 2>&1 | grep -q -- --plan-only; then
-  printf 'asset\n%s\n' "$scenes/cornell_box.gltf" >"$scratch/manifest.csv"
-  python3 "$farm/kiln_farm.py" submit --manifest "$scratch/manifest.csv" --out-dir "$scratch/out3" \
+  # Every name kiln batch accepts goes through: spaces and quotes in the asset's file name and
+  # folder, an output in a subfolder with spaces and non-ASCII letters, an --out-dir with a space.
+  assets="$scratch/assets dir"
+  mkdir -p "$assets"
+  cp "$scenes/cornell_box.gltf" "$assets/my shot 'v2'.gltf"
+  cp "$scenes/cornell_box.bin" "$scenes/checker.png" "$assets/"
+  printf 'asset,output\n%s,\n%s,\n%s,%s\n' "$scenes/cornell_box.gltf" "$assets/my shot 'v2'.gltf" \
+    "$assets/my shot 'v2'.gltf" "sub dir/ünï cødé.exr" >"$scratch/manifest.csv"
+  python3 "$farm/kiln_farm.py" submit --manifest "$scratch/manifest.csv" --out-dir "$scratch/out 3" \
     --kiln "$kiln" --work-dir "$scratch/work3" --tiles 2 --mem 256M --time 5:00 --wait \
-    -- "${size[@]}" --spp 1 || fail "the --manifest farm run did not complete"
-  python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); assert r["ok"] and r["jobs"], r' \
-    "$scratch/work3/verify.json" || fail "the --manifest run's verify.json is not ok"
-  echo "farm: --manifest through kiln batch --plan-only verified"
+    -- "${size[@]}" --spp 1 || fail "the --manifest farm run did not complete: $(cat "$scratch"/work3/logs/*.log)"
+  python3 - "$scratch/work3/verify.json" "$scratch/out 3" <<'PY' || fail "the --manifest run's verify.json is not ok"
+import json, os, sys
+r = json.load(open(sys.argv[1], encoding="utf-8"))
+assert r["ok"], r
+names = [j["name"] for j in r["jobs"]]
+assert names == ["cornell_box", "my shot 'v2'", "sub dir/ünï cødé"], names
+for j in r["jobs"]:
+    assert j["ok"] and j["output"] == os.path.join(sys.argv[2], j["name"] + ".exr"), j
+    assert os.path.isfile(j["output"]), j
+PY
+  compare_to_reference "my shot 'v2'" "$scratch/out 3/my shot 'v2'.exr" "$scratch/work3/plan.json"
+  echo "farm: --manifest through kiln batch --plan-only verified, names with spaces, quotes and non-ASCII included"
 else
   echo "farm: --manifest not exercised: this kiln's batch command has no --plan-only"
 fi

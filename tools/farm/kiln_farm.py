@@ -29,7 +29,10 @@ import time
 USAGE_ERROR = 2
 TERMINAL_STATES = {"COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", "NODE_FAIL", "OUT_OF_MEMORY",
                    "PREEMPTED", "BOOT_FAIL", "DEADLINE"}
-SAFE_NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.+-]*$")
+# Characters a band's file name keeps from its job's name; others become _ (the job index in front
+# keeps two names that map alike apart).
+FILE_NAME_UNSAFE = re.compile(r"[^A-Za-z0-9_.+-]")
+CONTROL = re.compile(r"[\x00-\x1f\x7f]")
 
 
 class InputError(Exception):
@@ -63,12 +66,9 @@ def load_plan(path):
         for key in ("name", "asset", "output"):
             if not isinstance(job.get(key), str) or not job[key]:
                 raise InputError(f"{where}/{key}: expected a non-empty string")
-            if "\n" in job[key] or "\0" in job[key]:
-                raise InputError(f"{where}/{key}: contains a newline or NUL")
-        # The name becomes part of tile and log file names.
-        if not SAFE_NAME.match(job["name"]):
-            raise InputError(f"{where}/name: '{job['name']}' must be letters, digits and _ . + - "
-                             "(not starting with . + or -)")
+            # tasks.txt holds one shell-quoted command a line; any other character is quoted.
+            if CONTROL.search(job[key]):
+                raise InputError(f"{where}/{key}: {json.dumps(job[key])} contains a control character")
         if job["name"] in names:
             raise InputError(f"{where}/name: '{job['name']}' is not unique")
         names.add(job["name"])
@@ -125,21 +125,27 @@ def plan_from_manifest(kiln, manifest, out_dir, extra, plan_path):
 # Work folder and sbatch scripts
 
 
-def tile_path(work_dir, job_name, i, n):
-    return os.path.join(work_dir, "tiles", f"{job_name}.{i}of{n}.exr")
+def band_stem(index, job_name):
+    """The file name stem of a job's bands: any name (spaces, slashes, any script) becomes a safe
+    file name, numbered by the job's place in the plan so that it stays unique."""
+    return f"{index:04d}-{FILE_NAME_UNSAFE.sub('_', job_name)[:80]}"
+
+
+def tile_path(work_dir, stem, i, n):
+    return os.path.join(work_dir, "tiles", f"{stem}.{i}of{n}.exr")
 
 
 def build_tasks(plan, kiln, tiles, cpus_per_task, work_dir):
     """One task per job and band, in job order: (job name, band, kiln argv)."""
     tasks = []
-    for job in plan["jobs"]:
+    for index, job in enumerate(plan["jobs"]):
         args = list(job["render_args"])
         # Without cgroups nothing stops kiln from starting one thread per core of the node.
         if option_value(args, "--threads") is None:
             args += ["--threads", str(cpus_per_task)]
         for i in range(tiles):
             band = ["--tile", f"{i}/{tiles}"] if tiles > 1 else []
-            tile = tile_path(work_dir, job["name"], i, tiles)
+            tile = tile_path(work_dir, band_stem(index, job["name"]), i, tiles)
             argv = [kiln, "render", job["asset"], "-o", tile] + band + args
             tasks.append((job["name"], i, argv))
     return tasks
@@ -210,12 +216,12 @@ def write_work_dir(options, plan, tasks):
         for _, _, argv in tasks:
             f.write(" ".join(shlex.quote(a) for a in argv) + "\n")
     farm = {"version": 1, "kiln": options.kiln, "tiles": options.tiles, "jobs": []}
-    for job in plan["jobs"]:
+    for index, job in enumerate(plan["jobs"]):
         farm["jobs"].append({
             "name": job["name"], "asset": job["asset"], "output": job["output"],
             "width": option_value(job["render_args"], "--width"),
             "height": option_value(job["render_args"], "--height"),
-            "tiles": [tile_path(w, job["name"], i, options.tiles) for i in range(options.tiles)],
+            "tiles": [tile_path(w, band_stem(index, job["name"]), i, options.tiles) for i in range(options.tiles)],
             "tasks": [k for k, (name, _, _) in enumerate(tasks) if name == job["name"]],
         })
     with open(os.path.join(w, "farm.json"), "w", encoding="utf-8") as f:

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "core/error.h"
@@ -29,7 +30,36 @@ bool seek_beauty(OIIO::ImageInput& in, int& first_channel) {
   return false;
 }
 
+// The last bytes every complete file of the format ends with.
+bool ends_with_trailer(const std::string& path, const std::string& format) {
+  static const unsigned char png_end[] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  static const unsigned char jpeg_end[] = {0xFF, 0xD9};
+  const std::string trailer = format == "png" ? std::string(png_end, png_end + sizeof png_end)
+                                              : std::string(jpeg_end, jpeg_end + sizeof jpeg_end);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < std::streamoff(trailer.size())) return false;
+  in.seekg(-std::streamoff(trailer.size()), std::ios::end);
+  std::string tail(trailer.size(), '\0');
+  return bool(in.read(tail.data(), std::streamsize(tail.size()))) && tail == trailer;
+}
+
 }  // namespace
+
+bool preview_complete(const std::string& preview_path, int width, int height) {
+  const std::string format = preview_format(preview_path);
+  if (format.empty() || !ends_with_trailer(preview_path, format)) return false;
+  auto in = OIIO::ImageInput::open(preview_path);
+  if (!in) {
+    OIIO::geterror();  // clear the message OpenImageIO keeps for the thread
+    return false;
+  }
+  const OIIO::ImageSpec spec = in->spec();
+  if (in->format_name() != format || spec.width != width || spec.height != height) return false;
+  std::vector<unsigned char> pixels(spec.image_bytes());
+  const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data());
+  if (!read) in->geterror();
+  return read;
+}
 
 std::string preview_format(const std::string& path) {
   const size_t dot = path.find_last_of('.');

@@ -22,4 +22,9 @@ unsigned char preview_code(float linear, double exposure);
 // preview cannot be written.
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure);
 
+// True when preview_path is a complete preview of a width x height data window: its format is the
+// one its extension names, its size is right, it ends with the format's closing marker (PNG IEND,
+// JPEG EOI: a truncated JPEG otherwise decodes as grey) and every pixel decodes.
+bool preview_complete(const std::string& preview_path, int width, int height);
+
 }  // namespace kiln

@@ -1,0 +1,33 @@
+// The advisory lock (flock(2)) a running `kiln batch` holds on its output folder, through the
+// file .kiln-batch.lock inside it: a second batch on the same folder is refused (or waits), and
+// so is a `kiln render -o` into the folder, so two runs never mix their outputs. App layer only.
+#pragma once
+
+#include <string>
+
+namespace kiln {
+
+// The lock file's name inside an output folder.
+extern const char* const output_lock_name;
+
+// Holds the lock on a folder for its lifetime; removes the lock file when released.
+class output_folder_lock {
+ public:
+  // Takes the lock on folder (which exists). Another holder: throws kiln::error (input) naming the
+  // folder and the holder's pid, or, with wait, waits for it (a signal stops the wait: kind
+  // interrupted). Throws kiln::error (io) when the lock file cannot be created.
+  output_folder_lock(const std::string& folder, bool wait);
+  ~output_folder_lock();
+  output_folder_lock(const output_folder_lock&) = delete;
+  output_folder_lock& operator=(const output_folder_lock&) = delete;
+
+ private:
+  int fd_ = -1;
+  std::string path_;
+};
+
+// Throws kiln::error (input) when path lies in a folder, or below one, whose lock a running batch
+// holds. Takes no lock itself and creates nothing.
+void check_not_in_locked_folder(const std::string& path);
+
+}  // namespace kiln
