@@ -10,6 +10,7 @@
 
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
+#include "app/output_guard.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -62,6 +63,29 @@ std::string render_command_line(const render_options& o) {
   if (!o.preview.empty())
     line += " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
   return line;
+}
+
+// Every job's EXR and preview against every file any job reads (one job's output must not replace
+// another's asset, buffer or environment map) and the rules of kiln render: .exr, no symlink.
+void check_batch_outputs(const std::vector<batch_job>& jobs) {
+  std::vector<input_file> files;
+  for (const batch_job& job : jobs) {
+    std::vector<input_file> read = render_input_files(job.options);
+    files.insert(files.end(), read.begin(), read.end());
+  }
+  const input_index inputs = index_inputs(files);  // one stat per file, not per pair
+  for (const batch_job& job : jobs) {
+    try {
+      const render_options& o = job.options;
+      check_output_spares_inputs(o.output, "output", inputs);
+      if (!o.preview.empty()) check_output_spares_inputs(o.preview, "--preview", inputs);
+      check_not_symlink(o.output, "output");
+      if (!o.preview.empty()) check_not_symlink(o.preview, "--preview");
+      check_exr_output_name(o.output, "output", preview_hint::hide);
+    } catch (const error& e) {
+      throw input_error("", job.where, e.what());
+    }
+  }
 }
 
 nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
@@ -163,6 +187,7 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
     jobs.push_back(std::move(job));
   }
+  check_batch_outputs(jobs);
   return jobs;
 }
 
