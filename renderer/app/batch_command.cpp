@@ -10,6 +10,8 @@
 
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
+#include "app/cli_checks.h"
+#include "app/cli_suggest.h"
 #include "app/output_guard.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
@@ -130,8 +132,16 @@ void apply_render_arguments(render_options& options, const std::vector<std::stri
   parser.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   add_view_settings(parser, options);
   add_image_options(parser, options);
+  require_integer_text(parser);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
-  parser.parse(reversed);
+  try {
+    parser.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    // A mistyped manifest key is named with the closest render option, as on the command line.
+    if (std::optional<std::string> better = unknown_option_message(parser, arguments))
+      throw CLI::ParseError(*better, e.get_exit_code());
+    throw;
+  }
 }
 
 std::vector<batch_job> plan_batch(const batch_options& options) {

@@ -26,7 +26,7 @@ fs::path scratch_dir() {
 // Settings with every colour-like layer in one format.
 exr_settings all_layers(sample_format format) {
   exr_settings s;
-  s.formats = {format, format, format, format};
+  s.formats = {format, format, format, format, format, format, format};
   return s;
 }
 
@@ -168,7 +168,8 @@ TEST(exr_writer, each_colour_like_layer_takes_its_own_format_and_data_layers_sta
   fs::path file = scratch_dir() / "formats.exr";
   exr_settings s;
   s.formats.beauty = sample_format::float32;
-  s.formats.albedo = sample_format::float32;  // N and uv stay half
+  s.formats.albedo = sample_format::float32;
+  s.formats.uv = sample_format::half;  // N (by default) and uv (asked for) half
   write_exr(file.string(), all_aov_film(), s, exr_metadata{});
   const auto channels = channels_of(file);
   ASSERT_EQ(channels.size(), 19u);
