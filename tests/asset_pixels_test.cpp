@@ -93,12 +93,13 @@ struct rendering {
   rgb color(int x, int y) const { return {at(x, y)[0], at(x, y)[1], at(x, y)[2]}; }
   float depth(int x, int y) const { return at(x, y)[4]; }
 
-  // Pixel position of a world point (OpenEXR row-vector convention: ndc_h = (p,1)·M).
+  // Pixel position of a world point (OpenEXR: row vectors, ndc_h = (p,1)·M, then the homogeneous
+  // divide; NDC (0, 0) is the frame's upper-left corner and (1, 1) its lower-right).
   glm::dvec2 project(const dvec3& p) const {
     const float* m = world_to_ndc;
     double h[4];
     for (int c = 0; c < 4; ++c) h[c] = p.x * m[c] + p.y * m[4 + c] + p.z * m[8 + c] + m[12 + c];
-    return {(h[0] / h[3] + 1.0) / 2.0 * width, (1.0 - h[1] / h[3]) / 2.0 * height};
+    return {h[0] / h[3] * width, h[1] / h[3] * height};
   }
 };
 

@@ -35,15 +35,8 @@ using testing::lines;
 using testing::run_kiln;
 using testing::scratch_folder;
 
-const fs::path scenes = fs::path(KILN_SOURCE_DIR) / "scenes";
-
-// Copies the demo scene (its .gltf, buffer and texture) into folder, the .gltf as name.
 std::string copy_scene(const fs::path& folder, const std::string& name = "cornell_box.gltf") {
-  fs::create_directories(folder);
-  fs::copy_file(scenes / "cornell_box.gltf", folder / name, fs::copy_options::overwrite_existing);
-  fs::copy_file(scenes / "cornell_box.bin", folder / "cornell_box.bin", fs::copy_options::overwrite_existing);
-  fs::copy_file(scenes / "checker.png", folder / "checker.png", fs::copy_options::overwrite_existing);
-  return (folder / name).string();
+  return testing::copy_scene(folder.string(), name);
 }
 
 void write_file(const fs::path& path, const std::string& text) {

@@ -118,14 +118,14 @@ TEST_F(cli_view, look_at_camera_overrides_the_file_and_is_recorded_in_the_header
   exr_image image = read_exr(out("look"));
   EXPECT_EQ(image.camera, "look-at");
   // OpenEXR's row-vector convention: p_camera = p_world · M. The eye maps to the origin, the
-  // target to (0, 0, -3): the camera looks down its -Z.
+  // target to (0, 0, 3): camera space is left-handed with +Z the viewing direction.
   auto apply = [&](double x, double y, double z, int column) {
     const auto& m = image.world_to_camera;
     return x * m[0 * 4 + column] + y * m[1 * 4 + column] + z * m[2 * 4 + column] + m[3 * 4 + column];
   };
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(apply(0.5, -0.25, 3.0, c), 0.0, 1e-5) << c;
   EXPECT_NEAR(apply(0.5, -0.25, 0.0, 0), 0.0, 1e-5);
-  EXPECT_NEAR(apply(0.5, -0.25, 0.0, 2), -3.0, 1e-5);
+  EXPECT_NEAR(apply(0.5, -0.25, 0.0, 2), 3.0, 1e-5);
   // The centre ray hits the quad at distance 3.
   const size_t centre = (size_t(24) * 48 + 24) * 5;
   EXPECT_NEAR(image.rgba[centre + 4], 3.0f, 1e-3f);

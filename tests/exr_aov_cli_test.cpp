@@ -92,7 +92,8 @@ TEST(exr_aov_cli, depth_position_and_ids_stay_float_without_the_float_flag) {
   const std::string dir = scratch_folder("aov_formats");
   const std::string all = "beauty,Z,N,P,albedo,uv,id";
   for (const auto& [name, format] : channels(render(dir, "half.exr", {"--aovs", all}))) {
-    const bool full = name == "Z" || name[0] == 'P' || name.rfind("id.", 0) == 0;
+    // uv is float by default too (STMaps, UDIM tiles).
+    const bool full = name == "Z" || name[0] == 'P' || name.rfind("id.", 0) == 0 || name.rfind("uv.", 0) == 0;
     EXPECT_EQ(format, full ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF) << name;
   }
   const auto floats = channels(render(dir, "float.exr", {"--aovs", all, "--float"}));

@@ -7,6 +7,7 @@
 
 #include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -167,11 +168,17 @@ TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
 }
 
 TEST(faults, output_that_is_not_a_regular_file_is_refused_before_rendering) {
-  // Writing "to" a device would replace the device node by rename; kiln refuses instead.
-  auto result = testing::run_kiln({"render", demo_scene, "-o", "/dev/null", "--width", "32"});
+  // Writing "to" a pipe or device would replace the node by rename; kiln refuses instead.
+  const std::string pipe = scratch_folder("pipe_output") + "/pipe.exr";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0644), 0);
+  auto result = testing::run_kiln({"render", demo_scene, "-o", pipe, "--width", "32"});
   EXPECT_EQ(result.exit_code, 1);
   ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("not a regular file"), std::string::npos) << result.stderr_text;
+  EXPECT_TRUE(fs::is_fifo(pipe));
+  // A device has no .exr name: a usage error before that check.
+  result = testing::run_kiln({"render", demo_scene, "-o", "/dev/null", "--width", "32"});
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 

@@ -12,6 +12,9 @@
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
 #include "app/output_lock.h"
+#include "app/cli_checks.h"
+#include "app/cli_suggest.h"
+#include "app/output_guard.h"
 #include "app/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -82,6 +85,29 @@ std::string render_command_line(const render_options& o) {
   return line;
 }
 
+// Every job's EXR and preview against every file any job reads (one job's output must not replace
+// another's asset, buffer or environment map) and the rules of kiln render: .exr, no symlink.
+void check_batch_outputs(const std::vector<batch_job>& jobs) {
+  std::vector<input_file> files;
+  for (const batch_job& job : jobs) {
+    std::vector<input_file> read = render_input_files(job.options);
+    files.insert(files.end(), read.begin(), read.end());
+  }
+  const input_index inputs = index_inputs(files);  // one stat per file, not per pair
+  for (const batch_job& job : jobs) {
+    try {
+      const render_options& o = job.options;
+      check_output_spares_inputs(o.output, "output", inputs);
+      if (!o.preview.empty()) check_output_spares_inputs(o.preview, "--preview", inputs);
+      check_not_symlink(o.output, "output");
+      if (!o.preview.empty()) check_not_symlink(o.preview, "--preview");
+      check_exr_output_name(o.output, "output", preview_hint::hide);
+    } catch (const error& e) {
+      throw input_error("", job.where, e.what());
+    }
+  }
+}
+
 nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
   nlohmann::json list = nlohmann::json::array();
   for (const batch_job& job : jobs) {
@@ -127,8 +153,16 @@ void apply_render_arguments(render_options& options, const std::vector<std::stri
   parser.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   add_view_settings(parser, options);
   add_image_options(parser, options);
+  require_integer_text(parser);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
-  parser.parse(reversed);
+  try {
+    parser.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    // A mistyped manifest key is named with the closest render option, as on the command line.
+    if (std::optional<std::string> better = unknown_option_message(parser, arguments))
+      throw CLI::ParseError(*better, e.get_exit_code());
+    throw;
+  }
 }
 
 std::vector<batch_job> plan_batch(const batch_options& options) {
@@ -193,6 +227,7 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
                 why);
     jobs.push_back(std::move(job));
   }
+  check_batch_outputs(jobs);
   return jobs;
 }
 

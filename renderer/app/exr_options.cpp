@@ -14,6 +14,16 @@ namespace {
 
 constexpr int default_exr_tile = 64;
 
+// The AOVs --channel-format (and --float) set, those of layer_formats.
+const std::string selectable_aovs = "beauty, N, albedo, uv, direct, reflection, refraction";
+
+// "rgba, depth, N, ...": every part --multipart can write, from the writer's table.
+std::string part_list() {
+  std::string list;
+  for (const std::string& name : exr_part_names()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
 // The format slot of a --channel-format AOV name; nullptr for names that have none. Throws a
 // usage error for data AOVs asked to be half and for unknown names.
 sample_format* format_slot(layer_formats& formats, const std::string& aov, const std::string& format) {
@@ -21,15 +31,18 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
   if (aov == "N") return &formats.normal;
   if (aov == "albedo") return &formats.albedo;
   if (aov == "uv") return &formats.uv;
+  if (aov == "direct") return &formats.direct;
+  if (aov == "reflection") return &formats.reflection;
+  if (aov == "refraction") return &formats.refraction;
   if (aov == "Z" || aov == "P" || aov == "id") {
     if (format == "float") return nullptr;  // what it is anyway
     throw CLI::ValidationError("--channel-format", aov +
                                                        " is always 32-bit float (depth, positions and ids "
-                                                       "need the precision); only beauty, N, albedo and uv "
-                                                       "can be half");
+                                                       "need the precision); only " +
+                                                       selectable_aovs + " can be half");
   }
   throw CLI::ValidationError("--channel-format",
-                             "unknown AOV '" + aov + "' (choose from beauty, N, albedo, uv)");
+                             "unknown AOV '" + aov + "' (choose from " + selectable_aovs + ")");
 }
 
 // Parses "AOV=half|float,..." onto formats.
@@ -50,7 +63,9 @@ void apply_channel_formats(const std::string& text, layer_formats& formats) {
 
 void add_exr_options(CLI::App& app, render_options& o) {
   app.add_flag("--float", o.full_float,
-               "Write RGBA, N, albedo and uv as 32-bit float instead of half (Z, P and id are always float)");
+               "Write RGBA, N, albedo and the light split (direct, reflection, refraction) as 32-bit float "
+               "instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are "
+               "always float)");
   app.add_option_function<std::string>(
       "--channel-format",
       [&o](const std::string& text) {
@@ -58,8 +73,8 @@ void add_exr_options(CLI::App& app, render_options& o) {
         apply_channel_formats(text, check);  // a usage error now, not after the render
         o.channel_formats = text;
       },
-      "Per-AOV sample format after --float, e.g. beauty=float,N=half (beauty, N, albedo, uv; Z, P and id "
-      "are always float)");
+      "Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (" + selectable_aovs +
+          "; Z, P and id are always float)");
   app.add_option("--compression", o.exr.compression,
                  "EXR codec; pxr24, b44, b44a, dwaa and dwab are lossy and need --multipart when the file "
                  "holds Z, P or id (which then keep zip)")
@@ -72,7 +87,7 @@ void add_exr_options(CLI::App& app, render_options& o) {
   app.add_option("--exr-tile-size", o.exr_tile_size, "Tiled EXR with NxN tiles (implies --tiled)")
       ->check(CLI::Range(1, 4096));
   app.add_flag("--multipart", o.exr.multipart,
-               "One EXR part per layer (rgba, depth, N, P, albedo, uv, id), each with the full header");
+               "One EXR part per layer (" + part_list() + "), each with the full header");
   app.add_option("--preview", o.preview,
                  "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty")
       ->check(CLI::Validator(
@@ -91,7 +106,7 @@ exr_settings resolve_exr_settings(const render_options& options) {
   if (options.exr_tiled || options.exr_tile_size > 0)
     settings.tile_size = options.exr_tile_size > 0 ? options.exr_tile_size : default_exr_tile;
   const sample_format all = options.full_float ? sample_format::float32 : sample_format::half;
-  settings.formats = {all, all, all, all};
+  settings.formats = {all, all, all, sample_format::float32, all, all, all};  // uv: float either way
   apply_channel_formats(options.channel_formats, settings.formats);
   const std::string& codec = settings.compression;
   if (settings.compression_level > 0) {

@@ -12,9 +12,14 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "app/batch_command.h"
 #include "app/bench_command.h"
+#include "app/cli_checks.h"
+#include "app/cli_suggest.h"
 #include "app/compare_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
@@ -83,12 +88,21 @@ int main(int argc, char** argv) {
       "batch", "Render many assets (arguments, glob patterns or a manifest) with resume and a JSON summary");
   kiln::add_batch_options(*batch_command, batch);
 
+  kiln::require_integer_text(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
-    std::string message = e.what();
+    // A mistyped command or option is named with the closest known one, whatever CLI11 tripped over
+    // first (a missing -o, or "arguments were not expected").
+    const std::vector<std::string> arguments(argv + 1, argv + argc);
+    std::optional<std::string> better = kiln::unknown_command_message(app, arguments);
+    // No message about the command: arguments[0] is an option or names a subcommand.
+    if (!better && !arguments.empty() && !arguments[0].empty() && arguments[0][0] != '-')
+      better = kiln::unknown_option_message(*app.get_subcommand(arguments[0]),
+                                            {arguments.begin() + 1, arguments.end()});
+    std::string message = better.value_or(e.what());
     std::cerr << "kiln: " << message << " (run 'kiln --help' or 'kiln render --help')\n";
     return exit_bad_input;
   }

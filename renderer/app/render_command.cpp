@@ -17,6 +17,7 @@
 #include "app/interrupt.h"
 #include "app/output_lock.h"
 #include "app/progress_report.h"
+#include "app/output_guard.h"
 #include "app/render_fingerprint.h"
 #include "core/error.h"
 #include "io/exr/cryptomatte.h"
@@ -526,6 +527,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
   }
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
+  check_render_outputs(options);  // never a file the render reads, never through a symlink
   check_output_writable(options.output);
   const exr_settings storage = resolve_exr_settings(options);
   if (!options.preview.empty()) check_output_writable(options.preview);

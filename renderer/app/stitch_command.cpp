@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/output_guard.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_stitch.h"
@@ -19,6 +20,11 @@ void add_stitch_options(CLI::App& app, stitch_options& o) {
 }
 
 void run_stitch(const stitch_options& options) {
+  std::vector<input_file> inputs;
+  for (const std::string& path : options.inputs) inputs.push_back({path, "an input region"});
+  check_output_spares_inputs(options.output, "output", index_inputs(inputs));
+  check_not_symlink(options.output, "output");
+  check_exr_output_name(options.output, "output", preview_hint::hide);
   check_output_writable(options.output);  // before reading, which may take long for big frames
   std::vector<exr_image> regions;
   for (const std::string& path : options.inputs) regions.push_back(read_exr(path));
@@ -30,9 +36,9 @@ void run_stitch(const stitch_options& options) {
   for (size_t k = 1; k < regions.size(); ++k)
     for (const char* name : same)
       if (exr_string_attribute(regions[k], name) != exr_string_attribute(regions[0], name))
-        throw input_error(options.inputs[k], name,
-                          "rendered from other inputs or settings than " + options.inputs[0] + " (" + name +
-                              " differs)");
+        throw input_error(
+            options.inputs[k], name,
+            "rendered from other inputs or settings than " + options.inputs[0] + " (" + name + " differs)");
   // The stitched frame records the settings hash of the full-frame render it equals, so
   // `kiln batch --resume` sees it as that render's output.
   const std::string frame_hash = exr_string_attribute(regions[0], "kiln/frame_settings_hash");

@@ -142,33 +142,46 @@ pixel_cone camera_pixel_cone(const view_camera& cam) {
 }
 
 dmat4 world_to_camera(const view_camera& cam) {
-  dmat4 camera_to_world(1.0);
-  camera_to_world[0] = dvec4(cam.right, 0.0);
-  camera_to_world[1] = dvec4(cam.up, 0.0);
-  camera_to_world[2] = dvec4(-cam.view, 0.0);
-  camera_to_world[3] = dvec4(cam.eye, 1.0);
-  return glm::inverse(camera_to_world);
+  // Rows right, up, view (column-vector form): camera x = (p - eye)·right and so on. The basis
+  // (right, up, view) is left-handed, as OpenEXR and RenderMan define camera space.
+  dmat4 m(1.0);
+  const dvec3 axes[3] = {cam.right, cam.up, cam.view};
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) m[column][row] = axes[row][column];
+    m[3][row] = -glm::dot(axes[row], cam.eye);
+  }
+  return m;
 }
 
 dmat4 world_to_ndc(const view_camera& cam) {
-  dmat4 projection_matrix(0.0);
+  // Camera space to NDC. The window spans [left, right_edge] x [bottom, top] at distance d (the
+  // plane through the eye for orthographic views); NDC x runs from the window's left edge (0) to
+  // its right edge (1), NDC y from its top (0) down to its bottom (1), so raster position = NDC x
+  // image size and pixel (i, j) has its centre at ((i + 0.5) / width, (j + 0.5) / height). The
+  // window is the full frame whatever --crop renders, as the EXR's display window is.
+  // NDC z (which OpenEXR discards) maps camera depth near..far to 0..1.
   const double near_plane = 0.01, far_plane = 1e5;
-  double half_width = 0.5 * (cam.right_edge - cam.left);
-  double half_height = 0.5 * (cam.top - cam.bottom);
+  const double width = cam.right_edge - cam.left, height = cam.top - cam.bottom;
+  dmat4 p(0.0);  // p[column][row]
   if (cam.kind == projection::perspective) {
-    projection_matrix[0][0] = cam.distance / half_width;
-    projection_matrix[1][1] = cam.distance / half_height;
-    projection_matrix[2][2] = -(far_plane + near_plane) / (far_plane - near_plane);
-    projection_matrix[2][3] = -1.0;
-    projection_matrix[3][2] = -2.0 * far_plane * near_plane / (far_plane - near_plane);
+    // Homogeneous w = camera z: x_ndc = (d·x/z - left) / width, y_ndc = (top - d·y/z) / height.
+    p[0][0] = cam.distance / width;
+    p[2][0] = -cam.left / width;
+    p[1][1] = -cam.distance / height;
+    p[2][1] = cam.top / height;
+    p[2][2] = far_plane / (far_plane - near_plane);
+    p[3][2] = -far_plane * near_plane / (far_plane - near_plane);
+    p[2][3] = 1.0;
   } else {
-    projection_matrix[0][0] = 1.0 / half_width;
-    projection_matrix[1][1] = 1.0 / half_height;
-    projection_matrix[2][2] = -2.0 / (far_plane - near_plane);
-    projection_matrix[3][2] = -(far_plane + near_plane) / (far_plane - near_plane);
-    projection_matrix[3][3] = 1.0;
+    p[0][0] = 1.0 / width;
+    p[3][0] = -cam.left / width;
+    p[1][1] = -1.0 / height;
+    p[3][1] = cam.top / height;
+    p[2][2] = 1.0 / (far_plane - near_plane);
+    p[3][2] = -near_plane / (far_plane - near_plane);
+    p[3][3] = 1.0;
   }
-  return projection_matrix * world_to_camera(cam);
+  return p * world_to_camera(cam);
 }
 
 }  // namespace kiln

@@ -48,10 +48,13 @@ struct pixel_cone {
 };
 pixel_cone camera_pixel_cone(const view_camera& cam);
 
-// World to camera space (+X right, +Y up, looking along -Z): OpenEXR's worldToCamera.
+// World to camera space as OpenEXR's worldToCamera defines it (ImfStandardAttributes.h, RenderMan's
+// camera space): left-handed, +X right, +Y up, +Z the viewing direction (points in front have z > 0).
+// Column-vector form (p_camera = M · p); the EXR stores its transpose for row vectors.
 dmat4 world_to_camera(const view_camera& cam);
 
-// World to normalized device coordinates ([-1, 1] across the window): OpenEXR's worldToNDC.
+// World to OpenEXR's (and RenderMan's) NDC: after the homogeneous divide, (0, 0) is the upper-left
+// and (1, 1) the lower-right corner of the full frame (the display window), y pointing down.
 dmat4 world_to_ndc(const view_camera& cam);
 
 }  // namespace kiln

@@ -89,10 +89,12 @@ TEST(view_camera, default_camera_frames_every_corner_of_the_scene_bounds) {
     for (int corner = 0; corner < 8; ++corner) {
       dvec3 p((corner & 1) ? box.upper.x : box.lower.x, (corner & 2) ? box.upper.y : box.lower.y,
               (corner & 4) ? box.upper.z : box.lower.z);
-      dvec4 clip = ndc * dvec4(p, 1.0);
-      ASSERT_GT(clip.w, 0.0) << "corner " << corner << " is behind the camera";
-      EXPECT_LE(std::abs(clip.x / clip.w), 1.0) << "corner " << corner << " leaves the image sideways";
-      EXPECT_LE(std::abs(clip.y / clip.w), 1.0) << "corner " << corner << " leaves the image vertically";
+      dvec4 corner_ndc = ndc * dvec4(p, 1.0);
+      ASSERT_GT(corner_ndc.w, 0.0) << "corner " << corner << " is behind the camera";
+      EXPECT_LE(std::abs(corner_ndc.x / corner_ndc.w - 0.5), 0.5)
+          << "corner " << corner << " leaves the image sideways";
+      EXPECT_LE(std::abs(corner_ndc.y / corner_ndc.w - 0.5), 0.5)
+          << "corner " << corner << " leaves the image vertically";
     }
     // It looks at the centre: the centre pixel's ray passes through the box centre.
     ray r = generate_camera_ray(cam, 0.5 * w, 0.5 * h);
@@ -129,14 +131,44 @@ TEST(view_camera, impossible_cameras_are_input_errors) {
   EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 0, -1), dvec3(0, 1, 0), 45, 0, 10), error);
 }
 
+// OpenEXR's NDC: (0, 0) at the upper-left corner of the frame, (1, 1) at the lower-right.
 TEST(view_camera, world_to_ndc_maps_window_corners_to_unit_square) {
   view_camera cam = make_look_at_camera(dvec3(0, 0, 5), dvec3(0), dvec3(0, 1, 0), 60.0, 40, 20);
   ray r = generate_camera_ray(cam, 40.0, 0.0);  // top-right corner
   dvec4 p = world_to_ndc(cam) * dvec4(dvec3(r.origin) + 3.0 * dvec3(r.direction), 1.0);
   EXPECT_NEAR(p.x / p.w, 1.0, 1e-5);
-  EXPECT_NEAR(p.y / p.w, 1.0, 1e-5);
+  EXPECT_NEAR(p.y / p.w, 0.0, 1e-5);
   dvec4 q = world_to_camera(cam) * dvec4(0, 0, 0, 1);
-  EXPECT_NEAR(q.z, -5.0, 1e-12);
+  EXPECT_NEAR(q.z, 5.0, 1e-12);  // in front of the camera: z > 0
+}
+
+// A point along the ray through raster position (px, py) projects back to (px / W, py / H), and its
+// camera z is its depth along the view axis, for both projections and for turned cameras.
+TEST(view_camera, world_to_ndc_inverts_the_camera_ray_and_camera_z_is_planar_depth) {
+  camera ortho;
+  ortho.kind = projection::orthographic;
+  ortho.ymag = 1.5f;
+  ortho.world_from_camera =
+      glm::rotate(glm::translate(dmat4(1.0), dvec3(1, 2, 3)), 0.7, glm::normalize(dvec3(1, 2, -1)));
+  const view_camera cameras[] = {
+      make_look_at_camera(dvec3(1, -2, 4), dvec3(0.3, 0.1, -1), dvec3(0.2, 1, 0), 50.0, 64, 48),
+      make_gltf_camera(ortho, 64, 48)};
+  for (const view_camera& cam : cameras) {
+    const dmat4 ndc = world_to_ndc(cam), to_camera = world_to_camera(cam);
+    for (double px : {0.0, 0.5, 17.25, 63.5, 64.0})
+      for (double py : {0.0, 0.5, 30.75, 48.0}) {
+        const ray r = generate_camera_ray(cam, px, py);
+        const dvec3 point = dvec3(r.origin) + 7.0 * dvec3(r.direction);
+        const dvec4 h = ndc * dvec4(point, 1.0);
+        EXPECT_NEAR(h.x / h.w * cam.width, px, 1e-4) << px << "," << py;
+        EXPECT_NEAR(h.y / h.w * cam.height, py, 1e-4) << px << "," << py;
+        const dvec4 c = to_camera * dvec4(point, 1.0);
+        EXPECT_NEAR(c.z, glm::dot(point - cam.eye, cam.view), 1e-9);
+        EXPECT_GT(c.z, 0.0);
+        EXPECT_NEAR(c.x, glm::dot(point - cam.eye, cam.right), 1e-9);
+        EXPECT_NEAR(c.y, glm::dot(point - cam.eye, cam.up), 1e-9);
+      }
+  }
 }
 
 // The perspective pixel cone spreads by the angle between neighbouring pixel centres at the image

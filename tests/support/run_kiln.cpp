@@ -27,6 +27,16 @@ std::string scratch_folder(const std::string& name) {
   return dir.string();
 }
 
+std::string copy_scene(const std::string& folder, const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path scenes = fs::path(KILN_SOURCE_DIR) / "scenes";
+  fs::create_directories(folder);
+  fs::copy_file(scenes / "cornell_box.gltf", fs::path(folder) / name, fs::copy_options::overwrite_existing);
+  for (const char* resource : {"cornell_box.bin", "checker.png"})
+    fs::copy_file(scenes / resource, fs::path(folder) / resource, fs::copy_options::overwrite_existing);
+  return (fs::path(folder) / name).string();
+}
+
 command_result run_kiln(const std::vector<std::string>& arguments) {
   std::string err_file = scratch_folder("stderr") + "/stderr.txt";
   std::string command = quote(KILN_BINARY);

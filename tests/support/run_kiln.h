@@ -20,4 +20,8 @@ std::vector<std::string> lines(const std::string& text);
 // Path to a fresh scratch folder for one test.
 std::string scratch_folder(const std::string& name);
 
+// Copies the demo scene (its .gltf, buffer and texture) into folder (created when missing), the
+// .gltf as name; returns the .gltf's path.
+std::string copy_scene(const std::string& folder, const std::string& name = "cornell_box.gltf");
+
 }  // namespace kiln::testing

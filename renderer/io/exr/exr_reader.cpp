@@ -74,6 +74,19 @@ std::string exr_string_attribute(const exr_image& image, const std::string& name
   return std::string(image.header->parts.front().get_string_attribute(name));
 }
 
+std::optional<float> exr_float_attribute(const exr_image& image, const std::string& name) {
+  if (!image.header || image.header->parts.empty()) return std::nullopt;
+  const OIIO::ParamValue* value = image.header->parts.front().find_attribute(name, OIIO::TypeFloat);
+  if (!value) return std::nullopt;
+  return value->get_float();
+}
+
+void set_exr_float_attribute(exr_image& image, const std::string& name, float value) {
+  auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
+  for (OIIO::ImageSpec& part : header->parts) part.attribute(name, value);
+  image.header = std::move(header);
+}
+
 void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value) {
   auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
   for (OIIO::ImageSpec& part : header->parts) part.attribute(name, value);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,12 @@ exr_image read_exr(const std::string& path);
 
 // The header's string attribute name (e.g. "kiln/settings_hash"), empty when it has none.
 std::string exr_string_attribute(const exr_image& image, const std::string& name);
+
+// The header's float attribute name (e.g. "renderTimeSeconds"); empty when it has none.
+std::optional<float> exr_float_attribute(const exr_image& image, const std::string& name);
+
+// Sets the float attribute name on every part of image's header (a copy, as below).
+void set_exr_float_attribute(exr_image& image, const std::string& name, float value);
 
 // Sets the string attribute name on every part of image's header (a copy: other images that
 // share the header keep theirs).

@@ -1,6 +1,7 @@
 #include "io/exr/exr_stitch.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #include "core/error.h"
@@ -60,6 +61,25 @@ std::string first_missing_pixel(const std::vector<exr_image>& regions, const pix
          std::to_string(frame.y0 + int(i / size_t(frame.width()))) + ")";
 }
 
+// The frame took as long as its regions together: renderTimeSeconds (and kiln/render_seconds) become
+// their sum, and kiln/band_render_seconds keeps each region's own time, in input order. Left as the
+// first region's header when some region records no time (not kiln's).
+void record_region_times(const std::vector<exr_image>& regions, exr_image& frame) {
+  double total = 0.0;
+  std::string times;
+  for (const exr_image& r : regions) {
+    const std::optional<float> seconds = exr_float_attribute(r, "renderTimeSeconds");
+    if (!seconds) return;
+    total += double(*seconds);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", double(*seconds));
+    times += (times.empty() ? "" : ",") + std::string(text);
+  }
+  set_exr_float_attribute(frame, "renderTimeSeconds", float(total));
+  set_exr_string_attribute(frame, "kiln/render_seconds", std::to_string(total));
+  set_exr_string_attribute(frame, "kiln/band_render_seconds", times);
+}
+
 }  // namespace
 
 exr_image stitch_regions(const std::vector<std::string>& paths, const std::vector<exr_image>& regions) {
@@ -84,6 +104,7 @@ exr_image stitch_regions(const std::vector<std::string>& paths, const std::vecto
           out.pixels.data() + size_t(y - frame.y0) * frame_row + size_t(r.data_window.x0 - frame.x0) * pixel,
           r.pixels.data() + size_t(y - r.data_window.y0) * row, row);
   }
+  record_region_times(regions, out);
   return out;
 }
 

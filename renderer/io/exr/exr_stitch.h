@@ -9,7 +9,8 @@
 
 namespace kiln {
 
-// The full-frame image made of regions[k] (read from paths[k]), with the header of the first. The
+// The full-frame image made of regions[k] (read from paths[k]), with the header of the first, except
+// renderTimeSeconds, the sum of the regions' (each region's own in kiln/band_render_seconds). The
 // regions must share the display window and the channel list (names and formats), lie inside the
 // display window, not overlap and together cover it; otherwise throws kiln::error (input) naming
 // the file and the problem.

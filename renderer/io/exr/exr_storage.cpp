@@ -2,7 +2,27 @@
 
 #include <algorithm>
 
+#include "io/exr/cryptomatte.h"
+
 namespace kiln {
+
+const std::vector<std::string>& exr_part_names() {
+  static const std::vector<std::string> names = {"rgba",
+                                                 "depth",
+                                                 "N",
+                                                 "P",
+                                                 "albedo",
+                                                 "uv",
+                                                 "id",
+                                                 "direct",
+                                                 "reflection",
+                                                 "refraction",
+                                                 crypto_object_layer_name,
+                                                 crypto_material_layer_name};
+  return names;
+}
+
+const std::string& exr_part_name(exr_part part) { return exr_part_names()[size_t(part)]; }
 
 const std::vector<std::string>& exr_compression_names() {
   static const std::vector<std::string> names = {"none",  "rle", "zips", "zip",  "piz",

@@ -11,13 +11,38 @@ namespace kiln {
 enum class sample_format { half, float32 };
 
 // The layers whose sample format may be chosen: values a compositor views or filters, for which
-// half's 11-bit mantissa is enough. Z, P and the ids (data layers) are always 32-bit float.
+// half's 11-bit mantissa is enough. Z, P and the ids (data layers) are always 32-bit float. uv is
+// float by default: half resolves 1/2048 at u = 1 and 1/1024 past it, too coarse for an STMap of a
+// 2K plate or for UDIM tiles (u up to 10).
 struct layer_formats {
-  sample_format beauty = sample_format::half;  // R G B A
-  sample_format normal = sample_format::half;  // N.X N.Y N.Z
-  sample_format albedo = sample_format::half;  // albedo.R albedo.G albedo.B
-  sample_format uv = sample_format::half;      // uv.U uv.V
+  sample_format beauty = sample_format::half;      // R G B A
+  sample_format normal = sample_format::half;      // N.X N.Y N.Z
+  sample_format albedo = sample_format::half;      // albedo.R albedo.G albedo.B
+  sample_format uv = sample_format::float32;       // uv.U uv.V
+  sample_format direct = sample_format::half;      // direct.R direct.G direct.B
+  sample_format reflection = sample_format::half;  // reflection.R ...
+  sample_format refraction = sample_format::half;  // refraction.R ...
 };
+
+// The layers kiln writes, in the order of kiln/aovs, by the name of the part each gets with
+// --multipart (Nuke shows part names as layers). The writer names its layers from this table and
+// the CLI's help lists it.
+enum class exr_part {
+  rgba,
+  depth,
+  normal,
+  position,
+  albedo,
+  uv,
+  id,
+  direct,
+  reflection,
+  refraction,
+  crypto_object,
+  crypto_material
+};
+const std::vector<std::string>& exr_part_names();  // indexed by exr_part
+const std::string& exr_part_name(exr_part part);
 
 struct exr_settings {
   layer_formats formats;

@@ -85,7 +85,7 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
   const char* const xyz[3] = {".X", ".Y", ".Z"};
   const char* const rgb[3] = {".R", ".G", ".B"};
   if (a.beauty) {
-    layer l{"rgba", type_of(formats.beauty), false, {}};
+    layer l{exr_part_name(exr_part::rgba), type_of(formats.beauty), false, {}};
     // Half's largest finite value is 65504: a brighter colour would become +inf in a half channel,
     // and the image holds no infinities but background Z, so half colour saturates there instead.
     const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
@@ -95,33 +95,45 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
           {rgba[c], [&f, c, limit](size_t i) { return std::clamp(f.color[i][c], -limit, limit); }});
     out.push_back(std::move(l));
   }
-  if (a.depth) out.push_back({"depth", full, true, {{"Z", [&f](size_t i) { return f.depth[i]; }}}});
-  if (a.normal) out.push_back(vec3_layer("N", xyz, type_of(formats.normal), false, f.normal));
-  if (a.position) out.push_back(vec3_layer("P", xyz, full, true, f.position));
-  if (a.albedo) out.push_back(vec3_layer("albedo", rgb, type_of(formats.albedo), false, f.albedo));
+  if (a.depth)
+    out.push_back(
+        {exr_part_name(exr_part::depth), full, true, {{"Z", [&f](size_t i) { return f.depth[i]; }}}});
+  if (a.normal)
+    out.push_back(vec3_layer(exr_part_name(exr_part::normal), xyz, type_of(formats.normal), false, f.normal));
+  if (a.position) out.push_back(vec3_layer(exr_part_name(exr_part::position), xyz, full, true, f.position));
+  if (a.albedo)
+    out.push_back(vec3_layer(exr_part_name(exr_part::albedo), rgb, type_of(formats.albedo), false, f.albedo));
   if (a.uv)
     out.push_back(
-        {"uv",
+        {exr_part_name(exr_part::uv),
          type_of(formats.uv),
          false,
          {{"uv.U", [&f](size_t i) { return f.uv[i].x; }}, {"uv.V", [&f](size_t i) { return f.uv[i].y; }}}});
   if (a.ids) {
-    layer l{"id", full, true, {}};
+    layer l{exr_part_name(exr_part::id), full, true, {}};
     const char* id_names[3] = {"id.object", "id.material", "id.instance"};
     for (int c = 0; c < 3; ++c)
       l.channels.push_back({id_names[c], [&f, c](size_t i) { return float(f.ids[i][c]); }});
     out.push_back(std::move(l));
   }
-  // The light split: colour like R G B, in the beauty's format and saturating like it.
-  const std::pair<bool, const std::vector<vec3>*> parts[3] = {
-      {a.direct, &f.direct}, {a.reflection, &f.reflection}, {a.refraction, &f.refraction}};
-  const char* part_names[3] = {"direct", "reflection", "refraction"};
+  // The light split: colour like R G B, each in its own format and saturating like the beauty.
+  struct split_part {
+    bool wanted;
+    const std::vector<vec3>* buffer;
+    exr_part part;
+    sample_format format;
+  };
+  const split_part parts[3] = {{a.direct, &f.direct, exr_part::direct, formats.direct},
+                               {a.reflection, &f.reflection, exr_part::reflection, formats.reflection},
+                               {a.refraction, &f.refraction, exr_part::refraction, formats.refraction}};
+  const std::string part_names[3] = {exr_part_name(exr_part::direct), exr_part_name(exr_part::reflection),
+                                     exr_part_name(exr_part::refraction)};
   for (int p = 0; p < 3; ++p) {
-    if (!parts[p].first) continue;
-    layer l{part_names[p], type_of(formats.beauty), false, {}};
+    if (!parts[p].wanted) continue;
+    layer l{part_names[p], type_of(parts[p].format), false, {}};
     const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
     for (int c = 0; c < 3; ++c)
-      l.channels.push_back({std::string(part_names[p]) + rgb[c], [buffer = parts[p].second, c, limit](size_t i) {
+      l.channels.push_back({part_names[p] + rgb[c], [buffer = parts[p].buffer, c, limit](size_t i) {
                               return std::clamp((*buffer)[i][c], -limit, limit);
                             }});
     out.push_back(std::move(l));

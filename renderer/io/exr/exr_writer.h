@@ -17,7 +17,9 @@ namespace kiln {
 
 // What the header records besides the pixels.
 struct exr_metadata {
-  dmat4 world_to_camera{1.0};  // camera space: +X right, +Y up, looking along -Z
+  // OpenEXR's conventions (render/view_camera.h): camera space +X right, +Y up, +Z the viewing
+  // direction; NDC (0, 0) at the display window's upper-left corner, (1, 1) at its lower-right.
+  dmat4 world_to_camera{1.0};
   dmat4 world_to_ndc{1.0};
   std::vector<std::pair<std::string, std::string>> attributes;  // e.g. {"kiln/spp", "4"}
   std::vector<std::pair<std::string, float>> float_attributes;  // e.g. {"renderTimeSeconds", 1.5f}

@@ -26,7 +26,7 @@ fs::path scratch_dir() {
 // Settings with every colour-like layer in one format.
 exr_settings all_layers(sample_format format) {
   exr_settings s;
-  s.formats = {format, format, format, format};
+  s.formats = {format, format, format, format, format, format, format};
   return s;
 }
 
@@ -48,6 +48,9 @@ TEST(exr_writer, round_trips_channels_and_metadata) {
   fs::path file = scratch_dir() / "out.exr";
   exr_metadata metadata;
   metadata.world_to_camera[3][0] = 7.0;  // a translation, stored in the last row by OpenEXR
+  // w = camera z (column-vector row 3, column 2): OpenEXR's row vectors read it at M[2][3].
+  metadata.world_to_ndc = dmat4(0.0);
+  metadata.world_to_ndc[2][3] = 1.0;
   metadata.attributes = {{"kiln/spp", "4"}};
   write_exr(file.string(), test_film(), full_float, metadata);
 
@@ -61,6 +64,10 @@ TEST(exr_writer, round_trips_channels_and_metadata) {
   const OIIO::ParamValue* w2c = spec.find_attribute("worldToCamera");
   ASSERT_NE(w2c, nullptr);
   EXPECT_FLOAT_EQ(static_cast<const float*>(w2c->data())[12], 7.0f);
+  const OIIO::ParamValue* w2n = spec.find_attribute("worldToNDC");
+  ASSERT_NE(w2n, nullptr);
+  EXPECT_FLOAT_EQ(static_cast<const float*>(w2n->data())[2 * 4 + 3], 1.0f);
+  EXPECT_FLOAT_EQ(static_cast<const float*>(w2n->data())[3 * 4 + 2], 0.0f);
 
   std::vector<float> pixels(5 * 3 * 8);
   ASSERT_TRUE(in->read_image(0, 0, 0, 8, OIIO::TypeDesc::FLOAT, pixels.data()));
@@ -161,7 +168,8 @@ TEST(exr_writer, each_colour_like_layer_takes_its_own_format_and_data_layers_sta
   fs::path file = scratch_dir() / "formats.exr";
   exr_settings s;
   s.formats.beauty = sample_format::float32;
-  s.formats.albedo = sample_format::float32;  // N and uv stay half
+  s.formats.albedo = sample_format::float32;
+  s.formats.uv = sample_format::half;  // N (by default) and uv (asked for) half
   write_exr(file.string(), all_aov_film(), s, exr_metadata{});
   const auto channels = channels_of(file);
   ASSERT_EQ(channels.size(), 19u);
