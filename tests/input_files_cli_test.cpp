@@ -171,6 +171,14 @@ TEST(input_files, batch_job_naming_a_fifo_fails_and_the_batch_goes_on) {
   EXPECT_TRUE(fs::exists(dir / "out/scene.exr")) << result.message;
 }
 
+TEST(input_files, batch_manifest_that_is_a_fifo_is_refused) {
+  const fs::path dir = scratch_folder("manifest_fifo");
+  ASSERT_EQ(::mkfifo((dir / "jobs.json").c_str(), 0644), 0);
+  expect_refused(
+      run({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string()}, dir),
+      dir, {(dir / "jobs.json").string(), "is a FIFO, not a regular file"});
+}
+
 // A signal while kiln hashes (or loads) a 200 MB buffer stops it with 143 and a line naming what
 // it was reading, instead of finishing the read and the load first.
 TEST(input_files, sigterm_while_reading_a_large_buffer_stops_kiln) {
