@@ -1,4 +1,4 @@
-// The demo scene (Cornell box with a mirror and a textured block) rendered at scene scales 1e-3, 1
+// The demo scene (a room with a mirror, glass, quadrics and a textured floor) rendered at scene scales 1e-3, 1
 // and 1e4, moved far from the origin as well: secondary rays (shadow and mirror) must never re-hit
 // the surface they leave, so every scaled image equals the unit-scale one except for rounding at
 // edges. Shadow acne or a self-reflecting mirror darkens a large share of the pixels instead.
@@ -17,7 +17,8 @@ namespace {
 const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
 
 // Scales the whole scene about the origin and then moves it by `shift`; point and spot lights get
-// intensity × scale² so the irradiance at every scaled point is unchanged.
+// intensity × scale² so the irradiance at every scaled point is unchanged, and the lengths of
+// KHR_materials_volume (absorption per world unit in glass) scale with the scene.
 void scale_scene(scene& s, double scale, const dvec3& shift) {
   const dmat4 world_from_world = glm::translate(dmat4(1.0), shift) * glm::scale(dmat4(1.0), dvec3(scale));
   for (instance& inst : s.instances) {
@@ -30,6 +31,10 @@ void scale_scene(scene& s, double scale, const dvec3& shift) {
     l.range = float(double(l.range) * scale);
   }
   for (camera& c : s.cameras) c.world_from_camera = world_from_world * c.world_from_camera;
+  for (material& m : s.materials) {
+    m.attenuation_distance = float(double(m.attenuation_distance) * scale);
+    m.thickness_factor = float(double(m.thickness_factor) * scale);
+  }
 }
 
 film render_demo(double scale, const dvec3& shift) {
@@ -39,12 +44,15 @@ film render_demo(double scale, const dvec3& shift) {
   view_camera cam = make_gltf_camera(s.cameras.at(0), 96, 72);
   render_settings settings;
   settings.threads = 2;
+  settings.aovs.ids = true;  // for on_edge
   return render_image(s, accel, cam, settings);
 }
 
 // True where the reference pixel sits on a geometric edge: a neighbour sees another normal (a
-// crease where two walls meet) or a much different depth (a silhouette). A ray through an edge may
-// hit either side after rounding, so those pixels legitimately change with scale.
+// crease where two walls meet), a much different depth (a silhouette) or another instance (the
+// mirror slab 2 cm before the back wall faces the same way at nearly the same depth). A ray
+// through an edge may hit either side after rounding, so those pixels legitimately change with
+// scale.
 bool on_edge(const film& f, int x, int y) {
   const size_t centre = f.index(x, y);
   for (int dy = -1; dy <= 1; ++dy)
@@ -54,6 +62,7 @@ bool on_edge(const film& f, int x, int y) {
       const size_t n = f.index(nx, ny);
       if (std::isinf(f.depth[centre]) && std::isinf(f.depth[n])) continue;  // both background
       if (glm::dot(f.normal[centre], f.normal[n]) < 0.95f) return true;
+      if (f.ids[centre].z != f.ids[n].z) return true;
       if (std::isinf(f.depth[centre]) != std::isinf(f.depth[n]) ||
           std::abs(f.depth[centre] - f.depth[n]) > 0.25f * f.depth[centre])
         return true;
@@ -97,7 +106,12 @@ TEST(demo_scene_scale, secondary_rays_never_rehit_their_surface_at_any_scale) {
       const film scaled = render_demo(scale, shift);
       const image_difference d = compare_interiors(unit, scaled);
       EXPECT_GT(d.interior_share, 0.7);  // edges are a small part of the image
-      EXPECT_EQ(d.differing_share, 0.0) << "scale " << scale << ", shift " << shift.x;
+      // Moved 10 scene sizes away, world-space float hit points round coarser; seen in the mirror
+      // through the glass, whose refraction magnifies that, one pixel of about 6,000 (43,34)
+      // changes by 1.2% in a dark channel. Shadow acne or self-reflection would change thousands.
+      // Scaled about the origin, nothing may change.
+      const bool shifted = shift != dvec3(0.0);
+      EXPECT_LE(d.differing_share, shifted ? 2.0 / 6000.0 : 0.0) << "scale " << scale << ", shift " << shift.x;
     }
   }
 }

@@ -229,10 +229,12 @@ TEST(exr_storage_cli, png_preview_is_the_view_transform_of_the_exr_within_one_co
   const std::string dir = scratch_folder("storage_preview_png");
   for (double exposure : {0.0, 1.5, -2.0}) {
     const std::string png = dir + "/preview.png";
-    // 4 samples a pixel: edge pixels of the open box front have alpha strictly between 0 and 1.
+    // 4 samples a pixel: pixels on the quadric showcase's horizon have alpha strictly between 0
+    // and 1 (the demo room is closed: every pixel of it is covered).
     const std::string exr = render(
         dir, "preview.exr",
-        {"--preview", png, "--preview-exposure", std::to_string(exposure), "--multipart", "--spp", "4"});
+        {"--preview", png, "--preview-exposure", std::to_string(exposure), "--multipart", "--spp", "4"},
+        std::string(KILN_SOURCE_DIR) + "/scenes/quadric_showcase.gltf");
     const auto v = values(exr);
     const preview_image p = read_preview(png);
     ASSERT_EQ(p.spec.nchannels, 4);

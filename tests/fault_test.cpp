@@ -1,6 +1,7 @@
 // Faults from outside the renderer: signals during a render, a full disk, and outputs that are not
 // files. In every case kiln exits non-zero with one line, leaves no temporary file, and never
 // touches an output that already existed.
+#include "support/kiln_process.h"
 #include "support/run_kiln.h"
 
 #include <gtest/gtest.h>
@@ -23,64 +24,13 @@ namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::child_process;
 using testing::lines;
+using testing::start_kiln;
 using testing::scratch_folder;
 
 const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
 const std::string previous_content = "an earlier render that must survive\n";
-
-// A kiln process started with fork/exec so the test can signal it and limit its resources.
-struct child_process {
-  pid_t pid = -1;
-  std::string stderr_path;
-
-  // Waits for the exit; returns the exit code, or minus the signal number when a signal killed
-  // the process (so a handled signal, exit 128 + n, and an unhandled one differ).
-  int wait() const {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-  }
-
-  // True once the process catches signo (its handler is installed), read from /proc.
-  bool catches(int signo) const {
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-    for (std::string line; std::getline(status, line);)
-      if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> (signo - 1)) & 1u;
-    return false;
-  }
-
-  std::string stderr_text() const {
-    std::ifstream in(stderr_path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-};
-
-// Starts kiln with arguments; prepare runs in the child just before exec (resource limits).
-child_process start_kiln(const std::vector<std::string>& arguments, const std::string& folder,
-                         const std::function<void()>& prepare = {}) {
-  child_process child;
-  child.stderr_path = folder + "/stderr.txt";
-  std::vector<std::string> argv_storage{KILN_BINARY};
-  argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_storage) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  child.pid = ::fork();
-  if (child.pid == 0) {
-    int err = ::open(child.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(err, STDERR_FILENO);
-    int null = ::open("/dev/null", O_RDWR);
-    ::dup2(null, STDIN_FILENO);
-    ::dup2(null, STDOUT_FILENO);
-    if (prepare) prepare();
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  return child;
-}
 
 void write_file(const std::string& path, const std::string& content) { std::ofstream(path) << content; }
 

@@ -1,14 +1,18 @@
 // The speed options end to end: `--bvh-quality`, `--bvh-compact` and `--packets` are recorded in the
 // EXR header and in kiln bench's JSON, refuse bad values with one line, and leave the pixels byte
-// for byte as the default render's (the demo scene has no coincident surfaces, the one case where
-// packets may pick the other surface of a tie; see README "Performance").
+// for byte as the default render's on a small mesh room built here: all meshes, so packets are
+// really traced (the demo scene holds quadrics, which Embree answers one ray at a time), and no
+// coincident surfaces, the one case where packets may pick the other surface of a tie (see README
+// "Performance").
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -18,11 +22,61 @@ using testing::lines;
 using testing::run_kiln;
 using testing::scratch_folder;
 
-const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
+// An axis-aligned box as 8 corners and 12 triangles, counter-clockwise seen from outside.
+void add_box(testing::gltf_builder& b, std::array<float, 3> lo, std::array<float, 3> hi, int material) {
+  std::vector<std::array<float, 3>> corners;
+  for (int i = 0; i < 8; ++i)
+    corners.push_back({i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]});
+  std::vector<uint32_t> indices;
+  for (const auto& q : {std::array<uint32_t, 4>{0, 2, 3, 1},
+                        {4, 5, 7, 6},
+                        {0, 1, 5, 4},
+                        {2, 6, 7, 3},
+                        {0, 4, 6, 2},
+                        {1, 3, 7, 5}})
+    indices.insert(indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+  b.add_node({{"mesh", b.add_mesh(corners, indices, material)}});
+}
+
+// A room of meshes: floor, back and side walls (quads meeting only at their edges), a mirror box
+// and a diffuse box standing on the floor, a point light and a camera.
+std::string write_mesh_room() {
+  testing::gltf_builder b;
+  auto matte = [&](float r, float g, float bl) {
+    return b.add_material(
+        {{"pbrMetallicRoughness",
+          {{"baseColorFactor", {r, g, bl, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
+  };
+  const int white = matte(0.7f, 0.7f, 0.7f), red = matte(0.6f, 0.1f, 0.1f), green = matte(0.1f, 0.5f, 0.1f);
+  const int mirror = b.add_material(
+      {{"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.9, 0.9, 0.9, 1.0}}, {"metallicFactor", 1.0}, {"roughnessFactor", 0.0}}}});
+  auto quad = [&](std::array<std::array<float, 3>, 4> corners, int material) {
+    b.add_node({{"mesh", b.add_mesh({corners.begin(), corners.end()}, {0, 1, 2, 0, 2, 3}, material)}});
+  };
+  quad({{{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}}}, white);    // floor, facing +y
+  quad({{{-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}}}, white);  // back wall, facing +z
+  quad({{{-1, 0, 1}, {-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1}}}, red);    // left wall, facing +x
+  quad({{{1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1}}}, green);      // right wall, facing -x
+  add_box(b, {-0.7f, 0.0f, -0.6f}, {-0.1f, 1.2f, -0.1f}, mirror);
+  add_box(b, {0.2f, 0.0f, 0.0f}, {0.7f, 0.5f, 0.5f}, white);
+  b.add_node(
+      {{"translation", {0.2, 1.8, 0.6}},
+       {"extensions",
+        {{"KHR_lights_punctual", {{"light", b.add_light({{"type", "point"}, {"intensity", 6.0}})}}}}}});
+  b.add_node({{"translation", {0.0, 1.0, 3.5}},
+              {"camera",
+               b.add_camera({{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.05}}}})}});
+  const std::string path = testing::scratch_folder("perf_mesh_room") + "/mesh_room.gltf";
+  b.write(path);
+  return path;
+}
+
+const std::string mesh_scene = write_mesh_room();
 
 std::string render(const std::string& dir, const std::string& name, std::vector<std::string> extra) {
   std::vector<std::string> args = {
-      "render", demo_scene, "-o", dir + "/" + name, "--width",           "40", "--height", "30",
+      "render", mesh_scene, "-o", dir + "/" + name, "--width",           "40", "--height", "30",
       "-q",     "--spp",    "2",  "--aovs",         "beauty,Z,N,P,uv,id"};
   args.insert(args.end(), extra.begin(), extra.end());
   auto result = run_kiln(args);
@@ -72,7 +126,7 @@ TEST(perf_options_cli, every_build_setting_and_packets_leave_the_pixels_unchange
       }
 }
 
-TEST(perf_options_cli, with_packets_the_demo_is_independent_of_threads_and_tile_size) {
+TEST(perf_options_cli, with_packets_the_image_is_independent_of_threads_and_tile_size) {
   const std::string dir = scratch_folder("perf_packets_tiles");
   const stored_image reference = read(render(dir, "reference.exr", {"--threads", "1"}));
   int n = 0;
@@ -89,7 +143,7 @@ TEST(perf_options_cli, with_packets_the_demo_is_independent_of_threads_and_tile_
 TEST(perf_options_cli, bad_values_exit_2_with_one_line) {
   for (std::vector<std::string> bad :
        {std::vector<std::string>{"--bvh-quality", "best"}, std::vector<std::string>{"--packets", "yes"}}) {
-    std::vector<std::string> args = {"render", demo_scene, "-o", scratch_folder("perf_bad") + "/x.exr"};
+    std::vector<std::string> args = {"render", mesh_scene, "-o", scratch_folder("perf_bad") + "/x.exr"};
     args.insert(args.end(), bad.begin(), bad.end());
     auto result = run_kiln(args);
     EXPECT_EQ(result.exit_code, 2) << bad[0];
@@ -100,7 +154,7 @@ TEST(perf_options_cli, bad_values_exit_2_with_one_line) {
 
 TEST(perf_options_cli, bench_json_records_the_settings_and_embree_memory) {
   const std::string json = scratch_folder("perf_bench") + "/bench.json";
-  auto result = run_kiln({"bench", demo_scene, "--width", "32", "--height", "24", "--repeat", "1", "-q",
+  auto result = run_kiln({"bench", mesh_scene, "--width", "32", "--height", "24", "--repeat", "1", "-q",
                           "--bvh-quality", "high", "--bvh-compact", "--packets", "on", "--json", json});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   std::ifstream in(json);

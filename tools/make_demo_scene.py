@@ -1,23 +1,38 @@
 #!/usr/bin/env python3
 """Generate kiln's demo scene: scenes/cornell_box.gltf, scenes/cornell_box.bin, scenes/checker.png.
 
-A Cornell-box-like room (metres, +Y up), open at the front (+Z) where the camera "main" stands:
+A closed Cornell-box-like room (metres, +Y up) that shows what Whitted shading does exactly:
+a mirror, glass with exact Fresnel and refraction, analytic quadrics (KILN_quadric), a texture
+and hard shadows from two point lights.
 
-  room        x in [-1, 1], y in [0, 2], z in [-1, 1]
-  walls       white floor, ceiling and back wall; red left wall (x = -1); green right wall (x = +1)
-  tall box    mirror (metallic 1, roughness 0), back left, turned +40 degrees about Y so that its
-              two visible faces reflect the red wall and the checker box (not the open front)
-  short box   checkerboard baseColorTexture, front right, rotated -18 degrees about Y
-  ceiling     small emissive panel flush under the ceiling (its shadow on the ceiling stays a thin rim), point light (KHR_lights_punctual) below it
-  fill light  weaker point light outside the open front, up and to the right of the camera: without
-              it the box faces turned to the camera would be black (Whitted shading has no
-              indirect light, and the ceiling light is behind those faces' planes)
+  room        x in [-1, 1], y in [0, 2], z from the back wall (-1) to a front wall (4) behind the
+              camera "main" at (0, 0.92, 2.9), which looks 7 degrees down: the room is closed so
+              that the mirror and the glass reflect walls, never the black outside
+  walls       white back and front walls and ceiling, red left wall (x = -1), green right wall
+  floor       checkerboard baseColorTexture (checker.png, bilinear, KHR_texture_transform
+              repeats it: 12.5 cm checks, 8 texels each, never minified enough to need mip-maps)
+  ceiling     one mesh with a 0.5 m square opening over the key light: the emissive panel sits
+              1 cm above the ceiling plane and the point light 1 cm below it, so nothing stands
+              between the light and the room (a panel below the ceiling shadowed a band of it)
+  mirror      a thin mirror slab (metallic 1, roughness 0) on the back wall's left half
+  glass       a capped glass cylinder (transmission 1, ior 1.5, volume with a faint blue-green
+              absorption) at the front left: the checker floor and the ring seen through it
+  quadrics    a blue sphere, a yellow torus lying on the floor (in front of the mirror, so it is
+              seen in it too) and an orange capped cone; every object stands 1 mm into the floor
+              (a base exactly on it would be a coincident surface)
+  lights      the key light at the ceiling opening and a weaker fill light near the camera
 
-Geometry is two small meshes stored once: a unit quad (the walls and the light panel) and a unit
-cube with flat per-face normals (24 vertices). Materials are per primitive in glTF, so each
-material gets its own mesh whose primitive points at the shared accessors; the white wall mesh is
-placed by three nodes (floor, ceiling, back wall). Transforms use both TRS and matrix forms, under
-parent nodes whose own transforms matter.
+No curved surface is a perfect mirror or perfect glass in view of a point light's reflection:
+the mirror is flat and the glass is a vertical cylinder (its side's normals are horizontal while
+the camera and both lights are above every point of it), and the lights' mirror images in every
+flat face fall outside that face as the camera sees it; so the picture shows no point-light highlight of a delta surface, which a renderer
+can only draw as a one-pixel spike or not at all.
+
+Geometry is three small meshes stored once: a unit quad (the walls, the floor and the light panel),
+the ceiling with its opening, and a unit cube with flat per-face normals (the mirror slab).
+Materials are per primitive in glTF, so each material gets its own mesh whose primitive points
+at the shared accessors; the white wall mesh is placed by two nodes. Transforms use TRS and
+matrix forms under parent nodes whose own transforms matter.
 
 Python 3 standard library only. Output is deterministic: running the script twice gives
 identical bytes. After writing, the files are read back and validated (use --no-validate to skip).
@@ -164,8 +179,8 @@ def tidy_list(values, digits=7):
 
 CHECKER_SIZE = 64
 CHECKER_CELLS = 8
-CHECKER_COLOR_A = (235, 190, 40)   # sRGB mustard yellow
-CHECKER_COLOR_B = (40, 70, 150)    # sRGB slate blue
+CHECKER_COLOR_A = (214, 208, 196)  # sRGB warm light grey
+CHECKER_COLOR_B = (62, 68, 84)     # sRGB dark slate
 
 
 def png_chunk(kind, data):
@@ -287,30 +302,119 @@ def material(name, base, metallic, roughness, **extra):
            "metallicFactor": metallic, "roughnessFactor": roughness}
     m = {"name": name, "pbrMetallicRoughness": pbr}
     if "texture" in extra:
-        pbr["baseColorTexture"] = {"index": extra["texture"], "texCoord": 0}
+        info = {"index": extra["texture"], "texCoord": 0}
+        if "uv_scale" in extra:
+            info["extensions"] = {"KHR_texture_transform": {"scale": tidy_list(extra["uv_scale"], 6)}}
+        pbr["baseColorTexture"] = info
     if "emissive" in extra:
         m["emissiveFactor"] = tidy_list(extra["emissive"], 4)
+    extensions = {}
     if "emissive_strength" in extra:
-        m["extensions"] = {"KHR_materials_emissive_strength":
-                           {"emissiveStrength": extra["emissive_strength"]}}
+        extensions["KHR_materials_emissive_strength"] = {"emissiveStrength": extra["emissive_strength"]}
+    if "glass" in extra:
+        attenuation, distance = extra["glass"]
+        extensions["KHR_materials_transmission"] = {"transmissionFactor": 1.0}
+        extensions["KHR_materials_ior"] = {"ior": 1.5}
+        extensions["KHR_materials_volume"] = {"thicknessFactor": 0.3,
+                                              "attenuationColor": tidy_list(attenuation, 4),
+                                              "attenuationDistance": distance}
+    if extensions:
+        m["extensions"] = extensions
     return m
+
+
+def make_frame(outer_min, outer_max, hole_min, hole_max):
+    """A rectangle with a rectangular hole in the XY plane, normal +Z: 8 vertices, 8 triangles.
+
+    One mesh with shared vertices, so the ring is watertight (separate quads around the hole
+    would meet in T-junctions that rounding can open into pin-holes).
+    """
+    (x0, y0), (x1, y1) = outer_min, outer_max
+    (h0, k0), (h1, k1) = hole_min, hole_max
+    corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (h0, k0), (h1, k0), (h1, k1), (h0, k1)]
+    verts = [([x, y, 0.0], [0.0, 0.0, 1.0], ((x - x0) / (x1 - x0), (y1 - y) / (y1 - y0)))
+             for x, y in corners]
+    indices = []
+    for side in range(4):  # outer edge o0-o1 and the inner edge below it, counter-clockwise
+        o0, o1, i0, i1 = side, (side + 1) % 4, 4 + side, 4 + (side + 1) % 4
+        indices.extend([o0, o1, i1, o0, i1, i0])
+    return verts, indices
+
+
+# Room (metres, +Y up): x in [-1, 1], y in [0, 2], z from the back wall at -1 to a front wall at
+# ROOM_FRONT behind the camera. The room is closed so that the mirror and the glass show walls,
+# not the black outside, in every direction.
+ROOM_FRONT = 4.0
+CEILING_HOLE = 0.25      # half size of the opening over the ceiling light
+PANEL_HEIGHT = 2.01      # the emissive panel, above the ceiling plane and the key light
+KEY_LIGHT = [0.0, 1.99, 0.0]
+FILL_LIGHT = [0.3, 1.7, 2.6]
+CAMERA = [0.0, 0.92, 2.9]
+CAMERA_PITCH = -7.0      # degrees about X: looks slightly down at the objects
+# The mirror: a 2 cm slab on the back wall's left half, 1 mm in front of it. The fill light casts its
+# shadow on the wall as a strip about a pixel wide beside the left edge; a thinner slab makes that
+# strip a fraction of a pixel, which 4 samples a pixel draw as a dotted line.
+MIRROR_MIN = [-0.86, 0.06, -0.999]
+MIRROR_MAX = [-0.14, 1.56, -0.979]
+# Objects stand 1 mm into the floor: a base exactly on it would be a coincident surface.
+SINK = 0.001
+
+UPRIGHT = [-math.sqrt(0.5), 0.0, 0.0, math.sqrt(0.5)]  # -90 degrees about X: object +Z to world +Y
+
+QUADRICS = [  # KILN_quadric definitions (docs/quadrics.md), axis along object +Z
+    {"name": "glass_column", "kind": "cylinder", "radius": 0.19, "zmin": 0.0, "zmax": 0.58, "caps": True},
+    {"name": "ball", "kind": "sphere", "radius": 0.24},
+    {"name": "ring", "kind": "torus", "major_radius": 0.19, "minor_radius": 0.065},
+    {"name": "cone", "kind": "cone", "radius": 0.2, "height": 0.55, "caps": True},
+]
+
+
+def quadric_bounds(definition, node):
+    """World bounds of an upright quadric node (rotation UPRIGHT or none, no scale)."""
+    t = node["translation"]
+    kind = definition["kind"]
+    if kind == "sphere":
+        r = definition["radius"]
+        return [t[0] - r, t[1] - r, t[2] - r], [t[0] + r, t[1] + r, t[2] + r]
+    if kind == "cylinder":
+        r = definition["radius"]
+        return ([t[0] - r, t[1] + definition["zmin"], t[2] - r],
+                [t[0] + r, t[1] + definition["zmax"], t[2] + r])
+    if kind == "cone":
+        r = definition["radius"]
+        return [t[0] - r, t[1], t[2] - r], [t[0] + r, t[1] + definition["height"], t[2] + r]
+    if kind == "torus":
+        r, m = definition["major_radius"] + definition["minor_radius"], definition["minor_radius"]
+        return [t[0] - r, t[1] - m, t[2] - r], [t[0] + r, t[1] + m, t[2] + r]
+    raise ValueError(kind)
 
 
 def build_scene():
     buf = BufferBuilder()
     quad_verts, quad_indices = make_quad()
+    frame_verts, frame_indices = make_frame((-1.0, -1.0), (1.0, ROOM_FRONT),
+                                            (-CEILING_HOLE, -CEILING_HOLE), (CEILING_HOLE, CEILING_HOLE))
     cube_verts, cube_indices = make_cube()
     quad_attrs, quad_idx = buf.add_mesh_data(quad_verts, quad_indices, "quad")
     cube_attrs, cube_idx = buf.add_mesh_data(cube_verts, cube_indices, "cube")
+    frame_attrs, frame_idx = buf.add_mesh_data(frame_verts, frame_indices, "ceiling")
 
+    depth = ROOM_FRONT + 1.0  # the room's length along z
     materials = [
         material("white", (0.725, 0.71, 0.68), 0.0, 1.0),                     # 0
         material("red", (0.63, 0.065, 0.05), 0.0, 1.0),                       # 1
         material("green", (0.14, 0.45, 0.091), 0.0, 1.0),                     # 2
         material("mirror", (0.95, 0.95, 0.95), 1.0, 0.0),                     # 3
-        material("checker", (1.0, 1.0, 1.0), 0.0, 0.6, texture=0),            # 4
+        # 8 x 8 checks an image: 2 images across, 5 along, so every check is 12.5 cm square.
+        material("checker_floor", (1.0, 1.0, 1.0), 0.0, 0.9, texture=0,      # 4
+                 uv_scale=(2.0, depth)),
         material("light_panel", (0.0, 0.0, 0.0), 0.0, 1.0,                    # 5
                  emissive=(1.0, 0.95, 0.88), emissive_strength=4.0),
+        material("glass", (1.0, 1.0, 1.0), 0.0, 0.0,                          # 6
+                 glass=((0.85, 0.96, 1.0), 0.6)),
+        material("blue", (0.13, 0.26, 0.62), 0.0, 0.5),                       # 7
+        material("yellow", (0.85, 0.58, 0.1), 0.0, 0.45),                     # 8
+        material("orange", (0.8, 0.3, 0.08), 0.0, 0.5),                       # 9
     ]
 
     def mesh(name, attrs, idx, mat):
@@ -318,12 +422,13 @@ def build_scene():
             {"attributes": dict(attrs), "indices": idx, "material": mat, "mode": 4}]}
 
     meshes = [
-        mesh("wall_white", quad_attrs, quad_idx, 0),      # 0: floor, ceiling, back wall
+        mesh("wall_white", quad_attrs, quad_idx, 0),      # 0: back and front walls
         mesh("wall_red", quad_attrs, quad_idx, 1),        # 1
         mesh("wall_green", quad_attrs, quad_idx, 2),      # 2
         mesh("light_panel", quad_attrs, quad_idx, 5),     # 3
-        mesh("cube_mirror", cube_attrs, cube_idx, 3),     # 4
-        mesh("cube_checker", cube_attrs, cube_idx, 4),    # 5
+        mesh("floor_checker", quad_attrs, quad_idx, 4),   # 4
+        mesh("ceiling", frame_attrs, frame_idx, 0),       # 5
+        mesh("cube_mirror", cube_attrs, cube_idx, 3),     # 6
     ]
 
     x_axis, y_axis = [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]
@@ -331,56 +436,68 @@ def build_scene():
     def q(axis, deg):
         return tidy_list(quat_axis_angle(axis, deg), 9)
 
-    # The room group maps the unit cube [-0.5, 0.5]^3 onto x,z in [-1, 1], y in [0, 2]:
-    # a matrix node (uniform scale 2, then up by 1). The walls are unit quads inside it.
-    room_matrix = mat_mul(mat_translate([0.0, 1.0, 0.0]), mat_scale([2.0, 2.0, 2.0]))
-    left_wall_matrix = mat_mul(mat_translate([-0.5, 0.0, 0.0]),
-                               mat_rotate_quat(quat_axis_angle(y_axis, 90.0)))
-    # The mirror box: tall block (0.6 x 1.2 x 0.6) at the back left, turned +40 degrees about Y,
-    # given as a matrix. It sits inside the "objects" group, which is translated by (0, 0, -0.05).
-    tall_matrix = mat_mul(mat_translate([-0.42, 0.6, -0.25]),
-                          mat_mul(mat_rotate_quat(quat_axis_angle(y_axis, 40.0)),
-                                  mat_scale([0.6, 1.2, 0.6])))
+    mid_z = (ROOM_FRONT - 1.0) / 2.0
+    # The red wall as a matrix (turn +90 degrees about Y, then scale the quad to depth x 2).
+    left_wall_matrix = mat_mul(mat_translate([-1.0, 1.0, mid_z]),
+                               mat_mul(mat_rotate_quat(quat_axis_angle(y_axis, 90.0)),
+                                       mat_scale([depth, 2.0, 1.0])))
+
+    def quadric(name, primitive, mat, translation):
+        return {"name": name, "translation": tidy_list(translation), "rotation": tidy_list(UPRIGHT, 9),
+                "extensions": {"KILN_quadric": {"primitive": primitive, "material": mat}}}
 
     nodes = [
-        {"name": "cornell_box", "children": [1, 8]},                                     # 0
-        {"name": "room", "matrix": to_gltf_matrix(room_matrix),                          # 1
-         "children": [2, 3, 4, 5, 6, 7]},
-        {"name": "floor", "mesh": 0, "translation": [0.0, -0.5, 0.0],                    # 2
-         "rotation": q(x_axis, -90.0)},
-        {"name": "ceiling", "mesh": 0, "translation": [0.0, 0.5, 0.0],                   # 3
+        {"name": "cornell_box", "children": [1, 9]},                                       # 0
+        {"name": "room", "children": [2, 3, 4, 5, 6, 7, 8, 10, 14]},                      # 1
+        {"name": "floor", "mesh": 4, "translation": [0.0, 0.0, mid_z],                     # 2
+         "rotation": q(x_axis, -90.0), "scale": [2.0, depth, 1.0]},
+        {"name": "ceiling", "mesh": 5, "translation": [0.0, 2.0, 0.0],                     # 3
          "rotation": q(x_axis, 90.0)},
-        {"name": "back_wall", "mesh": 0, "translation": [0.0, 0.0, -0.5]},              # 4
-        {"name": "left_wall_red", "mesh": 1, "matrix": to_gltf_matrix(left_wall_matrix)},  # 5
-        {"name": "right_wall_green", "mesh": 2, "translation": [0.5, 0.0, 0.0],         # 6
-         "rotation": q(y_axis, -90.0)},
-        {"name": "light_panel", "mesh": 3, "translation": [0.0, 0.499, 0.0],             # 7
-         "rotation": q(x_axis, 90.0), "scale": [0.25, 0.25, 0.25]},
-        {"name": "objects", "translation": [0.0, 0.0, -0.05], "children": [9, 10, 11]},  # 8
-        {"name": "tall_box_mirror", "mesh": 4, "matrix": to_gltf_matrix(tall_matrix)},   # 9
-        {"name": "short_box_checker", "mesh": 5, "translation": [0.42, 0.3, 0.35],       # 10
-         "rotation": q(y_axis, -18.0), "scale": [0.6, 0.6, 0.6]},
-        {"name": "ceiling_light", "translation": [0.0, 1.9, 0.05],                       # 11
+        {"name": "back_wall", "mesh": 0, "translation": [0.0, 1.0, -1.0],                  # 4
+         "scale": [2.0, 2.0, 1.0]},
+        {"name": "front_wall", "mesh": 0, "translation": [0.0, 1.0, ROOM_FRONT],           # 5
+         "rotation": q(y_axis, 180.0), "scale": [2.0, 2.0, 1.0]},
+        {"name": "left_wall_red", "mesh": 1, "matrix": to_gltf_matrix(left_wall_matrix)},  # 6
+        {"name": "right_wall_green", "mesh": 2, "translation": [1.0, 1.0, mid_z],          # 7
+         "rotation": q(y_axis, -90.0), "scale": [depth, 2.0, 1.0]},
+        {"name": "light_panel", "mesh": 3, "translation": [0.0, PANEL_HEIGHT, 0.0],        # 8
+         "rotation": q(x_axis, 90.0), "scale": [0.7, 0.7, 1.0]},
+        {"name": "objects", "translation": [0.0, -SINK, 0.0], "children": [11, 12, 13, 17]},  # 9
+        {"name": "mirror", "mesh": 6,                                                     # 10
+         "translation": tidy_list([(a + b) / 2 for a, b in zip(MIRROR_MIN, MIRROR_MAX)]),
+         "scale": tidy_list([b - a for a, b in zip(MIRROR_MIN, MIRROR_MAX)])},
+        quadric("glass_column", 0, 6, [-0.2, 0.0, 0.55]),                                  # 11
+        {"name": "blue_ball", "translation": [0.45, 0.24, 0.15],                           # 12
+         "extensions": {"KILN_quadric": {"primitive": 1, "material": 7}}},
+        quadric("yellow_ring", 2, 8, [-0.55, 0.065, -0.45]),                               # 13
+        {"name": "ceiling_light", "translation": KEY_LIGHT,                               # 14
          "extensions": {"KHR_lights_punctual": {"light": 0}}},
-        {"name": "main", "camera": 0, "translation": [0.0, 1.0, 3.9]},                   # 12
-        {"name": "fill_light", "translation": [0.6, 1.7, 2.4],                           # 13
+        {"name": "main", "camera": 0, "translation": CAMERA,                              # 15
+         "rotation": q(x_axis, CAMERA_PITCH)},
+        {"name": "fill_light", "translation": FILL_LIGHT,                                 # 16
          "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        quadric("orange_cone", 3, 9, [0.05, 0.0, -0.6]),                                  # 17
     ]
 
     gltf = {
         "asset": {"version": "2.0", "generator": GENERATOR,
                   "copyright": "Generated procedurally; no third-party content"},
-        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength"],
-        "extensions": {"KHR_lights_punctual": {"lights": [
-            {"name": "ceiling_light", "type": "point", "color": [1.0, 0.95, 0.88],
-             "intensity": 12.0},
-            {"name": "fill_light", "type": "point", "color": [1.0, 1.0, 1.0],
-             "intensity": 6.0}]}},
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength",
+                           "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                           "KHR_texture_transform", "KILN_quadric"],
+        "extensions": {
+            "KHR_lights_punctual": {"lights": [
+                {"name": "ceiling_light", "type": "point", "color": [1.0, 0.95, 0.88],
+                 "intensity": 5.0},
+                {"name": "fill_light", "type": "point", "color": [1.0, 1.0, 1.0],
+                 "intensity": 1.8}]},
+            "KILN_quadric": {"primitives": QUADRICS},
+        },
         "scene": 0,
-        "scenes": [{"name": "cornell_box", "nodes": [0, 12, 13]}],
+        "scenes": [{"name": "cornell_box", "nodes": [0, 15, 16]}],
         "nodes": nodes,
         "cameras": [{"name": "main", "type": "perspective",
-                     "perspective": {"yfov": 0.7, "aspectRatio": 1.333333,
+                     "perspective": {"yfov": 0.75, "aspectRatio": 1.333333,
                                      "znear": 0.05, "zfar": 100.0}}],
         "meshes": meshes,
         "materials": materials,
@@ -501,16 +618,20 @@ def validate(out_dir):
                 seen_prims.add(key)
             triangles += len(idx) // 3
 
-    # World-space checks: walls face the inside of the room, everything lies inside it.
+    # World-space checks: walls face the inside of the room, everything lies inside it, the
+    # objects stand on the floor without touching each other, the lights are inside the room.
     world = world_matrices(gltf)
-    centre = [0.0, 1.0, 0.0]
+    centre = [0.0, 1.0, (ROOM_FRONT - 1.0) / 2.0]
+    room_lo, room_hi = [-1.0, 0.0, -1.0], [1.0, PANEL_HEIGHT, ROOM_FRONT]
     mesh_users = {}
-    box_bounds = {}
+    object_bounds = {}
+    definitions = gltf["extensions"]["KILN_quadric"]["primitives"]
     print("nodes (world space):")
     for i, node in enumerate(gltf["nodes"]):
         m = world[i]
         origin = transform_point(m, [0.0, 0.0, 0.0])
         desc = ""
+        inside = lambda p: all(room_lo[k] - 1e-6 <= p[k] <= room_hi[k] + 1e-6 for k in range(3))
         if "mesh" in node:
             mesh_users.setdefault(node["mesh"], []).append(node["name"])
             mesh = gltf["meshes"][node["mesh"]]
@@ -519,29 +640,40 @@ def validate(out_dir):
             wp = [transform_point(m, p) for p in pos]
             lo = [min(p[k] for p in wp) for k in range(3)]
             hi = [max(p[k] for p in wp) for k in range(3)]
-            check(all(-1.0 - 1e-6 <= lo[k] and hi[k] <= (2.0 if k == 1 else 1.0) + 1e-6
-                      and (k != 1 or lo[k] >= -1e-6) for k in range(3)),
-                  "node %s leaves the room" % node["name"])
-            if mesh["name"].startswith("cube"):
-                box_bounds[i] = (lo, hi)
-            if mesh["name"].startswith("wall"):
-                n = normalize(transform_dir(m, [0.0, 0.0, 1.0]))
+            check(inside(lo) and inside(hi), "node %s leaves the room" % node["name"])
+            n = normalize(transform_dir(m, [0.0, 0.0, 1.0]))
+            if mesh["name"].startswith("wall") or mesh["name"] in ("floor_checker", "ceiling"):
                 check(dot(n, sub(centre, origin)) > 0, "wall %s faces outwards" % node["name"])
-                desc = "normal (%+.0f %+.0f %+.0f)" % tuple(n)
-            desc = "mesh %-13s bounds (%5.2f %5.2f %5.2f)..(%5.2f %5.2f %5.2f) %s" % (
-                mesh["name"], *lo, *hi, desc)
+            if mesh["name"] == "light_panel":
+                check(n[1] < -0.999 and lo[1] > 2.0, "the light panel must face down from above the ceiling")
+            desc = "mesh %-13s bounds (%5.2f %5.2f %5.2f)..(%5.2f %5.2f %5.2f) normal (%+.0f %+.0f %+.0f)" % (
+                mesh["name"], *lo, *hi, *n)
         elif "camera" in node:
             fwd = normalize(transform_dir(m, [0.0, 0.0, -1.0]))
+            check(inside(origin), "the camera is outside the room")
             desc = "camera, looks along (%+.2f %+.2f %+.2f)" % tuple(fwd)
+        elif "KILN_quadric" in node.get("extensions", {}):
+            ext = node["extensions"]["KILN_quadric"]
+            # Bounds from the node's own translation plus its parents' (translations only here).
+            local = dict(node)
+            local["translation"] = origin
+            lo, hi = quadric_bounds(definitions[ext["primitive"]], local)
+            check(inside([lo[0], max(lo[1], 0.0), lo[2]]) and inside(hi), "quadric %s leaves the room" % node["name"])
+            check(-2 * SINK <= lo[1] < 0.0, "quadric %s does not stand on the floor" % node["name"])
+            object_bounds[node["name"]] = (lo, hi)
+            desc = "quadric %-13s bounds (%5.2f %5.2f %5.2f)..(%5.2f %5.2f %5.2f)" % (
+                definitions[ext["primitive"]]["name"], *lo, *hi)
         elif "extensions" in node:
+            check(inside(origin) and origin[1] < 2.0, "light %s is outside the room" % node["name"])
             desc = "point light"
         print("  %-18s at (%6.3f %6.3f %6.3f)  %s" % (node["name"], *origin, desc))
     check(any(len(v) > 1 for v in mesh_users.values()), "no mesh is instanced")
-    boxes = [b for b in box_bounds.values()]
-    for a in range(len(boxes)):
-        for b in range(a + 1, len(boxes)):
-            check(any(boxes[a][1][k] < boxes[b][0][k] or boxes[b][1][k] < boxes[a][0][k]
-                      for k in range(3)), "the boxes' bounds overlap")
+    names = sorted(object_bounds)
+    for a in range(len(names)):
+        for b in range(a + 1, len(names)):
+            (alo, ahi), (blo, bhi) = object_bounds[names[a]], object_bounds[names[b]]
+            check(any(ahi[k] < blo[k] or bhi[k] < alo[k] for k in range(3)),
+                  "the bounds of %s and %s overlap" % (names[a], names[b]))
 
     print("summary: %d nodes, %d meshes (%d unique geometries), %d materials, %d accessors, "
           "%d bufferViews, %d triangles drawn, %s = %d bytes"

@@ -3,11 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/error.h"
+#include "io/file/input_file.h"
 
 namespace kiln {
 
@@ -18,12 +18,14 @@ using json = nlohmann::json;
 
 const char* const job_fields = "asset, camera, resolution, spp, output, overrides";
 
+// Larger manifests are refused: millions of jobs fit in far less.
+constexpr uint64_t max_manifest_bytes = uint64_t(512) << 20;
+
+// Through the input-file reader: a FIFO or a device named as the manifest is refused (exit 2)
+// instead of blocking or reading forever.
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path, "", "cannot read the manifest");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  const std::vector<uint8_t> bytes = read_whole_input_file(path, {max_manifest_bytes});
+  return std::string(bytes.begin(), bytes.end());
 }
 
 std::string resolve_asset(const std::string& asset, const std::string& manifest) {

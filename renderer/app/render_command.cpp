@@ -458,6 +458,7 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_nodes = options.max_nodes;
   load_options.limits.max_instances = options.max_instances;
   load_options.limits.max_texels = options.max_texels;
+  load_options.cancel = &interrupt_requested();  // SIGINT/SIGTERM stop the reading of large files
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {

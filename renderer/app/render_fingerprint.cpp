@@ -2,8 +2,11 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <system_error>
 
+#include "app/interrupt.h"
+#include "io/file/input_file.h"
+#include "io/exr/environment_reader.h"
 #include "io/gltf/gltf_references.h"
 
 namespace kiln {
@@ -26,13 +29,13 @@ struct fnv1a {
   }
 };
 
-void add_file(fnv1a& hash, const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof buffer);
-    hash.add(buffer, size_t(in.gcount()));
-  }
+// Hashes the file's bytes through the input-file reader: a FIFO or a device is refused before a
+// byte is read (input error, exit 2), and SIGINT/SIGTERM stop the hash within a chunk. A missing
+// file hashes as nothing; the loader names it in its own words.
+void add_file(fnv1a& hash, const std::string& path, uint64_t max_bytes, const std::string& where = "") {
+  if (input_file_missing(path)) return;
+  read_input_file(path, {max_bytes, &interrupt_requested(), "", where},
+                  [&hash](const char* bytes, size_t count) { hash.add(bytes, count); });
 }
 
 std::string number(double value) {
@@ -124,22 +127,35 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
 
 std::string file_hash_hex(const std::string& path) {
   fnv1a hash;
-  add_file(hash, path);
+  add_file(hash, path, max_gltf_file_bytes);
   return hash.hex();
 }
 
 render_fingerprint make_fingerprint(const render_options& options) {
   fnv1a inputs;
-  add_file(inputs, options.input);
-  // Each referenced file by its name and bytes, so renaming a buffer counts as a change too.
-  const fs::path folder = fs::path(options.input).parent_path();
-  for (const std::string& file : gltf_referenced_files(options.input)) {
-    inputs.add(fs::path(file).lexically_relative(folder).string());
-    inputs.add(file_hash_hex(file));
+  add_file(inputs, options.input, max_gltf_file_bytes);
+  // Each referenced file by its name and bytes, so renaming a buffer counts as a change too. The
+  // list comes through the loader's URI rule: nothing outside the folder, no FIFO, no device.
+  // A missing asset names nothing; the loader reports it.
+  if (!input_file_missing(options.input)) {
+    gltf_load_options rules;
+    rules.allow_files_outside_folder = options.allow_outside_files;
+    rules.limits.max_json_bytes = options.max_json_bytes;
+    rules.cancel = &interrupt_requested();
+    std::error_code ec;
+    const fs::path folder = fs::weakly_canonical(fs::absolute(options.input, ec).parent_path(), ec);
+    for (const std::string& file : gltf_referenced_files(options.input, rules)) {
+      inputs.add(fs::path(file).lexically_relative(folder).string());
+      fnv1a bytes;
+      add_file(bytes, file, max_gltf_file_bytes);
+      inputs.add(bytes.hex());
+    }
   }
   if (!options.environment.empty()) {
     inputs.add("environment");
-    inputs.add(file_hash_hex(options.environment));
+    fnv1a bytes;
+    add_file(bytes, options.environment, max_environment_file_bytes, "--environment");
+    inputs.add(bytes.hex());
   }
   fnv1a settings, frame;
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::include))

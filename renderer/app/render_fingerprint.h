@@ -26,10 +26,14 @@ struct render_fingerprint {
   std::string frame_settings_hash;
 };
 
-// FNV-1a (64 bit) in 16 hex digits of the file's bytes; of nothing when it cannot be read.
+// FNV-1a (64 bit) in 16 hex digits of the file's bytes; of nothing when it does not exist. Throws
+// kiln::error (input) for a FIFO, a device, a folder or a file over kiln's size limit, before
+// reading it, and (interrupted) when SIGINT/SIGTERM arrive while it reads.
 std::string file_hash_hex(const std::string& path);
 
-// Hashes the inputs and settings of options (reads every input file once).
+// Hashes the inputs and settings of options (reads every input file once). The files the asset
+// names are checked by the loader's own URI rule before any is read, so a URI the loader refuses
+// (absolute, outside the folder, a FIFO or a device) is refused here first, in the loader's words.
 render_fingerprint make_fingerprint(const render_options& options);
 
 }  // namespace kiln

@@ -1,6 +1,7 @@
 #include "io/exr/environment_reader.h"
 
 #include "core/error.h"
+#include "io/file/input_file.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -16,6 +17,8 @@ constexpr uint64_t max_texels = uint64_t(1) << 27;
 }  // namespace
 
 image read_environment_image(const std::string& path) {
+  if (const std::string why = input_file_problem(path, max_environment_file_bytes); !why.empty())
+    throw input_error(path, "--environment", why);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw input_error(path, "--environment", "cannot read the image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();

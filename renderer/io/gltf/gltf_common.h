@@ -66,7 +66,4 @@ inline std::string percent_decoded(const std::string& uri) {
   return out;
 }
 
-// Files larger than this are refused: tinygltf passes sizes through int and unsigned int.
-constexpr uint64_t max_file_bytes = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
-
 }  // namespace kiln::gltf_internal

@@ -7,6 +7,7 @@
 #include "core/error.h"  // callers catch the kiln::error this throws
 #include "scene/scene.h"
 
+#include <atomic>
 #include <string>
 
 namespace kiln {
@@ -22,12 +23,19 @@ struct gltf_limits {
   uint64_t max_texels = uint64_t(1) << 28;    // width × height of one image, checked before decoding
 };
 
+// Files larger than this are refused, the asset and every file it names: tinygltf passes sizes
+// through int and unsigned int.
+constexpr uint64_t max_gltf_file_bytes = uint64_t(2147483647);
+
 struct gltf_load_options {
   int scene_index = -1;  // -1: the file's default scene (or scene 0 when none is marked)
   // Buffer and image URIs may name files outside the asset's folder (absolute paths, ".."
   // escapes). Off by default: a scene file must not read arbitrary files on a farm node.
   bool allow_files_outside_folder = false;
   gltf_limits limits;
+  // When set and raised (SIGINT/SIGTERM), reading files stops and loading throws kiln::error of
+  // kind interrupted.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.

@@ -323,7 +323,7 @@ TEST(GltfLoaderErrors, MissingFile) {
   temp_folder dir;
   const std::string path = dir.file("nope.gltf");
   const std::string message = error_of([&] { load_gltf(path); });
-  EXPECT_EQ(message, path + ": cannot open file");
+  EXPECT_EQ(message, path + ": cannot open file: No such file or directory");
 }
 
 TEST(GltfLoaderErrors, MissingBin) {

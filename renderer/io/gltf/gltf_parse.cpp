@@ -5,6 +5,8 @@
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_image_use.h"
 #include "io/gltf/gltf_precheck.h"
+#include "io/gltf/gltf_uri_files.h"
+#include "io/file/input_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -23,48 +25,26 @@ namespace fs = std::filesystem;
 // What the tinygltf file-system callbacks may touch: files inside the asset's folder only,
 // unless the caller allows files anywhere.
 struct fs_context {
-  std::string folder_prefix;  // canonical asset folder (symlinks resolved), ending in '/'
-  bool allow_outside = false;
+  uri_rules rules;
+  const std::atomic<bool>* cancel = nullptr;  // raised by SIGINT/SIGTERM: reading stops
+  std::string interrupted_file;               // a read it stopped (tinygltf only sees "failed")
   // Filled by the JSON pre-pass: images no material samples are neither read nor kept, so a
   // large unused image file costs no memory (a missing one is still refused, by the pre-pass).
   std::vector<bool> image_used;              // by image index
   std::set<std::string> unused_image_files;  // canonical paths only unused images name
 };
 
-// True when path, with ".", ".." and symbolic links resolved, lies inside the asset's folder. A
-// scene file must not read arbitrary files (../../etc/passwd) on a render farm node, and neither
-// may a symlink that sits in the folder but points out of it.
-bool inside_asset_folder(const std::string& path, const fs_context& context) {
-  std::error_code ec;
-  const std::string resolved = fs::weakly_canonical(fs::path(path), ec).string();
-  if (ec) return false;
-  return resolved.compare(0, context.folder_prefix.size(), context.folder_prefix) == 0;
-}
-
-bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::string& why) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    why = "cannot open file";
-    return false;
-  }
-  const uintmax_t size = fs::file_size(path, ec);
-  if (ec) {
-    why = "cannot open file";
-    return false;
-  }
-  if (size > max_file_bytes) {
-    why =
-        "file is " + std::to_string(size) + " bytes, over kiln's limit of " + std::to_string(max_file_bytes);
-    return false;
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    why = "cannot open file";
-    return false;
-  }
-  out.resize(static_cast<size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(size))) {
-    why = "cannot read file";
+// Reads a file the asset names or the asset itself: a regular file within kiln's size limit
+// (never a FIFO or a device, which would block or never end), stopping when cancel is raised.
+// For tinygltf's file callback, which cannot take an exception: reports failure in why, and an
+// interrupt by naming the file in interrupted_file.
+bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::string& why,
+                     const std::atomic<bool>* cancel, std::string& interrupted_file) {
+  try {
+    out = read_whole_input_file(path, {max_gltf_file_bytes, cancel});
+  } catch (const error& e) {
+    why = e.reason();
+    if (e.kind() == error_kind::interrupted) interrupted_file = path;
     return false;
   }
   return true;
@@ -88,15 +68,15 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     if (err) *err += "not found: " + path + "\n";
     return false;
   }
-  const auto* context = static_cast<const fs_context*>(user);
+  auto* context = static_cast<fs_context*>(user);
   // No bytes: tinygltf then leaves the image empty (a warning kiln ignores) and goes on.
   if (context->unused_image_files.count(canonical_key(path)) > 0) return true;
-  if (!context->allow_outside && !inside_asset_folder(path, *context)) {
+  if (!context->rules.allow_outside && !inside_asset_folder(path, context->rules)) {
     if (err) *err += "refers to a file outside the asset's folder (allow with --allow-outside-files)";
     return false;
   }
   std::string why;
-  if (!read_file_bytes(path, *out, why)) {
+  if (!read_file_bytes(path, *out, why, context->cancel, context->interrupted_file)) {
     if (err) *err += why + ": " + path + "\n";
     return false;
   }
@@ -229,29 +209,16 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   if (nodes != doc.end() && nodes->is_array() && nodes->size() > limits.max_nodes)
     throw input_error(path, "/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
                                           std::to_string(limits.max_nodes) + " (--max-nodes)");
-  for (const char* collection : {"buffers", "images"}) {
-    auto items = doc.find(collection);
-    if (items == doc.end() || !items->is_array()) continue;
-    for (size_t i = 0; i < items->size(); ++i) {
-      const nlohmann::json& item = (*items)[i];
-      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
-      const std::string uri = percent_decoded(item["uri"].get<std::string>());
-      if (uri.rfind("data:", 0) == 0) continue;
-      const std::string where = pointer_join(pointer(collection, static_cast<int64_t>(i)), "uri");
-      if (uri.rfind("file:", 0) == 0 || fs::path(uri).is_absolute())
-        throw input_error(path, where, "'" + uri + "' is an absolute path; glTF URIs are relative to the asset");
-      if (!context.allow_outside && !inside_asset_folder(context.folder_prefix + uri, context))
-        throw input_error(path, where,
-                          "'" + uri + "' refers to a file outside the asset's folder (allow with --allow-outside-files)");
-    }
-  }
+  for_each_file_uri(doc, [&](const std::string& where, const std::string& uri) {
+    checked_uri_files(path, where, uri, context.rules);
+  });
   // An unsupported required extension explains what follows from it (Draco's accessors have no
   // bufferViews), so it is reported first.
   check_required_extensions_in_json(doc, path);
   check_what_tinygltf_refuses(doc, path, sources);
   context.image_used = images_used_by_materials(doc);
-  context.unused_image_files = unused_image_files(doc, context.image_used, context.folder_prefix);
-  refuse_missing_image_files(doc, context.folder_prefix, path);
+  context.unused_image_files = unused_image_files(doc, context.image_used, context.rules.folder_prefix);
+  refuse_missing_image_files(doc, context.rules.folder_prefix, path);
 }
 
 }  // namespace
@@ -265,18 +232,15 @@ const std::vector<std::string>& supported_extensions() {
 }
 
 tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options) {
-  std::vector<uint8_t> bytes;
-  std::string why;
-  if (!read_file_bytes(path, bytes, why)) throw input_error(path, "", why);
+  // Throws for a FIFO, a device or a folder given as the asset, before a byte is read.
+  const std::vector<uint8_t> bytes = read_whole_input_file(path, {max_gltf_file_bytes, options.cancel});
 
   std::error_code ec;
-  fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
+  const fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
   if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
   fs_context context;
-  context.folder_prefix = fs::weakly_canonical(folder, ec).string();
-  if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
-  context.allow_outside = options.allow_files_outside_folder;
-  if (context.folder_prefix.empty() || context.folder_prefix.back() != '/') context.folder_prefix += '/';
+  context.rules = asset_uri_rules(path, options.allow_files_outside_folder);
+  context.cancel = options.cancel;
 
   tinygltf::TinyGLTF parser;
   const bool is_glb = ends_with_glb(path) || has_glb_magic(bytes);
@@ -295,7 +259,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       const glb_layout layout = check_glb_container(bytes, path);
       json_offset = layout.json_offset;
       json_length = layout.json_length;
-      buffer_sources sources{context.folder_prefix, true, layout.has_bin, layout.bin_length};
+      buffer_sources sources{context.rules.folder_prefix, true, layout.has_bin, layout.bin_length};
       check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits,
                                 sources);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
@@ -306,7 +270,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       if (has_utf8_bom(bytes.data(), bytes.size()))
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
       check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits,
-                                buffer_sources{context.folder_prefix, false, false, 0});
+                                buffer_sources{context.rules.folder_prefix, false, false, 0});
       ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                       static_cast<unsigned int>(bytes.size()), folder.string());
     }
@@ -315,6 +279,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   } catch (const std::exception& e) {
     throw input_error(path, "", std::string("invalid glTF: ") + e.what());
   }
+  if (!context.interrupted_file.empty())
+    throw error(error_kind::interrupted, context.interrupted_file, "", "interrupted while reading, nothing written");
   if (!ok) {
     check_required_extensions_in_json(bytes.data() + json_offset, json_length, path);
     std::string line = first_line(err);

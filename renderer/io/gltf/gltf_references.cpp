@@ -1,22 +1,18 @@
 #include "io/gltf/gltf_references.h"
 
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/file/input_file.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_uri_files.h"
 
 namespace kiln {
 
-namespace fs = std::filesystem;
-
-std::vector<std::string> gltf_referenced_files(const std::string& asset_path) {
-  std::ifstream in(asset_path, std::ios::binary);
-  if (!in) return {};
-  const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+std::vector<std::string> gltf_referenced_files(const std::string& asset_path,
+                                               const gltf_load_options& options) {
+  const std::vector<uint8_t> bytes = read_whole_input_file(asset_path, {max_gltf_file_bytes, options.cancel});
   const uint8_t* text = bytes.data();
   size_t size = bytes.size();
   if (gltf_internal::has_glb_magic(bytes)) {
@@ -28,20 +24,16 @@ std::vector<std::string> gltf_referenced_files(const std::string& asset_path) {
       return {};
     }
   }
+  if (size > options.limits.max_json_bytes) return {};
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return {};
-  const fs::path folder = fs::path(asset_path).parent_path();
+  const gltf_internal::uri_rules rules =
+      gltf_internal::asset_uri_rules(asset_path, options.allow_files_outside_folder);
   std::vector<std::string> files;
-  for (const char* collection : {"buffers", "images"}) {
-    auto items = doc.find(collection);
-    if (items == doc.end() || !items->is_array()) continue;
-    for (const nlohmann::json& item : *items) {
-      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
-      const std::string uri = gltf_internal::percent_decoded(item["uri"].get<std::string>());
-      if (uri.empty() || uri.rfind("data:", 0) == 0) continue;
-      files.push_back((folder / uri).string());
-    }
-  }
+  gltf_internal::for_each_file_uri(doc, [&](const std::string& pointer, const std::string& uri) {
+    for (std::string& file : gltf_internal::checked_uri_files(asset_path, pointer, uri, rules))
+      files.push_back(std::move(file));
+  });
   return files;
 }
 

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_loader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -134,7 +135,7 @@ void validate_accessors(const tinygltf::Model& model, const std::string& file) {
     const size_t elem = element_size(acc.componentType, acc.type);
     // An accessor without a bufferView is materialised as zeros: bound it like stored data.
     uint64_t total = 0;
-    if (!checked_mul(acc.count, elem, total) || total > max_file_bytes)
+    if (!checked_mul(acc.count, elem, total) || total > max_gltf_file_bytes)
       throw input_error(file, pointer_join(where, "count"),
                         "count " + std::to_string(acc.count) + " is larger than any glTF buffer can hold");
 
