@@ -147,7 +147,7 @@ TEST(input_files, asset_that_is_a_fifo_is_refused) {
   const fs::path dir = scratch_folder("asset_fifo");
   ASSERT_EQ(::mkfifo((dir / "scene.gltf").c_str(), 0644), 0);
   expect_refused(run(render_args(dir, (dir / "scene.gltf").string()), dir), dir,
-                 {(dir / "scene.gltf").string(), "is a FIFO, not a regular file"});
+                 {(dir / "scene.gltf").string(), "a FIFO, not a glTF file"});
 }
 
 TEST(input_files, environment_that_is_a_device_or_a_fifo_is_refused) {
@@ -160,15 +160,18 @@ TEST(input_files, environment_that_is_a_device_or_a_fifo_is_refused) {
                  {(dir / "sky.exr").string(), "--environment", "is a FIFO, not a regular file"});
 }
 
-TEST(input_files, batch_job_naming_a_fifo_fails_and_the_batch_goes_on) {
+// A FIFO among a batch's assets is bad input of the batch itself, like a malformed manifest: refused
+// before anything renders (a missing or broken asset, by contrast, fails its job alone).
+TEST(input_files, batch_naming_a_fifo_is_refused_before_anything_renders) {
   const fs::path dir = scene_folder("batch", "geometry.bin");
   ASSERT_EQ(::mkfifo((dir / "pipe.gltf").c_str(), 0644), 0);
   const outcome result = run({"batch", (dir / "pipe.gltf").string(), (dir / "assets/scene.gltf").string(),
                               "--out-dir", (dir / "out").string(), "--width", "8", "--height", "8", "-q"},
                              dir);
   ASSERT_TRUE(result.code.has_value()) << "kiln batch hung";
-  EXPECT_EQ(*result.code, 1) << result.message;  // one job failed
-  EXPECT_TRUE(fs::exists(dir / "out/scene.exr")) << result.message;
+  EXPECT_EQ(*result.code, 2) << result.message;
+  EXPECT_NE(result.message.find((dir / "pipe.gltf").string() + " is a FIFO"), std::string::npos) << result.message;
+  EXPECT_FALSE(fs::exists(dir / "out/scene.exr")) << result.message;
 }
 
 TEST(input_files, batch_manifest_that_is_a_fifo_is_refused) {

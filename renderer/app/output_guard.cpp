@@ -6,7 +6,10 @@
 #include <cctype>
 #include <filesystem>
 
+#include "app/interrupt.h"
 #include "core/error.h"
+#include "io/file/input_file.h"
+#include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_references.h"
 
 namespace kiln {
@@ -33,14 +36,23 @@ std::string canonical_name(const std::string& path) {
 
 std::vector<input_file> render_input_files(const render_options& options) {
   std::vector<input_file> files{{options.input, "the asset"}};
-  for (const std::string& file : gltf_referenced_files(options.input))
+  // The loader's URI rule: a URI it would refuse (outside the folder, a FIFO) is refused here too.
+  gltf_load_options rules;
+  rules.allow_files_outside_folder = options.allow_outside_files;
+  rules.limits.max_json_bytes = options.max_json_bytes;
+  rules.cancel = &interrupt_requested();
+  // A missing or unreadable asset names nothing: its render reports it (a batch fails that job only).
+  if (input_file_missing(options.input) || !input_file_problem(options.input, max_gltf_file_bytes).empty())
+    return files;
+  for (const std::string& file : gltf_referenced_files(options.input, rules))
     files.push_back({file, "a buffer or image file of " + options.input});
   if (!options.environment.empty()) files.push_back({options.environment, "the --environment map"});
   return files;
 }
 
 bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa{}, sb{};
+  struct stat sa {
+  }, sb{};
   const bool a_exists = ::stat(a.c_str(), &sa) == 0, b_exists = ::stat(b.c_str(), &sb) == 0;
   if (a_exists && b_exists) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   if (a_exists != b_exists) return false;
@@ -50,7 +62,7 @@ bool same_file(const std::string& a, const std::string& b) {
 input_index index_inputs(const std::vector<input_file>& inputs) {
   input_index index;
   for (const input_file& input : inputs) {
-    struct stat s{};
+    struct stat s {};
     if (::stat(input.path.c_str(), &s) == 0)
       index.by_inode.emplace(std::make_pair(s.st_dev, s.st_ino), input);
     else
@@ -83,7 +95,7 @@ void check_not_symlink(const std::string& path, const std::string& option) {
 void check_output_spares_inputs(const std::string& output, const std::string& option,
                                 const input_index& inputs) {
   // An existing output can only be an existing input, a missing one only a missing input.
-  struct stat s{};
+  struct stat s {};
   const input_file* hit = nullptr;
   if (::stat(output.c_str(), &s) == 0) {
     auto it = inputs.by_inode.find({s.st_dev, s.st_ino});
