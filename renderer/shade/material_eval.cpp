@@ -88,12 +88,24 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
   float v_dot_h = std::max(glm::dot(v, h), 0.0f);
 
   // GGX distribution and height-correlated Smith visibility (glTF appendix B).
-  float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+  const float material_alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+  float alpha = material_alpha;
   if (footprint_alpha > 0.0f)
     alpha = std::min(std::sqrt(alpha * alpha + footprint_alpha * footprint_alpha), 1.0f);
   float a2 = alpha * alpha;
   float d_denominator = n_dot_h * n_dot_h * (a2 - 1.0f) + 1.0f;
   float distribution = a2 / (pi * d_denominator * d_denominator);
+  if (alpha > material_alpha) {
+    // The widening is a filter over the footprint, not roughness: its share of the lobe's variance
+    // gets Beckmann's Gaussian slopes, whose tail ends within a few α, instead of GGX's long tail
+    // (a chrome sphere under the sun would otherwise glow far beyond the footprint). Both are
+    // normalised, so the highlight keeps its energy.
+    const float filter_share = 1.0f - material_alpha * material_alpha / a2;
+    const float cos2 = n_dot_h * n_dot_h;
+    const float tan2 = std::max(1.0f - cos2, 0.0f) / std::max(cos2, 1e-12f);
+    const float beckmann = std::exp(-tan2 / a2) / (pi * a2 * std::max(cos2 * cos2, 1e-24f));
+    distribution += filter_share * (beckmann - distribution);
+  }
   float visibility_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
   float visibility_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
   float visibility = 0.5f / std::max(visibility_l + visibility_v, 1e-8f);

@@ -71,8 +71,9 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
 // spread and half the light's angle across the footprint's width, and the normal by curvature ×
 // width; the lobe's width is set to half of that range. spread, width: the ray cone at the hit
 // (radians, world units); light_distance: infinite for directional lights; curvature: 1 / length.
-// The widened lobe keeps GGX's normalisation, so a highlight's energy is kept, only spread, and it
-// sharpens as the footprint shrinks (more samples, higher resolution): images converge with spp.
+// The widened lobe stays normalised (the footprint's share takes Beckmann's short-tailed slopes, see
+// evaluate_brdf), so a highlight's energy is kept, only spread over its footprint: images converge
+// with spp, and the highlight sharpens as the footprint shrinks (a larger image).
 float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature);
 
 }  // namespace kiln
