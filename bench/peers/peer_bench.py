@@ -309,18 +309,17 @@ def write_chart(summary, folder):
             cases.append(s["case"])
     colours = {"kiln": "#c0392b", "cycles": "#2471a3", "povray": "#239b56"}
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), gridspec_kw={"width_ratios": [3, 2]})
-    width = 0.13
-    slots = [(r, key) for r in RENDERERS for key in ("render_s", "wall_s")]
-    for k, (renderer, key) in enumerate(slots):
-        xs, ys = [], []
-        for i, case in enumerate(cases):
-            s = next((x for x in summary if x["case"] == case and x["renderer"] == renderer), None)
-            if s and s.get(key):
-                xs.append(i + (k - (len(slots) - 1) / 2) * width)
-                ys.append(s[key])
-        if xs:
-            ax1.bar(xs, ys, width, color=colours[renderer], alpha=1.0 if key == "render_s" else 0.45,
-                    label="%s %s" % (renderer, "render" if key == "render_s" else "process wall"))
+    width = 0.18
+    labelled = set()
+    for i, case in enumerate(cases):
+        # Only the renderers that ran this case, centred on it: render phase dark, process wall light.
+        bars = [(s, key) for r in RENDERERS for s in summary if s["case"] == case and s["renderer"] == r
+                for key in ("render_s", "wall_s") if s.get(key)]
+        for k, (s, key) in enumerate(bars):
+            label = "%s %s" % (s["renderer"], "render" if key == "render_s" else "process wall")
+            ax1.bar(i + (k - (len(bars) - 1) / 2) * width, s[key], width, color=colours[s["renderer"]],
+                    alpha=1.0 if key == "render_s" else 0.45, label=None if label in labelled else label)
+            labelled.add(label)
     ax1.set_yscale("log")
     ax1.set_xticks(range(len(cases)))
     ax1.set_xticklabels(cases)
@@ -338,9 +337,9 @@ def write_chart(summary, folder):
     ax2.bar([x - 0.18 for x in xs], render_up, 0.36, color=cols, label="render phase")
     ax2.bar([x + 0.18 for x in xs], wall_up, 0.36, color=cols, alpha=0.45, label="process wall")
     for x, v in zip(xs, render_up):
-        ax2.text(x - 0.18, v, "%.1f" % v, ha="center", va="bottom", fontsize=7)
+        ax2.text(x - 0.18, v, "%.2f" % v, ha="center", va="bottom", fontsize=7)
     for x, v in zip(xs, wall_up):
-        ax2.text(x + 0.18, v, "%.1f" % v, ha="center", va="bottom", fontsize=7)
+        ax2.text(x + 0.18, v, "%.2f" % v, ha="center", va="bottom", fontsize=7)
     ax2.axhline(1.0, color="black", linewidth=0.8)
     ax2.set_xticks(list(xs))
     ax2.set_xticklabels(labels, fontsize=7)
