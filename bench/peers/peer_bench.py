@@ -229,7 +229,7 @@ def summarise(runs):
         k = kiln.get(s["case"])
         if k and s["renderer"] != "kiln":
             # Per-round ratios, median: each round's peer time over the same round's kiln time.
-            for key in ("render_s", "wall_s"):
+            for key in ("render_s", "wall_s", "cpu_s"):
                 ratios = []
                 for r in runs:
                     if r["case"] == s["case"] and r["renderer"] == s["renderer"]:
@@ -270,7 +270,7 @@ def phases_text(s):
 
 def write_tables(summary, folder, meta):
     head = ["case", "renderer", "render phase s", "process wall s", "process CPU s", "kiln speed-up (render)",
-            "kiln speed-up (wall)", "phases s", "rays"]
+            "kiln speed-up (wall)", "kiln speed-up (CPU)", "phases s", "rays"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     csv = [",".join(head)]
     for s in summary:
@@ -280,12 +280,15 @@ def write_tables(summary, folder, meta):
                  fmt(s["cpu_s"]),
                  ("%.2fx" % s["kiln_speedup_render"]) if s.get("kiln_speedup_render") else "–",
                  ("%.2fx" % s["kiln_speedup_wall"]) if s.get("kiln_speedup_wall") else "–",
+                 ("%.2fx" % s["kiln_speedup_cpu"]) if s.get("kiln_speedup_cpu") else "–",
                  phases_text(s), rays_text(s)]
         lines.append("| " + " | ".join(cells) + " |")
         csv.append(",".join('"%s"' % c.replace('"', "'") for c in cells))
     text = "\n".join(lines) + "\n"
     notes = ["", "Medians of %d rounds (min–max in brackets); speed-up = peer time / kiln time, median of "
-             "per-round ratios. %s" % (meta["rounds"], meta["settings"]), ""]
+             "per-round ratios; process CPU = user + system time of the whole process, the measure least "
+             "moved by other load on the machine. %s" % (meta["rounds"], meta["settings"]), "",
+             "- load average (1 min) before each run: %s" % meta.get("load_range", "?")]
     notes += ["- " + k + ": " + str(v) for k, v in meta["machine"].items()]
     notes += ["- skipped: " + s for s in meta["skipped"]]
     with open(os.path.join(folder, "table.md"), "w", encoding="utf-8") as f:
@@ -420,7 +423,8 @@ def main():
         if name in wanted and not have[name]:
             skipped.append("%s: %s is not installed" % (name, path))
             log("skipping", name + ":", path, "is not installed")
-    versions = {"kiln": version_of([args.kiln, "--version"], r".+"), "kiln binary": os.path.abspath(args.kiln)}
+    versions = {"kiln": version_of([args.kiln, "--version"], r".+"), "kiln binary": os.path.abspath(args.kiln),
+                "benchmark script commit": version_of(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], r"\w+")}
     if have.get("cycles"):
         versions["blender"] = version_of([args.blender, "-b", "--factory-startup", "--version"], r"Blender [\d.]+")
     if have.get("povray"):
@@ -478,6 +482,8 @@ def main():
                         "(bench/peers/blender_render.py); POV-Ray +A0.0 +AM1 +R%d (-A at 1 spp), max_trace_level 9."
                         % (args.width, args.height, args.threads, args.spp, int(round(math.sqrt(args.spp)))),
             "load_avg_after": os.getloadavg()}
+    loads = [r["load_avg_1min_before"] for r in runs]
+    meta["load_range"] = "%.2f to %.2f" % (min(loads), max(loads)) if loads else "?"
     with open(os.path.join(folder, "runs.json"), "w", encoding="utf-8") as f:
         json.dump({"meta": meta, "runs": runs}, f, indent=1)
     with open(os.path.join(folder, "summary.json"), "w", encoding="utf-8") as f:
