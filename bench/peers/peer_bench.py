@@ -329,20 +329,20 @@ def write_chart(summary, folder):
     ax1.set_ylabel("seconds (median, log scale)")
     ax1.set_title("time per scene")
     ax1.legend(fontsize=7, ncol=2)
-    labels, render_up, wall_up, cols = [], [], [], []
+    labels, cols, ups = [], [], {"render": [], "wall": [], "cpu": []}
     for s in summary:
         if s.get("kiln_speedup_render") or s.get("kiln_speedup_wall"):
             labels.append("%s\nvs %s" % (s["case"], s["renderer"]))
-            render_up.append(s.get("kiln_speedup_render") or 0)
-            wall_up.append(s.get("kiln_speedup_wall") or 0)
+            for key in ups:
+                ups[key].append(s.get("kiln_speedup_" + key) or 0)
             cols.append(colours[s["renderer"]])
     xs = range(len(labels))
-    ax2.bar([x - 0.18 for x in xs], render_up, 0.36, color=cols, label="render phase")
-    ax2.bar([x + 0.18 for x in xs], wall_up, 0.36, color=cols, alpha=0.45, label="process wall")
-    for x, v in zip(xs, render_up):
-        ax2.text(x - 0.18, v, "%.2f" % v, ha="center", va="bottom", fontsize=7)
-    for x, v in zip(xs, wall_up):
-        ax2.text(x + 0.18, v, "%.2f" % v, ha="center", va="bottom", fontsize=7)
+    for off, key, alpha, hatch, label in ((-0.26, "render", 1.0, None, "render phase"),
+                                          (0.0, "wall", 0.45, None, "process wall"),
+                                          (0.26, "cpu", 0.7, "//", "process CPU")):
+        ax2.bar([x + off for x in xs], ups[key], 0.26, color=cols, alpha=alpha, hatch=hatch, label=label)
+        for x, v in zip(xs, ups[key]):
+            ax2.text(x + off, v, "%.2f" % v, ha="center", va="bottom", fontsize=6)
     ax2.axhline(1.0, color="black", linewidth=0.8)
     ax2.set_xticks(list(xs))
     ax2.set_xticklabels(labels, fontsize=7)
@@ -405,7 +405,19 @@ def main():
     ap.add_argument("--cases", default="toycar-16spp,quadrics-16spp,quadrics-1spp")
     ap.add_argument("--renderers", default=",".join(RENDERERS))
     ap.add_argument("--quick", action="store_true", help="320x240, 1 round: a check that everything runs")
+    ap.add_argument("--from-runs", metavar="RUNS_JSON", help="rewrite the tables and chart in --out from an "
+                    "earlier runs.json, rendering nothing")
     args = ap.parse_args()
+    if args.from_runs:
+        with open(args.from_runs, encoding="utf-8") as f:
+            old = json.load(f)
+        os.makedirs(args.out, exist_ok=True)
+        summary = summarise(old["runs"])
+        with open(os.path.join(args.out, "summary.json"), "w", encoding="utf-8") as f:
+            json.dump({"meta": old["meta"], "summary": summary}, f, indent=1)
+        print(write_tables(summary, args.out, old["meta"]))
+        write_chart(summary, args.out)
+        return
     if args.quick:
         args.width, args.height, args.rounds = 320, 240, 1
     if not os.access(args.kiln, os.X_OK):
