@@ -66,9 +66,6 @@ int wrapped(int i, int size, wrap_mode mode) {
   return unsigned(i) < unsigned(size) ? i : wrap_texel(i, size, mode);
 }
 
-// u, reduced modulo 65536 only when it is that large: fmod costs more than the rest of a read.
-float bounded(float u) { return std::abs(u) < 65536.0f ? u : std::fmod(u, 65536.0f); }
-
 }  // namespace
 
 mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool build) {
@@ -81,21 +78,99 @@ mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool bu
   return p;
 }
 
+namespace {
+
+// Four texels' weighted sum read by `read(x, y)`, one storage format per instantiation, so the
+// format is decided once per lookup rather than per texel.
+template <typename Read>
+vec4 blend(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty) {
+  const vec4 top = glm::mix(read(x0, y0), read(x1, y0), tx);
+  const vec4 bottom = glm::mix(read(x0, y1), read(x1, y1), tx);
+  return glm::mix(top, bottom, ty);
+}
+
+vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
+  if (level > 0) {
+    const mip_level& l = p.coarser[size_t(level - 1)];
+    const vec4* texels = l.texels.data();
+    const size_t w = size_t(l.width);
+    return blend([&](int x, int y) { return texels[size_t(y) * w + size_t(x)]; }, x0, x1, y0, y1, tx, ty);
+  }
+  const image& img = *p.level0;
+  const size_t w = size_t(img.width);
+  if (img.texels8.empty())
+    return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
+  const uint8_t* texels = img.texels8.data();
+  if (p.encoding == texel_encoding::srgb)
+    return blend(
+        [&](int x, int y) {
+          const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
+          return vec4(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
+                      float(t[3]) * (1.0f / 255.0f));
+        },
+        x0, x1, y0, y1, tx, ty);
+  // Linear 8-bit: blend the codes, scale once.
+  return blend(
+             [&](int x, int y) {
+               const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
+               return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3]));
+             },
+             x0, x1, y0, y1, tx, ty) *
+         (1.0f / 255.0f);
+}
+
+}  // namespace
+
+namespace {
+
+// The two texels a bilinear read blends along one axis, and the weight of the second. The
+// coordinate is first reduced to one period of the wrap mode (repeat: [0, 1), mirrored repeat:
+// [0, 2)), so only a read across the image's edge needs wrapping; a division per texel (as
+// wrap_texel does) cost more than the rest of the read.
+struct texel_pair {
+  int first = 0;
+  int second = 0;
+  float t = 0.0f;
+};
+
+// floor() as an int for |x| < 2^31, without a libm call: baseline x86-64 has no rounding
+// instruction, and this runs several times per texture read.
+int floor_to_int(float x) {
+  const int i = int(x);
+  return i - int(x < float(i));
+}
+
+// u reduced to one period of the wrap mode: [0, 1) for repeat, [0, 2) for mirrored repeat; clamped
+// coordinates only need to stay in a range where converting to int is defined.
+float reduced(float u, wrap_mode mode) {
+  if (mode == wrap_mode::clamp_to_edge) return std::clamp(u, -1.0f, 2.0f);
+  if (!(std::abs(u) < 8388608.0f)) u = std::fmod(u, 8388608.0f);  // floats this large are even integers
+  if (mode == wrap_mode::repeat) return u - float(floor_to_int(u));
+  return u - 2.0f * float(floor_to_int(0.5f * u));
+}
+
+texel_pair pair_along(float u, int size, wrap_mode mode) {
+  const float x = reduced(u, mode) * float(size) - 0.5f;
+  const int x0 = floor_to_int(x);
+  texel_pair p;
+  p.t = x - float(x0);
+  p.first = wrapped(x0, size, mode);
+  p.second = wrapped(x0 + 1, size, mode);
+  return p;
+}
+
+int nearest_along(float u, int size, wrap_mode mode) {
+  return wrapped(floor_to_int(reduced(u, mode) * float(size)), size, mode);
+}
+
+}  // namespace
+
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter) {
   const int w = p.width(level), h = p.height(level);
-  // Texel centres sit at half-integers; keep the coordinate bounded before converting to int.
-  const float fx = bounded(uv.x) * float(w) - 0.5f;
-  const float fy = bounded(uv.y) * float(h) - 0.5f;
   if (filter == filter_mode::nearest)
-    return p.texel(level, wrapped(int(std::floor(fx + 0.5f)), w, smp.wrap_s),
-                   wrapped(int(std::floor(fy + 0.5f)), h, smp.wrap_t));
-  const float x0f = std::floor(fx), y0f = std::floor(fy);
-  const float tx = fx - x0f, ty = fy - y0f;
-  const int x0 = wrapped(int(x0f), w, smp.wrap_s), x1 = wrapped(int(x0f) + 1, w, smp.wrap_s);
-  const int y0 = wrapped(int(y0f), h, smp.wrap_t), y1 = wrapped(int(y0f) + 1, h, smp.wrap_t);
-  const vec4 top = glm::mix(p.texel(level, x0, y0), p.texel(level, x1, y0), tx);
-  const vec4 bottom = glm::mix(p.texel(level, x0, y1), p.texel(level, x1, y1), tx);
-  return glm::mix(top, bottom, ty);
+    return p.texel(level, nearest_along(uv.x, w, smp.wrap_s), nearest_along(uv.y, h, smp.wrap_t));
+  const texel_pair x = pair_along(uv.x, w, smp.wrap_s), y = pair_along(uv.y, h, smp.wrap_t);
+  return blend_level(p, level, x.first, x.second, y.first, y.second, x.t, y.t);
 }
 
 }  // namespace kiln

@@ -58,19 +58,29 @@ ellipse footprint_ellipse(vec2 a, vec2 b) {
   return e;
 }
 
-// One probe at uv with a filter `width` level-0 texels wide: the two levels whose texels are
-// nearest that width, blended by width (the finer level alone when its texels are exactly as wide,
-// the coarser alone when they are half as wide), or the nearest level alone.
-vec4 probe(const mip_pyramid& p, vec2 uv, float width, const sampler& smp) {
+// The levels a filter `width` level-0 texels wide reads: the two whose texels are nearest that
+// width, blended by width (the finer level alone when its texels are exactly as wide, the coarser
+// alone when they are half as wide), or for mip_mode::nearest the nearest level alone. The same for
+// every probe of a lookup, so computed once.
+struct level_blend {
+  int level = 0;
+  float coarser = 0.0f;  // weight of level + 1
+};
+
+level_blend levels_for(const mip_pyramid& p, float width, const sampler& smp) {
   const int top = p.levels() - 1;
   const float lod = std::clamp(std::log2(std::max(width, 1.0f)), 0.0f, float(top));
-  if (smp.mipmap == mip_mode::nearest)
-    return sample_mip_level(p, int(std::lround(lod)), uv, smp, smp.min_filter);
-  const int level = std::min(int(lod), top);
-  const float coarser = std::exp2(lod - float(level)) - 1.0f;  // linear in width between the levels
-  const vec4 finer = sample_mip_level(p, level, uv, smp, smp.min_filter);
-  if (coarser <= 0.0f || level == top) return finer;
-  return glm::mix(finer, sample_mip_level(p, level + 1, uv, smp, smp.min_filter), coarser);
+  if (smp.mipmap == mip_mode::nearest) return {int(std::lround(lod)), 0.0f};
+  level_blend b;
+  b.level = std::min(int(lod), top);
+  if (b.level < top) b.coarser = std::exp2(lod - float(b.level)) - 1.0f;  // linear in width
+  return b;
+}
+
+vec4 probe(const mip_pyramid& p, vec2 uv, const level_blend& b, const sampler& smp) {
+  const vec4 finer = sample_mip_level(p, b.level, uv, smp, smp.min_filter);
+  if (b.coarser <= 0.0f) return finer;
+  return glm::mix(finer, sample_mip_level(p, b.level + 1, uv, smp, smp.min_filter), b.coarser);
 }
 
 }  // namespace
@@ -102,7 +112,8 @@ vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, v
   // uses, which kiln used before it read its pyramids itself.
   const float minor = std::max(e.minor, e.major / float(max_anisotropy));
   const int n = std::clamp(int(2.0f * e.major / minor - 1.0f), 1, 2 * max_anisotropy - 1);
-  if (n == 1) return probe(p, uv, minor, tex.sampling);
+  const level_blend levels = levels_for(p, minor, tex.sampling);
+  if (n == 1) return probe(p, uv, levels, tex.sampling);
   const float reach = e.major - minor;
   const vec2 axis = e.direction * reach / texels;  // from the centre to the outermost probe, in UV
   vec4 sum(0.0f);
@@ -111,7 +122,7 @@ vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, v
     const float position = 2.0f * (float(i) + 0.5f) / float(n) - 1.0f;  // in (-1, 1)
     const float x = position * e.major / (2.0f * reach);
     const float w = n == 2 ? 1.0f : std::exp(-2.0f * x * x);
-    sum += w * probe(p, uv + axis * position, minor, tex.sampling);
+    sum += w * probe(p, uv + axis * position, levels, tex.sampling);
     weights += w;
   }
   return sum / weights;
