@@ -11,20 +11,10 @@
 #include <cmath>
 
 #include "geometry/polynomial.h"
+#include "geometry/quadric_implicit.h"
 
 namespace kiln {
 
-namespace {
-
-// F(p) = pᵀ·A·p + 2·b·p + c with A symmetric: the side surface of every quadric kind.
-struct implicit_form {
-  dmat3 a{0.0};
-  dvec3 b{0.0};
-  double c = 0.0;
-};
-
-// Each kind's F is scaled so its coefficients are of the primitive's size (good conditioning),
-// with F < 0 inside, so the gradient points out of the solid.
 implicit_form implicit_of(const quadric& q) {
   implicit_form f;
   const double r2 = q.radius * q.radius;
@@ -70,7 +60,6 @@ implicit_form implicit_of(const quadric& q) {
   return f;
 }
 
-}  // namespace
 
 double quadric_radius_at(const quadric& q, double z) {
   switch (q.kind) {
@@ -160,8 +149,7 @@ double quadric_implicit(const quadric& q, const dvec3& p) {
     return s * s - 4.0 * big * (p.x * p.x + p.y * p.y);
   }
   if (q.kind == quadric_kind::disk) return p.z;
-  const implicit_form f = implicit_of(q);
-  return glm::dot(p, f.a * p) + 2.0 * glm::dot(f.b, p) + f.c;
+  return implicit_value(implicit_of(q), p);
 }
 
 dvec3 quadric_gradient(const quadric& q, const dvec3& p) {
@@ -171,8 +159,7 @@ dvec3 quadric_gradient(const quadric& q, const dvec3& p) {
     return 4.0 * s * p - 8.0 * big * dvec3(p.x, p.y, 0.0);
   }
   if (q.kind == quadric_kind::disk) return dvec3(0, 0, 1);
-  const implicit_form f = implicit_of(q);
-  return 2.0 * (f.a * p + f.b);
+  return implicit_gradient(implicit_of(q), p);
 }
 
 bounds3 quadric_bounds(const quadric& q) {

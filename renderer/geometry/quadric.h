@@ -72,16 +72,33 @@ struct quadric_world_point {
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
                                       uint32_t part);
 
+// The object-space surface at the hit of world ray r at t on `part` (the ray moved to object space
+// in double, as the intersector does): computed once per hit, the functions below that take it
+// give exactly what their (r, t) forms give without projecting the same point again.
+quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, const ray& r, float t,
+                                       uint32_t part);
+
+// quadric_world_hit from the object-space surface of the hit.
+quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s);
+
+// Only the world normal and the uv of quadric_world_hit (what an accelerator's hit record holds),
+// without the tangent and the error bound.
+void quadric_world_normal_uv(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                             vec3& normal, vec2& uv);
+
 // World-space dP/du and dP/dv of the parametric UV at the same hit, by central differences of the
 // UV along the surface (for texture footprints). False where the parameterisation is singular
 // (poles, apex, disk centre).
 bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                               vec3& dp_du, vec3& dp_dv);
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t part, const quadric_surface& s,
                                vec3& dp_du, vec3& dp_dv);
 
 // A bound on the world-space curvature (1 / length) of the surface at the same hit: how fast the
 // world normal turns per unit of world distance along the surface, the larger of two orthogonal
 // tangents, by central differences. 0 where the surface is flat or the estimate is not finite.
 float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
+float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part, const quadric_surface& s);
 
 // The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
 // centre (coefficients[i] multiplies sⁱ; leading coefficient 1).

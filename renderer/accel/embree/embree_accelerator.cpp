@@ -160,10 +160,10 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
   const instance& inst = world.instances[h.instance_id];
   if (inst.kind == shape_kind::quadric) {
     // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
-    quadric_world_point w = quadric_world_hit(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
-    h.geometric_normal = w.normal;
-    h.u = w.uv.x;
-    h.v = w.uv.y;
+    vec2 uv;
+    quadric_world_normal_uv(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id, h.geometric_normal, uv);
+    h.u = uv.x;
+    h.v = uv.y;
     return h;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances
