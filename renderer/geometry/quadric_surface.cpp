@@ -220,7 +220,6 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
 }
 
 quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s) {
-
   const dmat3 linear(inst.world_from_object);
   const dmat3 abs_linear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
   const dvec3 world = transform_point(inst.world_from_object, s.point);
@@ -258,8 +257,8 @@ bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray
   return quadric_world_uv_jacobian(inst, q, part, quadric_surface_of_hit(inst, q, r, t, part), dp_du, dp_dv);
 }
 
-bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t part, const quadric_surface& s,
-                               vec3& dp_du, vec3& dp_dv) {
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t part,
+                               const quadric_surface& s, vec3& dp_du, vec3& dp_dv) {
   // Central differences of the parametric UV along two orthonormal tangents, at a step small
   // against the shape (its bounds) yet far above rounding: the UV change per unit tangent length.
   const dvec3 t1 = s.dpdu, t2 = glm::cross(s.normal, s.dpdu);
@@ -284,7 +283,8 @@ float quadric_world_curvature(const instance& inst, const quadric& q, const ray&
   return quadric_world_curvature(inst, q, part, quadric_surface_of_hit(inst, q, r, t, part));
 }
 
-float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part, const quadric_surface& s) {
+float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
+                              const quadric_surface& s) {
   const dvec3 tangents[2] = {s.dpdu, glm::cross(s.normal, s.dpdu)};
   const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
   const side_function side(q);

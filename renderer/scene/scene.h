@@ -98,8 +98,9 @@ struct material {
   // Whether shading reads any texture of this material (every texture_ref above: keep in step), so
   // whether a hit needs its UV footprint at all.
   bool samples_textures() const {
-    return base_color_texture.present() || metallic_roughness_texture.present() || emissive_texture.present() ||
-           normal_texture.present() || occlusion_texture.present() || transmission_texture.present();
+    return base_color_texture.present() || metallic_roughness_texture.present() ||
+           emissive_texture.present() || normal_texture.present() || occlusion_texture.present() ||
+           transmission_texture.present();
   }
 };
 
