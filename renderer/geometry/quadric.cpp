@@ -11,20 +11,10 @@
 #include <cmath>
 
 #include "geometry/polynomial.h"
+#include "geometry/quadric_implicit.h"
 
 namespace kiln {
 
-namespace {
-
-// F(p) = pᵀ·A·p + 2·b·p + c with A symmetric: the side surface of every quadric kind.
-struct implicit_form {
-  dmat3 a{0.0};
-  dvec3 b{0.0};
-  double c = 0.0;
-};
-
-// Each kind's F is scaled so its coefficients are of the primitive's size (good conditioning),
-// with F < 0 inside, so the gradient points out of the solid.
 implicit_form implicit_of(const quadric& q) {
   implicit_form f;
   const double r2 = q.radius * q.radius;
@@ -69,8 +59,6 @@ implicit_form implicit_of(const quadric& q) {
   }
   return f;
 }
-
-}  // namespace
 
 double quadric_radius_at(const quadric& q, double z) {
   switch (q.kind) {
@@ -160,8 +148,7 @@ double quadric_implicit(const quadric& q, const dvec3& p) {
     return s * s - 4.0 * big * (p.x * p.x + p.y * p.y);
   }
   if (q.kind == quadric_kind::disk) return p.z;
-  const implicit_form f = implicit_of(q);
-  return glm::dot(p, f.a * p) + 2.0 * glm::dot(f.b, p) + f.c;
+  return implicit_value(implicit_of(q), p);
 }
 
 dvec3 quadric_gradient(const quadric& q, const dvec3& p) {
@@ -171,8 +158,7 @@ dvec3 quadric_gradient(const quadric& q, const dvec3& p) {
     return 4.0 * s * p - 8.0 * big * dvec3(p.x, p.y, 0.0);
   }
   if (q.kind == quadric_kind::disk) return dvec3(0, 0, 1);
-  const implicit_form f = implicit_of(q);
-  return 2.0 * (f.a * p + f.b);
+  return implicit_gradient(implicit_of(q), p);
 }
 
 bounds3 quadric_bounds(const quadric& q) {
@@ -225,15 +211,35 @@ bool clip_ray_to_box(const bounds3& box, const dvec3& o, const dvec3& d, double&
   return true;
 }
 
+prepared_quadric prepare_quadric(const quadric& q) {
+  prepared_quadric p;
+  p.shape = &q;
+  p.bounds = stored_quadric_bounds(q);
+  // The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
+  const dvec3 pad = 1e-9 * (glm::abs(p.bounds.lower) + glm::abs(p.bounds.upper)) + 1e-300;
+  p.padded = bounds3{p.bounds.lower - pad, p.bounds.upper + pad};
+  p.center = p.bounds.center();
+  p.side = implicit_of(q);
+  p.has_caps = q.caps && is_axial(q.kind);
+  if (p.has_caps) {
+    p.cap_radius_zmin = quadric_radius_at(q, q.zmin);
+    p.cap_radius_zmax = quadric_radius_at(q, q.zmax);
+  }
+  return p;
+}
+
 std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,
                                                  double tmin, double tmax) {
+  return intersect_quadric(prepare_quadric(q), o, d, tmin, tmax);
+}
+
+std::optional<quadric_ray_hit> intersect_quadric(const prepared_quadric& p, const dvec3& o, const dvec3& d,
+                                                 double tmin, double tmax, bool any_hit) {
+  const quadric& q = *p.shape;
   // Slab-test a slightly padded box first: it rejects most misses cheaply, and bounds the torus'
-  // root search. The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
-  const bounds3 bounds = stored_quadric_bounds(q);
-  const dvec3 pad = 1e-9 * (glm::abs(bounds.lower) + glm::abs(bounds.upper)) + 1e-300;
-  bounds3 padded{bounds.lower - pad, bounds.upper + pad};
+  // root search.
   double t_enter = tmin, t_exit = tmax;
-  if (!clip_ray_to_box(padded, o, d, t_enter, t_exit)) return std::nullopt;
+  if (!clip_ray_to_box(p.padded, o, d, t_enter, t_exit)) return std::nullopt;
 
   if (q.kind == quadric_kind::torus) {
     std::optional<double> t = intersect_torus(q.major_radius, q.radius, o, d, tmin, tmax);
@@ -243,7 +249,7 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
 
   // Re-centre: o + t_c·d is the point of the ray closest to the centre of the bounds. Any ray
   // that can hit passes through the bounds, so after this every coefficient is O(size²).
-  const dvec3 center = bounds.center();
+  const dvec3& center = p.center;
   const double t_c = glm::dot(center - o, d) / glm::dot(d, d);
   const dvec3 oc = o + t_c * d;
 
@@ -253,7 +259,7 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
     return best;
   }
 
-  const implicit_form f = implicit_of(q);
+  const implicit_form& f = p.side;
   const dvec3 a_d = f.a * d;
   const double a = glm::dot(d, a_d);
   const double h = glm::dot(a_d, oc) + glm::dot(f.b, d);
@@ -267,9 +273,12 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
     keep_closest(best, t, quadric_side);
     break;  // roots are ascending: the first kept one is the closest side hit
   }
-  if (q.caps && is_axial(q.kind)) {
-    intersect_disk(oc, d, t_c, q.zmin, 0.0, quadric_radius_at(q, q.zmin), tmin, tmax, quadric_cap_zmin, best);
-    intersect_disk(oc, d, t_c, q.zmax, 0.0, quadric_radius_at(q, q.zmax), tmin, tmax, quadric_cap_zmax, best);
+  // Any hit answers an occlusion query: a cap could only be closer, not turn a hit into a miss.
+  if (any_hit && best) return best;
+  if (p.has_caps) {
+    intersect_disk(oc, d, t_c, q.zmin, 0.0, p.cap_radius_zmin, tmin, tmax, quadric_cap_zmin, best);
+    if (any_hit && best) return best;
+    intersect_disk(oc, d, t_c, q.zmax, 0.0, p.cap_radius_zmax, tmin, tmax, quadric_cap_zmax, best);
   }
   return best;
 }

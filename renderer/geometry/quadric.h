@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/ray.h"
+#include "geometry/quadric_implicit.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -36,6 +37,24 @@ inline bounds3 stored_quadric_bounds(const quadric& q) {
 // empty. d need not be unit length; t is in units of d, so it is the world t of the same ray.
 std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& o, const dvec3& d,
                                                  double tmin, double tmax);
+
+// What intersect_quadric derives from a primitive before solving, computed once per definition
+// (per-ray code then reads it): the same values intersect_quadric(q, ...) computes on each call.
+struct prepared_quadric {
+  const quadric* shape = nullptr;  // must outlive this
+  bounds3 bounds;                  // stored_quadric_bounds
+  bounds3 padded;                  // bounds grown by a few ulps for the slab test
+  dvec3 center{0.0};               // of bounds: the re-centring point
+  implicit_form side;              // the side surface's F (zero for disk and torus)
+  bool has_caps = false;           // axial kind with caps
+  double cap_radius_zmin = 0.0, cap_radius_zmax = 0.0;
+};
+prepared_quadric prepare_quadric(const quadric& q);
+
+// intersect_quadric on a prepared primitive. With any_hit it may return any hit in (tmin, tmax)
+// instead of the closest (an occlusion query): it is empty exactly when the closest-hit form is.
+std::optional<quadric_ray_hit> intersect_quadric(const prepared_quadric& p, const dvec3& o, const dvec3& d,
+                                                 double tmin, double tmax, bool any_hit = false);
 
 // The implicit function F of the side surface (F < 0 inside, F = 0 on the surface), and its gradient.
 double quadric_implicit(const quadric& q, const dvec3& p);
@@ -72,16 +91,34 @@ struct quadric_world_point {
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
                                       uint32_t part);
 
+// The object-space surface at the hit of world ray r at t on `part` (the ray moved to object space
+// in double, as the intersector does): computed once per hit, the functions below that take it
+// give exactly what their (r, t) forms give without projecting the same point again.
+quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, const ray& r, float t,
+                                       uint32_t part);
+
+// quadric_world_hit from the object-space surface of the hit.
+quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s);
+
+// Only the world normal and the uv of quadric_world_hit (what an accelerator's hit record holds),
+// without the tangent and the error bound.
+void quadric_world_normal_uv(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                             vec3& normal, vec2& uv);
+
 // World-space dP/du and dP/dv of the parametric UV at the same hit, by central differences of the
 // UV along the surface (for texture footprints). False where the parameterisation is singular
 // (poles, apex, disk centre).
 bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
                                vec3& dp_du, vec3& dp_dv);
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t part,
+                               const quadric_surface& s, vec3& dp_du, vec3& dp_dv);
 
 // A bound on the world-space curvature (1 / length) of the surface at the same hit: how fast the
 // world normal turns per unit of world distance along the surface, the larger of two orthogonal
 // tangents, by central differences. 0 where the surface is flat or the estimate is not finite.
 float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
+float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
+                              const quadric_surface& s);
 
 // The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
 // centre (coefficients[i] multiplies sⁱ; leading coefficient 1).

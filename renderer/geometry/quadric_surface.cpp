@@ -9,6 +9,7 @@
 
 #include "core/float_bits.h"
 #include "geometry/quadric.h"
+#include "geometry/quadric_implicit.h"
 
 namespace kiln {
 
@@ -62,16 +63,35 @@ dvec2 side_uv(const quadric& q, const dvec3& p) {
   }
 }
 
+// F and ∇F of the side surface with the kind's matrix form built once: the projection below
+// evaluates both up to seven times per hit. Same values as quadric_implicit / quadric_gradient.
+struct side_function {
+  const quadric& q;
+  implicit_form f;
+  explicit side_function(const quadric& quadric_) : q(quadric_) {
+    if (q.kind != quadric_kind::torus && q.kind != quadric_kind::disk) f = implicit_of(q);
+  }
+  double value(const dvec3& p) const {
+    if (q.kind == quadric_kind::torus || q.kind == quadric_kind::disk) return quadric_implicit(q, p);
+    return implicit_value(f, p);
+  }
+  dvec3 gradient(const dvec3& p) const {
+    if (q.kind == quadric_kind::torus || q.kind == quadric_kind::disk) return quadric_gradient(q, p);
+    return implicit_gradient(f, p);
+  }
+};
+
 // Newton steps along the gradient onto F = 0: each step removes the first-order residual.
-dvec3 project_to_side(const quadric& q, dvec3 p) {
+dvec3 project_to_side(const side_function& side, dvec3 p) {
+  const quadric& q = side.q;
   if (q.kind == quadric_kind::sphere) {
     const double len = glm::length(p);
     return len > 0.0 ? p * (q.radius / len) : p;
   }
   if (q.kind == quadric_kind::disk) return dvec3(p.x, p.y, 0.0);
   for (int step = 0; step < 3; ++step) {
-    const double f = quadric_implicit(q, p);
-    const dvec3 g = quadric_gradient(q, p);
+    const double f = side.value(p);
+    const dvec3 g = side.gradient(p);
     const double g2 = glm::dot(g, g);
     if (f == 0.0 || !(g2 > 0.0)) break;
     const dvec3 next = p - (f / g2) * g;
@@ -81,18 +101,59 @@ dvec3 project_to_side(const quadric& q, dvec3 p) {
   return p;
 }
 
+bool is_cap(uint32_t part) { return part == quadric_cap_zmin || part == quadric_cap_zmax; }
+
+// A cap hit: the point moved onto the cap's plane, and the cap's uv (see quadric_surface_at).
+dvec3 cap_point(const quadric& q, uint32_t part, const dvec3& approx_point) {
+  return dvec3(approx_point.x, approx_point.y, part == quadric_cap_zmin ? q.zmin : q.zmax);
+}
+dvec2 cap_uv(const quadric& q, const dvec3& point) {
+  const double cap_radius = quadric_radius_at(q, point.z);
+  const double rho = std::sqrt(point.x * point.x + point.y * point.y);
+  return dvec2(azimuth_u(point), cap_radius > 0.0 ? clamp01(rho / cap_radius) : 0.0);
+}
+
+// The unit side normal from the gradient g at a projected point (the axis where g vanishes).
+dvec3 side_normal(const dvec3& g, double g_len) {
+  return g_len > 0.0 && std::isfinite(g_len) ? g / g_len : dvec3(0.0, 0.0, 1.0);
+}
+
+// The projected point and unit normal of `part` near approx_point: quadric_surface_at without
+// uv, tangent and error, for the curvature's neighbouring points.
+void point_and_normal_at(const side_function& side, uint32_t part, const dvec3& approx_point, dvec3& point,
+                         dvec3& normal) {
+  if (is_cap(part)) {
+    point = cap_point(side.q, part, approx_point);
+    normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
+    return;
+  }
+  point = project_to_side(side, approx_point);
+  const dvec3 g = side.gradient(point);
+  normal = side_normal(g, glm::length(g));
+}
+
+// quadric_surface_at(q, part, approx_point).uv, without the normal, tangent and error.
+dvec2 uv_at(const side_function& side, uint32_t part, const dvec3& approx_point) {
+  if (is_cap(part)) return cap_uv(side.q, cap_point(side.q, part, approx_point));
+  return side_uv(side.q, project_to_side(side, approx_point));
+}
+
+// The hit of world ray r at t, moved to object space in double: the intersector's transform.
+dvec3 object_hit_point(const instance& inst, const ray& r, float t) {
+  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
+  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
+  return o + double(t) * d;
+}
+
 }  // namespace
 
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point) {
   quadric_surface s;
   const double size = glm::length(stored_quadric_bounds(q).diagonal());
-  if (part == quadric_cap_zmin || part == quadric_cap_zmax) {
-    const double z0 = part == quadric_cap_zmin ? q.zmin : q.zmax;
-    s.point = dvec3(approx_point.x, approx_point.y, z0);
+  if (is_cap(part)) {
+    s.point = cap_point(q, part, approx_point);
     s.normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
-    const double cap_radius = quadric_radius_at(q, z0);
-    const double rho = std::sqrt(s.point.x * s.point.x + s.point.y * s.point.y);
-    s.uv = dvec2(azimuth_u(s.point), cap_radius > 0.0 ? clamp01(rho / cap_radius) : 0.0);
+    s.uv = cap_uv(q, s.point);
     s.dpdu = azimuthal_tangent(s.point, s.normal);
     // Seen from outside, the zmin cap's u runs clockwise (it continues the side's u across the
     // rim), so its frame is mirrored: v grows outward and normal × dpdu points outward too.
@@ -100,11 +161,12 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
     s.error = 4.0 * double_epsilon * (glm::length(s.point) + size);
     return s;
   }
-  s.point = project_to_side(q, approx_point);
-  dvec3 g = quadric_gradient(q, s.point);
+  const side_function side(q);
+  s.point = project_to_side(side, approx_point);
+  dvec3 g = side.gradient(s.point);
   double g_len = glm::length(g);
   // At the cone apex (and any other singular point) the gradient vanishes: use the axis.
-  s.normal = g_len > 0.0 && std::isfinite(g_len) ? g / g_len : dvec3(0.0, 0.0, 1.0);
+  s.normal = side_normal(g, g_len);
   s.uv = side_uv(q, s.point);
   if (q.kind == quadric_kind::general) {
     // The box projection's dp/du ∝ (1, 0, −n_x/n_z) (y held fixed on the surface). Where the
@@ -123,18 +185,41 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
   }
   // Distance to the exact surface to first order: |F| / |∇F| after projection, doubled for the
   // second-order term, plus the rounding of the projection itself.
-  const double residual = g_len > 0.0 ? std::abs(quadric_implicit(q, s.point)) / g_len : 0.0;
+  const double residual = g_len > 0.0 ? std::abs(side.value(s.point)) / g_len : 0.0;
   s.error = 2.0 * residual + 8.0 * double_epsilon * (glm::length(s.point) + size);
   return s;
+}
+
+quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, const ray& r, float t,
+                                       uint32_t part) {
+  return quadric_surface_at(q, part, object_hit_point(inst, r, t));
+}
+
+void quadric_world_normal_uv(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
+                             vec3& normal, vec2& uv) {
+  const dvec3 approx_point = object_hit_point(inst, r, t);
+  dvec3 object_normal;
+  if (is_cap(part)) {
+    const dvec3 point = cap_point(q, part, approx_point);
+    object_normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
+    uv = vec2(cap_uv(q, point));
+  } else {
+    const side_function side(q);
+    const dvec3 point = project_to_side(side, approx_point);
+    const dvec3 g = side.gradient(point);
+    object_normal = side_normal(g, glm::length(g));
+    uv = vec2(side_uv(q, point));
+  }
+  normal = vec3(glm::normalize(inst.world_from_object_normal * object_normal));
 }
 
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
                                       uint32_t part) {
   // The world ray moves to object space in double: the same transform the intersector used.
-  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
-  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
-  const quadric_surface s = quadric_surface_at(q, part, o + double(t) * d);
+  return quadric_world_point_of(inst, quadric_surface_of_hit(inst, q, r, t, part));
+}
 
+quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s) {
   const dmat3 linear(inst.world_from_object);
   const dmat3 abs_linear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
   const dvec3 world = transform_point(inst.world_from_object, s.point);
@@ -169,16 +254,20 @@ dvec2 uv_difference(const dvec2& a, const dvec2& b) {
 
 bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
                                vec3& dp_du, vec3& dp_dv) {
-  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
-  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
-  const quadric_surface s = quadric_surface_at(q, part, o + double(t) * d);
+  return quadric_world_uv_jacobian(inst, q, part, quadric_surface_of_hit(inst, q, r, t, part), dp_du, dp_dv);
+}
+
+bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t part,
+                               const quadric_surface& s, vec3& dp_du, vec3& dp_dv) {
   // Central differences of the parametric UV along two orthonormal tangents, at a step small
   // against the shape (its bounds) yet far above rounding: the UV change per unit tangent length.
   const dvec3 t1 = s.dpdu, t2 = glm::cross(s.normal, s.dpdu);
   const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
-  const auto uv_at = [&](const dvec3& p) { return quadric_surface_at(q, part, p).uv; };
-  const dvec2 du_dt1 = uv_difference(uv_at(s.point + h * t1), uv_at(s.point - h * t1)) / (2.0 * h);
-  const dvec2 du_dt2 = uv_difference(uv_at(s.point + h * t2), uv_at(s.point - h * t2)) / (2.0 * h);
+  const side_function side(q);
+  const dvec2 du_dt1 =
+      uv_difference(uv_at(side, part, s.point + h * t1), uv_at(side, part, s.point - h * t1)) / (2.0 * h);
+  const dvec2 du_dt2 =
+      uv_difference(uv_at(side, part, s.point + h * t2), uv_at(side, part, s.point - h * t2)) / (2.0 * h);
   // Invert [duv/dt1 duv/dt2] to get dp/du and dp/dv in the (t1, t2) frame.
   const double det = du_dt1.x * du_dt2.y - du_dt2.x * du_dt1.y;
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
@@ -191,18 +280,22 @@ bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, const ray
 }
 
 float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
-  const dvec3 o = transform_point(inst.object_from_world, dvec3(r.origin));
-  const dvec3 d = transform_vector(inst.object_from_world, dvec3(r.direction));
-  const quadric_surface s = quadric_surface_at(q, part, o + double(t) * d);
+  return quadric_world_curvature(inst, q, part, quadric_surface_of_hit(inst, q, r, t, part));
+}
+
+float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
+                              const quadric_surface& s) {
   const dvec3 tangents[2] = {s.dpdu, glm::cross(s.normal, s.dpdu)};
   const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
+  const side_function side(q);
   double curvature = 0.0;
   for (const dvec3& tangent : tangents) {
-    const quadric_surface a = quadric_surface_at(q, part, s.point + h * tangent);
-    const quadric_surface b = quadric_surface_at(q, part, s.point - h * tangent);
-    const dvec3 turn = glm::normalize(inst.world_from_object_normal * a.normal) -
-                       glm::normalize(inst.world_from_object_normal * b.normal);
-    const double distance = glm::length(transform_vector(inst.world_from_object, a.point - b.point));
+    dvec3 a_point, a_normal, b_point, b_normal;
+    point_and_normal_at(side, part, s.point + h * tangent, a_point, a_normal);
+    point_and_normal_at(side, part, s.point - h * tangent, b_point, b_normal);
+    const dvec3 turn = glm::normalize(inst.world_from_object_normal * a_normal) -
+                       glm::normalize(inst.world_from_object_normal * b_normal);
+    const double distance = glm::length(transform_vector(inst.world_from_object, a_point - b_point));
     if (distance > 0.0) curvature = std::max(curvature, glm::length(turn) / distance);
   }
   return std::isfinite(curvature) ? float(curvature) : 0.0f;

@@ -95,6 +95,13 @@ struct material {
   bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
 
   bool has_volume() const { return thickness_factor > 0.0f; }
+  // Whether shading reads any texture of this material (every texture_ref above: keep in step), so
+  // whether a hit needs its UV footprint at all.
+  bool samples_textures() const {
+    return base_color_texture.present() || metallic_roughness_texture.present() ||
+           emissive_texture.present() || normal_texture.present() || occlusion_texture.present() ||
+           transmission_texture.present();
+  }
 };
 
 // One unique glTF mesh primitive, as triangles, in its own object space. Stored once.

@@ -11,12 +11,18 @@ namespace {
 // bounds the work per shadow ray, and so much glass leaves little light anyway.
 constexpr int max_shadow_crossings = 32;
 
+// Whether surface_transmittance is 0 for every point of a surface with material m, whatever the
+// point: then a shadow ray that meets it needs no surface point and no material evaluation.
+bool passes_no_light(const material& m) {
+  return m.transmission_factor <= 0.0f && m.alpha != alpha_mode::blend;
+}
+
 }  // namespace
 
 vec3 surface_transmittance(const scene& s, const surface_point& sp) {
   const material& m = s.materials[sp.material];
   const bool blend = m.alpha == alpha_mode::blend;
-  if (m.transmission_factor <= 0.0f && !blend) return vec3(0.0f);
+  if (passes_no_light(m)) return vec3(0.0f);
   material_point mp = evaluate_material(s, m, material_inputs_at(sp));
   vec3 through = mp.base_color * see_through_weight(mp);
   // BLEND: the uncovered share (1 - alpha) passes untouched, the covered share as above.
@@ -30,6 +36,9 @@ vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint6
     std::optional<hit> h = accel.intersect(r);
     ++crossings;
     if (!h) return transmittance;
+    // An opaque blocker ends the walk: the same product surface_transmittance would give (times
+    // 0), without reconstructing the surface point (a quadric's costs a projection onto it).
+    if (passes_no_light(s.materials[s.instances[h->instance_id].material])) return transmittance * vec3(0.0f);
     surface_point sp = make_surface_point(s, *h, r);
     transmittance *= surface_transmittance(s, sp);
     if (transmittance == vec3(0.0f)) return transmittance;

@@ -80,7 +80,10 @@ bool may_be_smooth(const material& m) {
 // normal (shading normal = geometric normal: the surface is exact) and the parametric UV.
 surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
                                          float cone_width) {
-  quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
+  const quadric& q = s.quadrics[inst.shape];
+  // One projection onto the surface serves the point, the UV footprint and the curvature.
+  const quadric_surface object = quadric_surface_of_hit(inst, q, r, h.t, h.primitive_id);
+  quadric_world_point w = quadric_world_point_of(inst, object);
   surface_point sp;
   sp.instance = h.instance_id;
   sp.position = w.point;
@@ -96,15 +99,18 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   sp.shading_normal = sp.geometric_normal;
   sp.smooth_normal = sp.geometric_normal;
   sp.smooth_position = sp.position;
+  if (!(cone_width > 0.0f)) return sp;
+  const material& m = s.materials[inst.material];
+  // The UV footprint only feeds texture lookups: an untextured material skips its four extra
+  // projections and UV evaluations (the image cannot change; the footprint stays empty).
   vec3 dp_du, dp_dv;
-  if (cone_width > 0.0f &&
-      quadric_world_uv_jacobian(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id, dp_du, dp_dv)) {
+  if (m.samples_textures()) {
+    if (!quadric_world_uv_jacobian(inst, q, h.primitive_id, object, dp_du, dp_dv)) return sp;
     sp.footprint0 =
         footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
     sp.footprint1 = sp.footprint0;
-    if (may_be_smooth(s.materials[inst.material]))
-      sp.curvature = quadric_world_curvature(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
   }
+  if (may_be_smooth(m)) sp.curvature = quadric_world_curvature(inst, q, h.primitive_id, object);
   return sp;
 }
 

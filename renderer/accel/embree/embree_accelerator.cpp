@@ -41,7 +41,8 @@ struct embree_accelerator::state {
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::vector<RTCScene> mesh_scenes;
-  std::vector<RTCScene> quadric_scenes;  // one user-geometry scene per used quadric definition
+  std::vector<RTCScene> quadric_scenes;         // one user-geometry scene per used quadric definition
+  std::vector<prepared_quadric> quadric_forms;  // their callbacks' data; sized once, never moved
   embree_error_log errors;
   embree_memory memory;
   bool has_quadrics = false;  // rtcIntersect1M cannot carry the world ray quadric callbacks read
@@ -160,18 +161,18 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
   const instance& inst = world.instances[h.instance_id];
   if (inst.kind == shape_kind::quadric) {
     // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
-    quadric_world_point w = quadric_world_hit(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
-    h.geometric_normal = w.normal;
-    h.u = w.uv.x;
-    h.v = w.uv.y;
+    vec2 uv;
+    quadric_world_normal_uv(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id, h.geometric_normal, uv);
+    h.u = uv.x;
+    h.v = uv.y;
     return h;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances
   // do not transform it): carried through the normal matrix it is the normal triangle_world_normal
   // computes, without fetching the three vertices again (camera rays 0.77x -> 0.84x the bare loop
   // on the demo). A reported hit has Ng·d != 0, so Ng is never zero.
-  h.geometric_normal = vec3(glm::normalize(
-      inst.world_from_object_normal * dvec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z)));
+  h.geometric_normal = vec3(
+      glm::normalize(inst.world_from_object_normal * dvec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z)));
   return h;
 }
 
@@ -201,9 +202,11 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
   state_->throw_if_failed("building mesh BVHs");
   // Each quadric definition is one user-geometry scene, however many nodes place it.
   state_->quadric_scenes.assign(s.quadrics.size(), nullptr);
+  state_->quadric_forms.resize(s.quadrics.size());
   for (size_t i = 0; i < s.quadrics.size(); ++i)
     if (used_quadric[i]) {
-      state_->quadric_scenes[i] = build_quadric_scene(state_->device, s.quadrics[i]);
+      state_->quadric_forms[i] = prepare_quadric(s.quadrics[i]);
+      state_->quadric_scenes[i] = build_quadric_scene(state_->device, state_->quadric_forms[i]);
       state_->has_quadrics = true;
     }
   state_->throw_if_failed("building quadric geometry");

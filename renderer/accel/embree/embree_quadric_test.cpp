@@ -130,5 +130,55 @@ TEST(embree_quadrics, secondary_rays_from_every_kind_never_self_intersect) {
   EXPECT_EQ(disagreements, 0);
 }
 
+// Occlusion stops at the first root it finds: over rays that graze every kind (aimed along the
+// tangent plane at a surface point, a hair above or below it) and segments cut short so that roots
+// fall outside them, occluded() must still say blocked exactly when intersect() finds a hit.
+TEST(embree_quadrics, occluded_agrees_with_intersect_on_grazing_rays_and_short_segments) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto unit = [&] {
+    for (;;) {
+      dvec3 v(u(rng), u(rng), u(rng));
+      if (glm::length(v) > 0.1 && glm::length(v) <= 1.0) return glm::normalize(v);
+    }
+  };
+  scene s;
+  s.quadrics = testing::every_kind();
+  s.materials.emplace_back();
+  for (uint32_t k = 0; k < s.quadrics.size(); ++k) {
+    dmat4 m = glm::translate(dmat4(1.0), dvec3(5.0 * k, 2.0 * u(rng), -30.0)) *
+              glm::mat4_cast(glm::angleAxis(3.0 * u(rng), unit())) *
+              glm::scale(dmat4(1.0), dvec3(1.3, 0.8, 1.1));
+    s.instances.push_back(place(k, m));
+  }
+  embree_accelerator accel(s);
+  int hits = 0, misses = 0, disagreements = 0;
+  for (int i = 0; i < 30000; ++i) {
+    const instance& target = s.instances[size_t(i) % s.instances.size()];
+    const quadric& q = s.quadrics[target.shape];
+    const bounds3& b = q.bounds;
+    const dvec3 inside = b.center() + 0.5 * b.diagonal() * dvec3(u(rng), u(rng), u(rng));
+    const quadric_surface on = quadric_surface_at(q, quadric_side, inside);
+    dvec3 tangent = glm::cross(on.normal, unit());
+    if (glm::length(tangent) < 1e-6) tangent = on.dpdu;
+    const dvec3 aim_object = on.point + 1e-7 * u(rng) * on.normal;
+    const dvec3 aim = transform_point(target.world_from_object, aim_object);
+    const dvec3 along = glm::normalize(transform_vector(target.world_from_object, tangent));
+    ray r;
+    r.origin = vec3(aim - 15.0 * along);
+    r.direction = vec3(along);
+    if (i % 3 == 1) {  // a segment that may end before, at or after the surface
+      r.tmin = float(14.0 + 2.0 * std::abs(u(rng)));
+      r.tmax = r.tmin + float(2.0 * std::abs(u(rng)));
+    }
+    const auto h = accel.intersect(r);
+    (h ? hits : misses)++;
+    if (h.has_value() != accel.occluded(r)) ++disagreements;
+  }
+  EXPECT_GT(hits, 5000);
+  EXPECT_GT(misses, 5000);
+  EXPECT_EQ(disagreements, 0);
+}
+
 }  // namespace
 }  // namespace kiln

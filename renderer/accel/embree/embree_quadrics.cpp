@@ -10,8 +10,8 @@ namespace kiln {
 namespace {
 
 void quadric_bounds_callback(const RTCBoundsFunctionArguments* args) {
-  const auto* q = static_cast<const quadric*>(args->geometryUserPtr);
-  const bounds3 b = quadric_bounds(*q);
+  const auto* p = static_cast<const prepared_quadric*>(args->geometryUserPtr);
+  const bounds3 b = quadric_bounds(*p->shape);
   // Round outward to float so the box still contains the double-precision surface.
   args->bounds_o->lower_x = next_float_down(float(b.lower.x));
   args->bounds_o->lower_y = next_float_down(float(b.lower.y));
@@ -21,14 +21,15 @@ void quadric_bounds_callback(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = next_float_up(float(b.upper.z));
 }
 
-// The quadric hit of the world ray within [tnear, tfar] of the instance Embree is visiting.
+// The quadric hit of the world ray within [tnear, tfar] of the instance Embree is visiting: the
+// closest, or with any_hit (occlusion) whichever is found first.
 std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const void* user, float tnear,
-                                     float tfar) {
+                                     float tfar, bool any_hit) {
   const auto* context = reinterpret_cast<const kiln_intersect_context*>(embree_context);
   const instance& inst = context->world->instances[embree_context->instID[0]];
   const dvec3 o = transform_point(inst.object_from_world, dvec3(context->world_ray->origin));
   const dvec3 d = transform_vector(inst.object_from_world, dvec3(context->world_ray->direction));
-  return intersect_quadric(*static_cast<const quadric*>(user), o, d, tnear, tfar);
+  return intersect_quadric(*static_cast<const prepared_quadric*>(user), o, d, tnear, tfar, any_hit);
 }
 
 void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
@@ -36,7 +37,7 @@ void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
   std::optional<quadric_ray_hit> h =
-      query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar);
+      query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar, false);
   if (!h) return;
   rayhit->ray.tfar = float(h->t);
   // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.
@@ -53,16 +54,17 @@ void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
 void quadric_occluded_callback(const RTCOccludedFunctionNArguments* args) {
   if (args->N != 1 || !args->valid[0]) return;
   auto* r = reinterpret_cast<RTCRay*>(args->ray);
-  if (query(args->context, args->geometryUserPtr, r->tnear, r->tfar)) r->tfar = -inf;
+  // Any root in (tnear, tfar) blocks: no need to find the closest one.
+  if (query(args->context, args->geometryUserPtr, r->tnear, r->tfar, true)) r->tfar = -inf;
 }
 
 }  // namespace
 
-RTCScene build_quadric_scene(RTCDevice device, const quadric& q) {
+RTCScene build_quadric_scene(RTCDevice device, const prepared_quadric& q) {
   RTCScene quadric_scene = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geometry, 1);
-  rtcSetGeometryUserData(geometry, const_cast<quadric*>(&q));
+  rtcSetGeometryUserData(geometry, const_cast<prepared_quadric*>(&q));
   rtcSetGeometryBoundsFunction(geometry, &quadric_bounds_callback, nullptr);
   rtcSetGeometryIntersectFunction(geometry, &quadric_intersect_callback);
   rtcSetGeometryOccludedFunction(geometry, &quadric_occluded_callback);

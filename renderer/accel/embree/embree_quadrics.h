@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 
 #include "core/ray.h"
+#include "geometry/quadric.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -20,7 +21,8 @@ struct kiln_intersect_context {
   const ray* world_ray = nullptr;
 };
 
-// Builds the single-primitive user-geometry scene of one quadric definition. `q` must outlive it.
-RTCScene build_quadric_scene(RTCDevice device, const quadric& q);
+// Builds the single-primitive user-geometry scene of one quadric definition, prepared once for
+// its callbacks. `q` (and the quadric it names) must outlive it.
+RTCScene build_quadric_scene(RTCDevice device, const prepared_quadric& q);
 
 }  // namespace kiln

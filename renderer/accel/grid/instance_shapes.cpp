@@ -92,10 +92,10 @@ hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint
   h.primitive_id = primitive;
   if (inst.kind == shape_kind::quadric) {
     // Part in primitive_id, parametric UV in (u, v), normal from the gradient: as the Embree backend.
-    quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, t, primitive);
-    h.geometric_normal = w.normal;
-    h.u = w.uv.x;
-    h.v = w.uv.y;
+    vec2 uv;
+    quadric_world_normal_uv(inst, s.quadrics[inst.shape], r, t, primitive, h.geometric_normal, uv);
+    h.u = uv.x;
+    h.v = uv.y;
     return h;
   }
   h.u = u;
