@@ -112,8 +112,12 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   }
   out_spec.attribute("oiio:ColorSpace", "sRGB");
   if (format == "jpeg") out_spec.attribute("Compression", "jpeg:95");
-  write_atomically(preview_path, format, [&](OIIO::ImageOutput& out, const std::string& temporary) {
-    return out.open(temporary, out_spec) && out.write_image(OIIO::TypeDesc::UINT8, codes.data());
+  write_atomically(preview_path, format, [&](const std::string& temporary) -> std::string {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) return "OpenImageIO has no " + format + " writer: " + OIIO::geterror();
+    bool ok = out->open(temporary, out_spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data());
+    ok = out->close() && ok;
+    return ok ? std::string() : out->geterror();
   });
 }
 
