@@ -48,7 +48,8 @@ void write_atomically(const std::string& path, const std::string& what,
                  O_RDONLY | O_DIRECTORY);
   if (!ok || ec) {
     fs::remove(temporary, ec);
-    throw io_error(path, "cannot write " + what + ": " + (reason.empty() ? std::string("rename failed") : reason));
+    throw io_error(path,
+                   "cannot write " + what + ": " + (reason.empty() ? std::string("rename failed") : reason));
   }
 }
 

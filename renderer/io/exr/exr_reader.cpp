@@ -57,12 +57,14 @@ void describe_parts(const std::string& path, const exr_header& header, exr_image
   for (size_t part = 0; part < header.parts.size(); ++part) {
     const Imf::Header& h = header.parts[part];
     const std::string where = "part " + std::to_string(part);
-    if (h.hasType() && Imf::isDeepData(h.type())) throw input_error(path, where, "deep images are not supported");
+    if (h.hasType() && Imf::isDeepData(h.type()))
+      throw input_error(path, where, "deep images are not supported");
     if (!(rect_of(h.dataWindow()) == image.data_window))
       throw input_error(path, where, "parts with different data windows are not supported");
     for (auto c = h.channels().begin(); c != h.channels().end(); ++c) {
       if (c.channel().xSampling != 1 || c.channel().ySampling != 1)
-        throw input_error(path, where, std::string("channel ") + c.name() + " is subsampled, which is not supported");
+        throw input_error(path, where,
+                          std::string("channel ") + c.name() + " is subsampled, which is not supported");
       if (*format_name(c.channel().type) == '\0')
         throw input_error(path, where, std::string("channel ") + c.name() + " has an unknown sample format");
       image.channel_names.push_back(c.name());
@@ -94,8 +96,7 @@ exr_image read_exr(const std::string& path) {
     const pixel_rect& d = image.data_window;
     const size_t pixel = image.pixel_bytes();
     const uint64_t count = uint64_t(d.width()) * uint64_t(d.height());
-    if (d.width() <= 0 || d.height() <= 0 || pixel == 0 ||
-        count > std::numeric_limits<size_t>::max() / pixel)
+    if (d.width() <= 0 || d.height() <= 0 || pixel == 0 || count > std::numeric_limits<size_t>::max() / pixel)
       throw input_error(path, "dataWindow", "no pixels to read, or too many");
     image.pixels.resize(size_t(count) * pixel);
     // Every part's channels land in their own place of each interleaved pixel, in the file's
@@ -104,8 +105,8 @@ exr_image read_exr(const std::string& path) {
     const Imath::Box2i& window = header->parts.front().dataWindow();
     for (int part = 0; part < file.parts(); ++part) {
       Imf::FrameBuffer buffer;
-      for (auto c = header->parts[size_t(part)].channels().begin(); c != header->parts[size_t(part)].channels().end();
-           ++c) {
+      for (auto c = header->parts[size_t(part)].channels().begin();
+           c != header->parts[size_t(part)].channels().end(); ++c) {
         buffer.insert(c.name(),
                       Imf::Slice::Make(c.channel().type, image.pixels.data() + offset, window, pixel));
         offset += format_bytes(c.channel().type);

@@ -1,5 +1,6 @@
 #include "io/exr/exr_writer.h"
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -12,7 +13,6 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfTiledOutputPart.h>
-#include <Imath/half.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -57,7 +57,9 @@ struct layer {
   std::vector<channel> channels;
 };
 
-Imf::PixelType type_of(sample_format format) { return format == sample_format::float32 ? Imf::FLOAT : Imf::HALF; }
+Imf::PixelType type_of(sample_format format) {
+  return format == sample_format::float32 ? Imf::FLOAT : Imf::HALF;
+}
 
 // One Cryptomatte layer: ⌈depth/2⌉ RGBA sets named <name>00, <name>01, ..., each holding two
 // ranks as (id, coverage, id, coverage); a rank past depth stays 0. Float: the ids are bit patterns.
@@ -153,7 +155,8 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
                             }});
     out.push_back(std::move(l));
   }
-  if (a.crypto_object) out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
+  if (a.crypto_object)
+    out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
   if (a.crypto_material)
     out.push_back(cryptomatte_layer_of(crypto_material_layer_name, f.crypto_material, a.crypto_depth));
   return out;
@@ -175,9 +178,9 @@ void check_layers(const std::vector<layer>& layers, const exr_settings& settings
 // The OpenEXR codec of one of exr_compression_names().
 Imf::Compression codec_of(const std::string& name) {
   static const std::pair<const char*, Imf::Compression> codecs[] = {
-      {"none", Imf::NO_COMPRESSION},   {"rle", Imf::RLE_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
-      {"zip", Imf::ZIP_COMPRESSION},   {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
-      {"b44", Imf::B44_COMPRESSION},   {"b44a", Imf::B44A_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION},
+      {"none", Imf::NO_COMPRESSION},  {"rle", Imf::RLE_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
+      {"zip", Imf::ZIP_COMPRESSION},  {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
+      {"b44", Imf::B44_COMPRESSION},  {"b44a", Imf::B44A_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION},
       {"dwab", Imf::DWAB_COMPRESSION}};
   for (const auto& [codec_name, codec] : codecs)
     if (name == codec_name) return codec;
@@ -223,7 +226,8 @@ Imf::Header base_header(const film& f, const exr_settings& settings, const exr_m
   const Imath::Box2i stored(Imath::V2i(f.x0, f.y0), Imath::V2i(f.x0 + f.width - 1, f.y0 + f.height - 1));
   Imf::Header header(display, stored);  // pixel aspect 1, screen window (0, 0) width 1, increasing y
   if (settings.tile_size > 0)
-    header.setTileDescription(Imf::TileDescription(unsigned(settings.tile_size), unsigned(settings.tile_size)));
+    header.setTileDescription(
+        Imf::TileDescription(unsigned(settings.tile_size), unsigned(settings.tile_size)));
   // Rec.709 primaries and D65 white: glTF's linear colour space.
   Imf::addChromaticities(header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
                                                      Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
@@ -247,7 +251,8 @@ Imf::Header base_header(const film& f, const exr_settings& settings, const exr_m
 
 // A part holding layers: the base header with their channels, formats and codec, and with
 // --multipart the layer's name (Nuke shows part names as layers).
-Imf::Header part_header(Imf::Header header, const std::vector<const layer*>& layers, const exr_settings& settings) {
+Imf::Header part_header(Imf::Header header, const std::vector<const layer*>& layers,
+                        const exr_settings& settings) {
   bool data = false;
   for (const layer* l : layers) {
     for (const channel& c : l->channels) header.channels().insert(c.name, Imf::Channel(l->format));
@@ -268,7 +273,8 @@ std::string one_line(std::string text) {
 
 // The frame buffer of one part: its channels' slices of pixels (see write_parts) from byte offset on,
 // which moves past them.
-Imf::FrameBuffer frame_buffer(const Imf::Header& header, const unsigned char* pixels, size_t pixel, size_t& offset) {
+Imf::FrameBuffer frame_buffer(const Imf::Header& header, const unsigned char* pixels, size_t pixel,
+                              size_t& offset) {
   Imf::FrameBuffer buffer;
   for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
     buffer.insert(c.name(), Imf::Slice::Make(c.channel().type, pixels + offset, header.dataWindow(), pixel));
@@ -310,7 +316,8 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
     return;
   }
   std::vector<Imf::Header> typed = headers;
-  for (Imf::Header& header : typed) header.setType(header.hasTileDescription() ? Imf::TILEDIMAGE : Imf::SCANLINEIMAGE);
+  for (Imf::Header& header : typed)
+    header.setType(header.hasTileDescription() ? Imf::TILEDIMAGE : Imf::SCANLINEIMAGE);
   Imf::MultiPartOutputFile file(stream, typed.data(), int(typed.size()));
   for (int part = 0; part < int(typed.size()); ++part) {
     const Imf::FrameBuffer buffer = frame_buffer(typed[size_t(part)], pixels, pixel, offset);
@@ -327,8 +334,8 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
 // Writes headers as the parts of one file at path, atomically. pixels holds every part's channels
 // interleaved, `pixel` bytes a pixel, row-major over the parts' (common) data window: the parts one
 // after another, each part's channels in its channel list's order and in their own formats.
-void write_parts(const std::string& path, const std::vector<Imf::Header>& headers, const unsigned char* pixels,
-                 size_t pixel) {
+void write_parts(const std::string& path, const std::vector<Imf::Header>& headers,
+                 const unsigned char* pixels, size_t pixel) {
   use_exr_threads();
   write_atomically(path, "EXR", [&](const std::string& temporary) -> std::string {
     exr_file_stream stream(temporary);
@@ -349,7 +356,8 @@ void write_parts(const std::string& path, const std::vector<Imf::Header>& header
 size_t pixel_bytes_of(const std::vector<Imf::Header>& headers) {
   size_t bytes = 0;
   for (const Imf::Header& header : headers)
-    for (auto c = header.channels().begin(); c != header.channels().end(); ++c) bytes += format_bytes(c.channel().type);
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+      bytes += format_bytes(c.channel().type);
   return bytes;
 }
 }  // namespace
@@ -457,7 +465,8 @@ void write_exr(const std::string& path, const exr_image& image) {
     if (const auto* level = header.findTypedAttribute<Imf::FloatAttribute>("dwaCompressionLevel"))
       header.dwaCompressionLevel() = level->value();
   }
-  if (pixel_bytes_of(headers) != image.pixel_bytes()) throw io_error(path, "refusing to write an inconsistent image");
+  if (pixel_bytes_of(headers) != image.pixel_bytes())
+    throw io_error(path, "refusing to write an inconsistent image");
   write_parts(path, headers, image.pixels.data(), image.pixel_bytes());
 }
 
