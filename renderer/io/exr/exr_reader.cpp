@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "io/exr/exr_header.h"
+#include "io/exr/exr_message.h"
 #include "io/exr/exr_threads.h"
 
 namespace kiln {
@@ -42,12 +43,6 @@ const char* format_name(Imf::PixelType type) {
 }
 
 size_t format_bytes(Imf::PixelType type) { return type == Imf::HALF ? 2 : 4; }
-
-// OpenEXR's messages span lines at times; kiln's errors are one line.
-std::string one_line(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  return text;
-}
 
 // Checks the parts' layout and lists their channels into image (names, formats, sizes).
 void describe_parts(const std::string& path, const exr_header& header, exr_image& image) {
@@ -118,7 +113,7 @@ exr_image read_exr(const std::string& path) {
   } catch (const error&) {
     throw;
   } catch (const std::exception& e) {  // Iex::BaseExc for a damaged file, std::bad_alloc for a huge one
-    throw input_error(path, "", "cannot read EXR: " + one_line(e.what()));
+    throw input_error(path, "", "cannot read EXR: " + exr_message(e.what(), path));
   }
   image.header = std::move(header);
   return image;

@@ -32,6 +32,7 @@
 #include "io/exr/cryptomatte.h"
 #include "io/exr/exr_file_stream.h"
 #include "io/exr/exr_header.h"
+#include "io/exr/exr_message.h"
 #include "io/exr/exr_threads.h"
 
 namespace kiln {
@@ -265,12 +266,6 @@ Imf::Header part_header(Imf::Header header, const std::vector<const layer*>& lay
 
 size_t format_bytes(Imf::PixelType type) { return type == Imf::HALF ? 2 : 4; }
 
-// OpenEXR's messages span lines at times; kiln's errors are one line.
-std::string one_line(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  return text;
-}
-
 // The frame buffer of one part: its channels' slices of pixels (see write_parts) from byte offset on,
 // which moves past them.
 Imf::FrameBuffer frame_buffer(const Imf::Header& header, const unsigned char* pixels, size_t pixel,
@@ -344,7 +339,7 @@ void write_parts(const std::string& path, const std::vector<Imf::Header>& header
       // The files' destructors write the offset tables; a failure there reaches only the stream.
       write_file(stream, headers, pixels, pixel);
     } catch (const std::exception& e) {
-      const std::string reason = stream.error().empty() ? one_line(e.what()) : stream.error();
+      const std::string reason = stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
       stream.close();
       return reason;
     }
@@ -416,7 +411,7 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
   } catch (const error&) {
     throw;
   } catch (const std::exception& e) {  // e.g. a metadata key that is a standard attribute of another type
-    throw io_error(path, "cannot write EXR: " + one_line(e.what()));
+    throw io_error(path, "cannot write EXR: " + exr_message(e.what(), path));
   }
   // The film's values in the file's layout: per part, its channels in channel-list order, half
   // channels rounded here (to nearest even, as OpenEXR itself would).
