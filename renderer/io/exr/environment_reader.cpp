@@ -1,11 +1,11 @@
 #include "io/exr/environment_reader.h"
 
-#include "core/error.h"
-#include "io/file/input_file.h"
-
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+
+#include "core/error.h"
+#include "io/file/input_file.h"
 
 namespace kiln {
 

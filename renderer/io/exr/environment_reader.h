@@ -2,9 +2,9 @@
 // reads) into a float RGBA kiln::image of linear radiance. Only io/* touch file formats.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <string>
+
+#include "scene/scene.h"
 
 namespace kiln {
 

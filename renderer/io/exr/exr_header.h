@@ -1,7 +1,7 @@
-// The OpenImageIO side of exr_image, shared by the reader and the writer inside io/exr only.
+// The OpenEXR side of exr_image, shared by the reader and the writer inside io/exr only.
 #pragma once
 
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfHeader.h>
 
 #include <vector>
 
@@ -9,11 +9,11 @@
 
 namespace kiln {
 
-// One OpenImageIO spec per part of the file (one for a single-part file), in file order; each
-// holds its attributes, channel formats, compression and tiling. exr_image's channels are these
-// parts' channels one after another.
+// One OpenEXR header per part of the file (one for a single-part file), in file order; each holds
+// its attributes, channel list, compression and tiling. exr_image's channels are these parts'
+// channels one after another, each part's in its channel list's (alphabetical) order.
 struct exr_header {
-  std::vector<OIIO::ImageSpec> parts;
+  std::vector<Imf::Header> parts;
 };
 
 }  // namespace kiln

@@ -1,5 +1,5 @@
 // Reads an OpenEXR image with its pixels in the file's own per-channel formats (half stays half,
-// float stays float), so images can be joined without changing a bit. Hides OpenImageIO.
+// float stays float), so images can be joined without changing a bit. Hides OpenEXR.
 #pragma once
 
 #include <memory>
@@ -17,6 +17,7 @@ struct exr_header;
 struct exr_image {
   pixel_rect data_window;     // the stored pixels, in frame coordinates
   pixel_rect display_window;  // the full frame
+  // Part after part, each part's in its channel list's (alphabetical) order.
   std::vector<std::string> channel_names;
   std::vector<std::string> channel_formats;  // per channel: "half", "float", "uint", ...
   std::vector<size_t> channel_bytes;         // per channel, in the native format

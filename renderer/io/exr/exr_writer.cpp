@@ -1,12 +1,27 @@
 #include "io/exr/exr_writer.h"
 
-#include <OpenImageIO/imageio.h>
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
+#include <OpenEXR/ImfTiledOutputPart.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
+#include <ctime>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -15,7 +30,10 @@
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
 #include "io/exr/cryptomatte.h"
+#include "io/exr/exr_file_stream.h"
 #include "io/exr/exr_header.h"
+#include "io/exr/exr_message.h"
+#include "io/exr/exr_threads.h"
 
 namespace kiln {
 namespace fs = std::filesystem;
@@ -33,21 +51,21 @@ struct channel {
 // layer (Nuke maps part "rgba" to its rgba layer and part "depth" with channel Z to depth.Z).
 struct layer {
   std::string part;
-  OIIO::TypeDesc format;
+  Imf::PixelType format;
   // Data layers (depth, positions, ids) are always float and never stored with a lossy codec:
   // distances and positions need the precision, ids must stay exact integers.
   bool data = false;
   std::vector<channel> channels;
 };
 
-OIIO::TypeDesc type_of(sample_format format) {
-  return format == sample_format::float32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+Imf::PixelType type_of(sample_format format) {
+  return format == sample_format::float32 ? Imf::FLOAT : Imf::HALF;
 }
 
 // One Cryptomatte layer: ⌈depth/2⌉ RGBA sets named <name>00, <name>01, ..., each holding two
 // ranks as (id, coverage, id, coverage); a rank past depth stays 0. Float: the ids are bit patterns.
 layer cryptomatte_layer_of(const std::string& name, const std::vector<id_coverage>& ranks, int depth) {
-  layer l{name, OIIO::TypeDesc::FLOAT, true, {}};
+  layer l{name, Imf::FLOAT, true, {}};
   const char* rgba[4] = {".R", ".G", ".B", ".A"};
   for (int set = 0; 2 * set < depth; ++set) {
     const std::string number = (set < 10 ? "0" : "") + std::to_string(set);
@@ -73,9 +91,9 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
   std::vector<layer> out;
   const aov_set& a = f.aovs;
   const layer_formats& formats = settings.formats;
-  const OIIO::TypeDesc full = OIIO::TypeDesc::FLOAT;
+  const Imf::PixelType full = Imf::FLOAT;
   // Three channels name.X name.Y name.Z (or .R .G .B) of a vec3 buffer.
-  auto vec3_layer = [](const std::string& name, const char* const(&suffixes)[3], OIIO::TypeDesc format,
+  auto vec3_layer = [](const std::string& name, const char* const(&suffixes)[3], Imf::PixelType format,
                        bool data, const std::vector<vec3>& buffer) {
     layer l{name, format, data, {}};
     for (int c = 0; c < 3; ++c)
@@ -138,7 +156,8 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
                             }});
     out.push_back(std::move(l));
   }
-  if (a.crypto_object) out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
+  if (a.crypto_object)
+    out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
   if (a.crypto_material)
     out.push_back(cryptomatte_layer_of(crypto_material_layer_name, f.crypto_material, a.crypto_depth));
   return out;
@@ -157,103 +176,185 @@ void check_layers(const std::vector<layer>& layers, const exr_settings& settings
               "; add --multipart (data layers then keep zip) or pick none, rle, zips, zip or piz");
 }
 
-// OpenImageIO's compression attribute: "zip", or with a level "zip:4" / "dwaa:45". Data layers
-// of a multi-part file whose codec is lossy get plain zip.
-std::string compression_attribute(const exr_settings& settings, bool data) {
-  if (data && is_lossy_compression(settings.compression)) return "zip";
-  if (settings.compression_level > 0 && compression_takes_level(settings.compression))
-    return settings.compression + ":" + std::to_string(settings.compression_level);
-  return settings.compression;
+// The OpenEXR codec of one of exr_compression_names().
+Imf::Compression codec_of(const std::string& name) {
+  static const std::pair<const char*, Imf::Compression> codecs[] = {
+      {"none", Imf::NO_COMPRESSION},  {"rle", Imf::RLE_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
+      {"zip", Imf::ZIP_COMPRESSION},  {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
+      {"b44", Imf::B44_COMPRESSION},  {"b44a", Imf::B44A_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION},
+      {"dwab", Imf::DWAB_COMPRESSION}};
+  for (const auto& [codec_name, codec] : codecs)
+    if (name == codec_name) return codec;
+  throw input_error("", "--compression", "unknown EXR codec '" + name + "'");
+}
+
+// A part's codec: the settings' codec at its level, or zip for a part holding a data layer when
+// that codec is lossy. zlib's level lives only in the writer (the file does not record it): 1-9,
+// anything else 4, OpenEXR's default. A DWA level is the dwaCompressionLevel attribute (45 by
+// default), which the compressor reads and readers show.
+void set_compression(Imf::Header& header, const exr_settings& settings, bool data) {
+  const int level = settings.compression_level;
+  if (data && is_lossy_compression(settings.compression)) {
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = 4;
+    return;
+  }
+  header.compression() = codec_of(settings.compression);
+  if (settings.compression == "zip" || settings.compression == "zips")
+    header.zipCompressionLevel() = level >= 1 && level <= 9 ? level : 4;
+  if (settings.compression == "dwaa" || settings.compression == "dwab") {
+    const float dwa_level = level > 0 ? float(level) : 45.0f;
+    header.insert("dwaCompressionLevel", Imf::FloatAttribute(dwa_level));
+    header.dwaCompressionLevel() = dwa_level;
+  }
+}
+
+// OpenEXR's capDate, the local time the file was made as "YYYY:MM:DD hh:mm:ss"; every kiln EXR
+// has carried it.
+std::string capture_date() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  ::localtime_r(&now, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
+  return text;
 }
 
 // The header every part carries: windows, colour space, camera matrices, metadata, tiling.
-OIIO::ImageSpec base_spec(const film& f, const exr_settings& settings, const exr_metadata& metadata) {
-  OIIO::ImageSpec spec(f.width, f.height, 0, OIIO::TypeDesc::FLOAT);
+Imf::Header base_header(const film& f, const exr_settings& settings, const exr_metadata& metadata) {
   // The data window is the stored region; the display window the full frame (they differ for crops).
-  spec.x = f.x0;
-  spec.y = f.y0;
-  spec.full_x = 0;
-  spec.full_y = 0;
-  spec.full_width = f.full_width;
-  spec.full_height = f.full_height;
-  if (settings.tile_size > 0) {
-    spec.tile_width = settings.tile_size;
-    spec.tile_height = settings.tile_size;
-    spec.tile_depth = 1;
-  }
-  spec.attribute("oiio:ColorSpace", "Linear");
+  const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(f.full_width - 1, f.full_height - 1));
+  const Imath::Box2i stored(Imath::V2i(f.x0, f.y0), Imath::V2i(f.x0 + f.width - 1, f.y0 + f.height - 1));
+  Imf::Header header(display, stored);  // pixel aspect 1, screen window (0, 0) width 1, increasing y
+  if (settings.tile_size > 0)
+    header.setTileDescription(
+        Imf::TileDescription(unsigned(settings.tile_size), unsigned(settings.tile_size)));
   // Rec.709 primaries and D65 white: glTF's linear colour space.
-  const float chromaticities[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-  spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities);
+  Imf::addChromaticities(header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
+                                                     Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
   // OpenEXR stores matrices row-major with row vectors (p' = p·M): the transpose of GLM's
-  // column-vector convention, which in memory equals GLM's column-major layout.
-  float world_to_camera[16];
-  float world_to_ndc[16];
+  // column-vector convention, so M44f's row c is GLM's column c.
+  Imath::M44f world_to_camera, world_to_ndc;
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) {
-      world_to_camera[c * 4 + r] = float(metadata.world_to_camera[c][r]);
-      world_to_ndc[c * 4 + r] = float(metadata.world_to_ndc[c][r]);
+      world_to_camera[c][r] = float(metadata.world_to_camera[c][r]);
+      world_to_ndc[c][r] = float(metadata.world_to_ndc[c][r]);
     }
-  spec.attribute("worldToCamera", OIIO::TypeMatrix44, world_to_camera);
-  spec.attribute("worldToNDC", OIIO::TypeMatrix44, world_to_ndc);
-  spec.attribute("Software", std::string("kiln ") + KILN_VERSION);
-  for (const auto& [key, value] : metadata.attributes) spec.attribute(key, value);
-  for (const auto& [key, value] : metadata.float_attributes) spec.attribute(key, value);
-  for (const auto& [key, value] : metadata.int_attributes) spec.attribute(key, value);
-  return spec;
+  Imf::addWorldToCamera(header, world_to_camera);
+  Imf::addWorldToNDC(header, world_to_ndc);
+  header.insert("Software", Imf::StringAttribute(std::string("kiln ") + KILN_VERSION));
+  header.insert("capDate", Imf::StringAttribute(capture_date()));
+  for (const auto& [key, value] : metadata.attributes) header.insert(key, Imf::StringAttribute(value));
+  for (const auto& [key, value] : metadata.float_attributes) header.insert(key, Imf::FloatAttribute(value));
+  for (const auto& [key, value] : metadata.int_attributes) header.insert(key, Imf::IntAttribute(value));
+  return header;
 }
 
-// A part holding layers: the base header with their channels, formats and codec.
-OIIO::ImageSpec part_spec(OIIO::ImageSpec spec, const std::vector<const layer*>& layers,
-                          const exr_settings& settings) {
+// A part holding layers: the base header with their channels, formats and codec, and with
+// --multipart the layer's name (Nuke shows part names as layers).
+Imf::Header part_header(Imf::Header header, const std::vector<const layer*>& layers,
+                        const exr_settings& settings) {
   bool data = false;
   for (const layer* l : layers) {
-    for (const channel& c : l->channels) {
-      spec.channelnames.push_back(c.name);
-      spec.channelformats.push_back(l->format);
-    }
+    for (const channel& c : l->channels) header.channels().insert(c.name, Imf::Channel(l->format));
     data = data || l->data;
   }
-  spec.nchannels = int(spec.channelnames.size());
-  const auto index = [&spec](const char* name) {
-    auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-    return it == spec.channelnames.end() ? -1 : int(it - spec.channelnames.begin());
-  };
-  spec.alpha_channel = index("A");
-  spec.z_channel = index("Z");
-  spec.attribute("compression", compression_attribute(settings, data));
-  if (layers.size() == 1 && settings.multipart) spec.attribute("oiio:subimagename", layers.front()->part);
-  return spec;
+  set_compression(header, settings, data);
+  if (layers.size() == 1 && settings.multipart) header.setName(layers.front()->part);
+  return header;
 }
 
-// The pixels of layers as interleaved float, in the order of part_spec's channels.
-std::vector<float> interleave(size_t pixel_count, const std::vector<const layer*>& layers) {
-  std::vector<const channel*> channels;
-  for (const layer* l : layers)
-    for (const channel& c : l->channels) channels.push_back(&c);
-  const size_t n = channels.size();
-  std::vector<float> pixels(pixel_count * n);
-  for (size_t i = 0; i < pixel_count; ++i)
-    for (size_t c = 0; c < n; ++c) pixels[i * n + c] = channels[c]->value(i);
-  return pixels;
+size_t format_bytes(Imf::PixelType type) { return type == Imf::HALF ? 2 : 4; }
+
+// The frame buffer of one part: its channels' slices of pixels (see write_parts) from byte offset on,
+// which moves past them.
+Imf::FrameBuffer frame_buffer(const Imf::Header& header, const unsigned char* pixels, size_t pixel,
+                              size_t& offset) {
+  Imf::FrameBuffer buffer;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+    buffer.insert(c.name(), Imf::Slice::Make(c.channel().type, pixels + offset, header.dataWindow(), pixel));
+    offset += format_bytes(c.channel().type);
+  }
+  return buffer;
 }
 
-// Writes parts (one spec and one pixel buffer, in format, each) atomically: a single-part file, or
-// a multi-part one opened with every part's spec and filled part by part.
-void write_parts(const std::string& path, const std::vector<OIIO::ImageSpec>& specs,
-                 const std::vector<const void*>& pixels, OIIO::TypeDesc format) {
-  write_atomically(path, "openexr", [&](OIIO::ImageOutput& out, const std::string& temporary) {
-    if (specs.size() > 1 && !out.supports("multiimage")) return false;
-    bool ok = specs.size() == 1 ? out.open(temporary, specs.front())
-                                : out.open(temporary, int(specs.size()), specs.data());
-    for (size_t part = 0; ok && part < specs.size(); ++part) {
-      if (part > 0) ok = out.open(temporary, specs[part], OIIO::ImageOutput::AppendSubimage);
-      ok = ok && out.write_image(format, pixels[part]);
+// Writes every pixel of a scanline (OutputFile, OutputPart) or tiled (TiledOutputFile,
+// TiledOutputPart) file or part.
+template <class scanline_output>
+void write_lines(scanline_output& out, const Imf::FrameBuffer& buffer) {
+  out.setFrameBuffer(buffer);
+  out.writePixels(out.header().dataWindow().max.y - out.header().dataWindow().min.y + 1);
+}
+template <class tiled_output>
+void write_tiles(tiled_output& out, const Imf::FrameBuffer& buffer) {
+  out.setFrameBuffer(buffer);
+  out.writeTiles(0, out.numXTiles(0) - 1, 0, out.numYTiles(0) - 1);
+}
+
+// Writes headers' parts into stream: one makes a single-part file (OpenEXR 1.x layout, no "type"
+// attribute), more a multi-part file whose parts each name their type.
+void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, const unsigned char* pixels,
+                size_t pixel) {
+  size_t offset = 0;
+  if (headers.size() == 1) {
+    // OpenEXR names a single-part file's type when it reads one; the file itself never did.
+    Imf::Header header = headers.front();
+    header.erase("type");
+    const Imf::FrameBuffer buffer = frame_buffer(header, pixels, pixel, offset);
+    if (header.hasTileDescription()) {
+      Imf::TiledOutputFile out(stream, header);
+      write_tiles(out, buffer);
+    } else {
+      Imf::OutputFile out(stream, header);
+      write_lines(out, buffer);
     }
-    return ok;
+    return;
+  }
+  std::vector<Imf::Header> typed = headers;
+  for (Imf::Header& header : typed)
+    header.setType(header.hasTileDescription() ? Imf::TILEDIMAGE : Imf::SCANLINEIMAGE);
+  Imf::MultiPartOutputFile file(stream, typed.data(), int(typed.size()));
+  for (int part = 0; part < int(typed.size()); ++part) {
+    const Imf::FrameBuffer buffer = frame_buffer(typed[size_t(part)], pixels, pixel, offset);
+    if (typed[size_t(part)].hasTileDescription()) {
+      Imf::TiledOutputPart out(file, part);
+      write_tiles(out, buffer);
+    } else {
+      Imf::OutputPart out(file, part);
+      write_lines(out, buffer);
+    }
+  }
+}
+
+// Writes headers as the parts of one file at path, atomically. pixels holds every part's channels
+// interleaved, `pixel` bytes a pixel, row-major over the parts' (common) data window: the parts one
+// after another, each part's channels in its channel list's order and in their own formats.
+void write_parts(const std::string& path, const std::vector<Imf::Header>& headers,
+                 const unsigned char* pixels, size_t pixel) {
+  use_exr_threads();
+  write_atomically(path, "EXR", [&](const std::string& temporary) -> std::string {
+    exr_file_stream stream(temporary);
+    if (!stream.error().empty()) return stream.error();
+    try {
+      // The files' destructors write the offset tables; a failure there reaches only the stream.
+      write_file(stream, headers, pixels, pixel);
+    } catch (const std::exception& e) {
+      const std::string reason = stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
+      stream.close();
+      return reason;
+    }
+    return stream.close();
   });
 }
 
+// The bytes a pixel of headers' channels takes, in their formats.
+size_t pixel_bytes_of(const std::vector<Imf::Header>& headers) {
+  size_t bytes = 0;
+  for (const Imf::Header& header : headers)
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+      bytes += format_bytes(c.channel().type);
+  return bytes;
+}
 }  // namespace
 
 void check_output_writable(const std::string& path) {
@@ -303,16 +404,45 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
       parts.push_back({&l});
     else
       parts.front().push_back(&l);
-  const OIIO::ImageSpec base = base_spec(f, settings, metadata);
-  std::vector<OIIO::ImageSpec> specs;
-  std::vector<std::vector<float>> pixels;
-  std::vector<const void*> buffers;
-  for (const auto& part : parts) {
-    specs.push_back(part_spec(base, part, settings));
-    pixels.push_back(interleave(size_t(f.width) * f.height, part));
-    buffers.push_back(pixels.back().data());
+  std::vector<Imf::Header> headers;
+  try {
+    const Imf::Header base = base_header(f, settings, metadata);
+    for (const auto& part : parts) headers.push_back(part_header(base, part, settings));
+  } catch (const error&) {
+    throw;
+  } catch (const std::exception& e) {  // e.g. a metadata key that is a standard attribute of another type
+    throw io_error(path, "cannot write EXR: " + exr_message(e.what(), path));
   }
-  write_parts(path, specs, buffers, OIIO::TypeDesc::FLOAT);
+  // The film's values in the file's layout: per part, its channels in channel-list order, half
+  // channels rounded here (to nearest even, as OpenEXR itself would).
+  struct source {
+    const channel* values;
+    Imf::PixelType type;
+  };
+  std::vector<source> sources;
+  for (size_t p = 0; p < parts.size(); ++p)
+    for (auto c = headers[p].channels().begin(); c != headers[p].channels().end(); ++c)
+      for (const layer* l : parts[p])
+        for (const channel& ch : l->channels)
+          if (ch.name == c.name()) sources.push_back({&ch, l->format});
+  const size_t pixel = pixel_bytes_of(headers);
+  const size_t count = size_t(f.width) * size_t(f.height);
+  std::vector<unsigned char> pixels(count * pixel);
+  for (size_t i = 0; i < count; ++i) {
+    unsigned char* out = pixels.data() + i * pixel;
+    for (const source& s : sources) {
+      const float value = s.values->value(i);
+      if (s.type == Imf::HALF) {
+        const uint16_t bits = half(value).bits();
+        std::memcpy(out, &bits, sizeof bits);
+        out += sizeof bits;
+      } else {
+        std::memcpy(out, &value, sizeof value);
+        out += sizeof value;
+      }
+    }
+  }
+  write_parts(path, headers, pixels.data(), pixel);
 }
 
 void write_exr(const std::string& path, const exr_image& image) {
@@ -321,30 +451,18 @@ void write_exr(const std::string& path, const exr_image& image) {
   if (!image.header || image.header->parts.empty() || d.width() <= 0 || d.height() <= 0 ||
       image.pixels.size() != size_t(d.width()) * size_t(d.height()) * image.pixel_bytes())
     throw io_error(path, "refusing to write an empty or inconsistent image");
-  // Split the image's interleaved pixels back into its parts, each in its own channel formats.
-  const size_t pixel_count = size_t(d.width()) * size_t(d.height());
-  const size_t pixel = image.pixel_bytes();
-  std::vector<OIIO::ImageSpec> specs;
-  std::vector<std::vector<unsigned char>> pixels;
-  std::vector<const void*> buffers;
-  size_t offset = 0;
-  for (OIIO::ImageSpec spec : image.header->parts) {
-    spec.x = d.x0;
-    spec.y = d.y0;
-    spec.width = d.width();
-    spec.height = d.height();
-    const size_t part_pixel = spec.pixel_bytes(true);
-    if (offset + part_pixel > pixel) throw io_error(path, "refusing to write an inconsistent image");
-    std::vector<unsigned char> part(pixel_count * part_pixel);
-    for (size_t i = 0; i < pixel_count; ++i)
-      std::memcpy(part.data() + i * part_pixel, image.pixels.data() + i * pixel + offset, part_pixel);
-    offset += part_pixel;
-    specs.push_back(spec);
-    pixels.push_back(std::move(part));
-    buffers.push_back(pixels.back().data());
+  std::vector<Imf::Header> headers = image.header->parts;
+  for (Imf::Header& header : headers) {
+    header.dataWindow() = Imath::Box2i(Imath::V2i(d.x0, d.y0), Imath::V2i(d.x1 - 1, d.y1 - 1));
+    // The chunk count of the source's data window; OpenEXR counts it again for a multi-part file.
+    header.erase("chunkCount");
+    // OpenEXR reads a DWA level into the attribute only; its compressor takes the header's field.
+    if (const auto* level = header.findTypedAttribute<Imf::FloatAttribute>("dwaCompressionLevel"))
+      header.dwaCompressionLevel() = level->value();
   }
-  // TypeUnknown: the pixels are in the specs' own per-channel formats.
-  write_parts(path, specs, buffers, OIIO::TypeUnknown);
+  if (pixel_bytes_of(headers) != image.pixel_bytes())
+    throw io_error(path, "refusing to write an inconsistent image");
+  write_parts(path, headers, image.pixels.data(), image.pixel_bytes());
 }
 
 }  // namespace kiln

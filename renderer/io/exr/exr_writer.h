@@ -1,4 +1,4 @@
-// Writes a film as one OpenEXR file through OpenImageIO: the film's AOVs (by default premultiplied
+// Writes a film as one EXR file through OpenEXR itself: the film's AOVs (by default premultiplied
 // RGBA plus Z and N) as layers, stored as exr_settings says (formats, codec, tiles, parts).
 // The only module that knows EXR. Writes go to a temporary file beside the target that is
 // renamed into place, so a failed write never leaves a partial image.

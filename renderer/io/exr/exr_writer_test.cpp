@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -280,6 +281,69 @@ TEST(exr_writer, lossless_codecs_round_trip_every_bit_and_levels_are_recorded) {
   EXPECT_EQ(read_parts(file).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 200.0f);
 }
 
+// A beauty-only film of smooth colour with a fixed-seed ripple of noise: what zlib and DCT codecs
+// compress better the coarser they may be, 96x64 so DWA sees whole 32-line blocks.
+film textured_film() {
+  aov_set beauty;
+  beauty.depth = beauty.normal = false;
+  film f(96, 64, beauty);
+  uint32_t state = 12345;
+  for (size_t i = 0; i < f.color.size(); ++i) {
+    state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG
+    const float noise = float(state >> 8) / float(1 << 24);
+    const float x = float(i % 96) / 96.0f, y = float(i / 96) / 64.0f;
+    f.color[i] = vec4(x + 0.05f * noise, y, 0.5f * (x + y) + 0.02f * noise, 1.0f);
+  }
+  return f;
+}
+
+// The zlib level lives in the writer only (no attribute records it), so only the bytes tell
+// whether it reached the compressor: level 9 stores the same pixels in fewer bytes than level 1.
+TEST(exr_writer, zip_level_reaches_the_compressor_and_keeps_every_bit) {
+  const fs::path fast = scratch_dir() / "zip1.exr", small = scratch_dir() / "zip9.exr";
+  for (const auto& [file, level] : {std::pair{fast, 1}, std::pair{small, 9}}) {
+    exr_settings s;
+    s.compression = "zip";
+    s.compression_level = level;
+    write_exr(file.string(), textured_film(), s, exr_metadata{});
+    EXPECT_EQ(read_parts(file).front().spec.get_string_attribute("compression"), "zip");
+  }
+  EXPECT_LT(fs::file_size(small), fs::file_size(fast));
+  const auto a = channels_of(fast), b = channels_of(small);
+  ASSERT_EQ(a.size(), 4u);
+  for (const auto& [name, contents] : a)
+    EXPECT_EQ(
+        std::memcmp(contents.second.data(), b.at(name).second.data(), contents.second.size() * sizeof(float)),
+        0)
+        << name;
+}
+
+// dwaCompressionLevel is both an attribute readers show and the quantisation the compressor uses;
+// a file read back and written again (kiln stitch) must keep using the level it records.
+TEST(exr_writer, dwa_level_is_recorded_and_drives_the_compressor_also_when_written_back) {
+  const fs::path fine = scratch_dir() / "dwa45.exr", coarse = scratch_dir() / "dwa2000.exr";
+  for (const auto& [file, level] : {std::pair{fine, 0}, std::pair{coarse, 2000}}) {
+    exr_settings s;
+    s.compression = "dwab";
+    s.compression_level = level;
+    write_exr(file.string(), textured_film(), s, exr_metadata{});
+    const OIIO::ImageSpec spec = read_parts(file).front().spec;
+    EXPECT_EQ(spec.get_string_attribute("compression"), "dwab");
+    EXPECT_EQ(spec.get_float_attribute("openexr:dwaCompressionLevel"), level == 0 ? 45.0f : 2000.0f);
+  }
+  EXPECT_LT(fs::file_size(coarse), fs::file_size(fine));
+  // The same pixels written back at the level they record, and again with the level set to 45.
+  exr_image image = read_exr(coarse.string());
+  EXPECT_EQ(exr_float_attribute(image, "dwaCompressionLevel"), 2000.0f);
+  const fs::path kept = scratch_dir() / "dwa2000_copy.exr", finer = scratch_dir() / "dwa2000_at45.exr";
+  write_exr(kept.string(), image);
+  set_exr_float_attribute(image, "dwaCompressionLevel", 45.0f);
+  write_exr(finer.string(), image);
+  EXPECT_EQ(read_parts(kept).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 2000.0f);
+  EXPECT_EQ(read_parts(finer).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 45.0f);
+  EXPECT_LT(fs::file_size(kept), fs::file_size(finer));
+}
+
 TEST(exr_writer, tiled_files_record_the_tile_size_and_scanline_files_none) {
   for (int tile : {0, 4, 64}) {
     for (bool multipart : {false, true}) {
@@ -310,7 +374,11 @@ TEST(exr_reader, reads_multipart_tiled_files_and_writes_them_back_unchanged) {
   const exr_image a = read_exr(single.string()), b = read_exr(multi.string());
   EXPECT_EQ(b.channel_names.size(), 19u);
   EXPECT_EQ(b.pixels.size(), a.pixels.size());
-  EXPECT_EQ(b.channel_names.front(), "R");
+  // Part after part, each in its channel list's (the file's, alphabetical) order: rgba comes first.
+  EXPECT_EQ(std::vector<std::string>(b.channel_names.begin(), b.channel_names.begin() + 5),
+            (std::vector<std::string>{"A", "B", "G", "R", "Z"}));
+  EXPECT_EQ(std::vector<std::string>(b.channel_formats.begin(), b.channel_formats.begin() + 5),
+            (std::vector<std::string>{"half", "half", "half", "half", "float"}));
   write_exr(copy.string(), b);
   const std::vector<part_contents> original = read_parts(multi), copied = read_parts(copy);
   ASSERT_EQ(copied.size(), 7u);

@@ -101,7 +101,8 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
     // JPEG has no alpha and shows the premultiplied colour, i.e. the image over black.
     const float unpremultiply = channels == 4 && a > 0.0f ? 1.0f / a : 1.0f;
     for (int c = 0; c < 3; ++c)
-      codes[i * size_t(channels) + size_t(c)] = preview_code(rgba[i * 4 + size_t(c)] * unpremultiply, exposure);
+      codes[i * size_t(channels) + size_t(c)] =
+          preview_code(rgba[i * 4 + size_t(c)] * unpremultiply, exposure);
     if (channels == 4) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
   }
   OIIO::ImageSpec out_spec(spec.width, spec.height, channels, OIIO::TypeDesc::UINT8);
@@ -112,8 +113,12 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   }
   out_spec.attribute("oiio:ColorSpace", "sRGB");
   if (format == "jpeg") out_spec.attribute("Compression", "jpeg:95");
-  write_atomically(preview_path, format, [&](OIIO::ImageOutput& out, const std::string& temporary) {
-    return out.open(temporary, out_spec) && out.write_image(OIIO::TypeDesc::UINT8, codes.data());
+  write_atomically(preview_path, format, [&](const std::string& temporary) -> std::string {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) return "OpenImageIO has no " + format + " writer: " + OIIO::geterror();
+    bool ok = out->open(temporary, out_spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data());
+    ok = out->close() && ok;
+    return ok ? std::string() : out->geterror();
   });
 }
 
