@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Flushes a closed file's data to the disk. OpenImageIO does not expose its descriptor, so the
+// Flushes a closed file's data to the disk. Image writers do not expose their descriptor, so the
 // file is opened again: fsync on any descriptor of the file syncs its data. Without this a crash
 // right after the rename can leave the target name pointing at an empty or partial file.
 bool sync_to_disk(const std::string& path, int flags) {
@@ -31,15 +31,11 @@ std::string temporary_path(const std::string& path) {
   return (target.parent_path() / name).string();
 }
 
-void write_atomically(
-    const std::string& path, const std::string& format,
-    const std::function<bool(OIIO::ImageOutput& out, const std::string& temporary)>& write) {
+void write_atomically(const std::string& path, const std::string& what,
+                      const std::function<std::string(const std::string& temporary)>& write) {
   const std::string temporary = temporary_path(path);
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw io_error(path, "OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-  bool ok = write(*out, temporary);
-  ok = out->close() && ok;
-  std::string reason = ok ? std::string() : out->geterror();
+  std::string reason = write(temporary);
+  bool ok = reason.empty();
   if (ok && !sync_to_disk(temporary, O_RDONLY)) {
     ok = false;
     reason = "cannot flush the file to disk";
@@ -52,8 +48,8 @@ void write_atomically(
                  O_RDONLY | O_DIRECTORY);
   if (!ok || ec) {
     fs::remove(temporary, ec);
-    throw io_error(path, "cannot write " + (format == "openexr" ? std::string("EXR") : format) + ": " +
-                             (reason.empty() ? std::string("rename failed") : reason));
+    throw io_error(path,
+                   "cannot write " + what + ": " + (reason.empty() ? std::string("rename failed") : reason));
   }
 }
 

@@ -1,8 +1,7 @@
-// Writes an image file through OpenImageIO so that a failed write never leaves a partial file:
-// a temporary file beside the target, fsynced, then renamed into place. Inside io/exr only.
+// Writes a file so that a failed write never leaves a partial file: a temporary file beside the
+// target, fsynced, then renamed into place. Knows no image library: the caller's writer fills the
+// temporary file. Inside io/exr and the image codecs module only.
 #pragma once
-
-#include <OpenImageIO/imageio.h>
 
 #include <functional>
 #include <string>
@@ -13,11 +12,11 @@ namespace kiln {
 // file system), unique to this process.
 std::string temporary_path(const std::string& path);
 
-// Creates an OpenImageIO writer for format (e.g. "openexr", "png"), lets write open, fill and
-// close it on the temporary path it is given (returning false on failure, with the reason in the
-// writer's geterror()), then flushes and renames. Throws kiln::error (io) on failure, leaving no
-// temporary file behind and any earlier file at path untouched.
-void write_atomically(const std::string& path, const std::string& format,
-                      const std::function<bool(OIIO::ImageOutput& out, const std::string& temporary)>& write);
+// Lets write create and fill the whole file at the temporary path it is given (returning "" on
+// success, else the reason it failed), then flushes and renames it to path. `what` names the
+// format in the error ("EXR", "PNG"). Throws kiln::error (io) on failure, leaving no temporary
+// file behind and any earlier file at path untouched.
+void write_atomically(const std::string& path, const std::string& what,
+                      const std::function<std::string(const std::string& temporary)>& write);
 
 }  // namespace kiln

@@ -242,15 +242,19 @@ std::vector<float> interleave(size_t pixel_count, const std::vector<const layer*
 // a multi-part one opened with every part's spec and filled part by part.
 void write_parts(const std::string& path, const std::vector<OIIO::ImageSpec>& specs,
                  const std::vector<const void*>& pixels, OIIO::TypeDesc format) {
-  write_atomically(path, "openexr", [&](OIIO::ImageOutput& out, const std::string& temporary) {
-    if (specs.size() > 1 && !out.supports("multiimage")) return false;
-    bool ok = specs.size() == 1 ? out.open(temporary, specs.front())
-                                : out.open(temporary, int(specs.size()), specs.data());
+  write_atomically(path, "EXR", [&](const std::string& temporary) -> std::string {
+    auto out = OIIO::ImageOutput::create("openexr");
+    if (!out) return "OpenImageIO has no openexr writer: " + OIIO::geterror();
+    if (specs.size() > 1 && !out->supports("multiimage")) return "the EXR writer cannot write parts";
+    bool ok = specs.size() == 1 ? out->open(temporary, specs.front())
+                                : out->open(temporary, int(specs.size()), specs.data());
     for (size_t part = 0; ok && part < specs.size(); ++part) {
-      if (part > 0) ok = out.open(temporary, specs[part], OIIO::ImageOutput::AppendSubimage);
-      ok = ok && out.write_image(format, pixels[part]);
+      if (part > 0) ok = out->open(temporary, specs[part], OIIO::ImageOutput::AppendSubimage);
+      ok = ok && out->write_image(format, pixels[part]);
     }
-    return ok;
+    ok = out->close() && ok;
+    const std::string reason = ok ? std::string() : out->geterror();
+    return ok || !reason.empty() ? reason : std::string("rename failed");
   });
 }
 
