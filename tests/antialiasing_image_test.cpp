@@ -108,7 +108,7 @@ TEST(filter_image, default_box_is_bit_identical_to_the_direct_mean_of_the_sample
   // The reference: each pixel's own camera samples summed in sample order (in double, as the film
   // sums), divided by spp.
   std::unique_ptr<texture_filter> textures;
-  if (scene_needs_texture_filter(world)) textures = std::make_unique<texture_filter>(world, 256.0f);
+  if (scene_needs_texture_filter(world)) textures = std::make_unique<texture_filter>(world);
   shading_options shading = settings.shading;
   shading.highlight_footprint_scale = float(1.0 / sample_cone_scale(5));
   shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get()};

@@ -295,7 +295,7 @@ void add_view_settings(CLI::App& app, render_options& o) {
       ->check(finite_number())
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  app.add_option("--texture-cache-mb", o.texture_cache_mb, "Memory for mip-mapped texture tiles (MB)")
+  app.add_option("--texture-cache-mb", o.texture_cache_mb, "No effect (texture pyramids are kept in memory); accepted so existing command lines keep working")
       ->check(CLI::Range(1.0f, 1e6f))
       ->capture_default_str();
   app.add_flag(
@@ -513,7 +513,6 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.transmission_transparent = options.transmission_alpha == "transparent";
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
-  settings.texture_cache_mb = options.texture_cache_mb;
   settings.packets = options.packets;
   settings.aovs = options.aovs;
   settings.cancel = &interrupt_requested();

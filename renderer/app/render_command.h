@@ -63,7 +63,7 @@ struct render_options {
   float environment_intensity = 1.0f;
   int max_depth = 8;
   float min_throughput = 1e-3f;
-  float texture_cache_mb = 256.0f;  // OpenImageIO tile cache for mip-mapped texture lookups
+  float texture_cache_mb = 256.0f;  // no effect: accepted so existing command lines keep working
   bool allow_outside_files = false;
   // Loader limits (see gltf_limits for what each guards against).
   size_t max_json_bytes = size_t(512) << 20;

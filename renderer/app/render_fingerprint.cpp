@@ -114,7 +114,6 @@ std::vector<std::string> canonical_render_arguments(const render_options& o, reg
   add("--environment-intensity", number(o.environment_intensity));
   add("--max-depth", std::to_string(o.max_depth));
   add("--min-throughput", number(o.min_throughput));
-  add("--texture-cache-mb", number(o.texture_cache_mb));
   if (o.allow_outside_files) a.push_back("--allow-outside-files");
   add("--max-json-bytes", std::to_string(o.max_json_bytes));
   add("--max-json-depth", std::to_string(o.max_json_depth));

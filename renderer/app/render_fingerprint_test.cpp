@@ -71,7 +71,6 @@ TEST(render_fingerprint, every_pixel_setting_changes_the_settings_hash) {
       {"environment intensity", [](render_options& o) { o.environment_intensity = 2.0f; }},
       {"max depth", [](render_options& o) { o.max_depth = 2; }},
       {"min throughput", [](render_options& o) { o.min_throughput = 0.01f; }},
-      {"texture cache", [](render_options& o) { o.texture_cache_mb = 64.0f; }},
       {"outside files", [](render_options& o) { o.allow_outside_files = true; }},
       {"max json bytes", [](render_options& o) { o.max_json_bytes = 1000; }},
       {"max json depth", [](render_options& o) { o.max_json_depth = 10; }},

@@ -274,7 +274,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
         },
         [&] {
           if (scene_needs_texture_filter(world))
-            textures = std::make_unique<texture_filter>(world, settings.texture_cache_mb);
+            textures = std::make_unique<texture_filter>(world);
         });
   });
   out.x0 = region.x0;

@@ -37,7 +37,6 @@ struct render_settings {
   // Camera rays of a tile traced together (accelerator::intersect_coherent) before shading; the
   // image is the same either way. Adaptive sampling traces its samples one at a time.
   bool packets = false;
-  float texture_cache_mb = 256.0f;  // OpenImageIO's tile cache for mip-mapped textures
   aov_set aovs;  // which outputs the film keeps beside the colour
   // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).
   matte_ids mattes;

@@ -1,37 +1,41 @@
-// Mip-mapped texture filtering for minification through OpenImageIO's TextureSystem: each decoded
-// scene image is served from memory (no files) to one ImageCache the process keeps for all its
-// renders (each under names of its own, invalidated when its filter goes), as linear float (sRGB
-// decoded before any mip level is built, so levels average linear values), with automip on.
-// Lookups are pure functions of the image and the footprint, whatever the cache holds.
-// Depends on scene (and OpenImageIO, hidden in the .cpp); never on a backend.
+// Mip-mapped texture filtering for minification, over pyramids kiln builds and keeps in memory
+// (shade/mip_pyramid.h): one per image and encoding that a mip-mapped sampler reads. A lookup is
+// anisotropic: the footprint's ellipse is covered by n trilinear probes along its major axis, each
+// at the level whose texels match the probe's width, n = the ellipse's aspect ratio rounded, at
+// most max_anisotropy; a nearly round footprint is one isotropic trilinear probe. Lookups are pure
+// functions of the image and the footprint. Depends on scene only; never on a backend.
 #pragma once
 
-#include <memory>
+#include <vector>
 
 #include "scene/scene.h"
+#include "shade/mip_pyramid.h"
 #include "shade/texture_sampling.h"
 
 namespace kiln {
 
+// The most probes one lookup takes: footprints longer than this many times their width are
+// blurred across (their width grows to major/16), as GPUs' 16x anisotropic filtering does.
+constexpr int max_anisotropy = 16;
+
 class texture_filter {
  public:
-  // Registers every texture of s (which must outlive the filter). cache_mb bounds OpenImageIO's
-  // tile cache (it grows to at least twice the largest automipped image). The mip pyramids are
-  // built in parallel on the calling thread's TBB arena; the result does not depend on its size.
-  explicit texture_filter(const scene& s, float cache_mb = 256.0f);
-  ~texture_filter();
+  // Builds the pyramids of every texture of s (which must outlive the filter) that a material
+  // reads through a mip-mapped sampler, in parallel on the calling thread's TBB arena; the result
+  // does not depend on its size.
+  explicit texture_filter(const scene& s);
   texture_filter(const texture_filter&) = delete;
   texture_filter& operator=(const texture_filter&) = delete;
 
   // Filtered RGBA of scene texture `texture_index` over the footprint around uv (glTF UVs, (0,0)
-  // at the top-left): trilinear-anisotropic (mip_mode::linear) or one level (mip_mode::nearest),
-  // texels read by the sampler's minFilter, wrapped by its wrap modes.
+  // at the top-left): anisotropic trilinear (mip_mode::linear) or the nearest level
+  // (mip_mode::nearest), texels read by the sampler's minFilter, wrapped by its wrap modes.
   vec4 minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
                 const uv_footprint& footprint) const;
 
  private:
-  struct impl;
-  std::unique_ptr<impl> impl_;
+  const scene& scene_;
+  std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0)
 };
 
 // True when some material texture could be minified through a mip-mapped sampler (only then is a

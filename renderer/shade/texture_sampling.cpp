@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "shade/mip_pyramid.h"
 #include "shade/texture_filter.h"
 
 namespace kiln {
@@ -28,61 +29,20 @@ int wrap_texel(int i, int size, wrap_mode mode) {
   }
 }
 
-namespace {
-
-// 8-bit sRGB to linear, computed once: a table lookup per channel keeps 8-bit textures in
-// 8 bits of memory without paying pow() per texel.
-const std::array<float, 256>& srgb_table() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(i / 255.0f);
-    return t;
-  }();
-  return table;
-}
-
-}  // namespace
-
-vec4 fetch_texel(const image& img, int x, int y, texel_encoding encoding) {
-  size_t i = (size_t(y) * img.width + x) * 4;
-  if (!img.texels8.empty()) {
-    const uint8_t* t = &img.texels8[i];
-    if (encoding == texel_encoding::srgb) {
-      const auto& table = srgb_table();
-      return {table[t[0]], table[t[1]], table[t[2]], t[3] / 255.0f};
-    }
-    return vec4(t[0], t[1], t[2], t[3]) / 255.0f;
-  }
-  const float* t = &img.texels32[i];
-  if (encoding == texel_encoding::srgb)
-    return {srgb_to_linear(t[0]), srgb_to_linear(t[1]), srgb_to_linear(t[2]), t[3]};
-  return {t[0], t[1], t[2], t[3]};
-}
+const std::array<float, 256> srgb8_to_linear = [] {
+  std::array<float, 256> t{};
+  for (int i = 0; i < 256; ++i) t[size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+  return t;
+}();
 
 namespace {
 
 // Level 0 with one texel filter: nearest or bilinear.
-vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv,
-                   texel_encoding encoding) {
-  // Texel centres sit at half-integers; keep the coordinate bounded before converting to int.
-  float fx = std::fmod(uv.x, 65536.0f) * img.width - 0.5f;
-  float fy = std::fmod(uv.y, 65536.0f) * img.height - 0.5f;
-  if (filter == filter_mode::nearest) {
-    int x = wrap_texel(int(std::floor(fx + 0.5f)), img.width, smp.wrap_s);
-    int y = wrap_texel(int(std::floor(fy + 0.5f)), img.height, smp.wrap_t);
-    return fetch_texel(img, x, y, encoding);
-  }
-  float x0f = std::floor(fx);
-  float y0f = std::floor(fy);
-  float tx = fx - x0f;
-  float ty = fy - y0f;
-  int x0 = wrap_texel(int(x0f), img.width, smp.wrap_s);
-  int x1 = wrap_texel(int(x0f) + 1, img.width, smp.wrap_s);
-  int y0 = wrap_texel(int(y0f), img.height, smp.wrap_t);
-  int y1 = wrap_texel(int(y0f) + 1, img.height, smp.wrap_t);
-  vec4 top = glm::mix(fetch_texel(img, x0, y0, encoding), fetch_texel(img, x1, y0, encoding), tx);
-  vec4 bottom = glm::mix(fetch_texel(img, x0, y1, encoding), fetch_texel(img, x1, y1, encoding), tx);
-  return glm::mix(top, bottom, ty);
+vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv, texel_encoding encoding) {
+  mip_pyramid level0;  // a view: no coarser levels
+  level0.level0 = &img;
+  level0.encoding = encoding;
+  return sample_mip_level(level0, 0, uv, smp, filter);
 }
 
 bool sampleable(const image& img, vec2 uv) {

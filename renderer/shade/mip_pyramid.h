@@ -1,0 +1,45 @@
+// A texture's mip pyramid, held in memory: level 0 is the scene image itself (read texel by texel,
+// 8-bit sRGB through a table), each coarser level the box average of the level above, in linear
+// float RGBA (sRGB decoded first, so levels average linear values). OpenGL's sizes: each level
+// halves both sides, rounding down, never below 1, until 1x1. Depends on scene only.
+#pragma once
+
+#include <vector>
+
+#include "scene/scene.h"
+#include "shade/texture_sampling.h"
+
+namespace kiln {
+
+struct mip_level {
+  int width = 0;
+  int height = 0;
+  std::vector<vec4> texels;  // row-major, row 0 at the top
+};
+
+struct mip_pyramid {
+  const image* level0 = nullptr;
+  texel_encoding encoding = texel_encoding::linear;
+  std::vector<mip_level> coarser;  // levels 1, 2, ... down to 1x1
+
+  int levels() const { return 1 + int(coarser.size()); }
+  int width(int level) const { return level == 0 ? level0->width : coarser[size_t(level - 1)].width; }
+  int height(int level) const { return level == 0 ? level0->height : coarser[size_t(level - 1)].height; }
+  // Texel (x, y) of level, in range, as linear RGBA.
+  vec4 texel(int level, int x, int y) const {
+    if (level == 0) return fetch_texel(*level0, x, y, encoding);
+    const mip_level& l = coarser[size_t(level - 1)];
+    return l.texels[size_t(y) * size_t(l.width) + size_t(x)];
+  }
+};
+
+// The pyramid of img read with encoding; img must outlive it. Rows of each level are averaged in
+// parallel on the caller's TBB arena; every texel is computed on its own, so the result does not
+// depend on the thread count. A pyramid of levels 0 only (no coarser levels) when build is false.
+mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool build = true);
+
+// One level of p read at uv (glTF UVs) by the sampler's wrap modes: the nearest texel, or the
+// bilinear blend of the four around uv.
+vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter);
+
+}  // namespace kiln
