@@ -459,6 +459,7 @@ prepared_scene prepare_scene(const render_options& options) {
   load_options.limits.max_instances = options.max_instances;
   load_options.limits.max_texels = options.max_texels;
   load_options.cancel = &interrupt_requested();  // SIGINT/SIGTERM stop the reading of large files
+  load_options.threads = options.threads;        // images decode on the render's threads
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {

@@ -1,5 +1,6 @@
 // Reads an equirectangular environment image (OpenEXR, Radiance .hdr, or anything OpenImageIO
-// reads) into a float RGBA kiln::image of linear radiance. Only io/* touch file formats.
+// reads, through the image codecs module) into a float RGBA kiln::image of linear radiance.
+// Only io/* touch file formats.
 #pragma once
 
 #include <string>
@@ -14,7 +15,8 @@ constexpr uint64_t max_environment_file_bytes = uint64_t(1) << 32;
 
 // Throws kiln::error (input) naming the file and the reason when it cannot be read, and before
 // opening it when the path names a FIFO, a device or a folder (an image reader would block on it
-// or read forever) or a file over max_environment_file_bytes.
+// or read forever) or a file over max_environment_file_bytes; (io) when the image codecs module
+// cannot be loaded.
 image read_environment_image(const std::string& path);
 
 }  // namespace kiln

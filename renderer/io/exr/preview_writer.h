@@ -1,25 +1,20 @@
 // Writes an 8-bit PNG or JPEG preview of an EXR's beauty for people to look at, through a fixed,
-// documented view transform. Uses OpenImageIO; depends on core only.
+// documented view transform (preview_codes.h). The encoding happens in the image codecs module,
+// loaded on the first preview; depends on core and that module's loader only.
 #pragma once
 
 #include <string>
 
+#include "io/exr/preview_codes.h"
+
 namespace kiln {
-
-// "png" or "jpeg" for a path ending in .png, .jpg or .jpeg (any case); empty otherwise.
-std::string preview_format(const std::string& path);
-
-// The preview code value of one linear colour channel: round(255 · srgb(clamp(v · 2^exposure, 0, 1)))
-// with the exact piecewise sRGB curve (12.92·v up to 0.0031308, else 1.055·v^(1/2.4) - 0.055).
-// NaN maps to 0.
-unsigned char preview_code(float linear, double exposure);
 
 // Reads R, G, B, A (premultiplied) from the EXR at exr_path (the part holding them, in a
 // multi-part file) and writes preview_path atomically. A PNG holds straight colour, R G B divided
 // by A where A > 0, through preview_code, and A as round(255 · clamp(A, 0, 1)); a JPEG holds the
 // premultiplied R G B through preview_code (the colour over black) and no alpha. The preview covers
 // the EXR's data window. Throws kiln::error (input) when the EXR has no R G B A, (io) when the
-// preview cannot be written.
+// preview cannot be written or the codecs module cannot be loaded.
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure);
 
 // True when preview_path is a complete preview of a width x height data window: its format is the

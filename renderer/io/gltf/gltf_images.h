@@ -1,21 +1,33 @@
-// Decodes encoded glTF images (PNG, JPEG, ...) from memory with OpenImageIO into kiln images:
-// 8-bit RGBA for 8-bit sources, float RGBA for deeper ones, row 0 at the top. Internal to
-// io/gltf; the only file that includes OpenImageIO.
+// Decodes the encoded glTF images (PNG, JPEG, ...) a scene uses into kiln images, in parallel,
+// through the image codecs module (loaded here on the first image, never for a scene without
+// any): 8-bit RGBA for 8-bit sources, float RGBA for deeper ones, row 0 at the top. Internal to
+// io/gltf.
 #pragma once
 
-#include "scene/scene.h"
-
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace kiln::gltf_internal {
 
-// Decodes `encoded` (the format is recognised from its magic bytes, not from names or MIME
-// types). Alpha stays straight (unassociated), as glTF stores it. Throws kiln::error (input)
-// naming `file` and `where` (e.g. /images/3) when the data is not a decodable image.
-// An image whose header declares more than max_texels texels is refused before it is decoded.
-image decode_image(const std::vector<uint8_t>& encoded, const std::string& name, const std::string& file,
-                   const std::string& where, uint64_t max_texels = uint64_t(1) << 28);
+// One image to decode: its encoded bytes (owned by the parsed model, which outlives the decode),
+// the name the scene image gets and its JSON pointer (e.g. /images/3) for errors.
+struct encoded_image {
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+  std::string name;
+  std::string where;
+};
+
+// Decodes every image of `batch` (the format is recognised from its magic bytes, not from names or
+// MIME types) on `threads` threads (0: all cores); the result is the same for any thread count.
+// Alpha stays straight (unassociated), as glTF stores it. An image whose header declares more than
+// max_texels texels is refused before it is decoded. Throws kiln::error (input) naming `file` and
+// the first failing image in batch order, or (io) when the codecs module cannot be loaded.
+std::vector<image> decode_images(const std::vector<encoded_image>& batch, const std::string& file,
+                                 uint64_t max_texels, int threads = 0);
 
 }  // namespace kiln::gltf_internal

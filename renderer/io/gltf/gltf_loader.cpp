@@ -31,6 +31,7 @@ struct build_context {
   const std::string& file;
   size_t max_instances;  // gltf_limits::max_instances
   uint64_t max_texels;   // gltf_limits::max_texels
+  int threads;           // image decoding threads (0: all cores)
   bool quantized;        // the file uses KHR_mesh_quantization
   scene& out;
   std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
@@ -436,12 +437,20 @@ void convert_used_materials(build_context& ctx) {
   texture_remap remap = make_texture_remap(ctx.model);
   remap.max_texels = ctx.max_texels;
   std::map<int, uint32_t> scene_index;
-  for (int gltf_material : used) {
-    if (gltf_material < 0) continue;
-    ctx.out.materials.push_back(convert_material(ctx.model, gltf_material, remap, ctx.out, ctx.file));
-    ctx.out.materials.back().source_index = gltf_material;
-    scene_index[gltf_material] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
+  try {
+    for (int gltf_material : used) {
+      if (gltf_material < 0) continue;
+      ctx.out.materials.push_back(convert_material(ctx.model, gltf_material, remap, ctx.out, ctx.file));
+      ctx.out.materials.back().source_index = gltf_material;
+      scene_index[gltf_material] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
+    }
+  } catch (...) {
+    // Images used to decode as materials converted: one queued before this error that does not
+    // decode is still the error reported, whatever the thread count.
+    decode_used_images(remap, ctx.out, ctx.file, ctx.threads);
+    throw;
   }
+  decode_used_images(remap, ctx.out, ctx.file, ctx.threads);
   if (used.count(-1) != 0 || ctx.out.materials.empty()) {
     ctx.out.materials.push_back(default_material());
     ctx.out.materials.back().source_index = static_cast<int32_t>(ctx.model.materials.size());
@@ -490,7 +499,8 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   scene out;
   out.source = path;
   const bool quantized = uses_extension(model, quantization_extension);
-  build_context ctx{model, path, options.limits.max_instances, options.limits.max_texels, quantized, out, {}, {}, {}};
+  build_context ctx{model, path, options.limits.max_instances, options.limits.max_texels, options.threads,
+                    quantized, out, {}, {}, {}};
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
   // were refused while parsing).

@@ -36,6 +36,7 @@ struct gltf_load_options {
   // When set and raised (SIGINT/SIGTERM), reading files stops and loading throws kiln::error of
   // kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
+  int threads = 0;  // threads that decode images (0: all cores); the scene is the same for any count
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.

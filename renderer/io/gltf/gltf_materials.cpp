@@ -77,16 +77,23 @@ wrap_mode to_wrap(int gl) {
   }
 }
 
-// The encoded bytes of a glTF image: kept by the parser for URIs, read from the (validated)
-// bufferView otherwise.
-std::vector<uint8_t> encoded_bytes(const tinygltf::Model& model, const tinygltf::Image& img) {
-  if (img.bufferView < 0) return img.image;
+// The encoded bytes of a glTF image: kept by the parser for URIs, in the (validated) bufferView
+// otherwise. They stay in the model, which outlives the decode.
+encoded_image encoded_bytes(const tinygltf::Model& model, const tinygltf::Image& img) {
+  encoded_image out;
+  if (img.bufferView < 0) {
+    out.data = img.image.data();
+    out.size = img.image.size();
+    return out;
+  }
   const tinygltf::BufferView& bv = model.bufferViews[static_cast<size_t>(img.bufferView)];
   const tinygltf::Buffer& buffer = model.buffers[static_cast<size_t>(bv.buffer)];
-  const auto begin = buffer.data.begin() + static_cast<std::ptrdiff_t>(bv.byteOffset);
-  return std::vector<uint8_t>(begin, begin + static_cast<std::ptrdiff_t>(bv.byteLength));
+  out.data = buffer.data.data() + bv.byteOffset;
+  out.size = bv.byteLength;
+  return out;
 }
 
+// Gives a glTF image its scene index on first use and queues it for decoding (decode_used_images).
 int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_remap& remap, scene& out,
                       const std::string& file) {
   int32_t& slot = remap.images[static_cast<size_t>(gltf_image)];
@@ -96,9 +103,11 @@ int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_rema
   if (img.bufferView < 0 && img.image.empty())
     throw input_error(file, pointer_join(pointer("images", gltf_image), "uri"),
                       "cannot read image file '" + img.uri + "'");
-  const std::string name = !img.name.empty() ? img.name : img.uri;
-  out.images.push_back(decode_image(encoded_bytes(model, img), name, file, pointer("images", gltf_image),
-                                    remap.max_texels));
+  encoded_image pending = encoded_bytes(model, img);
+  pending.name = !img.name.empty() ? img.name : img.uri;
+  pending.where = pointer("images", gltf_image);
+  remap.pending.push_back(std::move(pending));
+  out.images.emplace_back();  // filled by decode_used_images
   slot = static_cast<int32_t>(out.images.size() - 1);
   return slot;
 }
@@ -274,6 +283,13 @@ texture_remap make_texture_remap(const tinygltf::Model& model) {
   remap.images.assign(model.images.size(), -1);
   remap.missing_source_warned.assign(model.textures.size(), 0);
   return remap;
+}
+
+void decode_used_images(texture_remap& remap, scene& out, const std::string& file, int threads) {
+  std::vector<image> decoded = decode_images(remap.pending, file, remap.max_texels, threads);
+  const size_t first = out.images.size() - decoded.size();
+  for (size_t i = 0; i < decoded.size(); ++i) out.images[first + i] = std::move(decoded[i]);
+  remap.pending.clear();
 }
 
 material default_material() {

@@ -1,14 +1,16 @@
 // glTF materials, textures, samplers and images to kiln's scene types. Only what used materials
 // reference is converted: textures and images get new, dense indices, and unused images are
-// never decoded. Internal to io/gltf; runs after gltf_validate.
+// never decoded. Images are queued while materials convert and decoded together, in parallel.
+// Internal to io/gltf; runs after gltf_validate.
 #pragma once
-
-#include "scene/scene.h"
 
 #include <tiny_gltf.h>
 
 #include <string>
 #include <vector>
+
+#include "io/gltf/gltf_images.h"
+#include "scene/scene.h"
 
 namespace kiln::gltf_internal {
 
@@ -18,14 +20,22 @@ struct texture_remap {
   std::vector<int32_t> images;
   std::vector<char> missing_source_warned;  // per glTF texture: warned once about a missing source
   uint64_t max_texels = uint64_t(1) << 28;  // gltf_limits::max_texels
+  // Images given a scene index but not decoded yet, in scene order; they are the last
+  // pending.size() entries of scene::images, placeholders until decode_used_images.
+  std::vector<encoded_image> pending;
 };
 
 texture_remap make_texture_remap(const tinygltf::Model& model);
 
-// Converts glTF material `index`, appending the textures and images it references to `out`.
-// Throws kiln::error (input) for non-finite or out-of-range factors and undecodable images.
+// Converts glTF material `index`, appending the textures and images it references to `out` (the
+// images as placeholders, queued in remap.pending). Throws kiln::error (input) for non-finite or
+// out-of-range factors.
 material convert_material(const tinygltf::Model& model, int index, texture_remap& remap, scene& out,
                           const std::string& file);
+
+// Decodes the queued images into their places in out.images on `threads` threads (0: all cores).
+// Throws kiln::error (input) naming the first undecodable one in scene order.
+void decode_used_images(texture_remap& remap, scene& out, const std::string& file, int threads);
 
 // The glTF default material: white, metallic 1, roughness 1, opaque, single-sided.
 material default_material();

@@ -1,0 +1,109 @@
+// Writes the 8-bit PNG or JPEG preview of an EXR's beauty and checks a written one, with
+// OpenImageIO (which also reads the EXR here, so the module needs nothing from kiln's EXR code).
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include "core/error.h"
+#include "io/exr/atomic_write.h"
+#include "io/exr/preview_codes.h"
+#include "io/image_codecs/module/codecs_module.h"
+
+namespace kiln::codecs_module {
+namespace {
+
+// Moves in to the subimage (part) that holds R, G, B and A and sets first_channel to the index of
+// R in it (OpenImageIO orders them R, G, B, A); false when none does.
+bool seek_beauty(OIIO::ImageInput& in, int& first_channel) {
+  for (int part = 0; in.seek_subimage(part, 0); ++part) {
+    const OIIO::ImageSpec& spec = in.spec();
+    const int r = spec.channelindex("R");
+    if (r >= 0 && r + 3 < spec.nchannels && spec.channelnames[size_t(r) + 1] == "G" &&
+        spec.channelnames[size_t(r) + 2] == "B" && spec.channelnames[size_t(r) + 3] == "A") {
+      first_channel = r;
+      return true;
+    }
+  }
+  return false;
+}
+
+// The last bytes every complete file of the format ends with.
+bool ends_with_trailer(const std::string& path, const std::string& format) {
+  static const unsigned char png_end[] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  static const unsigned char jpeg_end[] = {0xFF, 0xD9};
+  const std::string trailer = format == "png" ? std::string(png_end, png_end + sizeof png_end)
+                                              : std::string(jpeg_end, jpeg_end + sizeof jpeg_end);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < std::streamoff(trailer.size())) return false;
+  in.seekg(-std::streamoff(trailer.size()), std::ios::end);
+  std::string tail(trailer.size(), '\0');
+  return bool(in.read(tail.data(), std::streamsize(tail.size()))) && tail == trailer;
+}
+
+}  // namespace
+
+bool preview_complete(const std::string& preview_path, int width, int height) {
+  const std::string format = preview_format(preview_path);
+  if (format.empty() || !ends_with_trailer(preview_path, format)) return false;
+  auto in = OIIO::ImageInput::open(preview_path);
+  if (!in) {
+    OIIO::geterror();  // clear the message OpenImageIO keeps for the thread
+    return false;
+  }
+  const OIIO::ImageSpec spec = in->spec();
+  if (in->format_name() != format || spec.width != width || spec.height != height) return false;
+  std::vector<unsigned char> pixels(spec.image_bytes());
+  const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data());
+  if (!read) in->geterror();
+  return read;
+}
+
+void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure) {
+  const std::string format = preview_format(preview_path);
+  if (format.empty())
+    throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
+  auto in = OIIO::ImageInput::open(exr_path);
+  if (!in) throw input_error(exr_path, "", "cannot read EXR: " + OIIO::geterror());
+  int r = 0;
+  if (!seek_beauty(*in, r)) throw input_error(exr_path, "--preview", "the EXR holds no R G B A to preview");
+  const OIIO::ImageSpec spec = in->spec();
+  const size_t pixel_count = size_t(spec.width) * size_t(spec.height);
+  std::vector<float> rgba(pixel_count * 4);
+  if (!in->read_image(in->current_subimage(), 0, r, r + 4, OIIO::TypeDesc::FLOAT, rgba.data()))
+    throw input_error(exr_path, "", "cannot read EXR pixels: " + in->geterror());
+
+  const int channels = format == "png" ? 4 : 3;
+  std::vector<unsigned char> codes(pixel_count * size_t(channels));
+  for (size_t i = 0; i < pixel_count; ++i) {
+    const float a = std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
+    // PNG stores straight alpha, so its colour is unpremultiplied and a viewer's "over" is right;
+    // JPEG has no alpha and shows the premultiplied colour, i.e. the image over black.
+    const float unpremultiply = channels == 4 && a > 0.0f ? 1.0f / a : 1.0f;
+    for (int c = 0; c < 3; ++c)
+      codes[i * size_t(channels) + size_t(c)] =
+          preview_code(rgba[i * 4 + size_t(c)] * unpremultiply, exposure);
+    if (channels == 4) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
+  }
+  OIIO::ImageSpec out_spec(spec.width, spec.height, channels, OIIO::TypeDesc::UINT8);
+  if (channels == 4) {
+    out_spec.alpha_channel = 3;
+    // The codes are already straight: without this OpenImageIO would divide colour by alpha again.
+    out_spec.attribute("oiio:UnassociatedAlpha", 1);
+  }
+  out_spec.attribute("oiio:ColorSpace", "sRGB");
+  if (format == "jpeg") out_spec.attribute("Compression", "jpeg:95");
+  // The error names the format as earlier kilns did ("cannot write png: ...").
+  write_atomically(preview_path, format, [&](const std::string& temporary) -> std::string {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) return "OpenImageIO has no " + format + " writer: " + OIIO::geterror();
+    bool ok = out->open(temporary, out_spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data());
+    ok = out->close() && ok;
+    const std::string reason = ok ? std::string() : out->geterror();
+    return ok || !reason.empty() ? reason : std::string("rename failed");
+  });
+}
+
+}  // namespace kiln::codecs_module

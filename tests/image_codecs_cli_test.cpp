@@ -1,0 +1,144 @@
+// OpenImageIO lives in the image codecs module, which kiln opens only when a render meets an
+// image: with KILN_IMAGE_CODECS naming a file that does not exist, `kiln --version` and a render
+// without textures succeed (the module is never looked for), while a textured scene, an
+// environment map or a preview fail with one line naming the path. Without the variable kiln looks
+// beside itself, then in ../lib/kiln/ (an install), then in the build tree.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::command_result;
+using testing::lines;
+using testing::run_kiln;
+using testing::scratch_folder;
+
+const std::string scenes = std::string(KILN_SOURCE_DIR) + "/scenes/";
+const std::string untextured = scenes + "quadric_showcase.gltf";
+const std::string textured = scenes + "cornell_box.gltf";  // samples checker.png
+const std::string missing_module = "/nonexistent/path.so";
+
+// Sets KILN_IMAGE_CODECS for the kiln processes a test starts, and clears it afterwards.
+struct codecs_variable {
+  explicit codecs_variable(const std::string& value) { ::setenv("KILN_IMAGE_CODECS", value.c_str(), 1); }
+  ~codecs_variable() { ::unsetenv("KILN_IMAGE_CODECS"); }
+};
+
+std::vector<std::string> small_render(const std::string& scene, const std::string& out) {
+  return {"render", scene, "-o", out, "--width", "16", "--height", "12"};
+}
+
+// The run failed (not with a crash) on exactly one line that names the module's path.
+void expect_module_error(const command_result& result, const std::string& path, const std::string& needs) {
+  EXPECT_EQ(result.exit_code, 1) << result.stderr_text;
+  ASSERT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text.rfind("kiln: " + needs + " the image codecs module: " + path, 0), 0u)
+      << result.stderr_text;
+}
+
+TEST(image_codecs_cli, version_never_looks_for_the_module) {
+  const codecs_variable variable(missing_module);
+  const command_result result = run_kiln({"--version"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text, "");
+}
+
+TEST(image_codecs_cli, render_without_images_never_looks_for_the_module) {
+  const codecs_variable variable(missing_module);
+  const std::string out = scratch_folder("codecs_untextured") + "/out.exr";
+  const command_result result = run_kiln(small_render(untextured, out));
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_TRUE(fs::is_regular_file(out));
+}
+
+TEST(image_codecs_cli, textured_scene_without_the_module_fails_naming_its_path) {
+  const codecs_variable variable(missing_module);
+  const std::string out = scratch_folder("codecs_textured") + "/out.exr";
+  const command_result result = run_kiln(small_render(textured, out));
+  expect_module_error(result, missing_module, "textures need");
+  EXPECT_NE(result.stderr_text.find("No such file"), std::string::npos) << result.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(image_codecs_cli, environment_map_and_preview_need_the_module) {
+  const codecs_variable variable(missing_module);
+  const std::string dir = scratch_folder("codecs_environment");
+  std::vector<std::string> args = small_render(untextured, dir + "/env.exr");
+  args.insert(args.end(), {"--environment", scenes + "glass_showcase_sky.hdr"});
+  expect_module_error(run_kiln(args), missing_module, "an environment map needs");
+  EXPECT_FALSE(fs::exists(dir + "/env.exr"));
+
+  args = small_render(untextured, dir + "/preview.exr");
+  args.insert(args.end(), {"--preview", dir + "/preview.png"});
+  expect_module_error(run_kiln(args), missing_module, "a preview needs");
+  EXPECT_FALSE(fs::exists(dir + "/preview.png"));
+}
+
+TEST(image_codecs_cli, a_file_that_is_no_module_is_reported_on_one_line) {
+  const std::string fake = scratch_folder("codecs_fake") + "/kiln_image_codecs.so";
+  std::ofstream(fake) << "not a shared object\n";
+  const codecs_variable variable(fake);
+  expect_module_error(run_kiln(small_render(textured, fs::path(fake).parent_path() / "out.exr")), fake,
+                      "textures need");
+}
+
+TEST(image_codecs_cli, variable_naming_the_module_renders_textures) {
+  const codecs_variable variable(KILN_IMAGE_CODECS_MODULE);
+  const std::string out = scratch_folder("codecs_named") + "/out.exr";
+  const std::string preview = fs::path(out).replace_extension(".png").string();
+  std::vector<std::string> args = small_render(textured, out);
+  args.insert(args.end(), {"--preview", preview});
+  const command_result result = run_kiln(args);
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_TRUE(fs::is_regular_file(out));
+  EXPECT_TRUE(fs::is_regular_file(preview));
+}
+
+// A kiln copied into an install layout (prefix/bin/kiln) looks beside itself first, then in
+// prefix/lib/kiln/. A file there that does not open is reported, not passed over for the build
+// tree's module.
+TEST(image_codecs_cli, installed_kiln_looks_beside_itself_then_in_lib_kiln) {
+  const fs::path prefix = scratch_folder("codecs_install");
+  fs::create_directories(prefix / "bin");
+  fs::create_directories(prefix / "lib/kiln");
+  const fs::path kiln = prefix / "bin/kiln";
+  fs::copy_file(KILN_BINARY, kiln);
+  const auto render = [&](const std::string& name) {
+    const std::string command = "'" + kiln.string() + "' render '" + textured + "' -o '" +
+                                (prefix / name).string() + "' --width 16 --height 12 2> '" +
+                                (prefix / "stderr.txt").string() + "'";
+    command_result result;
+    const int status = std::system(command.c_str());
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(prefix / "stderr.txt");
+    result.stderr_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return result;
+  };
+
+  const fs::path in_lib = prefix / "lib/kiln/kiln_image_codecs.so";
+  std::ofstream(in_lib) << "broken install\n";
+  expect_module_error(render("a.exr"), in_lib.string(), "textures need");
+
+  const fs::path beside = prefix / "bin/kiln_image_codecs.so";
+  std::ofstream(beside) << "broken copy\n";
+  expect_module_error(render("b.exr"), beside.string(), "textures need");
+
+  fs::remove(beside);
+  fs::copy_file(KILN_IMAGE_CODECS_MODULE, in_lib, fs::copy_options::overwrite_existing);
+  const command_result installed = render("c.exr");
+  EXPECT_EQ(installed.exit_code, 0) << installed.stderr_text;
+  EXPECT_TRUE(fs::is_regular_file(prefix / "c.exr"));
+}
+
+}  // namespace
+}  // namespace kiln
