@@ -1,6 +1,7 @@
 """Build time, Embree memory and render CPU time of each BVH build option, from `kiln bench` JSON
-(one folder per scene holding <option>_<round>.json, as bench/results/2026-12-01-perf/run_all.sh
-writes them). The chart the default (medium, not compact) was chosen from.
+(one folder per scene holding <option>_<round>.json, as bench/perf/build_options_ab.sh writes them
+under docs/performance/build-options/json/). The chart the default (medium, not compact) was chosen
+from (docs/performance.md, "BVH build options").
 
 usage: /usr/bin/python3 tools/charts/bvh_options_chart.py OUT_DIR SCENE_DIR...
 """

@@ -11,7 +11,7 @@ namespace kiln {
 enum class bvh_quality { low, medium, high };
 
 struct embree_options {
-  // Medium is Embree's default and measured best for kiln's renders (bench/results/2026-12-01-perf).
+  // Medium is Embree's default and measured best for kiln's renders (docs/performance.md).
   bvh_quality quality = bvh_quality::medium;
   bool compact = false;  // smaller BVH nodes, slower traversal
 };

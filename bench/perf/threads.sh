@@ -1,6 +1,6 @@
 #!/bin/bash
 # Thread scaling of the render phase, before and after a change, in alternated rounds.
-# usage: threads.sh ROUNDS BEFORE_KILN AFTER_KILN > runs.csv
+# usage: bench/perf/threads.sh ROUNDS BEFORE_KILN AFTER_KILN > runs.csv   (from the repository root)
 # Per round, scene and binary: one 2-thread render, two 1-thread renders at once (each has a core,
 # as the threads of a 2-thread render do) and one 1-thread render alone. kiln's own
 # "render N s" is recorded (load, build and EXR writing excluded).

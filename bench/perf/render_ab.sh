@@ -1,8 +1,8 @@
 #!/bin/bash
 # Alternated A/B renders: each round runs every variant once, in order.
-# Usage: ab.sh ROUNDS COMMON_RENDER_ARGS... -- 'LABEL|ENV|EXTRA ARGS' ...
+# Usage: bench/perf/render_ab.sh ROUNDS COMMON_RENDER_ARGS... -- 'LABEL|ENV|EXTRA ARGS' ...
 # Prints one line per run: round, label, process CPU s (user+sys), wall s, render-phase wall s.
-# ENV is a list of NAME=VALUE (or empty), for the measurement-only switches of embree_flags.patch.
+# ENV is a list of NAME=VALUE (or empty), for the measurement-only switches of bench/perf/embree_flags.patch.
 R=$1; shift; ARGS=(); while [ "$1" != "--" ]; do ARGS+=("$1"); shift; done; shift
 K=${KILN:-build/renderer/app/kiln}; T=${TMPDIR:-/tmp}
 for r in $(seq "$R"); do for v in "$@"; do

@@ -1,5 +1,5 @@
-"""Table rows from ab.sh output: medians over rounds and the median of per-round ratios to BASE.
-Usage: ratios.py AB_OUTPUT.txt BASE_LABEL"""
+"""Table rows from render_ab.sh output: medians over rounds and the median of per-round ratios to BASE.
+Usage: render_ab_ratios.py AB_OUTPUT.txt BASE_LABEL"""
 import statistics as st
 import sys
 from collections import defaultdict

@@ -1,4 +1,4 @@
-"""Medians of threads.sh output: render seconds and the 1 -> 2 thread speed-up per round."""
+"""Medians of threads.sh output (usage: threads_summary.py runs.csv): render seconds and the 1 -> 2 thread speed-up per round."""
 import csv
 import statistics
 import sys

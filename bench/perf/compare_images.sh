@@ -1,7 +1,7 @@
 #!/bin/bash
 # Renders every scene with two kiln builds (default AOVs: RGBA, Z, N) and reports, per scene, the
 # pixels that differ at all (idiff -fail 0) and the largest difference.
-# usage: compare_images.sh BEFORE_KILN AFTER_KILN   (from the repository root)
+# usage: bench/perf/compare_images.sh BEFORE_KILN AFTER_KILN   (from the repository root)
 set -u
 B=$1 A=$2; out=$(mktemp -d); S=../shared/assets
 list=(scenes/cornell_box.gltf scenes/glass_showcase.gltf scenes/quadric_showcase.gltf

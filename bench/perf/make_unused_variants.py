@@ -1,4 +1,5 @@
-# Variants of the 1M-triangle bench mesh and of the demo scene with unused data.
+# Variants of the 1M-triangle bench mesh and of the demo scene with unused data, written to the
+# current folder. Usage: make_unused_variants.py MESH_1M.glb DEMO.gltf
 import json, struct, shutil, sys, os
 import numpy as np
 from PIL import Image

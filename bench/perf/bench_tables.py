@@ -1,8 +1,10 @@
-# Markdown tables from this folder's JSON (json/<case>/<variant>_<round>.json): medians over rounds,
-# and speed-ups as the median of per-round ratios (variants ran alternately, so each round's ratio
-# compares runs under the same machine load). Usage: make_table.py [FOLDER]
+# Markdown tables from a run folder's JSON (FOLDER/json/<case>/<variant>_<round>.json): medians over
+# rounds, and speed-ups as the median of per-round ratios (variants ran alternately, so each round's
+# ratio compares runs under the same machine load).
+# Usage: bench_tables.py [FOLDER]   (default docs/performance/build-options)
 import glob, json, os, re, statistics, sys
-here = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+here = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), '..', '..', 'docs', 'performance', 'build-options')
 med = statistics.median
 
 def kind(run, name, query):

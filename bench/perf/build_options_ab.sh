@@ -1,12 +1,14 @@
 #!/bin/bash
-# Reproduces this folder's JSON/CSV and tables (about 20 minutes on 2 loaded cores).
-# KILN_BEFORE: kiln built from 7bed80f (before this change); KILN_AFTER: this change's build.
+# The build-option and packet runs of docs/performance.md (about 20 minutes on 2 loaded cores).
+# Run from the repository root; writes json/<case>/ and summary.txt to docs/performance/build-options/
+# (or OUT). KILN_BEFORE: kiln built from 7bed80f (before that change); KILN_AFTER: the build to measure.
 set -e
 HERE=$(cd "$(dirname "$0")" && pwd)
+OUT=${OUT:-$HERE/../../docs/performance/build-options}; mkdir -p "$OUT"
 B=${KILN_BEFORE:?kiln built at 7bed80f}; A=${KILN_AFTER:-build/renderer/app/kiln}
 S=${BENCH_SCENES:-/tmp/kiln-bench-scenes}; mkdir -p "$S"; build/bench/make_bench_scenes "$S" --skip-4m >/dev/null
 T=../shared/assets/ToyCar/glTF/ToyCar.gltf
-ab() { /usr/bin/python3 "$HERE/ab.py" "$HERE/json/$1" 3 "${@:2}"; }
+ab() { /usr/bin/python3 "$HERE/bench_ab.py" "$OUT/json/$1" 3 "${@:2}"; }
 {
   echo "## before / after / packets"
   for c in "demo scenes/cornell_box.gltf --width 1280 --height 960" "mesh_100k $S/mesh_100k.glb --width 1280 --height 960" \
@@ -18,4 +20,4 @@ ab() { /usr/bin/python3 "$HERE/ab.py" "$HERE/json/$1" 3 "${@:2}"; }
     set -- $c; echo "== $*"
     ab "bvh_$1" "${@:2}" -- medium="$A" low="$A:--bvh-quality low" high="$A:--bvh-quality high" compact="$A:--bvh-compact"
   done
-} 2>&1 | tee "$HERE/summary.txt"
+} 2>&1 | tee "$OUT/summary.txt"

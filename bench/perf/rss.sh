@@ -1,5 +1,5 @@
 #!/bin/bash
-# usage: rss.sh LABEL kiln-args...   prints label, max RSS kB, user+sys s
+# usage: bench/perf/rss.sh LABEL kiln-args...   prints label, max RSS kB, user+sys s
 L=$1; shift
 /usr/bin/time -v "$@" 2>${TMPDIR:-/tmp}/time_$$.txt >/dev/null
 rc=$?
