@@ -349,7 +349,11 @@ TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
   q.radius = 2.0;
   q.bounds = quadric_bounds(q);
   s.quadrics.push_back(q);
-  s.materials.emplace_back();
+  s.images.emplace_back();
+  s.textures.emplace_back();
+  material textured;
+  textured.base_color_texture.texture = 0;  // the footprint is built only for textured materials
+  s.materials.push_back(textured);
   instance inst;
   inst.kind = shape_kind::quadric;
   finish_instance_transform(inst);
@@ -362,6 +366,9 @@ TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
   h.geometric_normal = vec3(1, 0, 0);
   const float w = 0.02f;
   const surface_point sp = make_surface_point(s, h, r, w);
+  scene untextured = s;
+  untextured.materials[0].base_color_texture.texture = -1;
+  EXPECT_TRUE(make_surface_point(untextured, h, r, w).footprint0.empty());
   const float du = w / (2.0f * pi * 2.0f), dv = w / (pi * 2.0f);
   // Normal incidence: the footprint is a circle; its axes start along dp/du.
   EXPECT_NEAR(std::abs(sp.footprint0.dx.x), du, 1e-3f * du);
