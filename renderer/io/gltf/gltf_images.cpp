@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <exception>
 
+#include "core/error.h"
+#include "io/gltf/image_header.h"
 #include "io/image_codecs/codecs_loader.h"
 
 namespace kiln::gltf_internal {
@@ -40,11 +42,28 @@ class silenced_stderr {
   int saved_ = -1;
 };
 
+// Refuses an image whose own header is not one kiln takes, has no size, or declares more than
+// max_texels, before any decoder (or the module holding them) is touched.
+image_header checked_header(const encoded_image& in, const std::string& file, uint64_t max_texels) {
+  const image_header h = read_image_header(in.data, in.size);
+  if (h.format.empty()) throw input_error(file, in.where, "image data is not PNG, JPEG, WebP, GIF or BMP");
+  if (h.width == 0)
+    throw input_error(file, in.where,
+                      "cannot read the image size from its " + h.format + " header (cut short or corrupt)");
+  if (h.width > max_texels / h.height)  // width · height > max_texels, without overflow
+    throw input_error(file, in.where,
+                      "image is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                          " texels, over the limit of " + std::to_string(max_texels) + " (--max-texels)");
+  return h;
+}
+
 }  // namespace
 
 std::vector<image> decode_images(const std::vector<encoded_image>& batch, const std::string& file,
                                  uint64_t max_texels, int threads) {
   if (batch.empty()) return {};
+  std::vector<image_header> headers;
+  for (const encoded_image& in : batch) headers.push_back(checked_header(in, file, max_texels));
   const image_codecs& codecs = load_image_codecs("textures need");
   std::vector<image> images(batch.size());
   // Each image records its own failure; the first in batch order is reported, so the message
@@ -59,6 +78,14 @@ std::vector<image> decode_images(const std::vector<encoded_image>& batch, const 
         const encoded_image& in = batch[i];
         try {
           images[i] = codecs.decode(in.data, in.size, in.name, file, in.where, max_texels);
+          // GIF frames may differ from the logical screen; every other format decodes to its header's size.
+          const image_header& h = headers[i];
+          if (h.format != "GIF" &&
+              (uint64_t(images[i].width) != h.width || uint64_t(images[i].height) != h.height))
+            throw input_error(file, in.where,
+                              "image decodes to " + std::to_string(images[i].width) + "x" +
+                                  std::to_string(images[i].height) + " texels, its " + h.format +
+                                  " header says " + std::to_string(h.width) + "x" + std::to_string(h.height));
         } catch (...) {
           failures[i] = std::current_exception();
         }

@@ -4,6 +4,7 @@
 #include "io/gltf/gltf_test_util.h"
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 namespace kiln {
 namespace {
@@ -76,6 +77,27 @@ TEST(GltfLimits, ImageWithHugeDeclaredSizeIsRefusedWithoutDecoding) {
   const std::string message = load_error(b.write_gltf(dir));
   EXPECT_NE(message.find("/images/0"), std::string::npos) << message;
   EXPECT_NE(message.find("over the limit of 268435456 (--max-texels)"), std::string::npos) << message;
+}
+
+// A 24-byte progressive JPEG (SOF2) claiming 20000x20000: its size comes from the frame header,
+// so it is refused before a decoder runs (OpenImageIO's JPEG reader allocated the whole frame,
+// 2.4 GB, while opening such a file), and without loading the image codecs module at all.
+TEST(GltfLimits, ProgressiveJpegWithHugeDeclaredSizeIsRefusedBeforeAnyDecoder) {
+  temp_folder dir;
+  gltf_builder b = single_triangle();
+  b.doc["materials"] = json::array({json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.doc["textures"] = json::array({json{{"source", 0}}});
+  const std::vector<uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xC2, 0x00, 0x11, 0x08, 0x4E, 0x20, 0x4E, 0x20, 0x03,
+                                     0x01, 0x22, 0x00, 0x02, 0x11, 0x01, 0x03, 0x11, 0x01, 0xFF, 0xD9};
+  b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(jpeg)}}});
+  const std::string path = b.write_gltf(dir);
+  ::setenv("KILN_IMAGE_CODECS", "/nonexistent/codecs.so", 1);  // a decode would fail on the module
+  const std::string message = load_error(path);
+  ::unsetenv("KILN_IMAGE_CODECS");
+  EXPECT_NE(message.find("/images/0: image is 20000x20000 texels, over the limit of 268435456 (--max-texels)"),
+            std::string::npos)
+      << message;
 }
 
 TEST(GltfLimits, TexelLimitIsOverridable) {

@@ -1,0 +1,21 @@
+// An encoded image's size read from its own header (PNG IHDR, JPEG SOF, WebP VP8/VP8L/VP8X, GIF
+// logical screen, BMP info header), before any decoder runs: some decoders allocate the whole
+// frame while opening a file (a progressive JPEG claiming 20000x20000 in 1 KB), so the texel limit
+// must be checked first. Knows no image library. Internal to io/gltf.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace kiln::gltf_internal {
+
+struct image_header {
+  std::string format;  // "PNG", "JPEG", "WebP", "GIF", "BMP"; empty: not one of them
+  uint64_t width = 0;  // 0 with a known format: the header is cut short or holds no size
+  uint64_t height = 0;
+};
+
+image_header read_image_header(const uint8_t* data, size_t size);
+
+}  // namespace kiln::gltf_internal
