@@ -1,5 +1,6 @@
 #include "shade/mip_pyramid.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -32,30 +33,61 @@ std::vector<box_taps> taps_for(int n, int m) {
   return taps;
 }
 
+// Row y of `level` of p as linear RGBA, each texel decoded once (level 0's 8-bit codes through the
+// sRGB table or the 1/255 scale) rather than once per tap that reads it.
+void decode_row(const mip_pyramid& p, int level, int y, vec4* row) {
+  const int w = p.width(level);
+  if (level > 0) {
+    const mip_level& l = p.coarser[size_t(level - 1)];
+    std::copy_n(l.texels.data() + size_t(y) * size_t(w), size_t(w), row);
+    return;
+  }
+  for (int x = 0; x < w; ++x) row[x] = fetch_texel(*p.level0, x, y, p.encoding);
+}
+
 // The level below `finer` (level number `level` of p, already built), averaged along x then y.
+// An even side averages exact pairs (0.5·a + 0.5·b, as the general taps compute it, so the result
+// is the same bit for bit); an odd side goes through its overlap weights.
 mip_level next_level(const mip_pyramid& p, int level) {
   const int w = p.width(level), h = p.height(level);
   mip_level out;
   out.width = std::max(1, w / 2);
   out.height = std::max(1, h / 2);
   const std::vector<box_taps> tx = taps_for(w, out.width), ty = taps_for(h, out.height);
-  std::vector<vec4> rows(size_t(out.width) * size_t(h));  // averaged along x only
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < out.width; ++x) {
-      const box_taps& t = tx[size_t(x)];
-      vec4 sum(0.0f);
-      for (int k = 0; k < t.count; ++k) sum += t.weight[k] * p.texel(level, t.first + k, y);
-      rows[size_t(y) * size_t(out.width) + size_t(x)] = sum;
+  const bool even_x = w == 2 * out.width, even_y = h == 2 * out.height;
+  const size_t ow = size_t(out.width);
+  std::vector<vec4> rows(ow * size_t(h));  // averaged along x only
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
+    std::vector<vec4> source(static_cast<size_t>(w));
+    for (int y = r.begin(); y < r.end(); ++y) {
+      decode_row(p, level, y, source.data());
+      vec4* row = rows.data() + size_t(y) * ow;
+      if (even_x) {
+        for (size_t x = 0; x < ow; ++x) row[x] = 0.5f * source[2 * x] + 0.5f * source[2 * x + 1];
+        continue;
+      }
+      for (size_t x = 0; x < ow; ++x) {
+        const box_taps& t = tx[x];
+        vec4 sum(0.0f);
+        for (int k = 0; k < t.count; ++k) sum += t.weight[k] * source[size_t(t.first + k)];
+        row[x] = sum;
+      }
     }
   });
-  out.texels.resize(size_t(out.width) * size_t(out.height));
+  out.texels.resize(ow * size_t(out.height));
   tbb::parallel_for(0, out.height, [&](int y) {
+    vec4* target = out.texels.data() + size_t(y) * ow;
+    if (even_y) {
+      const vec4* a = rows.data() + size_t(2 * y) * ow;
+      const vec4* b = a + ow;
+      for (size_t x = 0; x < ow; ++x) target[x] = 0.5f * a[x] + 0.5f * b[x];
+      return;
+    }
     const box_taps& t = ty[size_t(y)];
-    for (int x = 0; x < out.width; ++x) {
+    for (size_t x = 0; x < ow; ++x) {
       vec4 sum(0.0f);
-      for (int k = 0; k < t.count; ++k)
-        sum += t.weight[k] * rows[size_t(t.first + k) * size_t(out.width) + size_t(x)];
-      out.texels[size_t(y) * size_t(out.width) + size_t(x)] = sum;
+      for (int k = 0; k < t.count; ++k) sum += t.weight[k] * rows[size_t(t.first + k) * ow + x];
+      target[x] = sum;
     }
   });
   return out;
@@ -142,14 +174,18 @@ int floor_to_int(float x) {
 
 // u reduced to one period of the wrap mode: [0, 1) for repeat, [0, 2) for mirrored repeat; clamped
 // coordinates only need to stay in a range where converting to int is defined.
-float reduced(float u, wrap_mode mode) {
+// Out of line and cold: the fmod() call kept pair_along() from being inlined into
+// sample_mip_level(), and the call cost more than the arithmetic it does.
+[[gnu::noinline, gnu::cold]] float huge_reduced(float u) { return std::fmod(u, 8388608.0f); }
+
+[[gnu::always_inline]] inline float reduced(float u, wrap_mode mode) {
   if (mode == wrap_mode::clamp_to_edge) return std::clamp(u, -1.0f, 2.0f);
-  if (!(std::abs(u) < 8388608.0f)) u = std::fmod(u, 8388608.0f);  // floats this large are even integers
+  if (!(std::abs(u) < 8388608.0f)) u = huge_reduced(u);  // floats this large are even integers
   if (mode == wrap_mode::repeat) return u - float(floor_to_int(u));
   return u - 2.0f * float(floor_to_int(0.5f * u));
 }
 
-texel_pair pair_along(float u, int size, wrap_mode mode) {
+[[gnu::always_inline]] inline texel_pair pair_along(float u, int size, wrap_mode mode) {
   const float x = reduced(u, mode) * float(size) - 0.5f;
   const int x0 = floor_to_int(x);
   texel_pair p;

@@ -209,12 +209,16 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
   if (cone_width > 0.0f) {
     if (!m.normals.empty() && may_be_smooth(s.materials[inst.material]))
       sp.curvature = triangle_curvature(inst, m, idx);
-    const vec3 direction = glm::normalize(r.direction);
-    if (!m.texcoords0.empty())
-      sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);
-    sp.footprint1 = m.texcoords1.empty()
-                        ? sp.footprint0
-                        : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
+    // As for quadrics: the UV footprints only feed texture lookups, so an untextured material
+    // (ToyCar's glass, say) skips them.
+    if (s.materials[inst.material].samples_textures()) {
+      const vec3 direction = glm::normalize(r.direction);
+      if (!m.texcoords0.empty())
+        sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);
+      sp.footprint1 = m.texcoords1.empty()
+                          ? sp.footprint0
+                          : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
+    }
   }
   return sp;
 }

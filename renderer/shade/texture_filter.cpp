@@ -97,32 +97,87 @@ texture_filter::texture_filter(const scene& s) : scene_(s), pyramids_(s.images.s
   });
 }
 
-vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
-                              const uv_footprint& footprint) const {
-  const texture& tex = scene_.textures[texture_index];
-  const mip_pyramid& p = pyramids_[slot(tex.image, encoding)];
-  if (p.width(0) <= 0 || p.height(0) <= 0) return vec4(1.0f);
-  const vec2 texels(float(p.width(0)), float(p.height(0)));
+namespace {
+
+// What a lookup's footprint decides before any texel is read: the probes' count, spacing and
+// levels. It depends on the footprint, the image's size and levels and the mip mode only.
+struct lookup_plan {
+  // The key.
+  uv_footprint footprint;
+  int width = 0;
+  int height = 0;
+  int levels = 0;
+  mip_mode mipmap = mip_mode::none;
+  // The plan.
+  bool degenerate = false;  // no usable ellipse: level 0 through the magnification filter
+  int n = 1;
+  level_blend blend;
+  vec2 axis{0.0f};  // from the centre to the outermost probe, in UV
+  float major = 0.0f;
+  float reach = 0.0f;
+};
+
+lookup_plan plan_lookup(const mip_pyramid& p, const uv_footprint& footprint, const sampler& smp) {
+  lookup_plan plan;
+  plan.footprint = footprint;
+  plan.width = p.width(0);
+  plan.height = p.height(0);
+  plan.levels = p.levels();
+  plan.mipmap = smp.mipmap;
+  const vec2 texels(float(plan.width), float(plan.height));
   const ellipse e = footprint_ellipse(footprint.dx * texels, footprint.dy * texels);
-  if (!(e.major > 0.0f) || !std::isfinite(e.major))
-    return sample_mip_level(p, 0, uv, tex.sampling, tex.sampling.filter);
+  if (!(e.major > 0.0f) || !std::isfinite(e.major)) {
+    plan.degenerate = true;
+    return plan;
+  }
   // Probes as wide as the minor axis (widened so that the aspect is at most max_anisotropy),
   // 2·aspect - 1 of them spread evenly along the major axis over ±(major - minor), weighted by a
   // Gaussian of the distance from the centre: the elliptical filter OpenImageIO's TextureSystem
   // uses, which kiln used before it read its pyramids itself.
   const float minor = std::max(e.minor, e.major / float(max_anisotropy));
-  const int n = std::clamp(int(2.0f * e.major / minor - 1.0f), 1, 2 * max_anisotropy - 1);
-  const level_blend levels = levels_for(p, minor, tex.sampling);
-  if (n == 1) return probe(p, uv, levels, tex.sampling);
-  const float reach = e.major - minor;
-  const vec2 axis = e.direction * reach / texels;  // from the centre to the outermost probe, in UV
+  plan.n = std::clamp(int(2.0f * e.major / minor - 1.0f), 1, 2 * max_anisotropy - 1);
+  plan.blend = levels_for(p, minor, smp);
+  plan.major = e.major;
+  plan.reach = e.major - minor;
+  plan.axis = e.direction * plan.reach / texels;
+  return plan;
+}
+
+bool same_key(const lookup_plan& plan, const mip_pyramid& p, const uv_footprint& footprint,
+              const sampler& smp) {
+  return plan.width == p.width(0) && plan.height == p.height(0) && plan.levels == p.levels() &&
+         plan.mipmap == smp.mipmap && plan.footprint.dx == footprint.dx && plan.footprint.dy == footprint.dy;
+}
+
+// The plan for this lookup, reused from this thread's previous lookup when its key matches: a
+// material's texture slots (base colour, metallic-roughness, normal, emissive) are usually images
+// of one size read over one footprint, so a hit plans once for all of them. A pure function of
+// the key, so the cache changes no result.
+const lookup_plan& plan_for(const mip_pyramid& p, const uv_footprint& footprint, const sampler& smp) {
+  thread_local lookup_plan last;
+  if (!same_key(last, p, footprint, smp)) last = plan_lookup(p, footprint, smp);
+  return last;
+}
+
+}  // namespace
+
+vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
+                              const uv_footprint& footprint) const {
+  const texture& tex = scene_.textures[texture_index];
+  const mip_pyramid& p = pyramids_[slot(tex.image, encoding)];
+  if (p.width(0) <= 0 || p.height(0) <= 0) return vec4(1.0f);
+  const lookup_plan& plan = plan_for(p, footprint, tex.sampling);
+  if (plan.degenerate) return sample_mip_level(p, 0, uv, tex.sampling, tex.sampling.filter);
+  const int n = plan.n;
+  if (n == 1) return probe(p, uv, plan.blend, tex.sampling);
   vec4 sum(0.0f);
   float weights = 0.0f;
   for (int i = 0; i < n; ++i) {
     const float position = 2.0f * (float(i) + 0.5f) / float(n) - 1.0f;  // in (-1, 1)
-    const float x = position * e.major / (2.0f * reach);
-    const float w = n == 2 ? 1.0f : std::exp(-2.0f * x * x);
-    sum += w * probe(p, uv + axis * position, levels, tex.sampling);
+    const float x = position * plan.major / (2.0f * plan.reach);
+    // The centre probe of an odd n sits exactly at 0, where exp() would return exactly 1.
+    const float w = n == 2 || x == 0.0f ? 1.0f : std::exp(-2.0f * x * x);
+    sum += w * probe(p, uv + plan.axis * position, plan.blend, tex.sampling);
     weights += w;
   }
   return sum / weights;

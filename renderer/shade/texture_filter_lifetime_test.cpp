@@ -54,5 +54,37 @@ TEST(texture_filter_lifetime, filters_made_one_after_another_answer_their_lookup
   }
 }
 
+// Lookups at one hit reuse the previous lookup's filter plan when it fits; texture 1 is half the
+// size of texture 0, so reading it over texture 0's footprint must plan afresh (another level),
+// and back again. Each interleaved lookup must equal the same lookup after an unrelated one.
+TEST(texture_filter_lifetime, lookups_over_one_footprint_at_two_image_sizes_stay_independent) {
+  scene s = textured_scene();
+  image half;
+  half.width = half.height = 256;
+  half.texels8.resize(size_t(half.width) * size_t(half.height) * 4);
+  for (size_t i = 0; i < half.texels8.size(); ++i) half.texels8[i] = uint8_t((i * 2654435761u) >> 13);
+  s.images.push_back(std::move(half));
+  texture second;
+  second.image = 1;
+  s.textures.push_back(second);
+  s.materials[0].emissive_texture.texture = 1;
+  const texture_filter filter(s);
+  const uv_footprint unrelated{vec2(0.5f, 0.0f), vec2(0.0f, 0.01f)};
+  for (const uv_footprint& f :
+       {uv_footprint{vec2(8.0f / 512.0f, 0.0f), vec2(0.0f, 8.0f / 512.0f)},
+        uv_footprint{vec2(40.0f / 512.0f, 10.0f / 512.0f), vec2(-1.0f / 512.0f, 4.0f / 512.0f)}}) {
+    const vec2 uv(0.37f, 0.61f);
+    vec4 fresh[2];
+    for (uint32_t t = 0; t < 2; ++t) {
+      filter.minified(1 - t, texel_encoding::srgb, uv, unrelated);
+      fresh[t] = filter.minified(t, texel_encoding::srgb, uv, f);
+    }
+    EXPECT_NE(fresh[0], fresh[1]);
+    EXPECT_EQ(filter.minified(0, texel_encoding::srgb, uv, f), fresh[0]);
+    EXPECT_EQ(filter.minified(1, texel_encoding::srgb, uv, f), fresh[1]);
+    EXPECT_EQ(filter.minified(0, texel_encoding::srgb, uv, f), fresh[0]);
+  }
+}
+
 }  // namespace
 }  // namespace kiln
