@@ -325,6 +325,7 @@ TEST(environment, map_radiance_is_scaled_by_intensity_and_constant_colour_otherw
 // the projected ray and w across it; the triangle maps 2 world units to one u and 4 to one v.
 TEST(texture_footprint, triangle_footprint_is_the_cone_section_through_the_uv_jacobian) {
   scene s = one_triangle(dmat4(1.0));
+  s.materials[0].base_color_texture.texture = 0;  // the footprint only feeds texture lookups
   hit h;
   h.u = h.v = 0.25f;
   h.geometric_normal = vec3(0, 0, 1);
@@ -338,6 +339,8 @@ TEST(texture_footprint, triangle_footprint_is_the_cone_section_through_the_uv_ja
   EXPECT_NEAR(sp.footprint0.dy.x, 0.0f, 1e-7f);
   EXPECT_NEAR(std::abs(sp.footprint0.dy.y), w / 4.0f, 1e-6f);
   EXPECT_TRUE(make_surface_point(s, h, r).footprint0.empty());  // no cone, no footprint
+  s.materials[0].base_color_texture.texture = -1;
+  EXPECT_TRUE(make_surface_point(s, h, r, w).footprint0.empty());  // nothing reads it
 }
 
 // A sphere of radius 2 seen head-on at its equator on the u seam: u = φ/2π and v = θ/π, so one unit
@@ -349,11 +352,8 @@ TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
   q.radius = 2.0;
   q.bounds = quadric_bounds(q);
   s.quadrics.push_back(q);
-  s.images.emplace_back();
-  s.textures.emplace_back();
-  material textured;
-  textured.base_color_texture.texture = 0;  // the footprint is built only for textured materials
-  s.materials.push_back(textured);
+  s.materials.emplace_back();
+  s.materials[0].base_color_texture.texture = 0;  // the footprint only feeds texture lookups
   instance inst;
   inst.kind = shape_kind::quadric;
   finish_instance_transform(inst);
@@ -366,9 +366,6 @@ TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
   h.geometric_normal = vec3(1, 0, 0);
   const float w = 0.02f;
   const surface_point sp = make_surface_point(s, h, r, w);
-  scene untextured = s;
-  untextured.materials[0].base_color_texture.texture = -1;
-  EXPECT_TRUE(make_surface_point(untextured, h, r, w).footprint0.empty());
   const float du = w / (2.0f * pi * 2.0f), dv = w / (pi * 2.0f);
   // Normal incidence: the footprint is a circle; its axes start along dp/du.
   EXPECT_NEAR(std::abs(sp.footprint0.dx.x), du, 1e-3f * du);
