@@ -32,13 +32,16 @@ bool back_face_culled(const scene& s, const hit& h, const ray& r) {
   return glm::dot(h.geometric_normal, r.direction) > 0.0f;
 }
 
-// Visibility of a light along a shadow ray: one occlusion query, then (only for
-// an occluded ray in a scene with see-through materials) the walk that
-// attenuates by transmission colours.
+// Visibility of a light along a shadow ray. Without see-through materials one occlusion query
+// answers it. With them the walk that attenuates by transmission colours runs directly: its first
+// closest-hit query finds nothing exactly when occluded() would say the segment is clear (the
+// accelerator tests hold the two queries to agree), so a separate occluded() first would only
+// repeat that query's traversal for every blocked ray.
 vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts& counts) {
-  ++counts.shadow;
-  if (!ctx.accel.occluded(shadow)) return vec3(1.0f);
-  if (!ctx.see_through_shadows) return vec3(0.0f);
+  if (!ctx.see_through_shadows) {
+    ++counts.shadow;
+    return ctx.accel.occluded(shadow) ? vec3(0.0f) : vec3(1.0f);
+  }
   return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
 }
 
