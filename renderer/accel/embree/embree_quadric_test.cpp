@@ -1,4 +1,5 @@
-// Quadrics through Embree: one user-geometry scene per definition placed by instances, hits that
+// Quadrics through Embree: one user-geometry scene per definition placed by instances, bounds that
+// never cull a hit the direct double-precision query finds, hits that
 // name their instance and part, occluded() consistent with intersect(), outward normals under
 // mirroring, and no self-intersection of secondary rays through the whole pipeline
 // (intersect → shading point → offset origin → intersect).
@@ -176,6 +177,73 @@ TEST(embree_quadrics, occluded_agrees_with_intersect_on_grazing_rays_and_short_s
     if (h.has_value() != accel.occluded(r)) ++disagreements;
   }
   EXPECT_GT(hits, 5000);
+  EXPECT_GT(misses, 5000);
+  EXPECT_EQ(disagreements, 0);
+}
+
+// Embree culls quadric instances by boxes (the instance's world box, then the object box against
+// the ray carried to object space in float), while the callbacks solve on the double-precision
+// world ray: over rotated, non-uniformly scaled (and mirrored) placements of every kind, rays aimed
+// at surface points pushed to the box's faces, edges and corners (cap rims, clipped ends), and at
+// points on those faces just off the surface, Embree's closest hit must be exactly the direct
+// query's: same hit or miss, same t, part and instance. A box test that lost a root the direct
+// query finds would show here.
+TEST(embree_quadrics, box_culling_never_loses_a_hit_of_the_direct_query) {
+  std::mt19937_64 rng(5150);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto unit = [&] {
+    for (;;) {
+      dvec3 v(u(rng), u(rng), u(rng));
+      if (glm::length(v) > 0.1 && glm::length(v) <= 1.0) return glm::normalize(v);
+    }
+  };
+  const std::vector<quadric> kinds = testing::every_kind();
+  int hits = 0, misses = 0, disagreements = 0;
+  for (uint32_t k = 0; k < kinds.size(); ++k) {
+    // Several placements per scene: a lone primitive is a BVH leaf Embree visits without a box test.
+    scene s;
+    s.quadrics = {kinds[k]};
+    s.materials.emplace_back();
+    for (int placement = 0; placement < 6; ++placement) {
+      dvec3 scale(0.3 + std::abs(u(rng)) * 3.0, 0.3 + std::abs(u(rng)) * 3.0, 0.3 + std::abs(u(rng)) * 3.0);
+      if (placement % 3 == 2) scale.x = -scale.x;
+      const dmat4 m = glm::translate(dmat4(1.0), dvec3(40.0 * u(rng), 40.0 * u(rng), 40.0 * u(rng))) *
+                      glm::mat4_cast(glm::angleAxis(3.0 * u(rng), unit())) * glm::scale(dmat4(1.0), scale);
+      s.instances.push_back(place(0, m));
+    }
+    embree_accelerator accel(s);
+    const prepared_quadric form = prepare_quadric(s.quadrics[0]);
+    const bounds3& b = s.quadrics[0].bounds;
+    for (int i = 0; i < 12000; ++i) {
+      const instance& target = s.instances[size_t(i) % s.instances.size()];
+      dvec3 p = b.center() + 0.5 * b.diagonal() * dvec3(u(rng), u(rng), u(rng));
+      // Push one to three coordinates onto the box (faces, edges, corners), then onto the side.
+      for (int axis = 0; axis < 3; ++axis)
+        if (u(rng) > 0.0) p[axis] = u(rng) > 0.0 ? b.lower[axis] : b.upper[axis];
+      if (i % 2 == 0) p = quadric_surface_at(s.quadrics[0], quadric_side, p).point;
+      const dvec3 aim = transform_point(target.world_from_object, p);
+      ray r;
+      r.origin = vec3(aim + unit() * 10.0);
+      r.direction = vec3(glm::normalize(aim - dvec3(r.origin)));
+      const auto h = accel.intersect(r);
+      // The direct answer: the closest root over every placement, in double.
+      std::optional<quadric_ray_hit> direct;
+      uint32_t direct_instance = 0;
+      for (uint32_t j = 0; j < s.instances.size(); ++j) {
+        const instance& inst = s.instances[j];
+        const auto d = intersect_quadric(form, transform_point(inst.object_from_world, dvec3(r.origin)),
+                                         transform_vector(inst.object_from_world, dvec3(r.direction)), r.tmin,
+                                         direct ? float(direct->t) : r.tmax, false);
+        if (d) direct = d, direct_instance = j;
+      }
+      (h ? hits : misses)++;
+      if (h.has_value() != direct.has_value() ||
+          (h && (h->t != float(direct->t) || h->primitive_id != direct->part ||
+                 h->instance_id != direct_instance)))
+        ++disagreements;
+    }
+  }
+  EXPECT_GT(hits, 10000);
   EXPECT_GT(misses, 5000);
   EXPECT_EQ(disagreements, 0);
 }
