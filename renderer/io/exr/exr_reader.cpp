@@ -1,5 +1,7 @@
 #include "io/exr/exr_reader.h"
 
+#include "io/exr/exr_header_copy.h"
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfInputPart.h>
@@ -134,10 +136,10 @@ std::optional<float> exr_float_attribute(const exr_image& image, const std::stri
 
 void set_exr_float_attribute(exr_image& image, const std::string& name, float value) {
   auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
-  // Erased first: OpenEXR refuses to change an attribute's type, and a foreign file may hold name
+  // Removed first: OpenEXR refuses to change an attribute's type, and a foreign file may hold name
   // as another one.
   for (Imf::Header& part : header->parts) {
-    part.erase(name);
+    part = header_without(part, name.c_str());
     part.insert(name, Imf::FloatAttribute(value));
   }
   image.header = std::move(header);
@@ -146,7 +148,7 @@ void set_exr_float_attribute(exr_image& image, const std::string& name, float va
 void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value) {
   auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
   for (Imf::Header& part : header->parts) {
-    part.erase(name);
+    part = header_without(part, name.c_str());
     part.insert(name, Imf::StringAttribute(value));
   }
   image.header = std::move(header);

@@ -29,6 +29,7 @@
 
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
+#include "io/exr/exr_header_copy.h"
 #include "io/exr/cryptomatte.h"
 #include "io/exr/exr_file_stream.h"
 #include "io/exr/exr_header.h"
@@ -298,8 +299,7 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
   size_t offset = 0;
   if (headers.size() == 1) {
     // OpenEXR names a single-part file's type when it reads one; the file itself never did.
-    Imf::Header header = headers.front();
-    header.erase("type");
+    Imf::Header header = header_without(headers.front(), "type");
     const Imf::FrameBuffer buffer = frame_buffer(header, pixels, pixel, offset);
     if (header.hasTileDescription()) {
       Imf::TiledOutputFile out(stream, header);
@@ -451,11 +451,14 @@ void write_exr(const std::string& path, const exr_image& image) {
   if (!image.header || image.header->parts.empty() || d.width() <= 0 || d.height() <= 0 ||
       image.pixels.size() != size_t(d.width()) * size_t(d.height()) * image.pixel_bytes())
     throw io_error(path, "refusing to write an empty or inconsistent image");
-  std::vector<Imf::Header> headers = image.header->parts;
+  std::vector<Imf::Header> headers;
+  for (const Imf::Header& source : image.header->parts) {
+    // Every attribute but the chunk count of the source's data window (OpenEXR counts it again
+    // for a multi-part file).
+    headers.push_back(header_without(source, "chunkCount"));
+  }
   for (Imf::Header& header : headers) {
     header.dataWindow() = Imath::Box2i(Imath::V2i(d.x0, d.y0), Imath::V2i(d.x1 - 1, d.y1 - 1));
-    // The chunk count of the source's data window; OpenEXR counts it again for a multi-part file.
-    header.erase("chunkCount");
     // OpenEXR reads a DWA level into the attribute only; its compressor takes the header's field.
     if (const auto* level = header.findTypedAttribute<Imf::FloatAttribute>("dwaCompressionLevel"))
       header.dwaCompressionLevel() = level->value();
