@@ -748,7 +748,7 @@ TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) 
   EXPECT_EQ(value(camera, "--max-depth"), "3");
   EXPECT_EQ(value(plain, "--max-depth"), "8");
   EXPECT_EQ(value(camera, "--aovs"), "beauty,N,id");
-  for (const char* absent : {"-o", "--output", "--tile", "--crop", "--out-dir", "-q"})
+  for (const char* absent : {"-o", "--output", "--band", "--crop", "--out-dir", "-q"})
     EXPECT_EQ(value(camera, absent), "") << absent;
   for (const json& arg : camera["render_args"]) EXPECT_NE(arg.get<std::string>(), asset);
 

@@ -191,7 +191,7 @@ TEST(cli_messages, a_stitched_frame_records_the_sum_of_its_bands_render_times) {
   for (int i = 0; i < 3; ++i) {
     bands.push_back(dir + "/band" + std::to_string(i) + ".exr");
     const auto result = run_kiln({"render", demo_scene, "-o", bands.back(), "--width", "24", "--height", "18",
-                                  "-q", "--spp", "4", "--tile", std::to_string(i) + "/3"});
+                                  "-q", "--spp", "4", "--band", std::to_string(i) + "/3"});
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     seconds.push_back(float_attribute(bands.back(), "renderTimeSeconds"));
     EXPECT_GT(seconds.back(), 0.0f);

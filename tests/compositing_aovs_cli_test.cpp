@@ -262,7 +262,7 @@ TEST_F(cryptomatte_cli, channels_do_not_depend_on_threads_or_tiles) {
   for (int band = 0; band < 3; ++band) {
     const image part =
         render(full_, dir_, "band.exr",
-               with({"--threads", "2", "--tile-size", "5", "--tile", std::to_string(band) + "/3"}));
+               with({"--threads", "2", "--tile-size", "5", "--band", std::to_string(band) + "/3"}));
     const int y0 = band * size / 3, y1 = (band + 1) * size / 3;
     ASSERT_EQ(part.spec.y, y0);
     EXPECT_TRUE(same_bytes(crypto_channels(one, y0, y1), crypto_channels(part, y0, y1))) << "band " << band;
@@ -407,7 +407,7 @@ TEST(light_split_cli, beauty_bytes_stay_and_split_is_deterministic) {
   const image split2 = render(scene, dir, "split2.exr",
                               with({"--aovs", "beauty,direct,reflection,refraction", "--threads", "2"}));
   const image band = render(scene, dir, "band.exr",
-                            with({"--aovs", "beauty,direct,reflection,refraction", "--tile", "1/2"}));
+                            with({"--aovs", "beauty,direct,reflection,refraction", "--band", "1/2"}));
   size_t differing = 0, split_differing = 0, band_differing = 0;
   for (size_t p = 0; p < plain.count(); ++p) {
     for (const char* c : {"R", "G", "B", "A"}) differing += plain.at(p, c) != split.at(p, c);

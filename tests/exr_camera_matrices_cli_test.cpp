@@ -149,7 +149,7 @@ TEST_F(exr_camera_matrices, look_at_camera_points_project_onto_their_pixel_centr
 TEST_F(exr_camera_matrices, cropped_points_project_onto_their_full_frame_pixel_centres) {
   expect_standard("persp_crop", {"--camera", "persp", "--crop", "10,5,50,40"}, 600);
   expect_standard("ortho_crop", {"--camera", "ortho", "--crop", "3,20,61,47"}, 600);
-  expect_standard("band", {"--camera", "persp", "--tile", "2/3"}, 400);
+  expect_standard("band", {"--camera", "persp", "--band", "2/3"}, 400);
 }
 
 }  // namespace

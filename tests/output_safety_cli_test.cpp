@@ -188,8 +188,8 @@ TEST(output_safety, stitch_refuses_an_output_that_is_an_input_a_link_or_not_exr)
   const fs::path folder = scratch_folder("safety_stitch");
   const std::string asset = copy_scene(folder);
   const std::string band0 = (folder / "band0.exr").string(), band1 = (folder / "band1.exr").string();
-  ASSERT_EQ(render(asset, {"-o", band0, "--tile", "0/2"}).exit_code, 0);
-  ASSERT_EQ(render(asset, {"-o", band1, "--tile", "1/2"}).exit_code, 0);
+  ASSERT_EQ(render(asset, {"-o", band0, "--band", "0/2"}).exit_code, 0);
+  ASSERT_EQ(render(asset, {"-o", band1, "--band", "1/2"}).exit_code, 0);
   const std::string band0_bytes = bytes_of(band0);
   expect_refused(run_kiln({"stitch", band0, band0, band1}), {"band0.exr", "input"}, band0, band0_bytes);
   fs::create_hard_link(band1, folder / "band1_link.exr");

@@ -1,13 +1,12 @@
-// `kiln render --tile i/N` and `kiln stitch` end to end: the bands of the demo scene stitched
+// `kiln render --band i/N` and `kiln stitch` end to end: the bands of the demo scene stitched
 // together are the full render, channel for channel and format for format (single-part scanline,
 // and multi-part tiled, part for part); inputs that overlap or
-// leave a gap, and malformed --tile requests, are refused with exit code 2 and one line.
+// leave a gap, and malformed --band requests, are refused with exit code 2 and one line.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -47,7 +46,7 @@ TEST(stitch_cli, bands_cover_the_frame_rows_exactly_once) {
   const std::string dir = scratch_folder("stitch_bands");
   std::vector<int> covered(48, 0);
   for (int i = 0; i < 5; ++i) {
-    image band = read(render(dir, "band.exr", {"--tile", std::to_string(i) + "/5"}));
+    image band = read(render(dir, "band.exr", {"--band", std::to_string(i) + "/5"}));
     EXPECT_EQ(band.spec.x, 0);
     EXPECT_EQ(band.spec.width, 64);
     EXPECT_EQ(band.spec.full_width, 64);
@@ -64,7 +63,7 @@ TEST(stitch_cli, stitched_bands_equal_the_full_render) {
   const std::string full = render(dir, "full.exr", {});
   std::vector<std::string> args = {"stitch", dir + "/stitched.exr"};
   for (int i = 0; i < 3; ++i)
-    args.push_back(render(dir, "band" + std::to_string(i) + ".exr", {"--tile", std::to_string(i) + "/3"}));
+    args.push_back(render(dir, "band" + std::to_string(i) + ".exr", {"--band", std::to_string(i) + "/3"}));
   auto result = run_kiln(args);
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
 
@@ -82,9 +81,10 @@ TEST(stitch_cli, stitched_bands_equal_the_full_render) {
   EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("R")), OIIO::TypeDesc::HALF);
   EXPECT_EQ(b.spec.channelformat(a.spec.channelindex("Z")), OIIO::TypeDesc::FLOAT);
   EXPECT_EQ(b.spec.get_string_attribute("kiln/aovs"), "beauty,Z,N,id");  // the first band's header
-  // The stitched frame carries the full render's settings hash (a band's own names its --tile),
+  // The stitched frame carries the full render's settings hash (a band's own names its --band),
   // so `kiln batch --resume` takes it for that render's output.
-  EXPECT_EQ(b.spec.get_string_attribute("kiln/settings_hash"), a.spec.get_string_attribute("kiln/settings_hash"));
+  EXPECT_EQ(b.spec.get_string_attribute("kiln/settings_hash"),
+            a.spec.get_string_attribute("kiln/settings_hash"));
   EXPECT_NE(read(dir + "/band0.exr").spec.get_string_attribute("kiln/settings_hash"),
             a.spec.get_string_attribute("kiln/settings_hash"));
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
@@ -129,7 +129,7 @@ TEST(stitch_cli, multipart_tiled_bands_stitch_to_the_full_render) {
     std::vector<std::string> args = {"stitch", dir + "/stitched.exr"};
     for (int i = 0; i < bands; ++i) {
       std::vector<std::string> extra = layout;
-      extra.insert(extra.end(), {"--tile", std::to_string(i) + "/" + std::to_string(bands)});
+      extra.insert(extra.end(), {"--band", std::to_string(i) + "/" + std::to_string(bands)});
       args.push_back(render(dir, "band" + std::to_string(i) + ".exr", extra));
     }
     auto result = run_kiln(args);
@@ -147,11 +147,11 @@ TEST(stitch_cli, multipart_tiled_bands_stitch_to_the_full_render) {
 
 TEST(stitch_cli, overlapping_or_incomplete_inputs_exit_2_naming_the_file) {
   const std::string dir = scratch_folder("stitch_refused");
-  const std::string b0 = render(dir, "b0.exr", {"--tile", "0/3"});
-  const std::string b1 = render(dir, "b1.exr", {"--tile", "1/3"});
-  const std::string b2 = render(dir, "b2.exr", {"--tile", "2/3"});
+  const std::string b0 = render(dir, "b0.exr", {"--band", "0/3"});
+  const std::string b1 = render(dir, "b1.exr", {"--band", "1/3"});
+  const std::string b2 = render(dir, "b2.exr", {"--band", "2/3"});
   const std::string wide = render(dir, "wide.exr", {"--crop", "0,10,64,20"});        // overlaps band 0 and 1
-  const std::string other = render(dir, "other.exr", {"--tile", "1/3", "--float"});  // float colour
+  const std::string other = render(dir, "other.exr", {"--band", "1/3", "--float"});  // float colour
   struct refusal {
     std::vector<std::string> inputs;
     std::string file, problem;
@@ -178,8 +178,8 @@ TEST(stitch_cli, overlapping_or_incomplete_inputs_exit_2_naming_the_file) {
 // Bands of two different renders (here: other depth limits) cover the frame but are refused.
 TEST(stitch_cli, bands_rendered_with_other_settings_exit_2_naming_the_file) {
   const std::string dir = scratch_folder("stitch_mixed");
-  const std::string top = render(dir, "top.exr", {"--tile", "0/2"});
-  const std::string bottom = render(dir, "bottom.exr", {"--tile", "1/2", "--max-depth", "3"});
+  const std::string top = render(dir, "top.exr", {"--band", "0/2"});
+  const std::string bottom = render(dir, "bottom.exr", {"--band", "1/2", "--max-depth", "3"});
   auto result = run_kiln({"stitch", dir + "/out.exr", top, bottom});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
@@ -188,21 +188,36 @@ TEST(stitch_cli, bands_rendered_with_other_settings_exit_2_naming_the_file) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
 }
 
-TEST(stitch_cli, bad_tile_requests_exit_2_with_one_line) {
-  const std::string dir = scratch_folder("stitch_bad_tile");
+TEST(stitch_cli, bad_band_requests_exit_2_with_one_line) {
+  const std::string dir = scratch_folder("stitch_bad_band");
   for (std::vector<std::string> extra :
-       std::vector<std::vector<std::string>>{{"--tile", "3/3"},
-                                             {"--tile", "0/0"},
-                                             {"--tile", "-1/3"},
-                                             {"--tile", "1/3x"},
-                                             {"--tile", "1,3"},
-                                             {"--tile", "0/49"},
-                                             {"--tile", "0/2", "--crop", "0,0,4,4"}}) {
+       std::vector<std::vector<std::string>>{{"--band", "3/3"},
+                                             {"--band", "0/0"},
+                                             {"--band", "-1/3"},
+                                             {"--band", "1/3x"},
+                                             {"--band", "1,3"},
+                                             {"--band", "0/49"},
+                                             {"--band", "0/2", "--crop", "0,0,4,4"}}) {
     auto result = run_kiln(render_arguments(dir + "/x.exr", extra));
     EXPECT_EQ(result.exit_code, 2) << extra[1];
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
-    EXPECT_NE(result.stderr_text.find("--tile"), std::string::npos) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find("--band"), std::string::npos) << result.stderr_text;
   }
+}
+
+// --tile, the band's name before render tiles and EXR tiles were told apart, renders the same band
+// with one warning naming its new name.
+TEST(stitch_cli, the_deprecated_tile_option_renders_the_same_band_with_a_warning) {
+  const std::string dir = scratch_folder("stitch_tile_alias");
+  const command_result old_name = run_kiln(render_arguments(dir + "/tile.exr", {"--tile", "1/3"}));
+  ASSERT_EQ(old_name.exit_code, 0) << old_name.stderr_text;
+  EXPECT_EQ(lines(old_name.stderr_text).size(), 1u) << old_name.stderr_text;
+  EXPECT_NE(old_name.stderr_text.find("--tile is deprecated; use --band"), std::string::npos);
+  const image band = read(render(dir, "band.exr", {"--band", "1/3"}));
+  const image tile = read(dir + "/tile.exr");
+  EXPECT_EQ(tile.spec.y, band.spec.y);
+  EXPECT_EQ(tile.spec.height, band.spec.height);
+  EXPECT_EQ(tile.pixels, band.pixels);
 }
 
 }  // namespace

@@ -12,19 +12,15 @@
 #include <cstring>
 
 #include "app/interrupt.h"
-#include "app/render_fingerprint.h"
+#include "job/option_table.h"
+#include "job/option_values.h"
+#include "job/render_fingerprint.h"
 
 extern char** environ;
 
 namespace kiln {
 
 namespace {
-
-std::string exact_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
 
 constexpr const char* progress_prefix = "kiln: rendering ";
 constexpr size_t max_error_bytes = 1000;
@@ -139,9 +135,9 @@ std::vector<std::string> child_render_arguments(const batch_job& job, double pro
     a.push_back(std::move(argument));
   if (o.threads) a.insert(a.end(), {"--threads", std::to_string(o.threads)});
   if (!o.preview.empty())
-    a.insert(a.end(), {"--preview", o.preview, "--preview-exposure", exact_number(o.preview_exposure)});
+    a.insert(a.end(), {"--preview", o.preview, "--preview-exposure", exact_text(o.preview_exposure)});
   if (o.quiet) a.push_back("-q");
-  a.insert(a.end(), {"--progress-interval", exact_number(progress_interval)});
+  a.insert(a.end(), {"--progress-interval", exact_text(progress_interval)});
   a.insert(a.end(), {"--batch-command-line", o.command_line});
   return a;
 }

@@ -8,14 +8,16 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "app/asset_file.h"
+#include "job/asset_file.h"
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
 #include "app/output_lock.h"
 #include "app/cli_checks.h"
+#include "app/interrupt.h"
+#include "job/option_table.h"
 #include "app/cli_suggest.h"
-#include "app/output_guard.h"
-#include "app/render_fingerprint.h"
+#include "job/output_guard.h"
+#include "job/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
@@ -90,7 +92,7 @@ std::string render_command_line(const render_options& o) {
 void check_batch_outputs(const std::vector<batch_job>& jobs) {
   std::vector<input_file> files;
   for (const batch_job& job : jobs) {
-    std::vector<input_file> read = render_input_files(job.options);
+    std::vector<input_file> read = render_input_files(job.options, &interrupt_requested());
     files.insert(files.end(), read.begin(), read.end());
   }
   const input_index inputs = index_inputs(files);  // one stat per file, not per pair
@@ -112,8 +114,8 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
   nlohmann::json list = nlohmann::json::array();
   for (const batch_job& job : jobs) {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    if (job.options.crop || job.options.tile_count > 0)
-      throw input_error("", job.where, "a plan leaves --crop and --tile to whoever runs it; drop them");
+    if (job.options.crop || job.options.band_count > 0)
+      throw input_error("", job.where, "a plan leaves --crop and --band to whoever runs it; drop them");
     std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
     if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
     list.push_back({{"name", job.name},

@@ -176,7 +176,7 @@ TEST_F(manifest, a_bad_override_fails_only_its_job_with_the_parsers_message) {
       plan(write("m.json", R"([{"asset": "x.gltf", "overrides": {"max-depth": 99}},
       {"asset": "y.gltf", "overrides": {"no-such-option": 1}}, {"asset": "z.gltf"}])"));
   ASSERT_EQ(jobs.size(), 3u);
-  EXPECT_EQ(jobs[0].error, "bad render options: --max-depth: Value 99 not in range 0 to 64");
+  EXPECT_EQ(jobs[0].error, "bad render options: --max-depth: expects an integer from 0 to 64, got '99'");
   EXPECT_NE(jobs[1].error.find("--no-such-option"), std::string::npos) << jobs[1].error;
   EXPECT_EQ(jobs[2].error, "");
   EXPECT_EQ(jobs[0].where, (dir / "m.json").string() + ": /0");

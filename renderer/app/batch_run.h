@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/batch_command.h"
-#include "app/render_fingerprint.h"
+#include "job/render_fingerprint.h"
 
 namespace kiln {
 

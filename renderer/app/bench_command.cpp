@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "accel/embree/embree_accelerator.h"
+#include "app/interrupt.h"
 #include "app/text_output.h"
 #include "bench/bench_run.h"
 #include "io/exr/exr_writer.h"
@@ -198,12 +199,14 @@ void run_bench_command(const bench_options& o) {
   // The process's own baseline (libraries, thread pools) before anything of the scene exists, so the
   // report can give the memory the scene, its BVH and the render added.
   const size_t rss_before_load = current_resident_bytes();
-  prepared_scene prepared = prepare_scene(o.view);
+  prepared_scene prepared = prepare_cli_scene(o.view);
   bench_settings settings;
   settings.accel = o.accel;
   settings.repeats = o.repeats;
   settings.embree = o.view.embree;
-  const bench_measurement m = run_bench(prepared.world, prepared.cam, make_render_settings(o.view), settings);
+  render_settings render = make_render_settings(o.view);
+  render.cancel = &interrupt_requested();
+  const bench_measurement m = run_bench(prepared.world, prepared.cam, render, settings);
   const std::string label =
       o.label.empty() ? std::filesystem::path(o.view.input).filename().string() : o.label;
   const nlohmann::json report = report_json(o, prepared, m, label, rss_before_load);

@@ -9,6 +9,7 @@
 #include "accel/compare/comparing_accelerator.h"
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
+#include "app/interrupt.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
 #include "render/render_space.h"
@@ -175,11 +176,12 @@ void add_compare_options(CLI::App& app, compare_options& o) {
 int run_compare(const compare_options& o) {
   if (!o.mask.empty()) check_output_writable(o.mask);
   if (!o.json.empty()) check_output_writable(o.json);
-  prepared_scene prepared = prepare_scene(o.view);
+  prepared_scene prepared = prepare_cli_scene(o.view);
   const scene& world = prepared.world;
   std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid, o.view.embree);
   std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against), o.view.grid, o.view.embree);
-  const render_settings settings = make_render_settings(o.view);
+  render_settings settings = make_render_settings(o.view);
+  settings.cancel = &interrupt_requested();
 
   // One render asks both backends every query; a second renders the reference image alone.
   comparing_accelerator both(world, *tested, *reference);

@@ -1,83 +1,15 @@
-// `kiln render`: options, their validation, and the run that wires loader -> Scene -> Embree ->
-// tile renderer -> EXR. The CLI's only job is to turn arguments into these calls.
+// `kiln render`: the option table on the command line, then one render job (job/render_job.h)
+// with a progress line and a summary. The CLI's only job is to turn arguments into these calls.
 #pragma once
 
-#include <cstddef>
-#include <optional>
-#include <string>
-
-#include "accel/embree/embree_options.h"
-#include "accel/grid/grid.h"
-#include "core/math.h"
-#include "io/exr/exr_storage.h"
-#include "render/aov_list.h"
-#include "render/tile_renderer.h"
-#include "render/view_camera.h"
-#include "scene/scene.h"
+#include "job/render_job.h"
+#include "job/render_options.h"
 
 namespace CLI {
 class App;
 }
 
 namespace kiln {
-
-struct render_options {
-  std::string input;
-  std::string output;
-  std::optional<int> width;
-  std::optional<int> height;
-  int samples_per_pixel = 1;
-  std::string filter = "box";          // box | tent | gaussian | blackman-harris
-  std::string sampler = "stratified";  // stratified | random (sample positions inside a pixel)
-  std::optional<float> filter_radius;  // empty: the filter's default radius
-  float adaptive_threshold = 0.0f;     // > 0: Whitted's adaptive supersampling instead of --spp
-  int adaptive_depth = 4;  // chart 1: depth 2 stalls at RMSE 0.027 on the demo scene, 4 reaches 0.015
-  int threads = 0;
-  int tile_size = 32;
-  std::string camera;  // glTF camera name or index; empty: the first camera, else a default view
-  std::optional<dvec3> look_from;
-  std::optional<dvec3> look_at;
-  dvec3 up{0.0, 1.0, 0.0};
-  double fov_degrees = 45.0;
-  int scene_index = -1;
-  bool full_float = false;      // --float: every colour-like layer float
-  std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
-  // --compression, --compression-level, --tiled, --multipart; the formats come from resolve_exr_settings.
-  exr_settings exr;
-  bool exr_tiled = false;  // --tiled
-  int exr_tile_size = 0;   // --exr-tile-size N (implies --tiled); 0: 64 when tiled
-  std::string preview;  // --preview FILE.png|FILE.jpg; empty: none
-  double preview_exposure = 0.0;
-  aov_set aovs;  // --aovs; the default is beauty, Z and N
-  std::optional<pixel_rect> crop;  // --crop x0,y0,x1,y1; checked against the image size once it is known
-  int tile_index = 0, tile_count = 0;  // --tile i/N: band i of N (render/frame_bands.h); 0 bands: off
-  vec3 background{0.0f};
-  bool show_background = false;
-  std::string transmission_alpha = "opaque";  // --transmission-alpha opaque|transparent
-  std::string accel = "embree";                 // embree | grid | adaptive-grid
-  grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
-  embree_options embree;  // --bvh-quality, --bvh-compact
-  bool packets = false;   // --packets on|off: trace each tile's camera rays together
-  std::string environment;  // equirectangular map file; empty: the --background colour
-  double environment_rotation_degrees = 0.0;
-  float environment_intensity = 1.0f;
-  int max_depth = 8;
-  float min_throughput = 1e-3f;
-  float texture_cache_mb = 256.0f;  // no effect: accepted so existing command lines keep working
-  bool allow_outside_files = false;
-  // Loader limits (see gltf_limits for what each guards against).
-  size_t max_json_bytes = size_t(512) << 20;
-  size_t max_json_depth = 512;
-  size_t max_nodes = 1000000;
-  size_t max_instances = 1000000;
-  uint64_t max_texels = uint64_t(1) << 28;
-  size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
-  bool quiet = false;
-  bool summary_line = true;  // the closing line with timings and ray counts (kiln batch prints its own)
-  double progress_interval = 5.0;  // seconds between progress lines when stderr is not a terminal
-  bool batch_job = false;          // run by `kiln batch` as one of its jobs (hidden --batch-command-line)
-  std::string command_line;
-};
 
 // Declares the options every subcommand that renders shares (asset, image size, camera, samples,
 // shading limits, threads, grid settings), writing into options. `kiln compare` reuses them.
@@ -86,7 +18,7 @@ void add_view_options(CLI::App& app, render_options& options);
 // The view options without the asset positional (kiln batch takes many assets).
 void add_view_settings(CLI::App& app, render_options& options);
 
-// What render adds to the view options besides -o: --float, --aovs, --crop, --tile, --accel.
+// What render adds to the view options besides -o: the EXR's layers and storage, --crop, --band.
 void add_image_options(CLI::App& app, render_options& options);
 
 // --progress-interval (render and batch).
@@ -95,19 +27,8 @@ void add_progress_interval_option(CLI::App& app, render_options& options);
 // Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);
 
-// A loaded scene with the chosen view and, when the file has none, the default headlight.
-struct prepared_scene {
-  scene world;
-  view_camera cam;
-  std::string camera_description;
-  double load_seconds = 0.0;
-};
-
-// Loads options.input and chooses the view. Throws kiln::error for bad input.
-prepared_scene prepare_scene(const render_options& options);
-
-// The renderer's settings from the command-line options.
-render_settings make_render_settings(const render_options& options);
+// prepare_scene for the CLI: SIGINT/SIGTERM stop the loading, warnings go to stderr unless -q.
+prepared_scene prepare_cli_scene(const render_options& options);
 
 struct render_fingerprint;
 

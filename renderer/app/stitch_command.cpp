@@ -2,7 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/output_guard.h"
+#include "job/output_guard.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_stitch.h"

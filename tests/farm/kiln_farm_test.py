@@ -66,6 +66,8 @@ class FarmTest(unittest.TestCase):
                                "/jobs/0/asset: 'scenes/x.gltf' is not an absolute path")
         self.assert_plan_error({"version": 1, "jobs": [self.job(), self.job("b", output=self.job()["output"])]},
                                "/jobs/1/output:")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(render_args=["--band", "0/2"])]},
+                               "/jobs/0/render_args/0: '--band' is set by the farm")
         self.assert_plan_error({"version": 1, "jobs": [self.job(render_args=["--tile", "0/2"])]},
                                "/jobs/0/render_args/0: '--tile' is set by the farm")
         self.assert_plan_error({"version": 1, "jobs": [self.job(render_args="--spp 4")]},
@@ -100,7 +102,7 @@ class FarmTest(unittest.TestCase):
             lines = f.read().splitlines()
         self.assertEqual(len(lines), 6)
         self.assertEqual(shlex.split(lines[4]), [KILN, "render", CORNELL, "-o",
-                                                 os.path.join(self.dir, "tiles", "0001-b.1of3.exr"), "--tile", "1/3",
+                                                 os.path.join(self.dir, "tiles", "0001-b.1of3.exr"), "--band", "1/3",
                                                  "--width", "40", "--height", "10", "--spp", "2", "--threads", "2",
                                                  "--float"])
         self.assertEqual(shlex.split(lines[0])[-2:], ["--threads", "3"])  # the plan left threads open
@@ -166,7 +168,7 @@ class FarmTest(unittest.TestCase):
         kiln_farm.write_work_dir(options, plan, tasks)
         with open(os.path.join(self.dir, "tasks.txt")) as f:
             argv = shlex.split(f.read())
-        self.assertNotIn("--tile", argv)
+        self.assertNotIn("--band", argv)
         subprocess.run(argv + ["-q"], check=True)
         rc, _, _ = run_main(["finalize", "--work-dir", self.dir])
         self.assertEqual(rc, 0)

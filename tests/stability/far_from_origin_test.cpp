@@ -16,7 +16,7 @@
 #include <string>
 
 #include "accel/make_accelerator.h"
-#include "app/render_command.h"
+#include "job/render_job.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 

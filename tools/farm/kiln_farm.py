@@ -84,7 +84,8 @@ def load_plan(path):
         for j, a in enumerate(args):
             if "\n" in a or "\0" in a:
                 raise InputError(f"{where}/render_args/{j}: contains a newline or NUL")
-            if a in ("--tile", "--crop", "-o", "--output") or a.startswith(("--tile=", "--crop=", "--output=")):
+            if a in ("--band", "--tile", "--crop", "-o", "--output") or a.startswith(
+                    ("--band=", "--tile=", "--crop=", "--output=")):
                 raise InputError(f"{where}/render_args/{j}: '{a}' is set by the farm, not the plan")
         job["render_args"] = args
     return plan
@@ -144,7 +145,7 @@ def build_tasks(plan, kiln, tiles, cpus_per_task, work_dir):
         if option_value(args, "--threads") is None:
             args += ["--threads", str(cpus_per_task)]
         for i in range(tiles):
-            band = ["--tile", f"{i}/{tiles}"] if tiles > 1 else []
+            band = ["--band", f"{i}/{tiles}"] if tiles > 1 else []
             tile = tile_path(work_dir, band_stem(index, job["name"]), i, tiles)
             argv = [kiln, "render", job["asset"], "-o", tile] + band + args
             tasks.append((job["name"], i, argv))
@@ -388,7 +389,7 @@ def read_exr_header(path):
 
 
 def band_rows(i, n, height):
-    """Rows [y0, y1) of band i of n, as kiln render --tile computes them."""
+    """Rows [y0, y1) of band i of n, as kiln render --band computes them."""
     return i * height // n, (i + 1) * height // n
 
 

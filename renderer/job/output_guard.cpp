@@ -1,4 +1,4 @@
-#include "app/output_guard.h"
+#include "job/output_guard.h"
 
 #include <sys/stat.h>
 
@@ -6,7 +6,6 @@
 #include <cctype>
 #include <filesystem>
 
-#include "app/interrupt.h"
 #include "core/error.h"
 #include "io/file/input_file.h"
 #include "io/gltf/gltf_loader.h"
@@ -34,13 +33,13 @@ std::string canonical_name(const std::string& path) {
 
 }  // namespace
 
-std::vector<input_file> render_input_files(const render_options& options) {
+std::vector<input_file> render_input_files(const render_options& options, const std::atomic<bool>* cancel) {
   std::vector<input_file> files{{options.input, "the asset"}};
   // The loader's URI rule: a URI it would refuse (outside the folder, a FIFO) is refused here too.
   gltf_load_options rules;
   rules.allow_files_outside_folder = options.allow_outside_files;
-  rules.limits.max_json_bytes = options.max_json_bytes;
-  rules.cancel = &interrupt_requested();
+  rules.limits.max_json_bytes = options.limits.max_json_bytes;
+  rules.cancel = cancel;
   // A missing or unreadable asset names nothing: its render reports it (a batch fails that job only).
   if (input_file_missing(options.input) || !input_file_problem(options.input, max_gltf_file_bytes).empty())
     return files;
@@ -51,8 +50,7 @@ std::vector<input_file> render_input_files(const render_options& options) {
 }
 
 bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa {
-  }, sb{};
+  struct stat sa{}, sb{};
   const bool a_exists = ::stat(a.c_str(), &sa) == 0, b_exists = ::stat(b.c_str(), &sb) == 0;
   if (a_exists && b_exists) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   if (a_exists != b_exists) return false;
@@ -62,7 +60,7 @@ bool same_file(const std::string& a, const std::string& b) {
 input_index index_inputs(const std::vector<input_file>& inputs) {
   input_index index;
   for (const input_file& input : inputs) {
-    struct stat s {};
+    struct stat s{};
     if (::stat(input.path.c_str(), &s) == 0)
       index.by_inode.emplace(std::make_pair(s.st_dev, s.st_ino), input);
     else
@@ -95,7 +93,7 @@ void check_not_symlink(const std::string& path, const std::string& option) {
 void check_output_spares_inputs(const std::string& output, const std::string& option,
                                 const input_index& inputs) {
   // An existing output can only be an existing input, a missing one only a missing input.
-  struct stat s {};
+  struct stat s{};
   const input_file* hit = nullptr;
   if (::stat(output.c_str(), &s) == 0) {
     auto it = inputs.by_inode.find({s.st_dev, s.st_ino});

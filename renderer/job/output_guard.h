@@ -1,16 +1,17 @@
 // Output paths that would destroy input: checks every command that writes images runs before any
 // work, so that no output (EXR, preview, stitched frame, batch job) can replace a file the run
-// reads, a symbolic link, or a file under a name that hides its format. App layer only.
+// reads, a symbolic link, or a file under a name that hides its format.
 #pragma once
 
 #include <sys/types.h>
 
+#include <atomic>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "app/render_command.h"
+#include "job/render_options.h"
 
 namespace kiln {
 
@@ -22,7 +23,8 @@ struct input_file {
 
 // Every file a render reads: the asset, each buffer and image file its URIs name, the environment
 // map.
-std::vector<input_file> render_input_files(const render_options& options);
+std::vector<input_file> render_input_files(const render_options& options,
+                                           const std::atomic<bool>* cancel = nullptr);
 
 // Whether two paths name one file: the same device and inode when both exist (so hard links and
 // symlinks count), else the same canonical path.

@@ -1,22 +1,15 @@
 // What decides a render's pixels, in two forms: the canonical `kiln render` arguments for a set of
 // render_options (so a job can be re-run by hand or on a farm), and two cheap hashes that an EXR
-// records so a batch can tell whether an existing output is still up to date. App layer only.
+// records so a batch can tell whether an existing output is still up to date.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <vector>
 
-#include "app/render_command.h"
+#include "job/render_options.h"
 
 namespace kiln {
-
-// Whether the canonical arguments include --crop/--tile (the region of the frame).
-enum class region_arguments { include, omit };
-
-// Every `kiln render` argument that reproduces options except the asset, -o, --threads, -q and
-// the command line: each option with its value, flags only when set, optional values only when
-// given. Floats are printed with enough digits to read back exactly.
-std::vector<std::string> canonical_render_arguments(const render_options& options, region_arguments region);
 
 struct render_fingerprint {
   std::string input_hash;     // the asset's bytes, every buffer and image file it names, the environment map
@@ -34,6 +27,6 @@ std::string file_hash_hex(const std::string& path);
 // Hashes the inputs and settings of options (reads every input file once). The files the asset
 // names are checked by the loader's own URI rule before any is read, so a URI the loader refuses
 // (absolute, outside the folder, a FIFO or a device) is refused here first, in the loader's words.
-render_fingerprint make_fingerprint(const render_options& options);
+render_fingerprint make_fingerprint(const render_options& options, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace kiln

@@ -1,6 +1,6 @@
 // The asset argument of every subcommand must name a regular file: a folder makes the stream
 // library fail with no file name, and a FIFO or device would block or never end. Checked with
-// stat(2) before any byte is read. App layer only.
+// stat(2) before any byte is read.
 #pragma once
 
 #include <string>

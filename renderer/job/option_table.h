@@ -1,0 +1,72 @@
+// The render option table: the one place an option of `kiln render` is declared. Each entry
+// names the option, parses and checks its text into render_options, and gives back its value; the
+// command-line parser (app/option_cli.h), batch manifests, the Python module, the canonical
+// arguments behind the settings hash, the EXR metadata and the README's option list all come
+// from it. Adding an option is one entry here (and a README row, which a test checks).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "job/render_options.h"
+
+namespace kiln {
+
+// Which commands declare an option.
+enum class option_scope {
+  view,      // everything that traces a view: render, batch, compare, bench
+  image,     // what the EXR holds and how: render and batch
+  progress,  // progress lines: render and batch
+};
+
+// What an option changes. pixels and region options reach the settings hash (a changed value
+// makes a stored EXR stale); region options are left out of the frame's hash, which every band
+// or crop of one frame shares.
+enum class option_effect { pixels, region, none };
+
+// The kind of value, for help texts (INT, UINT, FLOAT, TEXT) and the Python module's conversion.
+enum class option_type { integer, unsigned_integer, number, text, flag };
+
+struct option_spec {
+  std::string name;        // "spp": --spp on the command line, "spp" in a manifest, spp= in Python
+  std::string short_name;  // "q" for -q; empty: none
+  std::string alias;       // a deprecated name still accepted (with a warning); empty: none
+  option_type type = option_type::text;
+  option_scope scope = option_scope::view;
+  option_effect effect = option_effect::pixels;
+  std::string help;
+  std::vector<std::string> choices;  // the values a choice takes; empty: any text of the type
+  // Parses text (a flag's: "true" or "false") into options; throws kiln::error (input) whose
+  // location is "--NAME" and whose reason says what is expected.
+  std::function<void(render_options&, const std::string&)> set;
+  // The value in canonical text (reads back through set to the same options); nullopt while an
+  // optional value is not given. A flag's is "true" or "false".
+  std::function<std::optional<std::string>(const render_options&)> get;
+  std::string recorded_as;  // the EXR attribute holding the value ("kiln/..."); empty: not recorded
+  std::string example;      // a valid value other than the default, for the table's own tests
+};
+
+// Every render option, in the order of --help and of the canonical arguments.
+const std::vector<option_spec>& render_option_table();
+
+// The entry named name (with or without the leading dashes, or its alias); nullptr if none.
+const option_spec* find_render_option(const std::string& name);
+
+// Sets one option from text by name; throws kiln::error (input) for an unknown name or bad text.
+void set_render_option(render_options& options, const std::string& name, const std::string& text);
+
+// Whether the canonical arguments include the region options (--crop, --band).
+enum class region_arguments { include, omit };
+
+// Every `kiln render` argument that reproduces options except the asset, -o, and the options
+// without effect (threads, -q, the preview): each option with its value, flags only when set,
+// optional values only when given. Floats are printed with enough digits to read back exactly.
+std::vector<std::string> canonical_render_arguments(const render_options& options, region_arguments region);
+
+// The EXR attributes of every recorded option: {"kiln/samples_per_pixel", "4"}, flags "on"/"off".
+std::vector<std::pair<std::string, std::string>> recorded_option_attributes(const render_options& options);
+
+}  // namespace kiln

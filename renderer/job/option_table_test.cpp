@@ -1,0 +1,161 @@
+// The option table against itself and against what it feeds: every option that changes pixels
+// reaches the settings hash and the region ones only the band's, every value reads back through
+// its own parser, bad text is refused in the option's name, and the README lists exactly the
+// table's options. Adding an entry that misses any of these fails here, with its name.
+#include "job/option_table.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "job/render_fingerprint.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The example of an entry, with the one that names a file pointed at a file that exists.
+std::string example_of(const option_spec& spec) {
+  if (spec.name != "environment") return spec.example;
+  static const std::string sky = KILN_SOURCE_DIR "/scenes/glass_showcase_sky.hdr";
+  return sky;
+}
+
+TEST(option_table, names_are_unique_and_every_entry_is_complete) {
+  std::set<std::string> names;
+  for (const option_spec& spec : render_option_table()) {
+    EXPECT_TRUE(names.insert(spec.name).second) << spec.name << " is declared twice";
+    if (!spec.alias.empty()) EXPECT_TRUE(names.insert(spec.alias).second) << spec.alias;
+    EXPECT_FALSE(spec.help.empty()) << spec.name;
+    EXPECT_TRUE(spec.set && spec.get) << spec.name;
+    EXPECT_FALSE(example_of(spec).empty()) << spec.name << " has no example value";
+  }
+  EXPECT_GE(names.size(), 55u);
+}
+
+TEST(option_table, every_option_that_changes_pixels_reaches_the_settings_hash) {
+  const render_options base;
+  const render_fingerprint reference = make_fingerprint(base);
+  for (const option_spec& spec : render_option_table()) {
+    render_options changed = base;
+    ASSERT_NO_THROW(spec.set(changed, example_of(spec))) << spec.name;
+    EXPECT_NE(spec.get(changed), spec.get(base)) << spec.name << ": its example is its default";
+    const render_fingerprint f = make_fingerprint(changed);
+    switch (spec.effect) {
+      case option_effect::pixels:
+        EXPECT_NE(f.settings_hash, reference.settings_hash)
+            << spec.name << " does not reach the settings hash";
+        EXPECT_NE(f.frame_settings_hash, reference.frame_settings_hash) << spec.name;
+        break;
+      case option_effect::region:
+        EXPECT_NE(f.settings_hash, reference.settings_hash) << spec.name;
+        EXPECT_EQ(f.frame_settings_hash, reference.frame_settings_hash)
+            << spec.name << " changes the frame's hash";
+        break;
+      case option_effect::none:
+        EXPECT_EQ(f.settings_hash, reference.settings_hash)
+            << spec.name << " has no effect but changes the hash";
+        break;
+    }
+  }
+}
+
+TEST(option_table, canonical_arguments_read_back_to_the_same_options) {
+  render_options o;
+  for (const option_spec& spec : render_option_table())
+    if (spec.effect != option_effect::none && spec.name != "crop") spec.set(o, example_of(spec));
+  o.filter_radius = 1.2345678f;  // digits a short printout would lose
+  o.fov_degrees = 33.333333333333336;
+  o.look_from = dvec3(0.1, -2.5, 1e-7);
+  const std::vector<std::string> args = canonical_render_arguments(o, region_arguments::include);
+  render_options parsed;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const option_spec* spec = find_render_option(args[i]);
+    ASSERT_NE(spec, nullptr) << args[i];
+    const bool flag = spec->type == option_type::flag;
+    spec->set(parsed, flag ? "true" : args.at(++i));
+  }
+  EXPECT_EQ(canonical_render_arguments(parsed, region_arguments::include), args);
+  EXPECT_EQ(make_fingerprint(parsed).settings_hash, make_fingerprint(o).settings_hash);
+  EXPECT_EQ(parsed.filter_radius, o.filter_radius);
+  EXPECT_EQ(parsed.fov_degrees, o.fov_degrees);
+  EXPECT_EQ(parsed.look_from, o.look_from);
+  EXPECT_EQ(parsed.band_count, 4);
+  // Without the region the same settings lack only --band.
+  const std::vector<std::string> without = canonical_render_arguments(o, region_arguments::omit);
+  EXPECT_EQ(without.size() + 2, args.size());
+  EXPECT_EQ(std::find(without.begin(), without.end(), "--band"), without.end());
+}
+
+TEST(option_table, bad_text_is_refused_in_the_options_name) {
+  for (const option_spec& spec : render_option_table()) {
+    if (spec.type == option_type::text && spec.choices.empty()) continue;  // any text may be a name
+    render_options o;
+    try {
+      spec.set(o, "not-a-value");
+      ADD_FAILURE() << spec.name << " accepted 'not-a-value'";
+    } catch (const error& e) {
+      EXPECT_EQ(e.kind(), error_kind::input) << spec.name;
+      EXPECT_EQ(e.location(), "--" + spec.name);
+      EXPECT_NE(e.reason().find("'not-a-value'"), std::string::npos) << e.what();
+    }
+  }
+  render_options o;
+  EXPECT_THROW(set_render_option(o, "spp", "nan"), error);
+  EXPECT_THROW(set_render_option(o, "fov", "nan"), error);
+  EXPECT_THROW(set_render_option(o, "max-nodes", "-3"), error);
+  EXPECT_THROW(set_render_option(o, "no-such-option", "1"), error);
+  set_render_option(o, "--tile", "2/3");  // the deprecated name of --band
+  EXPECT_EQ(o.band_index, 2);
+  set_render_option(o, "q", "true");
+  EXPECT_TRUE(o.quiet);
+}
+
+TEST(option_table, recorded_options_are_the_exr_attributes) {
+  render_options o;
+  o.samples_per_pixel = 4;
+  o.embree.compact = true;
+  std::map<std::string, std::string> attributes;
+  for (const auto& [key, value] : recorded_option_attributes(o)) attributes[key] = value;
+  EXPECT_EQ(attributes["kiln/samples_per_pixel"], "4");
+  EXPECT_EQ(attributes["kiln/bvh_compact"], "on");
+  EXPECT_EQ(attributes["kiln/packets"], "off");
+  EXPECT_EQ(attributes["kiln/aovs"], "beauty,Z,N");
+  EXPECT_EQ(attributes["kiln/accelerator"], "embree");
+}
+
+// The README's "Rendering" option table: its first column's `--name`s.
+std::set<std::string> readme_render_options() {
+  std::ifstream in(KILN_SOURCE_DIR "/README.md");
+  std::set<std::string> names;
+  bool in_section = false;
+  const std::regex more(R"(--([a-z][a-z-]*))");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) == 0) in_section = line == "## Rendering";  // up to the next heading
+    if (!in_section || line.rfind("| `--", 0) != 0) continue;
+    const std::string first = line.substr(0, line.find(" | "));
+    for (std::sregex_iterator m(first.begin(), first.end(), more), end; m != end; ++m) names.insert((*m)[1]);
+  }
+  return names;
+}
+
+TEST(option_table, the_readme_lists_every_option) {
+  const std::set<std::string> listed = readme_render_options();
+  ASSERT_GE(listed.size(), 40u);
+  std::set<std::string> table;
+  for (const option_spec& spec : render_option_table()) {
+    table.insert(spec.name);
+    if (spec.name != "quiet") EXPECT_EQ(listed.count(spec.name), 1u) << "README lacks --" << spec.name;
+  }
+  for (const std::string& name : listed) EXPECT_EQ(table.count(name), 1u) << "README lists --" << name;
+}
+
+}  // namespace
+}  // namespace kiln

@@ -1,0 +1,334 @@
+#include "job/render_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "accel/make_accelerator.h"
+#include "core/error.h"
+#include "io/exr/cryptomatte.h"
+#include "io/exr/environment_reader.h"
+#include "io/exr/preview_writer.h"
+#include "io/gltf/gltf_loader.h"
+#include "job/asset_file.h"
+#include "job/exr_storage_options.h"
+#include "job/option_table.h"
+#include "job/output_guard.h"
+#include "job/render_fingerprint.h"
+#include "render/frame_bands.h"
+#include "render/render_space.h"
+#include "render/view_range.h"
+
+namespace kiln {
+
+namespace {
+
+constexpr int default_width = 640;
+constexpr int default_height = 480;
+constexpr int max_image_side = 65536;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Finds the camera named or numbered by the --camera argument.
+const camera& select_camera(const scene& world, const std::string& which) {
+  if (world.cameras.empty()) throw input_error(world.source, "--camera", "the file has no cameras");
+  char* end = nullptr;
+  long index = std::strtol(which.c_str(), &end, 10);
+  if (!which.empty() && end && *end == '\0') {
+    if (index < 0 || size_t(index) >= world.cameras.size())
+      throw input_error(world.source, "--camera",
+                        "camera index " + which + " out of range (file has " +
+                            std::to_string(world.cameras.size()) + " cameras)");
+    return world.cameras[size_t(index)];
+  }
+  std::string names;
+  for (const camera& c : world.cameras) {
+    if (c.name == which) return c;
+    names += (names.empty() ? "" : ", ") + ("'" + c.name + "'");
+  }
+  throw input_error(world.source, "--camera", "no camera named '" + which + "' (cameras: " + names + ")");
+}
+
+// The film holds 32 bytes a pixel (RGBA, Z, N) and the EXR writer a copy; past max_pixels the
+// allocation would fail (or swap) only after the scene has loaded, so refuse it as a usage error.
+void check_pixel_count(int width, int height, size_t max_pixels) {
+  const size_t pixels = size_t(width) * size_t(height);
+  if (pixels > max_pixels)
+    throw input_error("", "image size",
+                      std::to_string(width) + "x" + std::to_string(height) + " is " + std::to_string(pixels) +
+                          " pixels, over the limit of " + std::to_string(max_pixels) + " (--max-pixels)");
+}
+
+// Image size: explicit values win; a missing side follows the glTF camera's aspect ratio when it
+// has one, 4:3 otherwise; with neither given the image is 640 wide.
+void resolve_image_size(const render_options& options, float camera_aspect, int& width, int& height) {
+  double aspect = camera_aspect > 0.0f ? camera_aspect : double(default_width) / default_height;
+  if (options.width && options.height) {
+    width = *options.width;
+    height = *options.height;
+  } else if (options.width) {
+    width = *options.width;
+    height = std::max(1, int(std::lround(width / aspect)));
+  } else if (options.height) {
+    height = *options.height;
+    width = std::max(1, int(std::lround(height * aspect)));
+  } else {
+    width = default_width;
+    height = camera_aspect > 0.0f ? std::max(1, int(std::lround(width / aspect))) : default_height;
+  }
+  if (width > max_image_side || height > max_image_side)
+    throw input_error("", "image size", "at most " + std::to_string(max_image_side) + " pixels a side");
+  check_pixel_count(width, height, options.max_pixels);
+}
+
+view_camera choose_view(const render_options& options, const scene& world, std::string& description) {
+  if (options.look_from || options.look_at) {
+    if (!options.look_from || !options.look_at)
+      throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
+    int width = 0, height = 0;
+    resolve_image_size(options, 0.0f, width, height);
+    description = "look-at";
+    return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width,
+                               height);
+  }
+  if (!options.camera.empty() || !world.cameras.empty()) {
+    const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
+    // An orthographic camera's view is xmag by ymag, so that is the aspect of a size left open.
+    float aspect = c.aspect_ratio;
+    if (c.kind == projection::orthographic && c.xmag != 0.0f && c.ymag != 0.0f)
+      aspect = std::abs(c.xmag / c.ymag);
+    int width = 0, height = 0;
+    resolve_image_size(options, aspect, width, height);
+    description = c.name.empty() ? "glTF camera" : c.name;
+    try {
+      return make_gltf_camera(c, width, height);
+    } catch (const error& e) {
+      throw input_error(world.source, e.location(), e.reason());
+    }
+  }
+  int width = 0, height = 0;
+  resolve_image_size(options, 0.0f, width, height);
+  description = "default";
+  return make_default_camera(world_bounds(world), width, height);
+}
+
+// When a file has no light, a point light at the camera (a headlight) keeps assets visible: its
+// intensity is chosen so a white surface facing it at the scene centre reflects radiance ≈ 1.
+void add_default_light(scene& world, const view_camera& cam) {
+  bounds3 b = world_bounds(world);
+  double distance = b.empty() ? 1.0 : std::max(glm::length(b.center() - cam.eye), 1e-6);
+  light headlight;
+  headlight.name = "kiln default headlight";
+  headlight.kind = light_kind::point;
+  headlight.position = cam.eye;
+  headlight.intensity = float(pi * distance * distance);
+  headlight.casts_shadows = false;
+  world.lights.push_back(headlight);
+}
+
+// "gaussian 1.5" (the filter and its radius), or "threshold 0.1, depth 2" for adaptive sampling.
+std::string sampling_description(const render_settings& s, bool adaptive) {
+  std::ostringstream out;
+  if (adaptive)
+    out << "threshold " << s.adaptive.threshold << ", depth " << s.adaptive.max_depth;
+  else
+    out << filter_name(s.filter.kind) << ' ' << s.filter.radius;
+  return out.str();
+}
+
+// The region of the frame the job renders: its --crop or --band, checked against the image.
+pixel_rect job_region(const render_options& options, const view_camera& cam) {
+  if (options.crop) {
+    const pixel_rect& c = *options.crop;
+    if (c.x1 > cam.width || c.y1 > cam.height)
+      throw input_error("", "--crop",
+                        "the region must lie inside the " + std::to_string(cam.width) + "x" +
+                            std::to_string(cam.height) + " image");
+    return c;
+  }
+  if (options.band_count > 0) {
+    if (options.band_count > cam.height)
+      throw input_error("", "--band",
+                        "cannot split " + std::to_string(cam.height) + " rows into " +
+                            std::to_string(options.band_count) + " bands");
+    return frame_band(options.band_index, options.band_count, cam.width, cam.height);
+  }
+  return {};
+}
+
+exr_metadata job_metadata(const render_options& options, const prepared_scene& prepared,
+                          const render_settings& settings, const render_statistics& stats,
+                          const render_fingerprint& fingerprint, const cryptomatte_layer& objects,
+                          const cryptomatte_layer& materials) {
+  exr_metadata metadata;
+  const view_camera world_view = world_space_view(prepared.cam, prepared.world);
+  metadata.world_to_camera = world_to_camera(world_view);
+  metadata.world_to_ndc = world_to_ndc(world_view);
+  metadata.attributes = recorded_option_attributes(options);
+  const bool adaptive = settings.adaptive.threshold > 0.0f;
+  const std::vector<std::pair<std::string, std::string>> resolved = {
+      {"kiln/scene_file", options.input},
+      {"kiln/camera", prepared.camera_description},
+      {"kiln/filter", sampling_description(settings, false)},
+      {"kiln/adaptive", adaptive ? sampling_description(settings, true) : "off"},
+      {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
+      {"kiln/render_seconds", std::to_string(stats.seconds)},
+      {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
+      {"kiln/command_line", options.command_line},
+      {"kiln/scene_hash", file_hash_hex(options.input)},
+      {"kiln/input_hash", fingerprint.input_hash},
+      {"kiln/settings_hash", fingerprint.settings_hash},
+      {"kiln/frame_settings_hash", fingerprint.frame_settings_hash},
+  };
+  metadata.attributes.insert(metadata.attributes.end(), resolved.begin(), resolved.end());
+  for (const auto* layer :
+       {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
+    if (layer)
+      for (auto& attribute : cryptomatte_attributes(*layer))
+        metadata.attributes.push_back(std::move(attribute));
+  metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
+  metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
+  return metadata;
+}
+
+void throw_if_cancelled(const std::atomic<bool>* cancel, const std::string& output) {
+  if (cancel && cancel->load())
+    throw error(error_kind::interrupted, output, "", "render interrupted, nothing written");
+}
+
+}  // namespace
+
+prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel,
+                             const std::function<void(const std::string&)>& warn) {
+  check_asset_file(options.input);
+  prepared_scene p;
+  const auto load_start = std::chrono::steady_clock::now();
+  gltf_load_options load_options;
+  load_options.scene_index = options.scene_index;
+  load_options.allow_files_outside_folder = options.allow_outside_files;
+  load_options.limits = options.limits;
+  load_options.cancel = cancel;            // a signal stops the reading of large files
+  load_options.threads = options.threads;  // images decode on the render's threads
+  p.world = load_gltf(options.input, load_options);
+  p.world.env.color = options.background;
+  if (!options.environment.empty()) {
+    p.world.images.push_back(read_environment_image(options.environment));
+    p.world.env.map_image = int32_t(p.world.images.size() - 1);
+    p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
+    p.world.env.intensity = options.environment_intensity;
+  }
+  p.load_seconds = seconds_since(load_start);
+  if (warn) {
+    for (const std::string& warning : p.world.stats.warnings) warn("warning: " + warning);
+    if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
+      warn("warning: dropped " + std::to_string(dropped) + " degenerate triangle" +
+           (dropped == 1 ? "" : "s") + " (repeated vertices or zero area)");
+  }
+
+  p.cam = choose_view(options, p.world, p.camera_description);
+  // Before any accelerator is built, for every backend and every client (render, batch, compare,
+  // bench): no coordinate a ray can reach may pass Embree's limit.
+  if (options.look_from)
+    check_view_range(p.world, p.cam, "", "--look-from");
+  else
+    check_view_range(p.world, p.cam, p.world.source, "camera '" + p.camera_description + "'");
+  if (p.world.lights.empty()) {
+    add_default_light(p.world, p.cam);
+    if (warn) warn("the file has no lights; using a headlight at the camera");
+  }
+  // Every client traces in camera-relative render space (render/render_space.h).
+  move_to_render_space(p.world, p.cam);
+  return p;
+}
+
+render_settings make_render_settings(const render_options& options) {
+  render_settings settings;
+  settings.samples_per_pixel = options.samples_per_pixel;
+  settings.random_samples = options.sampler == "random";
+  settings.filter.kind = parse_filter_kind(options.filter).value_or(filter_kind::box);
+  settings.filter.radius = options.filter_radius.value_or(default_filter_radius(settings.filter.kind));
+  settings.adaptive.threshold = options.adaptive_threshold;
+  settings.adaptive.max_depth = options.adaptive_depth;
+  // Adaptive sampling places its own samples and averages them over the pixel's square.
+  if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
+    throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
+  if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
+    throw input_error("", "--adaptive-threshold",
+                      "adaptive supersampling averages over the pixel; drop --filter");
+  settings.threads = options.threads;
+  settings.tile_size = options.tile_size;
+  settings.show_background = options.show_background;
+  settings.shading.transmission_transparent = options.transmission_alpha == "transparent";
+  settings.shading.max_depth = options.max_depth;
+  settings.shading.min_throughput = options.min_throughput;
+  settings.packets = options.packets;
+  settings.aovs = options.aovs;
+  return settings;
+}
+
+std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const render_options& options) {
+  return make_accelerator(world, *parse_accel_kind(options.accel), options.grid, options.embree);
+}
+
+void check_job(const render_options& options) {
+  check_asset_file(options.input);  // before the fingerprint reads it
+  if (options.crop && options.band_count > 0)
+    throw input_error("", "--crop", "--crop and --band both choose the region; give one of them");
+  // Both sides given: the size is known before the scene loads, so a huge one fails at once.
+  if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
+  if (!options.output.empty()) {
+    check_render_outputs(options);  // never a file the render reads, never through a symlink
+    check_output_writable(options.output);
+  }
+  resolve_exr_settings(options);
+  if (!options.preview.empty()) check_output_writable(options.preview);
+}
+
+render_job_result run_job(const render_job& job) {
+  const render_options& options = job.options;
+  check_job(options);
+  render_job_result result;
+  result.storage = resolve_exr_settings(options);
+  // Hashed before loading: an asset edited during the render then reads as stale next time.
+  const render_fingerprint fingerprint =
+      job.fingerprint ? *job.fingerprint : make_fingerprint(options, job.cancel);
+  const prepared_scene prepared = prepare_scene(options, job.cancel, job.warn);
+  result.width = prepared.cam.width;
+  result.height = prepared.cam.height;
+  result.camera_description = prepared.camera_description;
+  result.load_seconds = prepared.load_seconds;
+
+  const auto build_start = std::chrono::steady_clock::now();
+  std::unique_ptr<accelerator> accel = make_job_accelerator(prepared.world, options);
+  result.build_seconds = seconds_since(build_start);
+
+  render_settings settings = make_render_settings(options);
+  const cryptomatte_layer objects = cryptomatte_objects(prepared.world);
+  const cryptomatte_layer materials = cryptomatte_materials(prepared.world);
+  settings.mattes = {objects.id_by_key, materials.id_by_key};
+  settings.crop = job_region(options, prepared.cam);
+  settings.cancel = job.cancel;
+  settings.progress = job.progress;
+  try {
+    result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
+    accel->throw_if_failed();  // an error Embree reported during traversal fails the render
+  } catch (const error& e) {
+    if (e.kind() != error_kind::interrupted) throw;
+    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  }
+  // A cancel that arrives after the last pixel still stops the job before anything is written.
+  throw_if_cancelled(job.cancel, options.output);
+  result.metadata = job_metadata(options, prepared, settings, result.stats, fingerprint, objects, materials);
+  return result;
+}
+
+void write_job_outputs(const render_job_result& result, const render_options& options) {
+  write_exr(options.output, result.image, result.storage, result.metadata);
+  // From the file as written, so the preview shows exactly what the EXR holds.
+  if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
+}
+
+}  // namespace kiln

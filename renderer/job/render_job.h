@@ -1,0 +1,79 @@
+// One render as a library call: options in, film and metadata out. run_job loads the asset,
+// chooses the view, builds the backend, renders and assembles the EXR metadata; write_job_outputs
+// writes the EXR (and the preview) atomically. `kiln render`, `kiln batch`'s jobs, `kiln compare`,
+// `kiln bench` and the Python module are thin clients of these calls; printing, signals and
+// exit codes stay with them.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "accel/accelerator.h"
+#include "io/exr/exr_writer.h"
+#include "job/render_options.h"
+#include "render/film.h"
+#include "render/tile_renderer.h"
+#include "render/view_camera.h"
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct render_fingerprint;
+
+struct render_job {
+  render_options options;
+  // Raised (by a signal handler, or Python's KeyboardInterrupt): loading stops between chunks and
+  // rendering within a pixel or 64 samples; run_job then throws kiln::error (interrupted).
+  const std::atomic<bool>* cancel = nullptr;
+  // Pixels finished so far, for a progress line or callback watching from another thread.
+  render_progress* progress = nullptr;
+  // Loader warnings and notes ("the file has no lights; ..."), one line each; empty: dropped.
+  std::function<void(const std::string&)> warn;
+  // The input and settings hashes when the caller knows them (a batch); null: computed here.
+  const render_fingerprint* fingerprint = nullptr;
+};
+
+// A loaded scene in render space with the chosen view and, when the file has none, the headlight.
+struct prepared_scene {
+  scene world;
+  view_camera cam;
+  std::string camera_description;
+  double load_seconds = 0.0;
+};
+
+// Loads options.input and chooses the view. Throws kiln::error for bad input.
+prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel = nullptr,
+                             const std::function<void(const std::string&)>& warn = {});
+
+// The renderer's settings from the options (without the crop, the mattes and the callbacks).
+render_settings make_render_settings(const render_options& options);
+
+// The backend the options name, built over world.
+std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const render_options& options);
+
+struct render_job_result {
+  film image;
+  exr_metadata metadata;
+  exr_settings storage;  // how the EXR stores the layers (resolved before rendering)
+  render_statistics stats;
+  int width = 0, height = 0;  // the full frame; the film may hold a crop or band of it
+  std::string camera_description;
+  double load_seconds = 0.0, build_seconds = 0.0;
+};
+
+// The checks that need no scene: the asset is a file, the outputs are safe to write (never a
+// file the render reads, never through a symlink, writable), the storage options agree. Throws
+// kiln::error (input or io). run_job calls it; a client may call it earlier to fail fast.
+void check_job(const render_options& options);
+
+// Renders the job. Throws kiln::error: input for bad input, render for a backend failure,
+// interrupted when cancel was raised.
+render_job_result run_job(const render_job& job);
+
+// Writes result to options.output (and options.preview when set), each through a temporary file
+// renamed into place. Throws kiln::error (io) on failure; an existing file is then untouched.
+void write_job_outputs(const render_job_result& result, const render_options& options);
+
+}  // namespace kiln
