@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libtinygltf-dev nlohmann-json3-dev libglm-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-openimageio
 )
 [ $# -eq 0 ] || packages=("$@")
 

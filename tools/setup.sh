@@ -1,12 +1,21 @@
 #!/usr/bin/env bash
-# The README's first command: installs missing Debian packages, builds kiln (incrementally) and
-# renders the demo scene to out/cornell_box.exr (plus a PNG preview beside it).
+# The README's first command: installs missing Debian packages, builds kiln and its Python module
+# (incrementally), installs the module into Debian's site-packages for /usr/bin/python3 (when
+# that folder is writable) and renders the demo scene to out/cornell_box.exr (plus a PNG preview).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/install_dependencies.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build --target kiln
+cmake --build build --target kiln kiln_python
+# `python3 -c "import kiln"` from anywhere: the module and the image codecs module beside it.
+site=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_paths()["platlib"])')
+if mkdir -p "$site" 2>/dev/null && [ -w "$site" ]; then
+  install -m 644 build/python/kiln.*.so build/renderer/app/kiln_image_codecs.so "$site"/
+  echo "kiln: Python module installed in $site"
+else
+  echo "kiln: $site is not writable; use the module with PYTHONPATH=$PWD/build/python"
+fi
 mkdir -p out
 # A second run renders again only when the binary or the scene changed since the last render.
 if [[ out/cornell_box.png -nt out/cornell_box.exr && out/cornell_box.exr -nt build/renderer/app/kiln &&

@@ -357,6 +357,23 @@ size_t pixel_bytes_of(const std::vector<Imf::Header>& headers) {
 }
 }  // namespace
 
+std::vector<stored_layer> stored_layers(const film& f, const exr_settings& settings) {
+  std::vector<stored_layer> out;
+  const size_t pixels = size_t(f.width) * size_t(f.height);
+  for (const layer& l : film_layers(f, settings)) {
+    stored_layer s{l.part, {}, l.format == Imf::HALF, {}};
+    s.samples.resize(pixels * l.channels.size());
+    for (const channel& c : l.channels) s.channels.push_back(c.name);
+    for (size_t i = 0; i < pixels; ++i)
+      for (size_t c = 0; c < l.channels.size(); ++c) {
+        const float value = l.channels[c].value(i);
+        s.samples[i * l.channels.size() + c] = s.half ? float(half(value)) : value;
+      }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 void check_output_writable(const std::string& path) {
   fs::path target(path);
   if (target.filename().empty()) throw io_error(path, "output path names a folder, not a file");

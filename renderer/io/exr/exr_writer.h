@@ -35,6 +35,18 @@ void check_output_writable(const std::string& path);
 // Called before rendering; write_exr checks again.
 void check_exr_settings(const aov_set& aovs, const exr_settings& settings);
 
+// One layer of the file write_exr writes for a film, with the values as stored: its part name
+// ("rgba", "depth", "N", ...), its channel names, and its samples row by row, channel-interleaved
+// (height × width × channels), rounded to half where the layer is half. What a reader of the file
+// gets back, bit for bit, under a lossless codec.
+struct stored_layer {
+  std::string name;
+  std::vector<std::string> channels;
+  bool half = false;
+  std::vector<float> samples;
+};
+std::vector<stored_layer> stored_layers(const film& f, const exr_settings& settings);
+
 // Writes the film to path atomically. Throws kiln::error (io) on failure.
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
                const exr_metadata& metadata);

@@ -70,6 +70,12 @@ std::vector<std::string> image_codecs_candidates() {
     add(executable.parent_path() / image_codecs_file_name);
     add(executable.parent_path() / ".." / "lib" / "kiln" / image_codecs_file_name);
   }
+  // Beside the shared object this loader is part of: the Python module installs the codecs module
+  // next to itself (for the kiln executable this is the executable's folder again).
+  Dl_info self{};
+  if (::dladdr(reinterpret_cast<void*>(&image_codecs_candidates), &self) && self.dli_fname &&
+      fs::path(self.dli_fname).is_absolute())
+    add(fs::path(self.dli_fname).parent_path() / image_codecs_file_name);
 #ifdef KILN_IMAGE_CODECS_BUILD_PATH
   // Tests and tools built in other folders of the build tree find the module where it was built.
   add(KILN_IMAGE_CODECS_BUILD_PATH);

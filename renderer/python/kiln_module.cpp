@@ -1,0 +1,287 @@
+// The Python module `kiln`: one render job (job/render_job.h) per kiln.render() call, its AOVs as
+// NumPy arrays (height × width × channels, float32, exactly the values the EXR stores), its
+// metadata and statistics. Options are the option table's, by the same names (look_from for
+// --look-from) with the same checks; a refused value or a bad asset raises kiln.InputError with
+// the message the CLI prints. The render runs on its own thread without the GIL, and the calling
+// thread watches for Ctrl-C: a KeyboardInterrupt cancels the render and is raised when it stops.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <exception>
+#include <future>
+#include <string>
+#include <thread>
+
+#include "core/error.h"
+#include "job/option_table.h"
+#include "job/render_job.h"
+
+namespace py = pybind11;
+
+namespace kiln {
+
+namespace {
+
+PyObject* error_class = nullptr;        // kiln.Error
+PyObject* input_error_class = nullptr;  // kiln.InputError (also a ValueError)
+
+// --aovs and friends from "beauty,Z" or ["beauty", "Z"]; --look-from from "1,2,3" or (1, 2, 3).
+std::string option_text(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::int_>(value)) return py::str(value).cast<std::string>();
+  // repr of a float is the shortest text that reads back to the same double.
+  if (py::isinstance<py::float_>(value)) return py::repr(value).cast<std::string>();
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string text;
+    for (const py::handle& item : value) text += (text.empty() ? "" : ",") + option_text(item);
+    return text;
+  }
+  throw input_error("", "", "expected a string, number, boolean, list or tuple, got " +
+                                py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+}
+
+// look_from= is --look-from; a value of None leaves the option at its default.
+void apply_option(render_options& options, const std::string& keyword, const py::handle& value) {
+  if (value.is_none()) return;
+  std::string name = keyword;
+  for (char& c : name)
+    if (c == '_') c = '-';
+  const option_spec* spec = find_render_option(name);
+  if (!spec) throw input_error("", keyword, "is not a render option (kiln.options() lists them)");
+  std::string text;
+  try {
+    text = option_text(value);
+  } catch (const error& e) {
+    throw input_error("", "--" + spec->name, e.reason());
+  }
+  // A flag given False stays off; packets=True means "on".
+  if (!spec->choices.empty() && py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "on" : "off";
+  spec->set(options, text);
+}
+
+std::string python_call(const std::string& asset, const py::kwargs& kwargs) {
+  std::string line = "kiln.render(" + py::repr(py::str(asset)).cast<std::string>();
+  for (const auto& [key, value] : kwargs)
+    line += ", " + key.cast<std::string>() + "=" + py::repr(value).cast<std::string>();
+  return line + ")";
+}
+
+py::dict metadata_dict(const exr_metadata& m) {
+  py::dict d;
+  for (const auto& [key, value] : m.attributes) d[py::str(key)] = value;
+  for (const auto& [key, value] : m.float_attributes) d[py::str(key)] = value;
+  for (const auto& [key, value] : m.int_attributes) d[py::str(key)] = value;
+  // The 16 floats of the file's M44f attributes, in their order (OpenEXR's row vectors: a row of
+  // the M44f is a column of kiln's matrices), as a reader of the header gets them.
+  py::list camera, ndc;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      camera.append(float(m.world_to_camera[i][j]));
+      ndc.append(float(m.world_to_ndc[i][j]));
+    }
+  d["worldToCamera"] = camera;
+  d["worldToNDC"] = ndc;
+  return d;
+}
+
+py::dict statistics_dict(const render_job_result& r) {
+  py::dict d;
+  d["width"] = r.width;
+  d["height"] = r.height;
+  d["camera"] = r.camera_description;
+  d["load_seconds"] = r.load_seconds;
+  d["build_seconds"] = r.build_seconds;
+  d["render_seconds"] = r.stats.seconds;
+  d["threads"] = r.stats.threads_used;
+  d["camera_rays"] = r.stats.rays.camera;
+  d["shadow_rays"] = r.stats.rays.shadow;
+  d["reflection_rays"] = r.stats.rays.reflection;
+  d["refraction_rays"] = r.stats.rays.refraction;
+  d["discarded_samples"] = r.stats.discarded_samples;
+  return d;
+}
+
+// What kiln.render returns. The film stays here so write() can store it as the CLI would.
+struct python_result {
+  render_job_result result;
+  render_options options;
+  py::dict aovs, channels;
+  py::dict metadata, stats;
+};
+
+// The EXR layers by the names --aovs uses.
+std::string aov_name(const std::string& part) {
+  if (part == "rgba") return "beauty";
+  if (part == "depth") return "Z";
+  if (part == "CryptoObject") return "crypto_object";
+  if (part == "CryptoMaterial") return "crypto_material";
+  return part;
+}
+
+void fill_arrays(python_result& out) {
+  const film& f = out.result.image;
+  for (stored_layer& layer : stored_layers(f, out.result.storage)) {
+    const py::ssize_t c = py::ssize_t(layer.channels.size());
+    py::array_t<float> array({py::ssize_t(f.height), py::ssize_t(f.width), c});
+    std::copy(layer.samples.begin(), layer.samples.end(), array.mutable_data());
+    const std::string name = aov_name(layer.name);
+    out.aovs[py::str(name)] = array;
+    out.channels[py::str(name)] = layer.channels;
+  }
+}
+
+// Runs the job on a thread of its own while this one, holding the GIL only between waits, checks
+// for Ctrl-C and reports progress.
+render_job_result run_watched(render_job& job, const py::object& progress) {
+  std::atomic<bool> cancel{false};
+  render_progress counts;
+  job.cancel = &cancel;
+  job.progress = &counts;
+  std::promise<render_job_result> promise;
+  std::future<render_job_result> done = promise.get_future();
+  std::thread worker([&job, &promise] {
+    try {
+      promise.set_value(run_job(job));
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  });
+  bool interrupted = false;
+  for (;;) {
+    std::future_status status;
+    {
+      py::gil_scoped_release unlocked;
+      status = done.wait_for(std::chrono::milliseconds(50));
+    }
+    if (status == std::future_status::ready) break;
+    if (!interrupted && PyErr_CheckSignals() != 0) {  // KeyboardInterrupt (or a handler's exception)
+      interrupted = true;
+      cancel = true;
+      continue;  // wait for the render to stop; the exception stays set
+    }
+    if (!interrupted && !progress.is_none()) {
+      try {
+        progress(counts.pixels_done.load(), counts.pixels_total.load());
+      } catch (py::error_already_set& e) {
+        e.restore();
+        interrupted = true;
+        cancel = true;
+      }
+    }
+  }
+  worker.join();
+  if (interrupted) {
+    try {
+      done.get();
+    } catch (...) {
+    }
+    throw py::error_already_set();
+  }
+  return done.get();
+}
+
+python_result render(const std::string& asset, const py::object& output, const py::object& progress,
+                     const py::kwargs& kwargs) {
+  render_job job;
+  job.options.input = asset;
+  job.options.quiet = true;
+  job.options.command_line = python_call(asset, kwargs);
+  if (!output.is_none()) job.options.output = output.cast<std::string>();
+  for (const auto& [key, value] : kwargs) apply_option(job.options, key.cast<std::string>(), value);
+  python_result out;
+  out.result = run_watched(job, progress);
+  out.options = job.options;
+  if (!job.options.output.empty()) {
+    py::gil_scoped_release unlocked;
+    write_job_outputs(out.result, job.options);
+  }
+  fill_arrays(out);
+  out.metadata = metadata_dict(out.result.metadata);
+  out.stats = statistics_dict(out.result);
+  return out;
+}
+
+void write_result(const python_result& r, const std::string& path, const py::object& preview) {
+  render_options options = r.options;
+  options.output = path;
+  options.preview = preview.is_none() ? std::string() : preview.cast<std::string>();
+  check_job(options);
+  py::gil_scoped_release unlocked;
+  write_job_outputs(r.result, options);
+}
+
+py::list option_list() {
+  py::list list;
+  const render_options defaults;
+  for (const option_spec& spec : render_option_table()) {
+    py::dict d;
+    std::string keyword = spec.name;
+    for (char& c : keyword)
+      if (c == '-') c = '_';
+    d["name"] = keyword;
+    d["option"] = "--" + spec.name;
+    const char* types[] = {"int", "int", "float", "str", "bool"};
+    d["type"] = types[int(spec.type)];
+    d["help"] = spec.help;
+    d["choices"] = spec.choices;
+    const std::optional<std::string> value = spec.get(defaults);
+    d["default"] = value ? py::object(py::str(*value)) : py::object(py::none());
+    list.append(d);
+  }
+  return list;
+}
+
+// kiln::error as kiln.InputError (bad input: the CLI's exit 2) or kiln.Error, carrying the file,
+// the location (a JSON pointer or an option) and the reason; an interrupt as KeyboardInterrupt.
+void translate(std::exception_ptr p) {
+  try {
+    if (p) std::rethrow_exception(p);
+  } catch (const error& e) {
+    if (e.kind() == error_kind::interrupted) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+      return;
+    }
+    PyObject* type = e.kind() == error_kind::input ? input_error_class : error_class;
+    py::object instance = py::reinterpret_borrow<py::object>(type)(std::string(e.what()));
+    instance.attr("file") = e.file();
+    instance.attr("location") = e.location();
+    instance.attr("reason") = e.reason();
+    PyErr_SetObject(type, instance.ptr());
+  }
+}
+
+}  // namespace
+
+}  // namespace kiln
+
+PYBIND11_MODULE(kiln, m) {
+  using namespace kiln;
+  m.doc() = "kiln: renders glTF 2.0 assets with Embree and Whitted shading; AOVs as NumPy arrays";
+  m.attr("__version__") = KILN_VERSION;
+  error_class = PyErr_NewException("kiln.Error", PyExc_RuntimeError, nullptr);
+  py::tuple input_bases = py::make_tuple(py::handle(error_class), py::handle(PyExc_ValueError));
+  input_error_class = PyErr_NewException("kiln.InputError", input_bases.ptr(), nullptr);
+  m.attr("Error") = py::handle(error_class);
+  m.attr("InputError") = py::handle(input_error_class);
+  py::register_exception_translator(&translate);
+
+  py::class_<python_result>(m, "Result", "One render: its AOVs, metadata and statistics")
+      .def_readonly("aovs", &python_result::aovs, "AOV name -> float32 array (height, width, channels)")
+      .def_readonly("channels", &python_result::channels, "AOV name -> its EXR channel names")
+      .def_readonly("metadata", &python_result::metadata, "The EXR header's attributes")
+      .def_readonly("stats", &python_result::stats, "Sizes, timings and ray counts")
+      .def("write", &write_result, py::arg("path"), py::arg("preview") = py::none(),
+           "Write the EXR (and a PNG/JPEG preview) exactly as kiln render would, atomically")
+      .def("__getitem__", [](const python_result& r, const std::string& name) { return r.aovs[py::str(name)]; });
+
+  m.def("render", &render, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
+        py::arg("progress") = py::none(),
+        "render(asset, *, output=None, progress=None, **options) -> Result\n\n"
+        "Renders asset with the options of `kiln render` (width=, height=, spp=, camera=, aovs=[...],\n"
+        "look_from=(x, y, z), ...; kiln.options() lists them). output= also writes the EXR; progress\n"
+        "is called as progress(pixels_done, pixels_total). Raises kiln.InputError for bad input.");
+  m.def("options", &option_list, "Every render option: name, option, type, help, choices, default");
+}

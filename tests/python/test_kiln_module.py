@@ -1,0 +1,166 @@
+"""The Python module against the CLI: the arrays of kiln.render equal the EXR `kiln render` writes
+for the same options, bit for bit; output= writes that EXR; bad options and bad assets raise
+kiln.InputError with the CLI's one-line message; Ctrl-C (SIGINT) and a progress callback that
+raises stop a render early. Run by CTest with PYTHONPATH at the build's module."""
+import os
+import signal
+import subprocess
+import tempfile
+import threading
+import time
+
+import numpy as np
+import OpenImageIO as oiio
+import pytest
+
+import kiln
+
+SOURCE = os.environ.get("KILN_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+KILN = os.environ.get("KILN_BINARY", os.path.join(SOURCE, "build", "renderer", "app", "kiln"))
+CORNELL = os.path.join(SOURCE, "scenes", "cornell_box.gltf")
+GLASS = os.path.join(SOURCE, "scenes", "glass_showcase.gltf")
+
+
+def cli(args):
+    return subprocess.run([KILN] + args, capture_output=True, text=True)
+
+
+def read_channels(path):
+    """Every channel of every part of an EXR as float32 (height, width) arrays, by full name."""
+    channels = {}
+    image = oiio.ImageInput.open(path)
+    part = 0
+    while image.seek_subimage(part, 0):
+        spec = image.spec()
+        pixels = image.read_image(part, 0, 0, spec.nchannels, oiio.FLOAT)
+        for c, name in enumerate(spec.channelnames):
+            channels[name] = pixels[:, :, c]
+        part += 1
+    image.close()
+    return channels
+
+
+def assert_arrays_match_exr(result, path):
+    stored = read_channels(path)
+    compared = 0
+    for aov, array in result.aovs.items():
+        assert array.dtype == np.float32
+        assert array.shape[:2] == (result.stats["height"], result.stats["width"])
+        for c, name in enumerate(result.channels[aov]):
+            assert name in stored, name
+            # Bit for bit: the same float32 values, NaN-free by construction.
+            assert np.array_equal(array[:, :, c].view(np.uint32), stored[name].view(np.uint32)), (aov, name)
+            compared += 1
+    assert compared == len(stored)
+
+
+OPTIONS = {"width": 40, "height": 30, "spp": 2, "threads": 2,
+           "aovs": ["beauty", "Z", "N", "P", "albedo", "uv", "id", "direct", "reflection", "refraction",
+                    "cryptomatte"]}
+ARGUMENTS = ["--width", "40", "--height", "30", "--spp", "2", "--threads", "2", "--aovs",
+             "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte"]
+
+
+@pytest.mark.parametrize("extra,arguments", [({}, []), ({"float": True}, ["--float"]),
+                                             ({"multipart": True, "filter": "gaussian"},
+                                              ["--multipart", "--filter", "gaussian"])])
+def test_arrays_equal_the_cli_exr_bit_for_bit(tmp_path, extra, arguments):
+    out = str(tmp_path / "cli.exr")
+    done = cli(["render", GLASS, "-o", out, "-q"] + ARGUMENTS + arguments)
+    assert done.returncode == 0, done.stderr
+    result = kiln.render(GLASS, **OPTIONS, **extra)
+    assert result.aovs["beauty"].shape == (30, 40, 4)
+    assert result.aovs["Z"].shape == (30, 40, 1)
+    assert np.count_nonzero(result.aovs["beauty"][:, :, 3]) > 100  # the scene is in the picture
+    assert_arrays_match_exr(result, out)
+    assert result.metadata["kiln/samples_per_pixel"] == "2"
+    assert result.metadata["kiln/settings_hash"] == oiio.ImageInput.open(out).spec().get_string_attribute(
+        "kiln/settings_hash")
+    assert result.stats["camera_rays"] == 40 * 30 * 2
+
+
+def test_output_writes_the_exr_the_cli_writes(tmp_path):
+    out = str(tmp_path / "python.exr")
+    result = kiln.render(CORNELL, output=out, width=32, height=24, look_from=(0.0, 1.0, 3.5),
+                         look_at=[0, 1, 0], background="0.1,0.2,0.3", show_background=True)
+    assert_arrays_match_exr(result, out)
+    again = str(tmp_path / "again.exr")
+    result.write(again)
+    assert_arrays_match_exr(result, again)
+    spec = oiio.ImageInput.open(out).spec()
+    assert spec.get_string_attribute("kiln/camera") == "look-at"
+    assert spec.get_string_attribute("kiln/command_line").startswith("kiln.render(")
+    matrix = spec.getattribute("worldToCamera")
+    assert list(np.array(matrix, dtype=np.float32).ravel()) == result.metadata["worldToCamera"]
+
+
+def cli_message(args):
+    done = cli(args)
+    assert done.returncode == 2, done.stderr
+    line = done.stderr.strip()
+    assert line.startswith("kiln: ")
+    return line[len("kiln: "):]
+
+
+def test_bad_options_raise_with_the_cli_message(tmp_path):
+    out = str(tmp_path / "x.exr")
+    for keywords, arguments in [({"spp": 0}, ["--spp", "0"]), ({"accel": "octree"}, ["--accel", "octree"]),
+                                ({"fov": float("nan")}, ["--look-from", "0,0,1", "--look-at", "0,0,0",
+                                                         "--fov", "nan"])]:
+        expected = cli_message(["render", CORNELL, "-o", out] + arguments).split(" (run 'kiln")[0]
+        with pytest.raises(kiln.InputError) as caught:
+            kiln.render(CORNELL, **keywords)
+        assert str(caught.value) == expected
+        assert isinstance(caught.value, ValueError)
+    with pytest.raises(kiln.InputError, match="not a render option"):
+        kiln.render(CORNELL, no_such_option=1)
+    assert not os.path.exists(out)
+
+
+def test_bad_assets_raise_with_the_file_and_json_pointer(tmp_path):
+    bad = tmp_path / "bad.gltf"
+    bad.write_text('{"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 7}}]}],'
+                   ' "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}')
+    expected = cli_message(["render", str(bad), "-o", str(tmp_path / "x.exr")])
+    with pytest.raises(kiln.InputError) as caught:
+        kiln.render(str(bad))
+    assert str(caught.value) == expected
+    assert caught.value.file == str(bad)
+    assert caught.value.location == "/meshes/0/primitives/0/attributes/POSITION"
+    assert "/accessors/7 does not exist" in caught.value.reason
+    with pytest.raises(kiln.InputError):
+        kiln.render(str(tmp_path / "missing.gltf"))
+
+
+def test_ctrl_c_cancels_a_render():
+    started = time.monotonic()
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        # Minutes of work when left to finish.
+        kiln.render(GLASS, width=1600, height=1200, spp=64, threads=2)
+    assert time.monotonic() - started < 30
+
+
+def test_a_progress_callback_that_raises_cancels_the_render():
+    calls = []
+
+    def progress(done, total):
+        calls.append((done, total))
+        if len(calls) >= 3:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        kiln.render(GLASS, width=1600, height=1200, spp=64, threads=2, progress=progress)
+    assert calls[-1][1] == 1600 * 1200
+
+
+def test_options_are_the_clis():
+    names = {o["option"] for o in kiln.options()}
+    help_text = cli(["render", "--help"]).stdout
+    for name in names:
+        if name != "--quiet":
+            assert name in help_text, name
+    assert {"--spp", "--aovs", "--band", "--look-from"} <= names
+    spp = next(o for o in kiln.options() if o["name"] == "spp")
+    assert spp["type"] == "int" and spp["default"] == "1"
