@@ -39,8 +39,9 @@ std::string option_text(const py::handle& value) {
     for (const py::handle& item : value) text += (text.empty() ? "" : ",") + option_text(item);
     return text;
   }
-  throw input_error("", "", "expected a string, number, boolean, list or tuple, got " +
-                                py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+  throw input_error("", "",
+                    "expected a string, number, boolean, list or tuple, got " +
+                        py::str(py::type::of(value).attr("__name__")).cast<std::string>());
 }
 
 // look_from= is --look-from; a value of None leaves the option at its default.
@@ -275,7 +276,8 @@ PYBIND11_MODULE(kiln, m) {
       .def_readonly("stats", &python_result::stats, "Sizes, timings and ray counts")
       .def("write", &write_result, py::arg("path"), py::arg("preview") = py::none(),
            "Write the EXR (and a PNG/JPEG preview) exactly as kiln render would, atomically")
-      .def("__getitem__", [](const python_result& r, const std::string& name) { return r.aovs[py::str(name)]; });
+      .def("__getitem__",
+           [](const python_result& r, const std::string& name) { return r.aovs[py::str(name)]; });
 
   m.def("render", &render, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
