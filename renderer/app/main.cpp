@@ -1,6 +1,7 @@
 // kiln's command line: parses arguments, runs a subcommand, and maps every failure to one line
 // on stderr and an exit code (0 success, 2 usage or bad input, 1 render or I/O failure,
-// 3 when `kiln compare` finds the backends disagree, 128 + n when signal n stopped a render;
+// 3 when `kiln compare` finds the backends disagree, 124 when a render ran past --time-limit,
+// 128 + n when signal n stopped a render;
 // `kiln batch` exits 1 when any job failed).
 #include <sys/prctl.h>
 #include <unistd.h>
@@ -31,6 +32,7 @@ namespace {
 constexpr int exit_success = 0;
 constexpr int exit_failure = 1;
 constexpr int exit_bad_input = 2;
+constexpr int exit_time_limit = 124;  // as timeout(1): the job ran past --time-limit
 
 // A job of kiln batch: it stops (SIGTERM, handled like any) when the batch dies, so a killed
 // batch leaves no render running on its own. KILN_TEST_ABORT_ASSET (test only, see
@@ -119,6 +121,7 @@ int main(int argc, char** argv) {
     return exit_success;
   } catch (const kiln::error& e) {
     std::cerr << "kiln: " << e.what() << '\n';
+    if (e.kind() == kiln::error_kind::time_limit) return exit_time_limit;
     if (e.kind() == kiln::error_kind::interrupted)
       return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
     return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;

@@ -8,9 +8,10 @@
 
 namespace kiln {
 
-// What kind of failure: bad input maps to exit code 2, I/O or render failure to exit code 1, and
-// a render stopped by SIGINT/SIGTERM to 128 + the signal number, as shells report it.
-enum class error_kind { input, io, render, interrupted };
+// What kind of failure: bad input maps to exit code 2, I/O or render failure to exit code 1, a
+// render stopped by SIGINT/SIGTERM to 128 + the signal number, as shells report it, and one
+// stopped by its --time-limit to 124, as timeout(1) reports it.
+enum class error_kind { input, io, render, interrupted, time_limit };
 
 class error : public std::runtime_error {
  public:

@@ -421,6 +421,11 @@ void add_view_options(std::vector<option_spec>& t) {
       "on", "Trace each tile's camera rays together as Embree packets: on or off (default off)"));
   t.back().recorded_as = "kiln/packets";
   t.back().choices = {"on", "off"};
+  add(number_option<double>("time-limit", [](render_options& o) -> auto& { return o.time_limit_seconds; }, 0.0,
+                            1e9, "60",
+                            "Stop a job still loading or rendering after this many seconds: nothing is written, "
+                            "exit 124 (0 = no limit)"))
+      .effect = option_effect::none;
   option_spec& quiet = add(flag_option(
       "quiet", [](render_options& o) -> auto& { return o.quiet; }, "No progress line or summary"));
   quiet.short_name = "q";

@@ -13,7 +13,9 @@
 #include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
 #include "job/exr_storage_options.h"
+#include "job/job_stop.h"
 #include "job/option_table.h"
+#include "job/option_values.h"
 #include "job/output_guard.h"
 #include "job/render_fingerprint.h"
 #include "render/frame_bands.h"
@@ -287,15 +289,15 @@ void check_job(const render_options& options) {
   if (!options.preview.empty()) check_output_writable(options.preview);
 }
 
-render_job_result run_job(const render_job& job) {
+namespace {
+
+render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop) {
   const render_options& options = job.options;
-  check_job(options);
   render_job_result result;
   result.storage = resolve_exr_settings(options);
   // Hashed before loading: an asset edited during the render then reads as stale next time.
-  const render_fingerprint fingerprint =
-      job.fingerprint ? *job.fingerprint : make_fingerprint(options, job.cancel);
-  const prepared_scene prepared = prepare_scene(options, job.cancel, job.warn);
+  const render_fingerprint fingerprint = job.fingerprint ? *job.fingerprint : make_fingerprint(options, stop);
+  const prepared_scene prepared = prepare_scene(options, stop, job.warn);
   result.width = prepared.cam.width;
   result.height = prepared.cam.height;
   result.camera_description = prepared.camera_description;
@@ -310,19 +312,34 @@ render_job_result run_job(const render_job& job) {
   const cryptomatte_layer materials = cryptomatte_materials(prepared.world);
   settings.mattes = {objects.id_by_key, materials.id_by_key};
   settings.crop = job_region(options, prepared.cam);
-  settings.cancel = job.cancel;
+  settings.cancel = stop;
   settings.progress = job.progress;
-  try {
-    result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
-    accel->throw_if_failed();  // an error Embree reported during traversal fails the render
-  } catch (const error& e) {
-    if (e.kind() != error_kind::interrupted) throw;
-    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
-  }
-  // A cancel that arrives after the last pixel still stops the job before anything is written.
-  throw_if_cancelled(job.cancel, options.output);
+  result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
+  accel->throw_if_failed();  // an error Embree reported during traversal fails the render
+  // A stop that arrives after the last pixel still ends the job before anything is written.
+  throw_if_cancelled(stop, options.output);
   result.metadata = job_metadata(options, prepared, settings, result.stats, fingerprint, objects, materials);
   return result;
+}
+
+}  // namespace
+
+render_job_result run_job(const render_job& job) {
+  const render_options& options = job.options;
+  check_job(options);
+  const job_stop stop(job.cancel, options.time_limit_seconds);
+  try {
+    return run_stoppable_job(job, stop.flag());
+  } catch (const error& e) {
+    // Wherever the time limit found the job (hashing, loading, rendering), it ends in one message;
+    // an interrupt names the file it was reading, or the output when it stopped the render.
+    if (e.kind() != error_kind::interrupted) throw;
+    if (stop.timed_out())
+      throw error(error_kind::time_limit, options.output, "",
+                  "time limit of " + exact_text(options.time_limit_seconds) + " s reached, nothing written");
+    if (!e.file().empty()) throw;
+    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
+  }
 }
 
 void write_job_outputs(const render_job_result& result, const render_options& options) {

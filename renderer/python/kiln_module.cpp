@@ -26,6 +26,7 @@ namespace {
 
 PyObject* error_class = nullptr;        // kiln.Error
 PyObject* input_error_class = nullptr;  // kiln.InputError (also a ValueError)
+PyObject* time_limit_class = nullptr;   // kiln.TimeLimitError (also a TimeoutError)
 
 // --aovs and friends from "beauty,Z" or ["beauty", "Z"]; --look-from from "1,2,3" or (1, 2, 3).
 std::string option_text(const py::handle& value) {
@@ -245,7 +246,9 @@ void translate(std::exception_ptr p) {
       PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
       return;
     }
-    PyObject* type = e.kind() == error_kind::input ? input_error_class : error_class;
+    PyObject* type = e.kind() == error_kind::input        ? input_error_class
+                     : e.kind() == error_kind::time_limit ? time_limit_class
+                                                          : error_class;
     py::object instance = py::reinterpret_borrow<py::object>(type)(std::string(e.what()));
     instance.attr("file") = e.file();
     instance.attr("location") = e.location();
@@ -265,7 +268,10 @@ PYBIND11_MODULE(kiln, m) {
   error_class = PyErr_NewException("kiln.Error", PyExc_RuntimeError, nullptr);
   py::tuple input_bases = py::make_tuple(py::handle(error_class), py::handle(PyExc_ValueError));
   input_error_class = PyErr_NewException("kiln.InputError", input_bases.ptr(), nullptr);
+  py::tuple time_bases = py::make_tuple(py::handle(error_class), py::handle(PyExc_TimeoutError));
+  time_limit_class = PyErr_NewException("kiln.TimeLimitError", time_bases.ptr(), nullptr);
   m.attr("Error") = py::handle(error_class);
+  m.attr("TimeLimitError") = py::handle(time_limit_class);
   m.attr("InputError") = py::handle(input_error_class);
   py::register_exception_translator(&translate);
 

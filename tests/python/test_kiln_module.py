@@ -142,6 +142,15 @@ def test_ctrl_c_cancels_a_render():
     assert time.monotonic() - started < 30
 
 
+def test_a_time_limit_stops_a_render(tmp_path):
+    out = str(tmp_path / "x.exr")
+    started = time.monotonic()
+    with pytest.raises(kiln.TimeLimitError, match="time limit of 0.5 s reached, nothing written"):
+        kiln.render(GLASS, output=out, width=1600, height=1200, spp=64, threads=2, time_limit=0.5)
+    assert time.monotonic() - started < 30
+    assert not os.path.exists(out)
+
+
 def test_a_progress_callback_that_raises_cancels_the_render():
     calls = []
 
