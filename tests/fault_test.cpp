@@ -117,6 +117,33 @@ TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
   EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a partial temporary file was left behind";
 }
 
+// A preview that meets a full disk fails the render (exit 1, one line naming it) and leaves no
+// truncated PNG, the earlier preview kept. The limit sits between the EXR's size and the PNG's,
+// both measured by a first render, so only the preview's write runs out of room.
+TEST(faults, a_preview_on_a_full_disk_fails_and_leaves_no_truncated_file) {
+  const std::string folder = scratch_folder("full_disk_preview");
+  const std::vector<std::string> args = {"render",  demo_scene, "-o",          folder + "/frame.exr", "--width",
+                                         "320",     "--aovs",   "beauty",      "--compression",      "dwab",
+                                         "-q",      "--preview", folder + "/frame.png"};
+  ASSERT_EQ(testing::run_kiln(args).exit_code, 0);
+  const uintmax_t exr = fs::file_size(folder + "/frame.exr"), png = fs::file_size(folder + "/frame.png");
+  ASSERT_GT(png, exr + 2048) << "the preview must be the larger file for this test";
+  write_file(folder + "/frame.png", previous_content);
+  const rlim_t room = rlim_t((exr + png) / 2);
+  child_process child = start_kiln(args, folder, [room] {
+    std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit{room, room};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+  });
+  EXPECT_EQ(child.wait(), 1) << child.stderr_text();
+  const std::vector<std::string> message = lines(child.stderr_text());
+  ASSERT_EQ(message.size(), 1u) << child.stderr_text();
+  EXPECT_NE(message[0].find(folder + "/frame.png: cannot write png"), std::string::npos) << message[0];
+  EXPECT_EQ(read_file(folder + "/frame.png"), previous_content);
+  for (const std::string& name : stray_files(folder, "frame.png"))
+    EXPECT_EQ(name, "frame.exr") << "a partial temporary file was left behind";
+}
+
 TEST(faults, output_that_is_not_a_regular_file_is_refused_before_rendering) {
   // Writing "to" a pipe or device would replace the node by rename; kiln refuses instead.
   const std::string pipe = scratch_folder("pipe_output") + "/pipe.exr";

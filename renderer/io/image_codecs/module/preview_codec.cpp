@@ -1,9 +1,14 @@
 // Writes the 8-bit PNG or JPEG preview of an EXR's beauty and checks a written one, with
 // OpenImageIO (which also reads the EXR here, so the module needs nothing from kiln's EXR code).
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <vector>
 
@@ -41,6 +46,39 @@ bool ends_with_trailer(const std::string& path, const std::string& format) {
   in.seekg(-std::streamoff(trailer.size()), std::ios::end);
   std::string tail(trailer.size(), '\0');
   return bool(in.read(tail.data(), std::streamsize(tail.size()))) && tail == trailer;
+}
+
+// The whole file in memory; throws kiln::error (io) when OpenImageIO cannot encode it.
+std::vector<unsigned char> encode(const std::string& format, const OIIO::ImageSpec& spec,
+                                  const std::vector<unsigned char>& codes) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) throw io_error("", "OpenImageIO has no " + format + " writer: " + OIIO::geterror());
+  bool ok = out->set_ioproxy(&memory) && out->open("preview." + format, spec) &&
+            out->write_image(OIIO::TypeDesc::UINT8, codes.data());
+  ok = out->close() && ok;
+  if (!ok) throw io_error("", "cannot encode " + format + ": " + out->geterror());
+  return bytes;
+}
+
+// Writes bytes to a new file at path; "" or the reason it failed (a short write is a failure).
+std::string write_bytes(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return std::strerror(errno);
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = n < 0 ? std::strerror(errno) : "nothing written";
+      ::close(fd);
+      return reason;
+    }
+    done += size_t(n);
+  }
+  if (::close(fd) != 0) return std::strerror(errno);
+  return "";
 }
 
 }  // namespace
@@ -95,15 +133,12 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   }
   out_spec.attribute("oiio:ColorSpace", "sRGB");
   if (format == "jpeg") out_spec.attribute("Compression", "jpeg:95");
+  // Encoded in memory, then written with every write checked: OpenImageIO's PNG writer does not
+  // report a write that fails (a full disk), which would rename a truncated file into place.
+  const std::vector<unsigned char> encoded = encode(format, out_spec, codes);
   // The error names the format as earlier kilns did ("cannot write png: ...").
-  write_atomically(preview_path, format, [&](const std::string& temporary) -> std::string {
-    auto out = OIIO::ImageOutput::create(format);
-    if (!out) return "OpenImageIO has no " + format + " writer: " + OIIO::geterror();
-    bool ok = out->open(temporary, out_spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data());
-    ok = out->close() && ok;
-    const std::string reason = ok ? std::string() : out->geterror();
-    return ok || !reason.empty() ? reason : std::string("rename failed");
-  });
+  write_atomically(preview_path, format,
+                   [&](const std::string& temporary) { return write_bytes(temporary, encoded); });
 }
 
 }  // namespace kiln::codecs_module
