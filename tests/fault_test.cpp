@@ -97,6 +97,82 @@ TEST(faults, sigint_stops_a_render_of_65536_samples_a_pixel_within_a_second) {
   expect_signal_stops_render(SIGINT, long_pixels_render);
 }
 
+// Writing 800x800 one-pixel tiles takes seconds: long enough to signal kiln mid-write.
+std::vector<std::string> long_write(const std::string& output) {
+  return {"render", demo_scene, "-o", output, "--width", "800", "--height", "800", "--exr-tile-size", "1",
+          "--aovs", "beauty", "--threads", "2", "-q"};
+}
+
+// The temporary file kiln writes beside output (".frame.exr.tmp-HOST-PID"), once it exists.
+std::string wait_for_temporary(const std::string& folder) {
+  for (int i = 0; i < 6000; ++i) {
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.path().filename().string().rfind(".frame.exr.tmp-", 0) == 0) return entry.path().string();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return "";
+}
+
+TEST(faults, sigterm_during_the_exr_write_stops_it_and_keeps_the_earlier_output) {
+  const std::string folder = scratch_folder("signal_during_write");
+  const std::string output = folder + "/frame.exr";
+  write_file(output, previous_content);
+  child_process child = start_kiln(long_write(output), folder);
+  ASSERT_FALSE(wait_for_temporary(folder).empty()) << child.stderr_text();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const auto sent = std::chrono::steady_clock::now();
+  ASSERT_EQ(::kill(child.pid, SIGTERM), 0);
+  const std::optional<int> code = child.wait_at_most(60);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 128 + SIGTERM) << child.stderr_text();
+  EXPECT_LT(seconds, 2.0) << "kiln kept writing for " << seconds << " s";
+  const std::vector<std::string> message = lines(child.stderr_text());
+  ASSERT_EQ(message.size(), 1u) << child.stderr_text();
+  EXPECT_NE(message[0].find(output + ": interrupted while writing, nothing written"), std::string::npos);
+  EXPECT_EQ(read_file(output), previous_content);
+  EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a temporary file was left behind";
+}
+
+// A second signal kills kiln at once (the default action), and still no temporary file is left.
+TEST(faults, two_signals_during_the_exr_write_leave_no_temporary_file) {
+  const std::string folder = scratch_folder("two_signals_during_write");
+  const std::string output = folder + "/frame.exr";
+  write_file(output, previous_content);
+  // Once the temporary file exists the handler is long installed: the first signal asks kiln to
+  // stop, the second kills it.
+  child_process child = start_kiln(long_write(output), folder);
+  ASSERT_FALSE(wait_for_temporary(folder).empty()) << child.stderr_text();
+  ASSERT_EQ(::kill(child.pid, SIGTERM), 0);
+  ASSERT_EQ(::kill(child.pid, SIGTERM), 0);
+  const std::optional<int> code = child.wait_at_most(60);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_TRUE(*code == -SIGTERM || *code == 128 + SIGTERM) << *code;
+  EXPECT_EQ(read_file(output), previous_content);
+  EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a temporary file was left behind";
+}
+
+// SIGKILL cannot be handled: its temporary file stays, and the next write into the folder
+// removes it (its process is gone), while a live process's temporary file is left alone.
+TEST(faults, the_next_write_removes_what_a_killed_write_left) {
+  const std::string folder = scratch_folder("killed_during_write");
+  const std::string output = folder + "/frame.exr";
+  child_process child = start_kiln(long_write(output), folder);
+  const std::string left = wait_for_temporary(folder);
+  ASSERT_FALSE(left.empty()) << child.stderr_text();
+  ASSERT_EQ(::kill(child.pid, SIGKILL), 0);
+  EXPECT_EQ(child.wait(), -SIGKILL);
+  ASSERT_TRUE(fs::exists(left));
+  // A temporary file of a process that is alive (this test) stays.
+  const std::string alive = left.substr(0, left.rfind('-') + 1) + std::to_string(::getpid());
+  write_file(alive, "being written");
+  auto result = testing::run_kiln({"render", demo_scene, "-o", folder + "/other.exr", "--width", "8", "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_FALSE(fs::exists(left)) << left;
+  EXPECT_TRUE(fs::exists(alive));
+  fs::remove(alive);
+}
+
 TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
   std::string folder = scratch_folder("full_disk");
   std::string output = folder + "/frame.exr";

@@ -4,6 +4,8 @@
 
 #include <csignal>
 
+#include "io/exr/atomic_write.h"
+
 namespace kiln {
 
 namespace {
@@ -20,7 +22,9 @@ extern "C" void on_interrupt(int signo) {
   // reaches only the batch) sees each signal exactly once.
   if (const pid_t child = forward_to.load(); child > 0) ::kill(child, signo);
   if (requested.exchange(true)) {
-    // Second signal: the user insists. Fall back to the default action (terminate).
+    // Second signal: the user insists. Fall back to the default action (terminate), leaving no
+    // temporary file of a write in progress behind.
+    remove_temporary_files_in_progress();
     std::signal(signo, SIG_DFL);
     std::raise(signo);
     return;
@@ -39,7 +43,7 @@ sigset_t interrupt_signals() {
 }  // namespace
 
 void install_interrupt_handlers() {
-  struct sigaction action {};
+  struct sigaction action{};
   action.sa_handler = on_interrupt;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;

@@ -92,7 +92,7 @@ void run_render(const render_options& options, const render_fingerprint* known) 
     const progress_report report(progress, !options.quiet, options.progress_interval);
     result = run_job(job);
   }
-  write_job_outputs(result, options);
+  write_job_outputs(result, options, &interrupt_requested());
   if (!options.quiet && options.summary_line) print_summary(result, options);
 }
 

@@ -342,8 +342,9 @@ render_job_result run_job(const render_job& job) {
   }
 }
 
-void write_job_outputs(const render_job_result& result, const render_options& options) {
-  write_exr(options.output, result.image, result.storage, result.metadata);
+void write_job_outputs(const render_job_result& result, const render_options& options,
+                       const std::atomic<bool>* cancel) {
+  write_exr(options.output, result.image, result.storage, result.metadata, cancel);
   // From the file as written, so the preview shows exactly what the EXR holds.
   if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
 }

@@ -29,10 +29,10 @@
 
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
-#include "io/exr/exr_header_copy.h"
 #include "io/exr/cryptomatte.h"
 #include "io/exr/exr_file_stream.h"
 #include "io/exr/exr_header.h"
+#include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
 #include "io/exr/exr_threads.h"
 
@@ -279,23 +279,36 @@ Imf::FrameBuffer frame_buffer(const Imf::Header& header, const unsigned char* pi
   return buffer;
 }
 
+// Stops a write between chunks once cancel is raised (a signal): a large file, or one of a million
+// tiny tiles, must not keep a signalled process writing for minutes.
+void throw_if_cancelled(const std::atomic<bool>* cancel) {
+  if (cancel && cancel->load()) throw error(error_kind::interrupted, "", "", "interrupted while writing");
+}
+
 // Writes every pixel of a scanline (OutputFile, OutputPart) or tiled (TiledOutputFile,
-// TiledOutputPart) file or part.
+// TiledOutputPart) file or part: 64 scanlines or one row of tiles at a time.
 template <class scanline_output>
-void write_lines(scanline_output& out, const Imf::FrameBuffer& buffer) {
+void write_lines(scanline_output& out, const Imf::FrameBuffer& buffer, const std::atomic<bool>* cancel) {
   out.setFrameBuffer(buffer);
-  out.writePixels(out.header().dataWindow().max.y - out.header().dataWindow().min.y + 1);
+  const int rows = out.header().dataWindow().max.y - out.header().dataWindow().min.y + 1;
+  for (int done = 0; done < rows; done += 64) {
+    throw_if_cancelled(cancel);
+    out.writePixels(std::min(64, rows - done));
+  }
 }
 template <class tiled_output>
-void write_tiles(tiled_output& out, const Imf::FrameBuffer& buffer) {
+void write_tiles(tiled_output& out, const Imf::FrameBuffer& buffer, const std::atomic<bool>* cancel) {
   out.setFrameBuffer(buffer);
-  out.writeTiles(0, out.numXTiles(0) - 1, 0, out.numYTiles(0) - 1);
+  for (int row = 0; row < out.numYTiles(0); ++row) {
+    throw_if_cancelled(cancel);
+    out.writeTiles(0, out.numXTiles(0) - 1, row, row);
+  }
 }
 
 // Writes headers' parts into stream: one makes a single-part file (OpenEXR 1.x layout, no "type"
 // attribute), more a multi-part file whose parts each name their type.
 void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, const unsigned char* pixels,
-                size_t pixel) {
+                size_t pixel, const std::atomic<bool>* cancel) {
   size_t offset = 0;
   if (headers.size() == 1) {
     // OpenEXR names a single-part file's type when it reads one; the file itself never did.
@@ -303,10 +316,10 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
     const Imf::FrameBuffer buffer = frame_buffer(header, pixels, pixel, offset);
     if (header.hasTileDescription()) {
       Imf::TiledOutputFile out(stream, header);
-      write_tiles(out, buffer);
+      write_tiles(out, buffer, cancel);
     } else {
       Imf::OutputFile out(stream, header);
-      write_lines(out, buffer);
+      write_lines(out, buffer, cancel);
     }
     return;
   }
@@ -318,10 +331,10 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
     const Imf::FrameBuffer buffer = frame_buffer(typed[size_t(part)], pixels, pixel, offset);
     if (typed[size_t(part)].hasTileDescription()) {
       Imf::TiledOutputPart out(file, part);
-      write_tiles(out, buffer);
+      write_tiles(out, buffer, cancel);
     } else {
       Imf::OutputPart out(file, part);
-      write_lines(out, buffer);
+      write_lines(out, buffer, cancel);
     }
   }
 }
@@ -330,21 +343,29 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
 // interleaved, `pixel` bytes a pixel, row-major over the parts' (common) data window: the parts one
 // after another, each part's channels in its channel list's order and in their own formats.
 void write_parts(const std::string& path, const std::vector<Imf::Header>& headers,
-                 const unsigned char* pixels, size_t pixel) {
+                 const unsigned char* pixels, size_t pixel, const std::atomic<bool>* cancel = nullptr) {
   use_exr_threads();
-  write_atomically(path, "EXR", [&](const std::string& temporary) -> std::string {
-    exr_file_stream stream(temporary);
-    if (!stream.error().empty()) return stream.error();
-    try {
-      // The files' destructors write the offset tables; a failure there reaches only the stream.
-      write_file(stream, headers, pixels, pixel);
-    } catch (const std::exception& e) {
-      const std::string reason = stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
-      stream.close();
-      return reason;
-    }
-    return stream.close();
-  });
+  write_atomically(
+      path, "EXR",
+      [&](const std::string& temporary) -> std::string {
+        exr_file_stream stream(temporary);
+        if (!stream.error().empty()) return stream.error();
+        try {
+          // The files' destructors write the offset tables; a failure there reaches only the stream.
+          write_file(stream, headers, pixels, pixel, cancel);
+        } catch (const error& e) {
+          stream.close();
+          if (e.kind() != error_kind::interrupted) throw;
+          throw error(error_kind::interrupted, path, "", "interrupted while writing, nothing written");
+        } catch (const std::exception& e) {
+          const std::string reason =
+              stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
+          stream.close();
+          return reason;
+        }
+        return stream.close();
+      },
+      cancel);
 }
 
 // The bytes a pixel of headers' channels takes, in their formats.
@@ -407,7 +428,7 @@ void check_exr_settings(const aov_set& aovs, const exr_settings& settings) {
 }
 
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
-               const exr_metadata& metadata) {
+               const exr_metadata& metadata, const std::atomic<bool>* cancel) {
   check_output_writable(path);
   if (f.width <= 0 || f.height <= 0 || f.color.size() != size_t(f.width) * f.height)
     throw io_error(path, "refusing to write an empty or inconsistent image");
@@ -459,7 +480,7 @@ void write_exr(const std::string& path, const film& f, const exr_settings& setti
       }
     }
   }
-  write_parts(path, headers, pixels.data(), pixel);
+  write_parts(path, headers, pixels.data(), pixel, cancel);
 }
 
 void write_exr(const std::string& path, const exr_image& image) {

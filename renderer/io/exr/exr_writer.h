@@ -4,6 +4,7 @@
 // renamed into place, so a failed write never leaves a partial image.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,9 +48,10 @@ struct stored_layer {
 };
 std::vector<stored_layer> stored_layers(const film& f, const exr_settings& settings);
 
-// Writes the film to path atomically. Throws kiln::error (io) on failure.
+// Writes the film to path atomically. Throws kiln::error (io) on failure, and (interrupted) when
+// cancel is raised before the file is renamed into place: then nothing is written.
 void write_exr(const std::string& path, const film& f, const exr_settings& settings,
-               const exr_metadata& metadata);
+               const exr_metadata& metadata, const std::atomic<bool>* cancel = nullptr);
 
 // Writes an image read by read_exr (possibly with other pixels and data window) to path
 // atomically, with its header, parts, compression, tiling and per-channel formats. Throws kiln::error (io) on
