@@ -3,7 +3,7 @@
 // functions), BLEND composites alpha·surface + (1 - alpha)·behind and lets (1 - alpha) of the light
 // through to shadows, and doubleSided false culls back faces for camera and secondary rays.
 #include "accel/embree/embree_accelerator.h"
-#include "shade/alpha_coverage.h"
+#include "scene/alpha_coverage.h"
 #include "shade/whitted.h"
 #include "support/shadow_probe.h"
 #include "support/test_scenes.h"

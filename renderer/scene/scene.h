@@ -44,8 +44,8 @@ struct texture {
   sampler sampling;
 };
 
-// A material's use of a texture: which texture, which UV set, and a scale (normal scale or
-// occlusion strength). texture < 0 means none.
+// A material's use of a texture: which texture, which UV set, and a scale (the normal texture's
+// scale). texture < 0 means none.
 struct texture_ref {
   int32_t texture = -1;
   uint32_t texcoord = 0;  // TEXCOORD_n set (after KHR_texture_transform's texCoord override)
@@ -75,7 +75,6 @@ struct material {
   float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
   texture_ref emissive_texture;    // sRGB
   texture_ref normal_texture;
-  texture_ref occlusion_texture;
   float specular_factor = 1.0f;      // KHR_materials_specular
   vec3 specular_color_factor{1.0f};  // KHR_materials_specular
   float ior = 1.5f;                  // KHR_materials_ior
@@ -95,13 +94,6 @@ struct material {
   bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
 
   bool has_volume() const { return thickness_factor > 0.0f; }
-  // Whether shading reads any texture of this material (every texture_ref above: keep in step), so
-  // whether a hit needs its UV footprint at all.
-  bool samples_textures() const {
-    return base_color_texture.present() || metallic_roughness_texture.present() ||
-           emissive_texture.present() || normal_texture.present() || occlusion_texture.present() ||
-           transmission_texture.present();
-  }
 };
 
 // One unique glTF mesh primitive, as triangles, in its own object space. Stored once.

@@ -104,7 +104,7 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
   // The UV footprint only feeds texture lookups: an untextured material skips its four extra
   // projections and UV evaluations (the image cannot change; the footprint stays empty).
   vec3 dp_du, dp_dv;
-  if (m.samples_textures()) {
+  if (samples_textures(m)) {
     if (!quadric_world_uv_jacobian(inst, q, h.primitive_id, object, dp_du, dp_dv)) return sp;
     sp.footprint0 =
         footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
@@ -211,7 +211,7 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
       sp.curvature = triangle_curvature(inst, m, idx);
     // As for quadrics: the UV footprints only feed texture lookups, so an untextured material
     // (ToyCar's glass, say) skips them.
-    if (s.materials[inst.material].samples_textures()) {
+    if (samples_textures(s.materials[inst.material])) {
       const vec3 direction = glm::normalize(r.direction);
       if (!m.texcoords0.empty())
         sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);

@@ -37,12 +37,6 @@ struct surface_point {
   bool front_face = true;  // the ray arrived on glTF's front side
 };
 
-// Interpolates attribute values with Embree's barycentric convention: (1-u-v)·a0 + u·a1 + v·a2.
-template <typename T>
-T interpolate(const T& a0, const T& a1, const T& a2, float u, float v) {
-  return (1.0f - u - v) * a0 + u * a1 + v * a2;
-}
-
 // Materials whose roughness may fall below this (by factor or texture) get a curvature estimate (see
 // surface_point); a rougher highlight is already wider than any footprint the estimate would widen
 // it to.

@@ -14,22 +14,15 @@ size_t slot(uint32_t image_index, texel_encoding encoding) {
 }
 
 // Per image and encoding (see slot()): whether some material reads it through a mip-mapped
-// sampler. Base colour and emissive are sRGB; metallic-roughness, normal and transmission linear.
-// Occlusion is not a shading input, so its image gets no pyramid.
+// sampler.
 std::vector<bool> mip_mapped_uses(const scene& s) {
   std::vector<bool> used(s.images.size() * 2, false);
-  auto mark = [&](const texture_ref& ref, texel_encoding e) {
-    if (!ref.present()) return;
-    const texture& t = s.textures[size_t(ref.texture)];
-    if (t.sampling.mipmap != mip_mode::none) used[slot(t.image, e)] = true;
-  };
-  for (const material& m : s.materials) {
-    mark(m.base_color_texture, texel_encoding::srgb);
-    mark(m.emissive_texture, texel_encoding::srgb);
-    mark(m.metallic_roughness_texture, texel_encoding::linear);
-    mark(m.normal_texture, texel_encoding::linear);
-    mark(m.transmission_texture, texel_encoding::linear);
-  }
+  for (const material& m : s.materials)
+    for (const texture_slot& slot : texture_slots(m)) {
+      if (!slot.ref->present()) continue;
+      const texture& t = s.textures[size_t(slot.ref->texture)];
+      if (t.sampling.mipmap != mip_mode::none) used[kiln::slot(t.image, slot.encoding)] = true;
+    }
   return used;
 }
 

@@ -1,5 +1,5 @@
 // Mip-mapped texture filtering for minification, over pyramids kiln builds and keeps in memory
-// (shade/mip_pyramid.h): one per image and encoding that a mip-mapped sampler reads. A lookup is
+// (scene/mip_pyramid.h): one per image and encoding that a mip-mapped sampler reads. A lookup is
 // anisotropic: the footprint's ellipse is covered by n trilinear probes along its major axis, each
 // at the level whose texels match the probe's width, n = the ellipse's aspect ratio rounded, at
 // most max_anisotropy; a nearly round footprint is one isotropic trilinear probe. Lookups are pure
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "shade/mip_pyramid.h"
+#include "scene/mip_pyramid.h"
 #include "shade/texture_sampling.h"
 
 namespace kiln {

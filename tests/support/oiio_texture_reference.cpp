@@ -137,21 +137,13 @@ size_t slot(uint32_t texture_index, texel_encoding encoding) {
 }
 
 // Per texture and encoding (see slot()): whether some material reads it through a mip-mapped
-// sampler. Base colour and emissive are sRGB, every other slot linear.
+// sampler.
 std::vector<bool> mip_mapped_uses(const scene& s) {
   std::vector<bool> used(s.textures.size() * 2, false);
-  auto mark = [&](const texture_ref& ref, texel_encoding e) {
-    if (ref.present() && s.textures[size_t(ref.texture)].sampling.mipmap != mip_mode::none)
-      used[slot(uint32_t(ref.texture), e)] = true;
-  };
-  for (const material& m : s.materials) {
-    mark(m.base_color_texture, texel_encoding::srgb);
-    mark(m.emissive_texture, texel_encoding::srgb);
-    mark(m.metallic_roughness_texture, texel_encoding::linear);
-    mark(m.normal_texture, texel_encoding::linear);
-    mark(m.occlusion_texture, texel_encoding::linear);
-    mark(m.transmission_texture, texel_encoding::linear);
-  }
+  for (const material& m : s.materials)
+    for (const texture_slot& t : texture_slots(m))
+      if (t.ref->present() && s.textures[size_t(t.ref->texture)].sampling.mipmap != mip_mode::none)
+        used[slot(uint32_t(t.ref->texture), t.encoding)] = true;
   return used;
 }
 

@@ -12,7 +12,7 @@
 #include "accel/embree/embree_quadrics.h"
 #include "core/error.h"
 #include "geometry/quadric.h"
-#include "shade/alpha_coverage.h"
+#include "scene/alpha_coverage.h"
 
 namespace kiln {
 

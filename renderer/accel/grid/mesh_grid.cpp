@@ -3,7 +3,7 @@
 #include "accel/grid/triangle_box.h"
 #include "geometry/triangle.h"
 #include "geometry/watertight_triangle.h"
-#include "shade/alpha_coverage.h"
+#include "scene/alpha_coverage.h"
 
 namespace kiln {
 

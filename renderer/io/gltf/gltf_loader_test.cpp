@@ -312,7 +312,8 @@ gltf_builder textured_quad(const std::string& png_base64, int texcoord_component
               {"metallicFactor", 0.25},
               {"roughnessFactor", 0.75}}},
             {"normalTexture", {{"index", 0}, {"scale", 0.5}}},
-            {"occlusionTexture", {{"index", 0}, {"strength", 0.3}}},
+            // Occlusion is never decoded (no ambient term): its texture reads the corrupt image.
+            {"occlusionTexture", {{"index", 1}, {"strength", 0.3}}},
             {"emissiveFactor", {1, 0.5, 0}},
             {"alphaMode", "MASK"},
             {"alphaCutoff", 0.4},
@@ -353,7 +354,7 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   EXPECT_EQ(m.base_color_texture.texture, 0);
   EXPECT_EQ(m.normal_texture.texture, 0);
   EXPECT_FLOAT_EQ(m.normal_texture.scale, 0.5f);
-  EXPECT_FLOAT_EQ(m.occlusion_texture.scale, 0.3f);
+  EXPECT_EQ(s.images.size(), 1u);  // the occlusion texture's image is not held
   EXPECT_FALSE(m.emissive_texture.present());
   EXPECT_FALSE(m.metallic_roughness_texture.present());
   EXPECT_FALSE(m.unlit);

@@ -43,7 +43,8 @@ std::pair<int, int> extension_texture_slot(const tinygltf::Material& m, const ch
           effective_texcoord(transform_of(info), has_texcoord ? info.Get("texCoord").GetNumberAsInt() : 0)};
 }
 
-// The (index, texCoord) pairs of every texture slot of a material kiln reads.
+// The (index, texCoord) pairs of every texture slot of a material kiln reads: the glTF side of
+// scene/texture_eval.h's texture_slots() (occlusion is not read).
 std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
   const auto slot = [](int index, int texcoord, const tinygltf::ExtensionMap& extensions) {
     return std::pair<int, int>{index, effective_texcoord(transform_of(extensions), texcoord)};
@@ -53,7 +54,6 @@ std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
           slot(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                pbr.metallicRoughnessTexture.extensions),
           slot(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions),
-          slot(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions),
           slot(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions),
           extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
 }
@@ -338,8 +338,6 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
           "normalTexture.scale and occlusionTexture.strength must be finite");
   m.normal_texture = make_ref(model, src.normalTexture.index, src.normalTexture.texCoord,
                               src.normalTexture.scale, remap, out, file);
-  m.occlusion_texture = make_ref(model, src.occlusionTexture.index, src.occlusionTexture.texCoord,
-                                 src.occlusionTexture.strength, remap, out, file);
   apply_texture_transform(transform_of(pbr.baseColorTexture.extensions), m.base_color_texture, file,
                           pointer_join(pbr_where, "baseColorTexture"));
   apply_texture_transform(transform_of(pbr.metallicRoughnessTexture.extensions), m.metallic_roughness_texture,
@@ -348,7 +346,10 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
                           pointer_join(where, "emissiveTexture"));
   apply_texture_transform(transform_of(src.normalTexture.extensions), m.normal_texture, file,
                           pointer_join(where, "normalTexture"));
-  apply_texture_transform(transform_of(src.occlusionTexture.extensions), m.occlusion_texture, file,
+  // occlusionTexture is checked like every texture but not converted: Whitted shading has no
+  // ambient term for it to darken, so its image is never decoded.
+  texture_ref unused_occlusion;
+  apply_texture_transform(transform_of(src.occlusionTexture.extensions), unused_occlusion, file,
                           pointer_join(where, "occlusionTexture"));
 
   if (src.alphaMode == "OPAQUE")

@@ -1,7 +1,6 @@
-#include "shade/alpha_coverage.h"
+#include "scene/alpha_coverage.h"
 
-#include "shade/surface.h"
-#include "shade/texture_sampling.h"
+#include "scene/texture_eval.h"
 
 namespace kiln {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "shade/texture_sampling.h"
+#include "scene/texture_eval.h"
 
 namespace kiln {
 

@@ -1,7 +1,7 @@
 // glTF alpha rules as plain functions of (scene, instance, triangle, barycentrics), so that every
 // accelerator applies them identically: the Embree backend calls alpha_masked_out() from its
 // intersection and occlusion filter functions, the grid backend calls it in its triangle loop.
-// Depends on scene and texture sampling only; never on a backend.
+// Depends on scene only; never on a backend or on shading.
 #pragma once
 
 #include "scene/scene.h"

@@ -1,4 +1,4 @@
-#include "shade/mip_pyramid.h"
+#include "scene/mip_pyramid.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
