@@ -3,12 +3,11 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstring>
 #include <string>
 #include <vector>
 
-#include "accel/embree/embree_error_log.h"
+#include "accel/embree/embree_device.h"
 #include "accel/embree/embree_quadrics.h"
 #include "core/error.h"
 #include "geometry/quadric.h"
@@ -18,33 +17,21 @@ namespace kiln {
 
 namespace {
 
-// Embree's memory monitor: bytes it holds now and at most (it reports frees as negative sizes).
-struct embree_memory {
-  std::atomic<int64_t> bytes{0};
-  std::atomic<int64_t> peak_bytes{0};
-};
-
-bool count_embree_memory(void* user, ssize_t bytes, bool /*post*/) {
-  auto& m = *static_cast<embree_memory*>(user);
-  const int64_t now = m.bytes += int64_t(bytes);
-  int64_t peak = m.peak_bytes.load();
-  while (now > peak && !m.peak_bytes.compare_exchange_weak(peak, now)) {
-  }
-  return true;  // never refuse an allocation
-}
-
 }  // namespace
 
 // Embree reports errors through a C callback; the log records the first message and kiln throws
-// after the Embree call has returned: after each build stage, and after rendering.
+// after the Embree call has returned: after each build stage, and after rendering. The device is
+// the process's (embree_device.h); this accelerator owns only its scenes.
 struct embree_accelerator::state {
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::vector<RTCScene> mesh_scenes;
   std::vector<RTCScene> quadric_scenes;         // one user-geometry scene per used quadric definition
   std::vector<prepared_quadric> quadric_forms;  // their callbacks' data; sized once, never moved
-  embree_error_log errors;
-  embree_memory memory;
+  embree_error_log errors;                      // this accelerator's build errors
+  uint64_t unscoped_errors_before = 0;          // the process's traversal errors when it was built
+  int64_t built_bytes = 0;                      // what its build added to Embree's memory
+  int64_t peak_bytes = 0;                       // and the most the build held above its start
   bool has_quadrics = false;  // rtcIntersect1M cannot carry the world ray quadric callbacks read
 
   void throw_if_failed(const std::string& during) const { errors.throw_if_any(during); }
@@ -55,7 +42,6 @@ struct embree_accelerator::state {
       if (s) rtcReleaseScene(s);
     for (RTCScene s : quadric_scenes)
       if (s) rtcReleaseScene(s);
-    if (device) rtcReleaseDevice(device);
   }
 };
 
@@ -180,13 +166,11 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
 
 embree_accelerator::embree_accelerator(const scene& s, const embree_options& options)
     : state_(std::make_unique<state>()), scene_(s), options_(options) {
-  state_->device = rtcNewDevice("verbose=0");
-  if (!state_->device)
-    throw error(
-        error_kind::render, "", "",
-        "cannot create Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-  state_->errors.attach(state_->device);
-  rtcSetDeviceMemoryMonitorFunction(state_->device, &count_embree_memory, &state_->memory);
+  state_->device = process_embree_device();
+  embree_error_scope scope(state_->errors);
+  state_->unscoped_errors_before = unscoped_embree_errors();
+  const int64_t bytes_before = embree_bytes_now();
+  reset_embree_peak();
 
   // Unique meshes first, built once, however many instances place them.
   state_->mesh_scenes.assign(s.meshes.size(), nullptr);
@@ -228,11 +212,17 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
   }
   rtcCommitScene(state_->top);
   state_->throw_if_failed("building the instance BVH");
+  state_->built_bytes = embree_bytes_now() - bytes_before;
+  state_->peak_bytes = embree_peak_bytes_since_reset() - bytes_before;
 }
 
 embree_accelerator::~embree_accelerator() = default;
 
-void embree_accelerator::throw_if_failed() const { state_->throw_if_failed("tracing rays"); }
+void embree_accelerator::throw_if_failed() const {
+  state_->throw_if_failed("tracing rays");
+  if (unscoped_embree_errors() != state_->unscoped_errors_before)
+    unscoped_embree_error_log().throw_if_any("tracing rays");
+}
 
 std::optional<hit> embree_accelerator::intersect(const ray& r) const {
   if (!is_valid(r)) return std::nullopt;
@@ -268,10 +258,10 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
 }
 
 size_t embree_accelerator::embree_bytes() const {
-  return size_t(std::max<int64_t>(0, state_->memory.bytes.load()));
+  return size_t(std::max<int64_t>(0, state_->built_bytes));
 }
 size_t embree_accelerator::embree_peak_bytes() const {
-  return size_t(std::max<int64_t>(0, state_->memory.peak_bytes.load()));
+  return size_t(std::max<int64_t>(0, state_->peak_bytes));
 }
 
 bool embree_accelerator::occluded(const ray& r) const {

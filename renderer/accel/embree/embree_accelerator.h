@@ -32,8 +32,8 @@ class embree_accelerator final : public accelerator {
   void intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const override;
 
   const embree_options& options() const { return options_; }
-  // Bytes Embree holds now (BVHs and its copies of the vertices and indices) and at most so far,
-  // from its memory monitor callback.
+  // Bytes this accelerator's build added to Embree's memory (BVHs and its copies of the vertices
+  // and indices) and the most it held during the build, from the device's memory monitor.
   size_t embree_bytes() const;
   size_t embree_peak_bytes() const;
 

@@ -4,7 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "accel/embree/embree_error_log.h"
+#include "accel/embree/embree_device.h"
+#include "core/error.h"
 #include "geometry/triangle.h"
 
 namespace kiln {
@@ -176,14 +177,16 @@ namespace kiln {
 namespace {
 
 TEST(embree_error_log, records_the_first_device_error_and_throws_it_as_a_render_error) {
-  RTCDevice device = rtcNewDevice("verbose=0");
+  RTCDevice device = process_embree_device();
   ASSERT_NE(device, nullptr);
   embree_error_log log;
-  log.attach(device);
-  EXPECT_NO_THROW(log.throw_if_any("building"));
-  // An invalid geometry type makes Embree call the error callback instead of returning an error.
-  RTCGeometry geometry = rtcNewGeometry(device, RTCGeometryType(999));
-  EXPECT_EQ(geometry, nullptr);
+  {
+    embree_error_scope scope(log);
+    EXPECT_NO_THROW(log.throw_if_any("building"));
+    // An invalid geometry type makes Embree call the error callback instead of returning an error.
+    RTCGeometry geometry = rtcNewGeometry(device, RTCGeometryType(999));
+    EXPECT_EQ(geometry, nullptr);
+  }
   try {
     log.throw_if_any("tracing rays");
     ADD_FAILURE() << "the recorded Embree error was not thrown";
@@ -192,7 +195,27 @@ TEST(embree_error_log, records_the_first_device_error_and_throws_it_as_a_render_
     EXPECT_NE(std::string(e.what()).find("Embree error"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("while tracing rays"), std::string::npos) << e.what();
   }
-  rtcReleaseDevice(device);
+}
+
+// Every accelerator of a process shares one device: a second build does not create another, and
+// an error inside one accelerator's scope is not blamed on another.
+TEST(embree_device, one_device_serves_every_accelerator_and_errors_stay_with_their_scope) {
+  scene s = two_instances();
+  embree_accelerator first(s);
+  const uint64_t unscoped = unscoped_embree_errors();
+  embree_error_log other;
+  {
+    embree_error_scope scope(other);
+    EXPECT_EQ(rtcNewGeometry(process_embree_device(), RTCGeometryType(999)), nullptr);
+  }
+  EXPECT_THROW(other.throw_if_any("test"), error);
+  EXPECT_EQ(unscoped_embree_errors(), unscoped);
+  EXPECT_NO_THROW(first.throw_if_failed());
+  embree_accelerator second(s);
+  EXPECT_EQ(process_embree_device(), process_embree_device());
+  // Each build measures its own memory: the same scene costs the same bytes twice.
+  EXPECT_GT(first.embree_bytes(), 0u);
+  EXPECT_EQ(first.embree_bytes(), second.embree_bytes());
 }
 
 TEST(embree_accelerator, a_healthy_scene_reports_no_traversal_error) {
