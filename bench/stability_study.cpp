@@ -1,5 +1,5 @@
 // The stability study: where each self-intersection offset and each ray solver fails, as CSV for
-// charts 4 and 5 (tools/charts/). A measurement program, not a test: tests/stability asserts on
+// charts 4 and 5 (bench/charts/). A measurement program, not a test: tests/stability asserts on
 // the same experiments (bench/stability/). Fixed seeds, so a rerun gives the same rates.
 //
 //   stability_study OUT_DIR [--rays N] [--solver-rays N] [--torus-rays N]

@@ -13,8 +13,8 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "core/format_number.h"
 #include "io/gltf/gltf_loader.h"
 #include "support/run_kiln.h"
 
@@ -209,12 +209,6 @@ std::string describe(const problems& p) {
   return text;
 }
 
-std::string str(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
 // README: the TopLeft quad shows the upper-left part of the texture (UV 0..0.4), and so on; each
 // part has its label and a checkered corner mark, so the dark pixels of each quad lie in its outer
 // corner. A flipped U or V moves them to another corner.
@@ -324,14 +318,16 @@ problems arrow_problems(const fs::path& file, const std::string& name) {
     if (a.pixels.empty()) continue;
     double correct = a.distance(centre(markers[0])), angle = a.axis_angle_to(centre(markers[0]));
     if (!(correct < 0.16 * area.width()))
-      found.push_back(std::string(quad) + ": arrow ends " + str(correct) + " px from the Correct marker");
+      found.push_back(std::string(quad) + ": arrow ends " + format_number(correct) +
+                      " px from the Correct marker");
     if (!(angle < 10.0))
-      found.push_back(std::string(quad) + ": arrow axis " + str(angle) + " degrees off the Correct marker");
+      found.push_back(std::string(quad) + ": arrow axis " + format_number(angle) +
+                      " degrees off the Correct marker");
     for (size_t i = 1; i < markers.size(); ++i) {
       double other = a.distance(centre(markers[i]));
       if (!(other > 0.3 * area.width() && correct < 0.6 * other))
-        found.push_back(std::string(quad) + ": arrow comes " + str(other) + " px near " + marker_nodes[i] +
-                        " (Correct: " + str(correct) + ")");
+        found.push_back(std::string(quad) + ": arrow comes " + format_number(other) + " px near " +
+                        marker_nodes[i] + " (Correct: " + format_number(correct) + ")");
     }
   }
   return found;
@@ -379,7 +375,7 @@ problems vertex_color_problems(const fs::path& file, const std::string& name) {
     for (int c = 0; c < 3; ++c)
       if (!(std::abs(t[c] - s[c]) <= (c == column ? 0.1f : 0.03f) * s[column]))
         found.push_back("cell " + std::to_string(column) + " channel " + std::to_string(c) + ": test " +
-                        str(t[c]) + ", sample " + str(s[c]));
+                        format_number(t[c]) + ", sample " + format_number(s[c]));
   }
   return found;
 }
@@ -410,12 +406,13 @@ problems texture_settings_problems(const model& m, const rendering& r, const std
   rect test = area.part(0.0, 0.0, 0.5, 1.0), sample = area.part(0.5, 0.0, 1.0, 1.0);
   double test_green = share(r, test, greenish), sample_green = share(r, sample, greenish);
   problems found;
-  if (!(sample_green > 0.05)) found.push_back(row + ": no green in the sample cell " + str(sample_green));
+  if (!(sample_green > 0.05))
+    found.push_back(row + ": no green in the sample cell " + format_number(sample_green));
   if (!(std::abs(test_green - sample_green) < 0.2 * sample_green))
-    found.push_back(row + ": green share of the test cell " + str(test_green) + ", of the sample " +
-                    str(sample_green));
+    found.push_back(row + ": green share of the test cell " + format_number(test_green) + ", of the sample " +
+                    format_number(sample_green));
   if (!(share(r, test, reddish) < 0.005))
-    found.push_back(row + ": red in the test cell " + str(share(r, test, reddish)));
+    found.push_back(row + ": red in the test cell " + format_number(share(r, test, reddish)));
   return found;
 }
 

@@ -2,7 +2,8 @@
 # Alternated A/B renders: each round runs every variant once, in order.
 # Usage: bench/perf/render_ab.sh ROUNDS COMMON_RENDER_ARGS... -- 'LABEL|ENV|EXTRA ARGS' ...
 # Prints one line per run: round, label, process CPU s (user+sys), wall s, render-phase wall s.
-# ENV is a list of NAME=VALUE (or empty), for the measurement-only switches of bench/perf/embree_flags.patch.
+# ENV is a list of NAME=VALUE (or empty), e.g. measurement-only switches a build was patched with
+# (docs/performance.md, "Embree scene and query flags").
 R=$1; shift; ARGS=(); while [ "$1" != "--" ]; do ARGS+=("$1"); shift; done; shift
 K=${KILN:-build/renderer/app/kiln}; T=${TMPDIR:-/tmp}
 for r in $(seq "$R"); do for v in "$@"; do

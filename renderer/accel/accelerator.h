@@ -1,4 +1,5 @@
-// The ray-query interface every traversal backend implements (Embree now, the grid later).
+// The ray-query interface every traversal backend implements (Embree, the uniform and adaptive
+// grids, brute force) and the wrappers around one (compare, ray recording, camera-ray batches).
 // Shading sees only this and the Scene, never a backend: two backends must return the same hit
 // for the same ray, which is what makes one a correctness reference for the other.
 #pragma once

@@ -14,8 +14,8 @@
 #include "accel/embree/embree_accelerator.h"
 #include "app/interrupt.h"
 #include "app/text_output.h"
-#include "bench/bench_run.h"
 #include "io/exr/exr_writer.h"
+#include "ray_replay/bench_run.h"
 
 namespace kiln {
 

@@ -1,6 +1,6 @@
 // `kiln bench`: renders one view with timing and replays its rays through a bare Embree loop, then
 // prints the measurements and writes them as JSON and CSV with the machine, thread count and
-// versions recorded. Wires app options to bench/; measures nothing itself.
+// versions recorded. Wires app options to ray_replay/; measures nothing itself.
 #pragma once
 
 #include <string>

@@ -215,7 +215,9 @@ prepared_quadric prepare_quadric(const quadric& q) {
   prepared_quadric p;
   p.shape = &q;
   p.bounds = stored_quadric_bounds(q);
-  // The padding keeps flat boxes (disks, caps) from rejecting hits by rounding.
+  // Grown by 1e-9 of the coordinates' magnitude per axis, so that rounding in the slab test cannot
+  // reject a hit on a face of the bounds (a sphere's silhouette, a cap at zmin or zmax, a disk's
+  // rim); the 1e-300 floor keeps the pad of an axis whose bounds are 0 from being zero.
   const dvec3 pad = 1e-9 * (glm::abs(p.bounds.lower) + glm::abs(p.bounds.upper)) + 1e-300;
   p.padded = bounds3{p.bounds.lower - pad, p.bounds.upper + pad};
   p.center = p.bounds.center();
@@ -236,8 +238,8 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
 std::optional<quadric_ray_hit> intersect_quadric(const prepared_quadric& p, const dvec3& o, const dvec3& d,
                                                  double tmin, double tmax, bool any_hit) {
   const quadric& q = *p.shape;
-  // Slab-test a slightly padded box first: it rejects most misses cheaply, and bounds the torus'
-  // root search.
+  // Slab-test the padded bounds first: it rejects most misses cheaply. Only the verdict is used:
+  // the torus clips the ray to its own padded box for its root search (intersect_torus).
   double t_enter = tmin, t_exit = tmax;
   if (!clip_ray_to_box(p.padded, o, d, t_enter, t_exit)) return std::nullopt;
 

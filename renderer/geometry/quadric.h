@@ -43,7 +43,7 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
 struct prepared_quadric {
   const quadric* shape = nullptr;  // must outlive this
   bounds3 bounds;                  // stored_quadric_bounds
-  bounds3 padded;                  // bounds grown by a few ulps for the slab test
+  bounds3 padded;                  // bounds grown by 1e-9 of |lower| + |upper| per axis (slab test)
   dvec3 center{0.0};               // of bounds: the re-centring point
   implicit_form side;              // the side surface's F (zero for disk and torus)
   bool has_caps = false;           // axial kind with caps

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "geometry/quadric.h"
 #include "io/gltf/gltf_common.h"
 #include "scene/coordinate_range.h"
@@ -12,13 +12,6 @@
 namespace kiln::gltf_internal {
 
 namespace {
-
-// Shortest readable form of a number for messages (-0.5, not -0.500000).
-std::string format_number(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 // Reads one definition's fields with the JSON path of each for error messages.
 class definition_reader {

@@ -1,24 +1,18 @@
 #include "io/gltf/gltf_validate.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include "core/error.h"
+#include "core/format_number.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_loader.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <sstream>
-#include <vector>
-
 namespace kiln::gltf_internal {
 namespace {
-
-std::string num(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 // Checks an index reference. -1 means "absent" for optional references; anything else must
 // name an existing element of a collection of `size` elements.
@@ -456,7 +450,8 @@ void validate_cameras(const tinygltf::Model& model, const std::string& file) {
       if (!all_finite({p.yfov, p.znear, p.zfar, p.aspectRatio}))
         throw input_error(file, at, "perspective camera has a NaN or infinite value");
       if (!(p.yfov > 0.0 && p.yfov < pi_d))
-        throw input_error(file, pointer_join(at, "yfov"), "yfov " + num(p.yfov) + " is not in (0, pi)");
+        throw input_error(file, pointer_join(at, "yfov"),
+                          "yfov " + format_number(p.yfov) + " is not in (0, pi)");
       if (p.aspectRatio < 0.0)
         throw input_error(file, pointer_join(at, "aspectRatio"), "aspectRatio must be positive");
       if (p.znear < 0.0) throw input_error(file, pointer_join(at, "znear"), "znear must not be negative");
@@ -495,8 +490,8 @@ void validate_lights(const tinygltf::Model& model, const std::string& file) {
       const double outer = light.spot.outerConeAngle;
       if (!all_finite({inner, outer}) || inner < 0.0 || outer > half_pi || inner >= outer)
         throw input_error(file, pointer_join(where, "spot"),
-                          "cone angles must satisfy 0 <= innerConeAngle (" + num(inner) +
-                              ") < outerConeAngle (" + num(outer) + ") <= pi/2");
+                          "cone angles must satisfy 0 <= innerConeAngle (" + format_number(inner) +
+                              ") < outerConeAngle (" + format_number(outer) + ") <= pi/2");
     }
   }
 }

@@ -2,12 +2,12 @@
 """Builds one static HTML page with the six speed-against-accuracy charts, the benchmark suite
 table, rendered images beside them, and the commands that reproduced each.
 
-Usage: /usr/bin/python3 tools/report.py [RESULTS_DIR]   (default build/bench-results)
+Usage: /usr/bin/python3 bench/report.py [RESULTS_DIR]   (default build/bench-results)
 
 Run the measurements first:
-  /usr/bin/python3 tools/speed_accuracy.py all          # charts 1, 2, 3, 6 and the suite
-  tools/stability_charts.sh                             # charts 4 and 5
-  /usr/bin/python3 tools/charts/speed_accuracy_charts.py build/bench-results
+  /usr/bin/python3 bench/speed_accuracy.py all          # charts 1, 2, 3, 6 and the suite
+  bench/stability_charts.sh                             # charts 4 and 5
+  /usr/bin/python3 bench/charts/speed_accuracy_charts.py build/bench-results
 The page is RESULTS_DIR/report.html; images are converted to PNG next to it (tools/exr_to_png.py).
 """
 import csv
@@ -21,18 +21,18 @@ ROOT = Path(__file__).resolve().parent.parent
 
 CHARTS = [
     ("chart1_antialiasing", "1. Anti-aliasing: RMSE against a 1024-spp reference vs time",
-     "/usr/bin/python3 tools/speed_accuracy.py antialiasing", ["antialiasing/stratified_1", "antialiasing/reference"]),
+     "/usr/bin/python3 bench/speed_accuracy.py antialiasing", ["antialiasing/stratified_1", "antialiasing/reference"]),
     ("chart2_tessellation", "2. Exact quadrics vs tessellated meshes: silhouette, normal and depth error vs time "
-     "and memory", "/usr/bin/python3 tools/speed_accuracy.py tessellation",
+     "and memory", "/usr/bin/python3 bench/speed_accuracy.py tessellation",
      ["tessellation/torus_quadric", "tessellation/torus_mesh_1000"]),
     ("chart3_accelerators", "3. Accelerators: time per ray vs scene size, build time and memory",
-     "/usr/bin/python3 tools/speed_accuracy.py accelerators", []),
+     "/usr/bin/python3 bench/speed_accuracy.py accelerators", []),
     ("stability/chart4_self_intersection", "4. Self-intersection: acne and leak rate vs scale and translation",
-     "tools/stability_charts.sh", []),
+     "bench/stability_charts.sh", []),
     ("stability/chart5_solvers", "5. Quadric solvers: error and miss rate vs distance against ns/ray",
-     "tools/stability_charts.sh", []),
+     "bench/stability_charts.sh", []),
     ("chart6_threads", "6. Tile scheduler: thread scaling and tile size",
-     "/usr/bin/python3 tools/speed_accuracy.py threads", []),
+     "/usr/bin/python3 bench/speed_accuracy.py threads", []),
 ]
 
 
@@ -49,7 +49,7 @@ def png_of(results, stem):
 def suite_table(results):
     path = results / "suite.csv"
     if not path.exists():
-        return "<p>No suite results (run <code>tools/speed_accuracy.py suite</code>).</p>"
+        return "<p>No suite results (run <code>bench/speed_accuracy.py suite</code>).</p>"
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     columns = ["label", "triangles_unique", "triangles_placed", "instances", "threads", "load_s", "build_s",
@@ -79,7 +79,7 @@ def main():
              ".images img{height:180px;margin-right:8px}code{background:#f3f3f3}</style>",
              "<h1>kiln: speed against accuracy</h1>",
              f"<p>Results in <code>{html.escape(str(results))}</code>.</p>",
-             "<h2>Benchmark suite</h2>", "<p><code>/usr/bin/python3 tools/speed_accuracy.py suite</code></p>",
+             "<h2>Benchmark suite</h2>", "<p><code>/usr/bin/python3 bench/speed_accuracy.py suite</code></p>",
              suite_table(results)]
     for stem, title, command, images in CHARTS:
         parts.append(f"<h2>{html.escape(title)}</h2><p><code>{html.escape(command)}</code></p>")

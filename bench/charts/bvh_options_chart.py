@@ -3,7 +3,7 @@
 under docs/performance/build-options/json/). The chart the default (medium, not compact) was chosen
 from (docs/performance.md, "BVH build options").
 
-usage: /usr/bin/python3 tools/charts/bvh_options_chart.py OUT_DIR SCENE_DIR...
+usage: /usr/bin/python3 bench/charts/bvh_options_chart.py OUT_DIR SCENE_DIR...
 """
 import json
 import statistics

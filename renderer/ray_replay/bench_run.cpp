@@ -1,4 +1,4 @@
-#include "bench/bench_run.h"
+#include "ray_replay/bench_run.h"
 
 #include <sys/resource.h>
 #include <tbb/blocked_range.h>
@@ -13,8 +13,8 @@
 
 #include "accel/embree/embree_accelerator.h"
 #include "accel/make_accelerator.h"
-#include "bench/ray_recorder.h"
 #include "core/error.h"
+#include "ray_replay/ray_recorder.h"
 #include "render/flush_denormals.h"
 
 namespace kiln {

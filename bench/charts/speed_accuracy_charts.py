@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Charts 1, 2, 3 and 6 of the speed-against-accuracy study, from tools/speed_accuracy.py's CSV files.
+"""Charts 1, 2, 3 and 6 of the speed-against-accuracy study, from bench/speed_accuracy.py's CSV files.
 
 chart1_antialiasing: RMSE against a 1024-spp reference vs render time, one line per sampling method.
 chart2_tessellation: silhouette, normal and depth error of meshes against the exact quadric, vs

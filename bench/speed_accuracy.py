@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Measures kiln's speed against its accuracy and writes one CSV per experiment.
 
-Usage: /usr/bin/python3 tools/speed_accuracy.py EXPERIMENT [--out DIR] [--quick]
+Usage: /usr/bin/python3 bench/speed_accuracy.py EXPERIMENT [--out DIR] [--quick]
 
 Experiments (each writes DIR/<experiment>.csv, default DIR build/bench-results):
   suite         `kiln bench` on the benchmark suite: scenes/, generated meshes of 10k, 100k, 1M and 4M
@@ -34,7 +34,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BUILD = os.path.join(ROOT, "build")
 KILN = os.path.join(BUILD, "renderer", "app", "kiln")
 MAKE_SCENES = os.path.join(BUILD, "bench", "make_bench_scenes")
-ACCEL_BENCH = os.path.join(BUILD, "renderer", "accel", "kiln_accel_benchmark")
+ACCEL_BENCH = os.path.join(BUILD, "bench", "kiln_accel_benchmark")
 ASSETS = os.path.join(os.path.dirname(ROOT), "shared", "assets")
 
 

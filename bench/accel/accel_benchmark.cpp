@@ -91,20 +91,23 @@ size_t triangles(const scene& s) {
 
 FILE* csv = nullptr;  // --csv: one row per scene and backend
 
-void csv_row(const std::string& name, const scene& s, const char* backend, const measurement& m, size_t rays) {
+void csv_row(const std::string& name, const scene& s, const char* backend, const measurement& m,
+             size_t rays) {
   if (!csv) return;
-  std::fprintf(csv, "%s,%zu,%zu,%s,%zu,%.6f,%.3f,%.4f,%.2f,%zu\n", name.c_str(), triangles(s), s.instances.size(),
-               backend, rays, m.build_seconds, m.memory_mb, m.mrays, m.mrays > 0 ? 1e3 / m.mrays : 0.0, m.hits);
+  std::fprintf(csv, "%s,%zu,%zu,%s,%zu,%.6f,%.3f,%.4f,%.2f,%zu\n", name.c_str(), triangles(s),
+               s.instances.size(), backend, rays, m.build_seconds, m.memory_mb, m.mrays,
+               m.mrays > 0 ? 1e3 / m.mrays : 0.0, m.hits);
   std::fflush(csv);
 }
 
 // Brute force tests every triangle per ray: only small scenes, on fewer rays.
 void run_brute_force(const std::string& name, const scene& s, size_t ray_count) {
-  const size_t rays_for_brute = std::max<size_t>(1000, std::min(ray_count, size_t(2e8) / std::max<size_t>(1, triangles(s))));
+  const size_t rays_for_brute =
+      std::max<size_t>(1000, std::min(ray_count, size_t(2e8) / std::max<size_t>(1, triangles(s))));
   const std::vector<ray> rays = random_rays(world_bounds(s), rays_for_brute);
   measurement b = measure([&] { return std::make_unique<brute_force_accelerator>(s); }, rays);
-  std::printf("%-22s %9zu tris | brute force: %.4f Mrays/s over %zu rays\n", name.c_str(), triangles(s), b.mrays,
-              rays.size());
+  std::printf("%-22s %9zu tris | brute force: %.4f Mrays/s over %zu rays\n", name.c_str(), triangles(s),
+              b.mrays, rays.size());
   csv_row(name, s, "brute-force", b, rays.size());
 }
 
@@ -147,7 +150,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "kiln_accel_benchmark: cannot write %s\n", argv[i]);
         return 1;
       }
-      std::fprintf(csv, "scene,triangles,instances,backend,rays,build_seconds,memory_mb,mrays_per_s,ns_per_ray,hits\n");
+      std::fprintf(
+          csv,
+          "scene,triangles,instances,backend,rays,build_seconds,memory_mb,mrays_per_s,ns_per_ray,hits\n");
     } else {
       rays = size_t(std::atol(arg.c_str()));
     }

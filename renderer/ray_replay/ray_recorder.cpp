@@ -1,4 +1,4 @@
-#include "bench/ray_recorder.h"
+#include "ray_replay/ray_recorder.h"
 
 #include <tbb/enumerable_thread_specific.h>
 

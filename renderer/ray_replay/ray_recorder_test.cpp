@@ -1,10 +1,10 @@
-#include "bench/ray_recorder.h"
+#include "ray_replay/ray_recorder.h"
 
 #include <gtest/gtest.h>
 
 #include "accel/embree/embree_accelerator.h"
 #include "accel/grid/synthetic_scenes.h"
-#include "bench/bench_run.h"
+#include "ray_replay/bench_run.h"
 
 namespace kiln {
 namespace {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the stability study, runs it into build/bench-results/stability/ and renders charts 4
-# and 5 there (docs/stability.md). Usage: tools/stability_charts.sh [BUILD_DIR]
+# and 5 there (docs/stability.md). Usage: bench/stability_charts.sh [BUILD_DIR]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
@@ -12,5 +12,5 @@ cmake --build "$build" --target stability_study
 mkdir -p "$out"
 "$build/bench/stability_study" "$out"
 # matplotlib comes from Debian's python3-matplotlib, installed for the system interpreter.
-/usr/bin/python3 "$root/tools/charts/stability_charts.py" "$out"
+/usr/bin/python3 "$root/bench/charts/stability_charts.py" "$out"
 echo "charts in $out"
