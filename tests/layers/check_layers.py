@@ -25,10 +25,10 @@ ALLOWED = {
     "io/exr": {"core", "scene", "render", "io/file", "io/image_codecs"},
     "job": {"core", "scene", "geometry", "accel", "shade", "render", "io/file", "io/image_codecs",
             "io/gltf", "io/exr"},
-    "bench": {"core", "scene", "geometry", "accel", "shade", "render"},
+    "ray_replay": {"core", "scene", "geometry", "accel", "shade", "render"},
     "python": {"core", "scene", "render", "io/exr", "job"},
     "app": {"core", "scene", "geometry", "accel", "shade", "render", "io/file", "io/image_codecs",
-            "io/gltf", "io/exr", "job", "bench"},
+            "io/gltf", "io/exr", "job", "ray_replay"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
