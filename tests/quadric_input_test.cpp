@@ -79,7 +79,7 @@ TEST(quadric_input, bad_references) {
   check({"primitive_out_of_range",
          {{"kind", "sphere"}, {"radius", 1.0}},
          {{"extensions", {{"KILN_quadric", {{"primitive", 7}}}}}},
-         {"/nodes/1/extensions/KILN_quadric/primitive", "primitive 7 does not exist"}});
+         {"/nodes/1/extensions/KILN_quadric/primitive", "/extensions/KILN_quadric/primitives/7 does not exist"}});
   check({"material_out_of_range",
          {{"kind", "sphere"}, {"radius", 1.0}},
          {{"extensions", {{"KILN_quadric", {{"primitive", 1}, {"material", 3}}}}}},

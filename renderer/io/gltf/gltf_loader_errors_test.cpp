@@ -250,7 +250,7 @@ TEST(GltfLoaderErrors, ReferencesOutOfRange) {
     b.doc["materials"] = json::array(
         {json{{"extensions", {{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 4}}}}}}}}});
     expect_error(b, {"/materials/0/extensions/KHR_materials_transmission/transmissionTexture/index",
-                     "texture 4 does not exist"});
+                     "/textures/4 does not exist (file has 0 textures)"});
   }
   {
     gltf_builder b = single_triangle();
