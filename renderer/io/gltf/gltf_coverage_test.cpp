@@ -100,6 +100,31 @@ TEST(GltfCoverage, JpegImageDecodes) {
   }
 }
 
+// libjpeg only warns about a JPEG cut short or with damaged entropy data and fills the rest with
+// grey; kiln refuses it as it refuses a truncated PNG.
+TEST(GltfCoverage, TruncatedOrCorruptJpegIsRefused) {
+  temp_folder dir;
+  std::vector<uint8_t> rgb;
+  for (int i = 0; i < 64 * 64 * 3; ++i) rgb.push_back(static_cast<uint8_t>((i * 37) % 251));
+  const std::vector<uint8_t> jpeg = encode_rgb(dir, "noise.jpg", 64, 64, rgb);
+  std::vector<uint8_t> corrupt = jpeg;
+  corrupt[corrupt.size() / 2] = 0xFF;  // a restart marker where none belongs
+  corrupt[corrupt.size() / 2 + 1] = 0xD5;
+  const std::vector<std::pair<std::vector<uint8_t>, std::string>> cases = {
+      {std::vector<uint8_t>(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(jpeg.size() / 2)),
+       "Premature end of JPEG file"},
+      {std::vector<uint8_t>(jpeg.begin(), jpeg.end() - 2), "Premature end of JPEG file"},
+      {corrupt, "Corrupt JPEG data"}};
+  for (const auto& [bytes, reason] : cases) {
+    gltf_builder b = textured_triangle();
+    b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(bytes)}}});
+    const std::string path = b.write_gltf(dir);
+    const std::string message = error_of([&] { load_gltf(path); });
+    EXPECT_EQ(message.rfind(path + ": /images/0: cannot decode image: JPEG error: " + reason, 0), 0u) << message;
+    EXPECT_EQ(message.find("image.jpg"), std::string::npos) << message;
+  }
+}
+
 TEST(GltfCoverage, PrimitivesOfOneMeshKeepTheirOwnMaterials) {
   temp_folder dir;
   gltf_builder b = single_triangle();
