@@ -79,6 +79,9 @@ TEST(coordinate_range, node_scales_out_of_range) {
 TEST(coordinate_range, translation_out_of_range) {
   expect_refused(quad_scene({{"translation", {0.0, 1e30, 0.0}}}), "translation_1e30",
                  {"/nodes/0/translation"});
+  // Near double's limit: refused at the node, never left to overflow the default camera's framing.
+  expect_refused(quad_scene({{"translation", {1e308, 0.0, 0.0}}}), "translation_1e308",
+                 {"/nodes/0/translation", "out of range"});
 }
 
 TEST(coordinate_range, positions_out_of_range) {
