@@ -30,8 +30,8 @@ testing::gltf_builder quadric_scene(const json& node,
                                     const json& definition = {{"kind", "sphere"}, {"radius", 1.0}}) {
   testing::gltf_builder b;
   b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});  // the builder needs a non-empty buffer
-  b.json()["extensionsUsed"] = {"KILN_quadric"};
-  b.json()["extensions"]["KILN_quadric"]["primitives"] = {definition};
+  b.doc["extensionsUsed"] = {"KILN_quadric"};
+  b.doc["extensions"]["KILN_quadric"]["primitives"] = {definition};
   json n = {{"name", "ball"}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}};
   n.update(node, true);
   b.add_node(n);

@@ -13,7 +13,7 @@ using namespace gltf_test;
 // Loads the builder's file; returns the one-line message, checked to start with the file name.
 std::string message_of(const gltf_builder& b) {
   temp_folder dir;
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -146,7 +146,7 @@ TEST(GltfStrictInput, ExplicitZeroIndicesStillLoad) {
   b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   b.doc["materials"] = json::array({json{{"name", "plain"}}});
   temp_folder dir;
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   EXPECT_EQ(s.instances.size(), 1u);
   EXPECT_EQ(s.meshes.at(0).indices.size(), 3u);
 }
