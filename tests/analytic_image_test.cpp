@@ -41,7 +41,7 @@ std::string write_scene(double scale, bool scale_vertices) {
                                  {{"baseColorFactor", {albedo, albedo, albedo, 1.0}}, {"metallicFactor", 0.0},
                                   {"roughnessFactor", 1.0}}},
                                 {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
-  b.json()["extensionsUsed"].push_back("KHR_materials_specular");
+  b.doc["extensionsUsed"].push_back("KHR_materials_specular");
   int plane = b.add_mesh({{-2 * v, -2 * v, 0}, {2 * v, -2 * v, 0}, {2 * v, 2 * v, 0}, {-2 * v, 2 * v, 0}},
                          {0, 1, 2, 0, 2, 3}, diffuse);
   float x0 = float(occluder_x0) * v, x1 = float(occluder_x1) * v, y0 = float(occluder_y0) * v,

@@ -57,7 +57,7 @@ scene polygon_scene(const view_camera& cam, const std::vector<polygon>& shapes) 
   int white = b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}}},
                               {"doubleSided", true},
                               {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}});
-  b.json()["extensionsUsed"].push_back("KHR_materials_unlit");
+  b.doc["extensionsUsed"].push_back("KHR_materials_unlit");
   for (const polygon& shape : shapes) {
     std::vector<std::array<float, 3>> points;
     for (const dvec2& p : shape) {

@@ -30,8 +30,8 @@ testing::gltf_builder quadric_scene(const json& node,
                                     const json& definition = {{"kind", "sphere"}, {"radius", 1.0}}) {
   testing::gltf_builder b;
   b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});  // the builder needs a non-empty buffer
-  b.json()["extensionsUsed"] = {"KILN_quadric"};
-  b.json()["extensions"]["KILN_quadric"]["primitives"] = {definition};
+  b.doc["extensionsUsed"] = {"KILN_quadric"};
+  b.doc["extensions"]["KILN_quadric"]["primitives"] = {definition};
   json n = {{"name", "ball"}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}};
   n.update(node, true);
   b.add_node(n);
@@ -79,6 +79,9 @@ TEST(coordinate_range, node_scales_out_of_range) {
 TEST(coordinate_range, translation_out_of_range) {
   expect_refused(quad_scene({{"translation", {0.0, 1e30, 0.0}}}), "translation_1e30",
                  {"/nodes/0/translation"});
+  // Near double's limit: refused at the node, never left to overflow the default camera's framing.
+  expect_refused(quad_scene({{"translation", {1e308, 0.0, 0.0}}}), "translation_1e308",
+                 {"/nodes/0/translation", "out of range"});
 }
 
 TEST(coordinate_range, positions_out_of_range) {

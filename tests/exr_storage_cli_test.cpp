@@ -264,7 +264,7 @@ std::string flat_square_scene(const std::string& dir) {
   int flat = b.add_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.5, 0.8, 1.0}}}},
                              {"doubleSided", true},
                              {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}});
-  b.json()["extensionsUsed"].push_back("KHR_materials_unlit");
+  b.doc["extensionsUsed"].push_back("KHR_materials_unlit");
   b.add_node({{"mesh", b.add_mesh({{-20, -20, 0}, {0, -20, 0}, {0, 20, 0}, {-20, 20, 0}}, {0, 1, 2, 0, 2, 3},
                                   flat)}});
   const std::string path = dir + "/square.gltf";

@@ -57,8 +57,8 @@ TEST(quadric_image, sphere_coverage_equals_the_analytic_disk_area) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     testing::gltf_builder b;
     b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});  // unplaced; the builder needs a buffer
-    b.json()["extensionsUsed"] = {"KILN_quadric"};
-    b.json()["extensions"]["KILN_quadric"]["primitives"] = {{{"kind", "sphere"}, {"radius", 1.0}}};
+    b.doc["extensionsUsed"] = {"KILN_quadric"};
+    b.doc["extensions"]["KILN_quadric"]["primitives"] = {{{"kind", "sphere"}, {"radius", 1.0}}};
     b.add_node({{"scale", {scale, scale, scale}}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}});
     std::string file = testing::scratch_folder("coverage") + "/sphere.gltf";
     b.write(file);

@@ -73,7 +73,7 @@ std::string write_scene(const std::string& dir) {
   write_png(dir + "/metal_rough.png", {200, roughness_texel, metallic_texel});
 
   testing::gltf_builder b;
-  json& doc = b.json();
+  json& doc = b.doc;
   doc["images"] = {{{"uri", "colour.png"}}, {{"uri", "metal_rough.png"}}};
   doc["samplers"] = {{{"magFilter", 9728}, {"minFilter", 9728}}};  // NEAREST
   doc["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 0}}};

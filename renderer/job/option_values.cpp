@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/message_text.h"
 
 namespace kiln {
 
@@ -15,8 +16,6 @@ namespace {
 [[noreturn]] void refuse(const std::string& option, const std::string& reason) {
   throw input_error("", option, reason);
 }
-
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
 }  // namespace
 

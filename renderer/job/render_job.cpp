@@ -7,6 +7,7 @@
 
 #include "accel/make_accelerator.h"
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/exr/cryptomatte.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/preview_writer.h"
@@ -49,9 +50,9 @@ const camera& select_camera(const scene& world, const std::string& which) {
   std::string names;
   for (const camera& c : world.cameras) {
     if (c.name == which) return c;
-    names += (names.empty() ? "" : ", ") + ("'" + c.name + "'");
+    names += (names.empty() ? "" : ", ") + quoted(c.name);
   }
-  throw input_error(world.source, "--camera", "no camera named '" + which + "' (cameras: " + names + ")");
+  throw input_error(world.source, "--camera", "no camera named " + quoted(which) + " (cameras: " + names + ")");
 }
 
 // The film holds 32 bytes a pixel (RGBA, Z, N) and the EXR writer a copy; past max_pixels the
@@ -114,7 +115,11 @@ view_camera choose_view(const render_options& options, const scene& world, std::
   int width = 0, height = 0;
   resolve_image_size(options, 0.0f, width, height);
   description = "default";
-  return make_default_camera(world_bounds(world), width, height);
+  try {
+    return make_default_camera(world_bounds(world), width, height);
+  } catch (const error& e) {
+    throw input_error(world.source, e.location(), e.reason());
+  }
 }
 
 // When a file has no light, a point light at the camera (a headlight) keeps assets visible: its
@@ -236,7 +241,7 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   if (options.look_from)
     check_view_range(p.world, p.cam, "", "--look-from");
   else
-    check_view_range(p.world, p.cam, p.world.source, "camera '" + p.camera_description + "'");
+    check_view_range(p.world, p.cam, p.world.source, "camera " + quoted(p.camera_description));
   if (p.world.lights.empty()) {
     add_default_light(p.world, p.cam);
     if (warn) warn("the file has no lights; using a headlight at the camera");

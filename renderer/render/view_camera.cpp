@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/message_text.h"
+#include "scene/coordinate_range.h"
 
 namespace kiln {
 
@@ -67,10 +69,10 @@ view_camera make_gltf_camera(const camera& c, int width, int height) {
   cam.width = width;
   cam.height = height;
   if (!is_finite(cam.view) || !is_finite(cam.right) || !is_finite(cam.eye))
-    throw input_error("", "camera '" + c.name + "'", "camera transform is degenerate");
+    throw input_error("", "camera " + quoted(c.name), "camera transform is degenerate");
   if (c.kind == projection::perspective) {
     if (!(c.yfov > 0.0f && c.yfov < pi))
-      throw input_error("", "camera '" + c.name + "'", "yfov must be in (0, pi)");
+      throw input_error("", "camera " + quoted(c.name), "yfov must be in (0, pi)");
     set_perspective_window(cam, c.yfov);
   } else {
     // glTF's xmag/ymag are half-extents of the view; the image aspect decides the width when the
@@ -81,7 +83,7 @@ view_camera make_gltf_camera(const camera& c, int width, int height) {
     cam.bottom = -cam.top;
     cam.right_edge = cam.top * aspect;
     cam.left = -cam.right_edge;
-    if (!(cam.top > 0.0)) throw input_error("", "camera '" + c.name + "'", "ymag must be non-zero");
+    if (!(cam.top > 0.0)) throw input_error("", "camera " + quoted(c.name), "ymag must be non-zero");
   }
   return cam;
 }
@@ -113,7 +115,14 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
       from = dvec3(1, 0, 0);
     }
   }
-  return make_look_at_camera(centre + distance * from, centre, up, yfov, width, height);
+  // Bounds near double's range overflow the distance (the loader keeps coordinates within 1e15;
+  // this names the cause should any scene get past it).
+  const dvec3 eye = centre + distance * from;
+  if (!is_finite(eye) || !is_finite(centre) || !std::isfinite(radius))
+    throw input_error("", "default camera",
+                      "the scene's bounds reach " + format_coordinate(max_abs_coordinate(scene_bounds)) +
+                          ", too far to frame (give --look-from and --look-at)");
+  return make_look_at_camera(eye, centre, up, yfov, width, height);
 }
 
 ray generate_camera_ray(const view_camera& cam, double px, double py) {

@@ -122,6 +122,22 @@ TEST(view_camera, default_camera_never_looks_at_a_flat_scene_edge_on) {
   }
 }
 
+// Bounds at 1e308 overflow the framing distance; the error must say so, not blame look-at
+// parameters the user never gave.
+TEST(view_camera, bounds_too_large_to_frame_are_named) {
+  bounds3 box;
+  box.extend(dvec3(-1e308, 0, 0));
+  box.extend(dvec3(1e308, 1, 1));
+  try {
+    make_default_camera(box, 32, 32);
+    ADD_FAILURE() << "framed bounds of 1e308";
+  } catch (const error& e) {
+    EXPECT_EQ(e.kind(), error_kind::input);
+    EXPECT_EQ(e.location(), "default camera");
+    EXPECT_EQ(e.reason(), "the scene's bounds reach 1e+308, too far to frame (give --look-from and --look-at)");
+  }
+}
+
 TEST(view_camera, impossible_cameras_are_input_errors) {
   EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0), dvec3(0, 1, 0), 45, 10, 10), error);
   EXPECT_THROW(make_look_at_camera(dvec3(0), dvec3(0, 1, 0), dvec3(0, 1, 0), 45, 10, 10), error);

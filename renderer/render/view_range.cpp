@@ -1,6 +1,7 @@
 #include "render/view_range.h"
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "scene/coordinate_range.h"
 
 namespace kiln {
@@ -20,7 +21,7 @@ bounds3 camera_origin_bounds(const view_camera& cam) {
 
 std::string node_pointer(const scene& s, uint32_t node) {
   std::string where = "/nodes/" + std::to_string(node);
-  if (node < s.node_names.size() && !s.node_names[node].empty()) where += " '" + s.node_names[node] + "'";
+  if (node < s.node_names.size() && !s.node_names[node].empty()) where += " " + quoted(s.node_names[node]);
   return where;
 }
 

@@ -39,8 +39,8 @@ std::string write_scene(double offset, const std::string& name) {
         {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
   const int plane =
       b.add_mesh({{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}, {0, 1, 2, 0, 2, 3}, white);
-  b.json()["extensionsUsed"] = {"KILN_quadric"};
-  b.json()["extensions"]["KILN_quadric"]["primitives"] = {
+  b.doc["extensionsUsed"] = {"KILN_quadric"};
+  b.doc["extensions"]["KILN_quadric"]["primitives"] = {
       json{{"kind", "sphere"}, {"radius", sphere_radius}}};
   const int root = b.add_node({{"name", "root"}, {"translation", {offset, offset, offset}}});
   const int plane_index = b.add_node({{"name", "plane"}, {"mesh", plane}});

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/message_text.h"
 
 namespace kiln {
 
@@ -37,7 +38,7 @@ std::string problem_of(const struct stat& info, uint64_t max_bytes) {
 error refusal(error_kind kind, const std::string& path, const input_file_request& request,
               const std::string& reason) {
   const bool other = !request.file.empty() && request.file != path;
-  return error(kind, other ? request.file : path, request.where, (other ? "'" + path + "' " : "") + reason);
+  return error(kind, other ? request.file : path, request.where, (other ? quoted(path) + " " : "") + reason);
 }
 
 // Closes the descriptor on every way out.

@@ -1,6 +1,9 @@
 // Small helpers shared by the glTF loader's files: JSON pointers for error messages and
-// overflow-checked size arithmetic. Internal to io/gltf; depends on the standard library only.
+// overflow-checked size arithmetic. Internal to io/gltf; depends on core/message_text.h and the
+// standard library only.
 #pragma once
+
+#include "core/message_text.h"
 
 #include <cctype>
 #include <cstdint>
@@ -9,7 +12,8 @@
 
 namespace kiln::gltf_internal {
 
-// Escapes one JSON-pointer token (RFC 6901: '~' -> "~0", '/' -> "~1").
+// Escapes one JSON-pointer token (RFC 6901: '~' -> "~0", '/' -> "~1"), as a message shows it
+// (a key of 8 MB is cut short, see core/message_text.h).
 inline std::string pointer_token(const std::string& token) {
   std::string out;
   for (char c : token) {
@@ -20,7 +24,7 @@ inline std::string pointer_token(const std::string& token) {
     else
       out += c;
   }
-  return out;
+  return shown(out);
 }
 
 // "/<collection>/<index>", e.g. /accessors/7.

@@ -89,7 +89,7 @@ TEST(GltfCoverage, JpegImageDecodes) {
   ASSERT_EQ(jpeg[0], 0xFF);  // a JPEG stream (SOI marker)
   ASSERT_EQ(jpeg[1], 0xD8);
   b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(jpeg)}}});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.images.size(), 1u);
   EXPECT_EQ(s.images[0].width, 16);
   EXPECT_EQ(s.images[0].height, 8);
@@ -97,6 +97,31 @@ TEST(GltfCoverage, JpegImageDecodes) {
   for (int y = 0; y < 8; ++y) {
     expect_texel_near(s.images[0], 2, y, left_colour, 6);
     expect_texel_near(s.images[0], 13, y, right_colour, 6);
+  }
+}
+
+// libjpeg only warns about a JPEG cut short or with damaged entropy data and fills the rest with
+// grey; kiln refuses it as it refuses a truncated PNG.
+TEST(GltfCoverage, TruncatedOrCorruptJpegIsRefused) {
+  temp_folder dir;
+  std::vector<uint8_t> rgb;
+  for (int i = 0; i < 64 * 64 * 3; ++i) rgb.push_back(static_cast<uint8_t>((i * 37) % 251));
+  const std::vector<uint8_t> jpeg = encode_rgb(dir, "noise.jpg", 64, 64, rgb);
+  std::vector<uint8_t> corrupt = jpeg;
+  corrupt[corrupt.size() / 2] = 0xFF;  // a restart marker where none belongs
+  corrupt[corrupt.size() / 2 + 1] = 0xD5;
+  const std::vector<std::pair<std::vector<uint8_t>, std::string>> cases = {
+      {std::vector<uint8_t>(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(jpeg.size() / 2)),
+       "Premature end of JPEG file"},
+      {std::vector<uint8_t>(jpeg.begin(), jpeg.end() - 2), "Premature end of JPEG file"},
+      {corrupt, "Corrupt JPEG data"}};
+  for (const auto& [bytes, reason] : cases) {
+    gltf_builder b = textured_triangle();
+    b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(bytes)}}});
+    const std::string path = b.write(dir.file("scene.gltf"));
+    const std::string message = error_of([&] { load_gltf(path); });
+    EXPECT_EQ(message.rfind(path + ": /images/0: cannot decode image: JPEG error: " + reason, 0), 0u) << message;
+    EXPECT_EQ(message.find("image.jpg"), std::string::npos) << message;
   }
 }
 
@@ -112,7 +137,7 @@ TEST(GltfCoverage, PrimitivesOfOneMeshKeepTheirOwnMaterials) {
                    json{{"name", "blue"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 1, 1}}}}}});
   b.add_node({{"mesh", 0}, {"translation", {3, 0, 0}}});
   b.set_scene({0, 1});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.meshes.size(), 3u);  // one per primitive, shared by both nodes
   ASSERT_EQ(s.instances.size(), 6u);
   const char* expected[3] = {"blue", "red", "default"};
@@ -148,7 +173,7 @@ gltf_builder flat_normal_mapped_quad() {
 
 TEST(GltfCoverage, FlatShadedNormalMapGetsTangentsInItsFacePlane) {
   temp_folder dir;
-  const scene s = load_gltf(flat_normal_mapped_quad().write_gltf(dir));
+  const scene s = load_gltf(flat_normal_mapped_quad().write(dir.file("scene.gltf")));
   ASSERT_EQ(s.meshes.size(), 1u);
   const mesh& m = s.meshes[0];
   EXPECT_TRUE(m.normals.empty());  // flat shading

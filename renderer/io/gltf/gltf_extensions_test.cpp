@@ -41,7 +41,7 @@ TEST(GltfInstancing, ThreeInstancesShareOneMeshWithExactTransforms) {
   b.doc["nodes"][0]["translation"] = {10, 0, 0};  // the node is the instances' parent
   b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
       {"TRANSLATION", t}, {"ROTATION", r}, {"SCALE", s}};
-  const scene sc = load_gltf(b.write_gltf(dir));
+  const scene sc = load_gltf(b.write(dir.file("scene.gltf")));
 
   ASSERT_EQ(sc.meshes.size(), 1u);
   ASSERT_EQ(sc.instances.size(), 3u);
@@ -122,7 +122,7 @@ TEST(GltfInstancing, EachPrimitiveOfTheMeshIsPlacedPerInstance) {
   b.doc["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", pos}}}});
   const int t = b.add_data(std::vector<float>{0, 0, 0, 5, 0, 0}, k_float, "VEC3", 3);
   b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {{"TRANSLATION", t}};
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.meshes.size(), 2u);
   ASSERT_EQ(s.instances.size(), 4u);  // instance-major: (0, prim 0), (0, prim 1), (1, prim 0), (1, prim 1)
   EXPECT_EQ(s.instances[0].shape, 0u);
@@ -141,7 +141,7 @@ TEST(GltfInstancing, NormalizedShortRotationAndZeroScaleInstances) {
   const int s = b.add_data(std::vector<float>{1, 1, 1, 0, 0, 0}, k_float, "VEC3", 3);
   b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
   b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {{"ROTATION", r}, {"SCALE", s}};
-  const scene sc = load_gltf(b.write_gltf(dir));
+  const scene sc = load_gltf(b.write(dir.file("scene.gltf")));
   // The second instance has zero scale: it is not placed, and one warning says so.
   ASSERT_EQ(sc.instances.size(), 1u);
   expect_matrix_near(sc.instances[0].world_from_object, glm::scale(dmat4(1.0), dvec3(-1, -1, 1)), 1e-12);
@@ -157,12 +157,12 @@ TEST(GltfInstancing, QuantizedTranslationNeedsKhrMeshQuantization) {
   const int t = b.add_data(std::vector<int16_t>{3, -2, 7}, k_short, "VEC3", 3);
   b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
   b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {{"TRANSLATION", t}};
-  std::string message = error_of([&] { load_gltf(b.write_gltf(dir)); });
+  std::string message = error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); });
   EXPECT_NE(message.find(instancing_at + "/TRANSLATION: TRANSLATION must be VEC3 FLOAT (got VEC3 SHORT)"),
             std::string::npos)
       << message;
   b.doc["extensionsUsed"].push_back("KHR_mesh_quantization");
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.instances.size(), 1u);
   EXPECT_EQ(transform_point(s.instances[0].world_from_object, dvec3(0.0)), dvec3(3, -2, 7));
 }
@@ -228,7 +228,7 @@ TEST(GltfInstancing, BadAttributesNameTheJsonPath) {
     b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] =
         b.add_data(std::vector<float>{0, 0, 0, 1, 0, 0, 2, 0, 0}, k_float, "VEC3", 3);
     c.damage(b);
-    const std::string path = b.write_gltf(dir);
+    const std::string path = b.write(dir.file("scene.gltf"));
     const std::string message = error_of([&] { load_gltf(path); });
     EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
     EXPECT_NE(message.find(c.expected), std::string::npos) << message;
@@ -240,7 +240,7 @@ TEST(GltfInstancing, InstanceCountIsLimited) {
   gltf_builder b = instanced_triangle({});
   b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] =
       b.add_data(std::vector<float>(9, 0.0f), k_float, "VEC3", 3);
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   gltf_load_options options;
   options.limits.max_instances = 2;
   const std::string message = error_of([&] { load_gltf(path, options); });
@@ -274,7 +274,7 @@ gltf_builder quantized_quad(bool declare) {
 
 TEST(GltfQuantization, ShortPositionsAndByteNormalsDecodeWhenDeclared) {
   temp_folder dir;
-  const scene s = load_gltf(quantized_quad(true).write_gltf(dir));
+  const scene s = load_gltf(quantized_quad(true).write(dir.file("scene.gltf")));
   ASSERT_EQ(s.meshes.size(), 1u);
   const mesh& m = s.meshes[0];
   ASSERT_EQ(m.positions.size(), 4u);
@@ -295,7 +295,7 @@ TEST(GltfQuantization, ShortPositionsAndByteNormalsDecodeWhenDeclared) {
 
 TEST(GltfQuantization, IntegerAttributesAreRefusedWithoutTheExtension) {
   temp_folder dir;
-  const std::string path = quantized_quad(false).write_gltf(dir);
+  const std::string path = quantized_quad(false).write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_NE(message.find("/meshes/0/primitives/0/attributes/NORMAL: NORMAL must be VEC3 FLOAT (got VEC3 BYTE "
                          "normalized); integer formats need KHR_mesh_quantization"),
@@ -340,7 +340,7 @@ TEST(GltfQuantization, FormatRulesFollowTheExtension) {
     const int strided_view = b.add_view(data.data(), data.size(), static_cast<int>(stride));
     const int acc = b.add_accessor(strided_view, c.component, 3, type, 0, c.normalized);
     b.doc["meshes"][0]["primitives"][0]["attributes"][name] = acc;
-    const std::string path = b.write_gltf(dir);
+    const std::string path = b.write(dir.file("scene.gltf"));
     if (c.accepted) {
       EXPECT_NO_THROW(load_gltf(path));
     } else {

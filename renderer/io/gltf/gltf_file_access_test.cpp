@@ -113,7 +113,7 @@ TEST(GltfFileAccess, ImageUriEscapeIsRefused) {
   temp_folder dir;
   gltf_builder b = single_triangle();
   b.doc["images"] = json::array({json{{"uri", "../../secret.png"}}});
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_NE(message.find("/images/0/uri"), std::string::npos) << message;
   EXPECT_NE(message.find("outside the asset's folder"), std::string::npos) << message;

@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/gltf/gltf_common.h"
 
 namespace kiln::gltf_internal {
@@ -120,7 +121,7 @@ void refuse_missing_image_files(const json& doc, const std::string& folder_prefi
     if (std::filesystem::exists(folder_prefix + percent_decoded(plus_as_space(uri)), ec) ||
         std::filesystem::exists(folder_prefix + percent_decoded(uri), ec))
       continue;
-    throw input_error(file, "/images/" + std::to_string(i) + "/uri", "cannot read image file '" + uri + "'");
+    throw input_error(file, "/images/" + std::to_string(i) + "/uri", "cannot read image file " + quoted(uri));
   }
 }
 

@@ -67,7 +67,7 @@ TEST(GltfImageUse, UnusedMissingImageFileIsStillRefused) {
   write_png(dir, "used.png", orange);
   const gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "used.png"}}, json{{"uri", "gone.png"}}}));
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   try {
     load_gltf(path);
     ADD_FAILURE() << "a missing image file loaded";
@@ -83,7 +83,7 @@ TEST(GltfImageUse, UnusedGarbageImageFileIsNotKept) {
   write_text(dir.file("garbage.png"), "this is no image at all");
   const gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "used.png"}}, json{{"uri", "garbage.png"}}}));
-  expect_kept_bytes(b.write_gltf(dir), true, false);
+  expect_kept_bytes(b.write(dir.file("scene.gltf")), true, false);
 }
 
 TEST(GltfImageUse, FileNamedByUsedAndUnusedImageIsRead) {
@@ -93,7 +93,7 @@ TEST(GltfImageUse, FileNamedByUsedAndUnusedImageIsRead) {
   gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "shared.png"}}, json{{"uri", "./shared.png"}}}));
   b.doc["textures"] = json::array({json{{"source", 1}}, json{{"source", 0}}});
-  expect_kept_bytes(b.write_gltf(dir), false, true);
+  expect_kept_bytes(b.write(dir.file("scene.gltf")), false, true);
 }
 
 TEST(GltfImageUse, ImageOfExtensionTextureInfoIsRead) {
@@ -103,7 +103,7 @@ TEST(GltfImageUse, ImageOfExtensionTextureInfoIsRead) {
   gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "used.png"}}, json{{"uri", "thickness.png"}}}));
   b.doc["materials"][0]["extensions"]["KHR_materials_volume"] = {{"thicknessTexture", {{"index", 1}}}};
-  expect_kept_bytes(b.write_gltf(dir), true, true);
+  expect_kept_bytes(b.write(dir.file("scene.gltf")), true, true);
 }
 
 TEST(GltfImageUse, UnusedDataUriImageBytesAreDropped) {
@@ -111,14 +111,14 @@ TEST(GltfImageUse, UnusedDataUriImageBytesAreDropped) {
   write_png(dir, "used.png", orange);
   const gltf_builder b = triangle_with_images(json::array(
       {json{{"uri", "used.png"}}, json{{"uri", std::string("data:image/png;base64,") + png_2x2_base64}}}));
-  expect_kept_bytes(b.write_gltf(dir), true, false);
+  expect_kept_bytes(b.write(dir.file("scene.gltf")), true, false);
 }
 
 TEST(GltfImageUse, UsedMissingImageFileFails) {
   temp_folder dir;
   const gltf_builder b =
       triangle_with_images(json::array({json{{"uri", "gone.png"}}, json{{"uri", "gone.png"}}}));
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   try {
     load_gltf(path);
     ADD_FAILURE() << "a missing used image must fail";

@@ -34,12 +34,12 @@ TEST(GltfLimits, BracketsInsideStringsDoNotCountAsNesting) {
   temp_folder dir;
   gltf_builder b = single_triangle();
   b.doc["asset"]["generator"] = std::string(2000, '[') + "\\\"" + std::string(2000, '{');
-  EXPECT_EQ(load_gltf(b.write_gltf(dir)).meshes.size(), 1u);
+  EXPECT_EQ(load_gltf(b.write(dir.file("scene.gltf"))).meshes.size(), 1u);
 }
 
 TEST(GltfLimits, DepthLimitIsOverridable) {
   temp_folder dir;
-  const std::string path = single_triangle().write_gltf(dir);
+  const std::string path = single_triangle().write(dir.file("scene.gltf"));
   gltf_load_options options;
   options.limits.max_json_depth = 3;  // the triangle's accessors nest 4 deep
   EXPECT_NE(load_error(path, options).find("nests deeper than 3"), std::string::npos);
@@ -50,7 +50,7 @@ TEST(GltfLimits, TooManyNodesIsRefusedNamingTheLimit) {
   gltf_builder b = single_triangle();
   b.add_node(json::object());
   b.add_node(json::object());
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   gltf_load_options options;
   options.limits.max_nodes = 2;
   const std::string message = load_error(path, options);
@@ -61,7 +61,7 @@ TEST(GltfLimits, TooManyNodesIsRefusedNamingTheLimit) {
 
 TEST(GltfLimits, OversizedJsonIsRefused) {
   temp_folder dir;
-  const std::string path = single_triangle().write_gltf(dir);
+  const std::string path = single_triangle().write(dir.file("scene.gltf"));
   gltf_load_options options;
   options.limits.max_json_bytes = 64;
   EXPECT_NE(load_error(path, options).find("over the limit of 64 (--max-json-bytes)"), std::string::npos);
@@ -74,7 +74,7 @@ TEST(GltfLimits, ImageWithHugeDeclaredSizeIsRefusedWithoutDecoding) {
   b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   b.doc["textures"] = json::array({json{{"source", 0}}});
   b.doc["images"] = json::array({json{{"uri", std::string("data:image/png;base64,") + png_huge_base64}}});
-  const std::string message = load_error(b.write_gltf(dir));
+  const std::string message = load_error(b.write(dir.file("scene.gltf")));
   EXPECT_NE(message.find("/images/0"), std::string::npos) << message;
   EXPECT_NE(message.find("over the limit of 268435456 (--max-texels)"), std::string::npos) << message;
 }
@@ -91,7 +91,7 @@ TEST(GltfLimits, ProgressiveJpegWithHugeDeclaredSizeIsRefusedBeforeAnyDecoder) {
   const std::vector<uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xC2, 0x00, 0x11, 0x08, 0x4E, 0x20, 0x4E, 0x20, 0x03,
                                      0x01, 0x22, 0x00, 0x02, 0x11, 0x01, 0x03, 0x11, 0x01, 0xFF, 0xD9};
   b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(jpeg)}}});
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   ::setenv("KILN_IMAGE_CODECS", "/nonexistent/codecs.so", 1);  // a decode would fail on the module
   const std::string message = load_error(path);
   ::unsetenv("KILN_IMAGE_CODECS");
@@ -107,7 +107,7 @@ TEST(GltfLimits, TexelLimitIsOverridable) {
   b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   b.doc["textures"] = json::array({json{{"source", 0}}});
   b.doc["images"] = json::array({json{{"uri", std::string("data:image/png;base64,") + png_2x2_base64}}});
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   EXPECT_EQ(load_gltf(path).images.size(), 1u);  // 4 texels: well within the default
   gltf_load_options options;
   options.limits.max_texels = 3;

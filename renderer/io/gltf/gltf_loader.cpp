@@ -507,7 +507,7 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   const auto& supported = supported_extensions();
   std::vector<std::string> unsupported;
   for (const std::string& name : model.extensionsUsed)
-    if (std::find(supported.begin(), supported.end(), name) == supported.end()) unsupported.push_back(name);
+    if (std::find(supported.begin(), supported.end(), name) == supported.end()) unsupported.push_back(shown(name));
   if (unsupported.size() == 1)
     warn_once(ctx, "extension " + unsupported[0] + " is not supported; it is ignored");
   if (unsupported.size() > 1) {

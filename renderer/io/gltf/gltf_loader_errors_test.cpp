@@ -17,7 +17,7 @@ using namespace gltf_test;
 // Writes the builder as .gltf, loads it, and checks the error message holds every fragment.
 void expect_error(const gltf_builder& b, const std::vector<std::string>& fragments) {
   temp_folder dir;
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   std::string message;
   try {
     load_gltf(path);
@@ -250,7 +250,7 @@ TEST(GltfLoaderErrors, ReferencesOutOfRange) {
     b.doc["materials"] = json::array(
         {json{{"extensions", {{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 4}}}}}}}}});
     expect_error(b, {"/materials/0/extensions/KHR_materials_transmission/transmissionTexture/index",
-                     "texture 4 does not exist"});
+                     "/textures/4 does not exist (file has 0 textures)"});
   }
   {
     gltf_builder b = single_triangle();
@@ -328,7 +328,7 @@ TEST(GltfLoaderErrors, MissingFile) {
 
 TEST(GltfLoaderErrors, MissingBin) {
   temp_folder dir;
-  const std::string path = single_triangle().write_gltf_external(dir, "scene.gltf", "missing.bin", false);
+  const std::string path = single_triangle().write_external(dir.file("scene.gltf"), "missing.bin", false);
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_NE(message.find("missing.bin"), std::string::npos) << message;
 }

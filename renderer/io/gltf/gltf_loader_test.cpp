@@ -36,7 +36,7 @@ TEST(GltfLoader, ReadsPositionsIndicesAndNormalizesNormals) {
   const int idx = b.add_data(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, k_ushort, "SCALAR", 1);
   const int mesh_index = b.add_mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", idx}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
 
   ASSERT_EQ(s.meshes.size(), 1u);
   const mesh& m = s.meshes[0];
@@ -50,7 +50,7 @@ TEST(GltfLoader, ReadsPositionsIndicesAndNormalizesNormals) {
   EXPECT_DOUBLE_EQ(m.bounds.upper.x, 2.0);
   EXPECT_DOUBLE_EQ(m.bounds.upper.y, 3.0);
   ASSERT_EQ(s.instances.size(), 1u);
-  EXPECT_EQ(s.source, b.write_gltf(dir));
+  EXPECT_EQ(s.source, b.write(dir.file("scene.gltf")));
 }
 
 TEST(GltfLoader, ReadsEveryIndexTypeAndNonIndexed) {
@@ -73,7 +73,7 @@ TEST(GltfLoader, ReadsEveryIndexTypeAndNonIndexed) {
           b.add_positions({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0});
     }
     b.set_scene({b.add_node({{"mesh", b.add_mesh(prim)}})});
-    const scene s = load_gltf(b.write_gltf(dir));
+    const scene s = load_gltf(b.write(dir.file("scene.gltf")));
     ASSERT_EQ(s.meshes.size(), 1u);
     if (kind == 3)
       EXPECT_EQ(s.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
@@ -89,7 +89,7 @@ TEST(GltfLoader, LoadsGlbAndExternalBin) {
   const std::string glb = dir.file("tri.glb");
   write_bytes(glb, b.glb_bytes());
   EXPECT_EQ(load_gltf(glb).meshes.at(0).triangle_count(), 1u);
-  const std::string external = b.write_gltf_external(dir, "tri.gltf", "tri data.bin");
+  const std::string external = b.write_external(dir.file("tri.gltf"), "tri data.bin");
   EXPECT_EQ(load_gltf(external).meshes.at(0).triangle_count(), 1u);
 }
 
@@ -100,7 +100,7 @@ TEST(GltfLoader, ConvertsTriangleStripWithAlternatingWinding) {
   const int pos = b.add_positions({0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 2, 0, 0});
   const int mesh_index = b.add_mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 5}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const mesh& m = s.meshes.at(0);
   ASSERT_EQ(m.triangle_count(), 3u);
   // glTF: triangle i is (v_i, v_{i+1+i%2}, v_{i+2-i%2}).
@@ -115,7 +115,7 @@ TEST(GltfLoader, ConvertsTriangleFan) {
   const int pos = b.add_positions({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0});
   const int mesh_index = b.add_mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 6}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
   for (size_t t = 0; t < 3; ++t) EXPECT_GT(winding_z(m, t), 0.0f) << t;
@@ -132,7 +132,7 @@ TEST(GltfLoader, FlattensThreeLevelHierarchyWithNegativeScale) {
   b.add_node({{"rotation", {0, 0, h, h}}, {"children", {2}}});
   b.add_node({{"scale", {2, 1, -1}}, {"mesh", mesh_index}});
   b.set_scene({0});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.instances.size(), 1u);
   const instance& inst = s.instances[0];
   EXPECT_EQ(inst.node, 2u);
@@ -160,7 +160,7 @@ TEST(GltfLoader, MatrixNodeIsColumnMajor) {
   temp_folder dir;
   gltf_builder b = single_triangle();
   b.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1};
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const dvec3 p = transform_point(s.instances.at(0).world_from_object, dvec3(0));
   EXPECT_EQ(p, dvec3(5, 6, 7));
 }
@@ -172,7 +172,7 @@ TEST(GltfLoader, MeshUsedByTwoNodesIsStoredOnce) {
   b.add_node({{"mesh", 0}, {"translation", {-1, 0, 0}}});
   b.add_node({{"mesh", 0}, {"translation", {4, 0, 0}}});
   b.set_scene({0, 1});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   EXPECT_EQ(s.meshes.size(), 1u);
   ASSERT_EQ(s.instances.size(), 2u);
   EXPECT_EQ(s.instances[0].shape, 0u);
@@ -195,7 +195,7 @@ TEST(GltfLoader, DropsAndCountsDegenerateTriangles) {
   const int idx = b.add_data(std::vector<uint16_t>{0, 1, 2, 0, 0, 1, 0, 1, 3}, k_ushort, "SCALAR", 1);
   const int mesh_index = b.add_mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}});
   b.set_scene({b.add_node({{"mesh", mesh_index}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2}));
   EXPECT_EQ(s.stats.degenerate_triangles_dropped, 2u);
@@ -207,7 +207,7 @@ TEST(GltfLoader, AllDegenerateMeshGetsNoInstance) {
   gltf_builder b;
   const int pos = b.add_positions({0, 0, 0, 1, 0, 0, 2, 0, 0});
   b.set_scene({b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", pos}}}})}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   EXPECT_TRUE(s.instances.empty());
   EXPECT_EQ(s.stats.degenerate_triangles_dropped, 1u);
   EXPECT_FALSE(s.materials.empty());
@@ -224,7 +224,7 @@ TEST(GltfLoader, SkipsPointsAndLinesWithOneWarning) {
                       {{"attributes", {{"POSITION", pos}}}, {"mode", 4}}}}};
   b.doc["meshes"].push_back(mesh_json);
   b.set_scene({b.add_node({{"mesh", 0}}), b.add_node({{"mesh", 0}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   EXPECT_EQ(s.stats.non_triangle_primitives_skipped, 3u);  // per unique primitive, not per placement
   size_t mentions = 0;
   for (const std::string& w : s.stats.warnings) mentions += w.find("line") != std::string::npos;
@@ -246,7 +246,7 @@ TEST(GltfLoader, AppliesSparseAccessor) {
                                        {"values", {{"bufferView", vv}}}};
   const int idx = b.add_data(std::vector<uint8_t>{0, 1, 3}, k_ubyte, "SCALAR", 1);
   b.set_scene({b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const mesh& m = s.meshes.at(0);
   expect_vec3(m.positions[0], 0, 0, 0);
   expect_vec3(m.positions[1], 5, 0, 0);
@@ -266,7 +266,7 @@ TEST(GltfLoader, SparseAccessorWithoutBufferViewStartsFromZeros) {
                                        {"indices", {{"bufferView", iv}, {"componentType", k_ubyte}}},
                                        {"values", {{"bufferView", vv}}}};
   b.set_scene({b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", pos}}}})}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const mesh& m = s.meshes.at(0);
   expect_vec3(m.positions[0], 0, 0, 0);
   expect_vec3(m.positions[1], 1, 0, 0);
@@ -282,7 +282,7 @@ TEST(GltfLoader, ReadsInterleavedAttributes) {
   const int pos = b.add_accessor(view, k_float, 3, "VEC3");
   const int nrm = b.add_accessor(view, k_float, 3, "VEC3", 12);
   b.set_scene({b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}})}})});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const mesh& m = s.meshes.at(0);
   expect_vec3(m.positions[2], 0, 1, 0);
   expect_vec3(m.normals[1], 0, 0, 1);
@@ -336,7 +336,7 @@ gltf_builder textured_quad(const std::string& png_base64, int texcoord_component
 
 TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
   temp_folder dir;
-  const scene s = load_gltf(textured_quad(png_2x2_base64, k_float, false).write_gltf(dir));
+  const scene s = load_gltf(textured_quad(png_2x2_base64, k_float, false).write(dir.file("scene.gltf")));
   ASSERT_EQ(s.materials.size(), 1u);  // only the used material; the corrupt unused image is never decoded
   const material& m = s.materials[0];
   EXPECT_EQ(m.name, "painted");
@@ -390,7 +390,7 @@ TEST(GltfLoader, ConvertsMaterialsTexturesAndOnlyUsedImages) {
 TEST(GltfLoader, ReadsNormalizedIntegerTexcoords) {
   for (int component : {k_ubyte, k_ushort}) {
     temp_folder dir;
-    const scene s = load_gltf(textured_quad(png_2x2_base64, component, true).write_gltf(dir));
+    const scene s = load_gltf(textured_quad(png_2x2_base64, component, true).write(dir.file("scene.gltf")));
     const auto& uv = s.meshes.at(0).texcoords0;
     ASSERT_EQ(uv.size(), 3u);
     EXPECT_FLOAT_EQ(uv[1].x, 1.0f);
@@ -401,7 +401,7 @@ TEST(GltfLoader, ReadsNormalizedIntegerTexcoords) {
 
 TEST(GltfLoader, DecodesSixteenBitImagesAsFloat) {
   temp_folder dir;
-  const scene s = load_gltf(textured_quad(png_16bit_base64, k_float, false).write_gltf(dir));
+  const scene s = load_gltf(textured_quad(png_16bit_base64, k_float, false).write(dir.file("scene.gltf")));
   ASSERT_EQ(s.images.size(), 1u);
   const image& img = s.images[0];
   EXPECT_TRUE(img.texels8.empty());
@@ -427,7 +427,7 @@ TEST(GltfLoader, ReadsEveryMinFilter) {
     temp_folder dir;
     gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
     b.doc["samplers"][0]["minFilter"] = e.gl;
-    const scene s = load_gltf(b.write_gltf(dir));
+    const scene s = load_gltf(b.write(dir.file("scene.gltf")));
     ASSERT_EQ(s.textures.size(), 1u);
     EXPECT_EQ(s.textures[0].sampling.min_filter, e.filter) << e.gl;
     EXPECT_EQ(s.textures[0].sampling.mipmap, e.mipmap) << e.gl;
@@ -436,7 +436,7 @@ TEST(GltfLoader, ReadsEveryMinFilter) {
   temp_folder dir;
   gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
   b.doc["samplers"][0]["minFilter"] = 9730;
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_NE(message.find("/samplers/0/minFilter"), std::string::npos) << message;
 }
@@ -445,7 +445,7 @@ TEST(GltfLoader, CorruptImageUsedByMaterialNamesTheImage) {
   temp_folder dir;
   gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
   b.doc["textures"][0]["source"] = 1;
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_NE(message.find("/images/1"), std::string::npos) << message;
 }
@@ -454,7 +454,7 @@ TEST(GltfLoader, TextureWithoutSourceIsAbsentWithWarning) {
   temp_folder dir;
   gltf_builder b = textured_quad(png_2x2_base64, k_float, false);
   b.doc["textures"][0].erase("source");
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   EXPECT_FALSE(s.materials.at(0).base_color_texture.present());
   EXPECT_TRUE(s.images.empty());
   bool warned = false;
@@ -478,7 +478,7 @@ TEST(GltfLoader, PlacesLightsWithNodeTransforms) {
               {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
   b.add_node({{"scale", {3, 3, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
   b.set_scene({0, 1, 2, 3});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.lights.size(), 3u);
   EXPECT_EQ(s.lights[0].kind, light_kind::point);
   EXPECT_EQ(s.lights[0].position, dvec3(1, 2, 3));
@@ -507,7 +507,7 @@ TEST(GltfLoader, PlacesCamerasWithoutScale) {
   b.add_node({{"camera", 0}, {"translation", {0, 0, 10}}, {"scale", {2, 3, 4}}});
   b.add_node({{"camera", 1}, {"name", "side"}, {"translation", {4, 0, 0}}});
   b.set_scene({0, 1, 2});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   ASSERT_EQ(s.cameras.size(), 2u);
   const camera& persp = s.cameras[0];
   EXPECT_EQ(persp.name, "main");
@@ -532,7 +532,7 @@ TEST(GltfLoader, ChoosesSceneFromOptionsOrDefault) {
   b.add_node({{"mesh", 0}});
   b.doc["scenes"] = json::array({json{{"nodes", {0}}}, json{{"nodes", {1, 2}}}});
   b.doc["scene"] = 1;
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   EXPECT_EQ(load_gltf(path).instances.size(), 2u);
   gltf_load_options first;
   first.scene_index = 0;
@@ -547,13 +547,13 @@ TEST(GltfLoader, WarnsAboutUnsupportedUsedExtensions) {
   temp_folder dir;
   gltf_builder b = single_triangle();
   b.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_lights_punctual", "KHR_materials_clearcoat"};
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   // One line names every unsupported optional extension, and only those.
   ASSERT_EQ(s.stats.warnings.size(), 1u);
   EXPECT_EQ(s.stats.warnings[0],
             "extensions KHR_materials_sheen, KHR_materials_clearcoat are not supported; they are ignored");
   b.doc["extensionsUsed"] = {"KHR_materials_sheen"};
-  EXPECT_EQ(load_gltf(b.write_gltf(dir)).stats.warnings,
+  EXPECT_EQ(load_gltf(b.write(dir.file("scene.gltf"))).stats.warnings,
             std::vector<std::string>{"extension KHR_materials_sheen is not supported; it is ignored"});
 }
 
@@ -574,7 +574,7 @@ TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
   // The base colour texture moves to TEXCOORD_1 through KHR_texture_transform's texCoord.
   b.doc["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
       {"offset", {0.25, -0.5}}, {"rotation", 0.5}, {"scale", {2, 3}}, {"texCoord", 1}};
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   const material& m = s.materials.at(0);
   EXPECT_EQ(m.base_color_texture.texcoord, 1u);
   EXPECT_EQ(m.base_color_texture.offset, vec2(0.25f, -0.5f));
@@ -589,7 +589,7 @@ TEST(GltfLoader, ReadsTexcoord1ColorsAndTextureTransform) {
   EXPECT_NEAR(mesh0.colors0[1].a, 128.0f / 255.0f, 1e-6f);
 
   prim["attributes"]["COLOR_0"] = b.add_data(std::vector<float>{1, 0, 0, 1}, k_float, "VEC2", 2);
-  const std::string message = error_of([&] { load_gltf(b.write_gltf(dir)); });
+  const std::string message = error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); });
   EXPECT_NE(message.find("COLOR_0 must be VEC3/VEC4"), std::string::npos) << message;
 }
 

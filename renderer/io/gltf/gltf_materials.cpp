@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_images.h"
 
@@ -102,7 +103,7 @@ int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_rema
   // tinygltf only warns when an external image is missing; a broken reference is an error.
   if (img.bufferView < 0 && img.image.empty())
     throw input_error(file, pointer_join(pointer("images", gltf_image), "uri"),
-                      "cannot read image file '" + img.uri + "'");
+                      "cannot read image file " + quoted(img.uri));
   encoded_image pending = encoded_bytes(model, img);
   pending.name = !img.name.empty() ? img.name : img.uri;
   pending.where = pointer("images", gltf_image);
@@ -359,7 +360,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
   else if (src.alphaMode == "BLEND")
     m.alpha = alpha_mode::blend;
   else
-    throw input_error(file, pointer_join(where, "alphaMode"), "unknown alphaMode '" + src.alphaMode + "'");
+    throw input_error(file, pointer_join(where, "alphaMode"), "unknown alphaMode " + quoted(src.alphaMode));
   require(std::isfinite(src.alphaCutoff) && src.alphaCutoff >= 0.0, file, pointer_join(where, "alphaCutoff"),
           "alphaCutoff must be finite and not negative");
   m.alpha_cutoff = static_cast<float>(src.alphaCutoff);

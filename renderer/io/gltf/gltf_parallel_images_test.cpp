@@ -59,7 +59,7 @@ scene load_with_threads(const std::string& path, int threads) {
 TEST(GltfParallelImages, SceneIsTheSameForAnyThreadCount) {
   temp_folder dir;
   const int count = 24;
-  const std::string path = textured_triangles(dir, count).write_gltf(dir);
+  const std::string path = textured_triangles(dir, count).write(dir.file("scene.gltf"));
   const scene one = load_with_threads(path, 1);
   ASSERT_EQ(one.images.size(), size_t(count));
   for (int i = 0; i < count; ++i) {
@@ -86,7 +86,7 @@ TEST(GltfParallelImages, SceneIsTheSameForAnyThreadCount) {
 
 TEST(GltfParallelImages, FirstBrokenImageInSceneOrderIsReported) {
   temp_folder dir;
-  const std::string path = textured_triangles(dir, 16, {13, 6, 9}).write_gltf(dir);
+  const std::string path = textured_triangles(dir, 16, {13, 6, 9}).write(dir.file("scene.gltf"));
   for (int round = 0; round < 4; ++round)
     for (int threads : {1, 4}) {
       const std::string message = error_of([&] { load_with_threads(path, threads); });
@@ -101,7 +101,7 @@ TEST(GltfParallelImages, ImageMetBeforeABadMaterialIsReportedFirst) {
   temp_folder dir;
   gltf_builder b = textured_triangles(dir, 3, {0});
   b.doc["materials"][1]["emissiveFactor"] = json::array({-1, 0, 0});
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_with_threads(path, 2); });
   EXPECT_NE(message.find("/images/0: image data is not PNG"), std::string::npos) << message;
 }
@@ -110,7 +110,7 @@ TEST(GltfParallelImages, BadMaterialBeforeABrokenImageIsReportedFirst) {
   temp_folder dir;
   gltf_builder b = textured_triangles(dir, 3, {1});
   b.doc["materials"][0]["emissiveFactor"] = json::array({-1, 0, 0});
-  const std::string path = b.write_gltf(dir);
+  const std::string path = b.write(dir.file("scene.gltf"));
   const std::string message = error_of([&] { load_with_threads(path, 2); });
   EXPECT_NE(message.find("/materials/0/emissiveFactor: emissiveFactor must be finite and not negative"),
             std::string::npos)

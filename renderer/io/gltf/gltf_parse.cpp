@@ -1,10 +1,12 @@
 #include "io/gltf/gltf_parse.h"
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_image_use.h"
 #include "io/gltf/gltf_precheck.h"
+#include "io/gltf/gltf_schema_check.h"
 #include "io/gltf/gltf_uri_files.h"
 #include "io/file/input_file.h"
 
@@ -132,7 +134,7 @@ void check_version(const tinygltf::Model& model, const std::string& path) {
   const std::string major = version.substr(0, version.find('.'));
   if (major != "2")
     throw input_error(path, "/asset/version",
-                      "glTF version '" + version + "' is not supported (kiln reads glTF 2.x)");
+                      "glTF version " + quoted(version) + " is not supported (kiln reads glTF 2.x)");
 }
 
 void check_required_extensions(const std::vector<std::string>& required, const std::string& path) {
@@ -141,7 +143,7 @@ void check_required_extensions(const std::vector<std::string>& required, const s
     const std::string& name = required[i];
     if (std::find(supported.begin(), supported.end(), name) == supported.end())
       throw input_error(path, pointer_join("/extensionsRequired", static_cast<int64_t>(i)),
-                        "required extension " + name + " is not supported");
+                        "required extension " + shown(name) + " is not supported");
   }
 }
 
@@ -216,6 +218,8 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   // bufferViews), so it is reported first.
   check_required_extensions_in_json(doc, path);
   check_what_tinygltf_refuses(doc, path, sources);
+  check_integer_properties(doc, path);
+  check_camera_numbers(doc, path);
   context.image_used = images_used_by_materials(doc);
   context.unused_image_files = unused_image_files(doc, context.image_used, context.rules.folder_prefix);
   refuse_missing_image_files(doc, context.rules.folder_prefix, path);
@@ -285,7 +289,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
     check_required_extensions_in_json(bytes.data() + json_offset, json_length, path);
     std::string line = first_line(err);
     if (line.empty()) line = "tinygltf could not parse the file";
-    throw input_error(path, "", "invalid glTF: " + line);
+    throw input_error(path, "", "invalid glTF: " + shown(line));
   }
   check_version(model, path);
   check_required_extensions(model.extensionsRequired, path);

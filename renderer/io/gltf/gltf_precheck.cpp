@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/gltf/gltf_common.h"
 
 namespace kiln::gltf_internal {
@@ -118,7 +119,7 @@ size_t check_data_uri(const std::string& uri, bool image, const std::string& pat
   const std::string& expected = data_uri_headers()[image ? 2 : 0];
   throw input_error(
       path, where,
-      "malformed data URI '" + uri.substr(0, 48) + "' (expected it to start with " + expected + ")");
+      "malformed data URI " + quoted(uri.substr(0, 48)) + " (expected it to start with " + expected + ")");
 }
 
 const json* find_array(const json& doc, const char* name) {
@@ -160,11 +161,11 @@ void check_buffer(const json& buffer, size_t i, const std::string& path, const b
   std::error_code ec;
   const fs::path file = fs::path(sources.folder_prefix) / percent_decoded(uri);
   if (!fs::is_regular_file(file, ec))
-    throw input_error(path, uri_where, "buffer file '" + uri + "' not found");
+    throw input_error(path, uri_where, "buffer file " + quoted(uri) + " not found");
   const uintmax_t size = fs::file_size(file, ec);
   if (!ec && size != length)
     throw input_error(path, pointer_join(where, "byteLength"),
-                      "byteLength is " + std::to_string(length) + " but '" + uri + "' has " +
+                      "byteLength is " + std::to_string(length) + " but " + quoted(uri) + " has " +
                           std::to_string(size) + " bytes");
 }
 
@@ -197,7 +198,7 @@ void check_images(const json& doc, const std::string& path) {
     auto view = image.find("bufferView");
     if (view != image.end() && (!is_index(*view) || view->get<uint64_t>() >= view_count))
       throw input_error(path, pointer_join(where, "bufferView"),
-                        "/bufferViews/" + view->dump() + " does not exist (file has " +
+                        "/bufferViews/" + shown(view->dump()) + " does not exist (file has " +
                             std::to_string(view_count) + " bufferViews)");
   }
 }
@@ -220,7 +221,7 @@ void check_index_accessors(const json& doc, const std::string& path) {
           pointer_join(pointer_join(pointer("meshes", int64_t(m)), "primitives"), int64_t(p)), "indices");
       if (!is_index(indices) || indices.get<uint64_t>() >= accessor_count)
         throw input_error(path, where,
-                          "/accessors/" + indices.dump() + " does not exist (file has " +
+                          "/accessors/" + shown(indices.dump()) + " does not exist (file has " +
                               std::to_string(accessor_count) + " accessors)");
       const json& accessor = (*accessors)[indices.get<size_t>()];
       const json* view =
@@ -228,7 +229,7 @@ void check_index_accessors(const json& doc, const std::string& path) {
       if (!view || !is_index(*view) || view->get<uint64_t>() >= view_count)
         throw input_error(
             path, where,
-            "index accessor " + indices.dump() + " has no valid bufferView (indices need stored data)");
+            "index accessor " + shown(indices.dump()) + " has no valid bufferView (indices need stored data)");
     }
   }
 }

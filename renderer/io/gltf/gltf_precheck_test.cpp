@@ -115,10 +115,10 @@ TEST(GltfPrecheck, ByteLengthMustMatchTheDataUri) {
 TEST(GltfPrecheck, MissingAndMisSizedBufferFiles) {
   temp_folder dir;
   const gltf_builder b = single_triangle();
-  refusal r = refusal_of(b.write_gltf_external(dir, "scene.gltf", "gone.bin", /*write_bin=*/false));
+  refusal r = refusal_of(b.write_external(dir.file("scene.gltf"), "gone.bin", /*write_bin=*/false));
   EXPECT_EQ(r.location, "/buffers/0/uri");
   EXPECT_NE(r.reason.find("'gone.bin' not found"), std::string::npos) << r.reason;
-  const std::string path = b.write_gltf_external(dir, "scene.gltf", "long.bin");
+  const std::string path = b.write_external(dir.file("scene.gltf"), "long.bin");
   std::vector<uint8_t> longer = b.bin;
   longer.resize(longer.size() + 8);
   write_bytes(dir.file("long.bin"), longer);

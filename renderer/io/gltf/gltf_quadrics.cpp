@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/format_number.h"
+#include "core/message_text.h"
 #include "geometry/quadric.h"
 #include "io/gltf/gltf_common.h"
 #include "scene/coordinate_range.h"
@@ -139,7 +140,7 @@ quadric read_definition(const tinygltf::Value& value, const std::string& where, 
   if (found == kind_names().end()) {
     std::string known;
     for (const auto& entry : kind_names()) known += (known.empty() ? "" : ", ") + entry.first;
-    in.fail("kind", "unknown kind '" + kind + "' (expected one of: " + known + ")");
+    in.fail("kind", "unknown kind " + quoted(kind) + " (expected one of: " + known + ")");
   }
   quadric q;
   q.kind = found->second;
@@ -210,7 +211,7 @@ std::string users_of(const tinygltf::Model& model, size_t definition) {
     const tinygltf::Value& index = ext->second.Get("primitive");
     if (!index.IsInt() || index.GetNumberAsInt() != int(definition)) continue;
     users += (users.empty() ? "" : ", ") + pointer("nodes", int64_t(n));
-    if (!model.nodes[n].name.empty()) users += " '" + model.nodes[n].name + "'";
+    if (!model.nodes[n].name.empty()) users += " " + quoted(model.nodes[n].name);
   }
   return users.empty() ? " (no node places it)" : " (placed by " + users + ")";
 }

@@ -32,7 +32,7 @@ TEST(GltfQuadrics, SharedDefinitionsBecomeInstancesWithMaterials) {
   const int n3 = b.add_node({{"extensions", {{"KILN_quadric", {{"primitive", 1}}}}}});
   const int n4 = b.add_node({{"extensions", {{"KILN_quadric", {{"primitive", 2}}}}}});
   b.set_scene({0, n1, n2, n3, n4});
-  const scene s = load_gltf(b.write_gltf(dir));
+  const scene s = load_gltf(b.write(dir.file("scene.gltf")));
 
   EXPECT_TRUE(s.stats.warnings.empty()) << s.stats.warnings.front();
   ASSERT_EQ(s.quadrics.size(), 4u);
@@ -67,16 +67,16 @@ TEST(GltfQuadrics, MalformedExtensionObjects) {
   temp_folder dir;
   gltf_builder b = single_triangle();
   b.doc["extensions"]["KILN_quadric"] = {{"primitives", 3}};
-  EXPECT_NE(error_of([&] { load_gltf(b.write_gltf(dir)); }).find("/extensions/KILN_quadric"),
+  EXPECT_NE(error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("/extensions/KILN_quadric"),
             std::string::npos);
   b.doc["extensions"]["KILN_quadric"] = {
       {"primitives", json::array({json{{"kind", "sphere"}, {"radius", 1}}})}};
   b.doc["nodes"][0]["extensions"]["KILN_quadric"] = {{"primitive", "zero"}};
-  EXPECT_NE(error_of([&] { load_gltf(b.write_gltf(dir)); }).find("/nodes/0/extensions/KILN_quadric"),
+  EXPECT_NE(error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("/nodes/0/extensions/KILN_quadric"),
             std::string::npos);
   b.doc["nodes"][0]["extensions"]["KILN_quadric"] = {{"primitive", 0}};
   b.doc["extensions"]["KILN_quadric"]["primitives"][0]["radius"] = "big";
-  EXPECT_NE(error_of([&] { load_gltf(b.write_gltf(dir)); }).find("must be a finite number"),
+  EXPECT_NE(error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("must be a finite number"),
             std::string::npos);
 }
 

@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/file/input_file.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_loader.h"
@@ -49,12 +50,34 @@ void for_each_file_uri(const nlohmann::json& doc,
   }
 }
 
+namespace {
+
+// True when no file system could hold a file by this name: a component past NAME_MAX (255 bytes
+// on Linux file systems) or the whole past PATH_MAX. Such a name is refused for what it is, not as
+// a file outside the folder (which is what a failed canonicalisation would otherwise report).
+bool name_too_long(const std::string& name) {
+  if (name.size() >= 4096) return true;
+  size_t start = 0;
+  while (start <= name.size()) {
+    size_t end = name.find('/', start);
+    if (end == std::string::npos) end = name.size();
+    if (end - start > 255) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::string> checked_uri_files(const std::string& asset, const std::string& pointer,
                                            const std::string& uri, const uri_rules& rules) {
   const std::string decoded = percent_decoded(uri);
   if (decoded.rfind("file:", 0) == 0 || fs::path(decoded).is_absolute())
     throw input_error(asset, pointer,
-                      "'" + decoded + "' is an absolute path; glTF URIs are relative to the asset");
+                      quoted(decoded) + " is an absolute path; glTF URIs are relative to the asset");
+  if (name_too_long(decoded))
+    throw input_error(asset, pointer,
+                      quoted(decoded) + " cannot name a file (a path component is longer than 255 bytes)");
   // tinygltf decodes with dlib's urldecode, which also reads '+' as a space: both spellings count.
   std::string plus_as_space = uri;
   for (char& c : plus_as_space)
@@ -67,10 +90,10 @@ std::vector<std::string> checked_uri_files(const std::string& asset, const std::
     if (!rules.allow_outside && !inside_asset_folder(path, rules))
       throw input_error(
           asset, pointer,
-          "'" + decoded + "' refers to a file outside the asset's folder (allow with --allow-outside-files)");
+          quoted(decoded) + " refers to a file outside the asset's folder (allow with --allow-outside-files)");
     if (input_file_missing(path)) continue;
     if (const std::string why = input_file_problem(path, max_gltf_file_bytes); !why.empty())
-      throw input_error(asset, pointer, "'" + decoded + "' " + why);
+      throw input_error(asset, pointer, quoted(decoded) + " " + why);
     files.push_back(path);
   }
   return files;

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/format_number.h"
+#include "core/message_text.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_loader.h"
@@ -355,6 +356,15 @@ void check_transform_array(const std::vector<double>& values, size_t expected, c
     throw input_error(file, pointer_join(where, key), std::string(key) + " contains NaN or infinity");
 }
 
+// glTF node matrices are TRS compositions, so their last row is 0, 0, 0, 1; kiln's transforms
+// (and Embree's) are affine and would drop any other row without a word.
+void check_affine(const std::vector<double>& m, const std::string& file, const std::string& where) {
+  if (m.size() != 16 || (m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0)) return;
+  throw input_error(file, pointer_join(where, "matrix"),
+                    "the last row must be 0, 0, 0, 1 (a node matrix is affine), got " + format_number(m[3]) + ", " +
+                        format_number(m[7]) + ", " + format_number(m[11]) + ", " + format_number(m[15]));
+}
+
 void validate_nodes(const tinygltf::Model& model, const std::string& file) {
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const tinygltf::Node& node = model.nodes[n];
@@ -366,6 +376,7 @@ void validate_nodes(const tinygltf::Model& model, const std::string& file) {
       check_ref(node.children[c], model.nodes.size(), false, "nodes", file,
                 pointer_join(pointer_join(where, "children"), static_cast<int64_t>(c)));
     check_transform_array(node.matrix, 16, "matrix", file, where);
+    check_affine(node.matrix, file, where);
     check_transform_array(node.translation, 3, "translation", file, where);
     check_transform_array(node.rotation, 4, "rotation", file, where);
     check_transform_array(node.scale, 3, "scale", file, where);
@@ -454,7 +465,9 @@ void validate_cameras(const tinygltf::Model& model, const std::string& file) {
                           "yfov " + format_number(p.yfov) + " is not in (0, pi)");
       if (p.aspectRatio < 0.0)
         throw input_error(file, pointer_join(at, "aspectRatio"), "aspectRatio must be positive");
-      if (p.znear < 0.0) throw input_error(file, pointer_join(at, "znear"), "znear must not be negative");
+      // glTF's schema: exclusiveMinimum 0 (a perspective projection divides by znear).
+      if (!(p.znear > 0.0))
+        throw input_error(file, pointer_join(at, "znear"), "znear must be greater than 0, got " + format_number(p.znear));
       if (p.zfar != 0.0 && p.zfar <= p.znear)
         throw input_error(file, pointer_join(at, "zfar"), "zfar must be greater than znear");
     } else if (cam.type == "orthographic") {
@@ -467,7 +480,7 @@ void validate_cameras(const tinygltf::Model& model, const std::string& file) {
       if (o.zfar <= o.znear)
         throw input_error(file, pointer_join(at, "zfar"), "zfar must be greater than znear");
     } else {
-      throw input_error(file, pointer_join(where, "type"), "unknown camera type '" + cam.type + "'");
+      throw input_error(file, pointer_join(where, "type"), "unknown camera type " + quoted(cam.type));
     }
   }
 }
@@ -478,7 +491,7 @@ void validate_lights(const tinygltf::Model& model, const std::string& file) {
     const tinygltf::Light& light = model.lights[l];
     const std::string where = "/extensions/KHR_lights_punctual/lights/" + std::to_string(l);
     if (light.type != "point" && light.type != "spot" && light.type != "directional")
-      throw input_error(file, pointer_join(where, "type"), "unknown light type '" + light.type + "'");
+      throw input_error(file, pointer_join(where, "type"), "unknown light type " + quoted(light.type));
     if (!light.color.empty() && (light.color.size() != 3 || !all_finite(light.color)))
       throw input_error(file, pointer_join(where, "color"), "color must be three finite numbers");
     if (!std::isfinite(light.intensity) || light.intensity < 0.0)

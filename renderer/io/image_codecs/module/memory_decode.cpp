@@ -92,6 +92,14 @@ std::string one_line(std::string text) {
   return text;
 }
 
+// OpenImageIO names the file it read in its messages; for in-memory data that is the made-up
+// name from name_from_magic, which would only mislead.
+std::string without_name(std::string text, const std::string& pseudo_name) {
+  const std::string quoted_name = " (\"" + pseudo_name + "\")";
+  for (size_t pos; (pos = text.find(quoted_name)) != std::string::npos;) text.erase(pos, quoted_name.size());
+  return text;
+}
+
 }  // namespace
 
 image decode(const uint8_t* data, size_t size, const std::string& name, const std::string& file,
@@ -114,7 +122,7 @@ image decode(const uint8_t* data, size_t size, const std::string& name, const st
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
   auto input = OIIO::ImageInput::open(pseudo_name, &config, &proxy);
   if (!input) {
-    std::string why = one_line(OIIO::geterror());
+    std::string why = without_name(one_line(OIIO::geterror()), pseudo_name);
     throw fail("cannot decode image: " + (why.empty() ? std::string("unknown error") : why));
   }
   const OIIO::ImageSpec& spec = input->spec();
@@ -143,10 +151,13 @@ image decode(const uint8_t* data, size_t size, const std::string& name, const st
     ok = input->read_image(0, 0, 0, used_channels, OIIO::TypeDesc::FLOAT, pixels.data());
     if (ok) expand_to_rgba<float>(pixels, used_channels, texels, 1.0f, out.texels32);
   }
-  if (!ok) {
-    std::string why = one_line(input->geterror());
+  // libjpeg only warns about a truncated or corrupt stream ("Premature end of JPEG file") and fills
+  // the rest with grey; OpenImageIO records the warning yet reports success. Such an image is as
+  // broken as a truncated PNG, so the warning refuses it. (Other readers may record harmless
+  // warnings, such as libpng's about colour profiles, so only JPEG's count.)
+  std::string why = without_name(one_line(input->geterror()), pseudo_name);
+  if (!ok || (pseudo_name == "image.jpg" && !why.empty()))
     throw fail("cannot decode image: " + (why.empty() ? std::string("truncated or corrupt data") : why));
-  }
   return out;
 }
 
