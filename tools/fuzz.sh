@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes kiln's loader with libFuzzer (clang-14 from Debian, ASan+UBSan).
 #   tools/fuzz.sh [TARGET] [SECONDS]
-#     TARGET  gltf_loader (whole .gltf/.glb files), quadric (the KILN_quadric extension) or all
-#             (default: both in sequence); SECONDS per target, default 300
+#     TARGET  gltf_loader (whole .gltf/.glb files), quadric (the KILN_quadric extension),
+#             image_header (encoded image headers), transforms (extreme transforms, cameras and
+#             coordinates through the whole render job) or all (default: every one in sequence);
+#             SECONDS per target, default 300
 # Each run's last lines (libFuzzer's final stats) give executions and coverage; the full log is
 # fuzz/findings/TARGET.log. Seeds for gltf_loader: scenes/, tests/data/bad_gltf/,
 # tests/data/fuzz_regressions/ and, when present, ../shared/assets (files under 1 MiB); for quadric:
@@ -15,12 +17,12 @@ target=all
 seconds=300
 for arg in "$@"; do
   case "$arg" in
-    gltf_loader | quadric | all) target="$arg" ;;
-    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|all] [SECONDS]" >&2 && exit 2 ;;
+    gltf_loader | quadric | image_header | transforms | all) target="$arg" ;;
+    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|transforms|all] [SECONDS]" >&2 && exit 2 ;;
     *) seconds="$arg" ;;
   esac
 done
-targets=(gltf_loader quadric)
+targets=(gltf_loader quadric image_header transforms)
 [[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
@@ -55,17 +57,29 @@ for i, d in enumerate(defs):
 PY
 }
 
+# Seeds for fuzz_image_header: the headers of the images in scenes/ and tests/data (first 4 KiB).
+seed_image_header() {
+  find scenes tests/data -type f \( -name '*.png' -o -name '*.jpg' -o -name '*.jpeg' -o -name '*.webp' \) \
+    -size -4096k | head -200 | while read -r f; do head -c 4096 "$f" >"$1/$(basename "$f")"; done
+}
+
+# Seeds for fuzz_transforms: the flag byte alone (every number at its default), one per flag set.
+seed_transforms() {
+  for flags in 0 1 2 3 4 6 12 15; do printf "\\x$(printf %02x $flags)" >"$1/flags_$flags"; done
+}
+
 for t in "${targets[@]}"; do
   corpus="fuzz/corpus/$t"
   mkdir -p "$corpus"
   "seed_$t" "$corpus"
-  dict=fuzz/gltf.dict
-  [[ "$t" == quadric ]] && dict=fuzz/quadric.dict
+  dict=(-dict=fuzz/gltf.dict)
+  [[ "$t" == quadric ]] && dict=(-dict=fuzz/quadric.dict)
+  [[ "$t" == image_header || "$t" == transforms ]] && dict=()
   echo "kiln: fuzzing $t for $seconds s" >&2
   set +e
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-    "build-fuzz/fuzz/fuzz_$t" "$corpus" -dict="$dict" -max_total_time="$seconds" \
+    "build-fuzz/fuzz/fuzz_$t" "$corpus" "${dict[@]}" -max_total_time="$seconds" \
     -max_len=262144 -rss_limit_mb=4096 -timeout=10 -artifact_prefix="fuzz/findings/$t-" -print_final_stats=1 \
     2>&1 | tee "fuzz/findings/$t.log" | grep -E '^(#[0-9]+ +(INITED|DONE)|stat::|==[0-9]+==|SUMMARY|artifact_prefix)'
   status=${PIPESTATUS[0]}
