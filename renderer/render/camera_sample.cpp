@@ -54,8 +54,11 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   camera_path path;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
-  path.split = with_split ? &s.split : nullptr;
-  const vec3 radiance = shade_prepared(ctx, r, p, 0, 1.0f, counts, medium_stack{}, at_hit, &path);
+  path_state state;
+  state.cone = at_hit;
+  state.camera = &path;
+  state.split = with_split ? &s.split : nullptr;
+  const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
   // Opaque paths keep alpha exactly 1 (1 − 0).
