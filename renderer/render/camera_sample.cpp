@@ -54,8 +54,10 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
   camera_path path;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
+  ray_budget budget{ctx.options.max_rays_per_sample, ctx.cancel};
   path_state state;
   state.cone = at_hit;
+  state.budget = &budget;
   state.camera = &path;
   state.split = with_split ? &s.split : nullptr;
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);

@@ -46,6 +46,7 @@ inline shading_context with_accelerator(const shading_context& ctx, const accele
   shading_context out{ctx.world, accel, ctx.options};
   out.see_through_shadows = ctx.see_through_shadows;
   out.textures = ctx.textures;
+  out.cancel = ctx.cancel;
   return out;
 }
 

@@ -284,7 +284,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   shading_options shading = settings.shading;
   // Adaptive samples carry the whole pixel's cone (sample_cone(cam, 1)).
   shading.highlight_footprint_scale = adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
-  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get()};
+  // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
+  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get(), settings.cancel};
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 

@@ -201,12 +201,12 @@ std::optional<vec3> refraction_direction(const surface_point& sp, const vec3& in
 }
 
 // The refracted ray through a transmissive surface with weight `weight`, traced (when the throughput
-// allows) and filed under the split's refraction.
+// and the budget allow) and filed under the split's refraction.
 vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const vec3& incident,
                      const vec3& direction, const interface_crossing& crossing, const vec3& weight,
                      const path_state& s, ray_counts& counts) {
   const float next_throughput = s.throughput * max_component(weight);
-  if (!(next_throughput >= ctx.options.min_throughput)) return vec3(0.0f);
+  if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   ray refracted;
   refracted.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
   refracted.direction = direction;
@@ -242,12 +242,12 @@ vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, con
   return trace_refracted(ctx, sp, incident, *direction, crossing, weight, s, counts);
 }
 
-// The mirror ray with weight reflect_weight, traced (when the throughput allows) and
+// The mirror ray with weight reflect_weight, traced (when the throughput and the budget allow) and
 // filed under the split's reflection.
 vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& incident,
                   const vec3& reflect_weight, const path_state& s, ray_counts& counts) {
   const float next_throughput = s.throughput * max_component(reflect_weight);
-  if (!(next_throughput >= ctx.options.min_throughput)) return vec3(0.0f);
+  if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   vec3 direction = glm::reflect(incident, sp.shading_normal);
   // An interpolated normal can send the mirror ray below the surface; use the true plane then.
   if (glm::dot(direction, sp.geometric_normal) <= 0.0f) direction = glm::reflect(incident, sp.geometric_normal);
@@ -302,7 +302,8 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   path_state next = s;
   next.throughput = s.throughput * (1.0f - alpha);
   next.share = s.share * (1.0f - alpha);
-  if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput)) {
+  if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||
+      !spend_ray(s.budget)) {
     // Not traced: the part behind stays covered by this surface, as opaque black, so the mattes
     // still sum to alpha.
     if (s.camera && s.record_layers) s.camera->cover(sp.instance, next.share);

@@ -10,6 +10,7 @@
 #include "scene/scene.h"
 #include "shade/dielectric.h"
 #include "shade/material_eval.h"
+#include "shade/ray_budget.h"
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_filter.h"
@@ -19,6 +20,10 @@ namespace kiln {
 struct shading_options {
   int max_depth = 8;             // camera ray is depth 0; reflections stop after this many bounces
   float min_throughput = 1e-3f;  // a reflection whose weight falls below this is not traced
+  // Reflected, refracted and continued rays one camera sample may spawn in all (its shadow rays
+  // are not counted: each shaded hit casts one per light). Past it the tree is cut where it has
+  // got to: a ray not spawned brings nothing back, like one under min_throughput.
+  uint64_t max_rays_per_sample = 4096;
   // Whitted's mirror is perfect; a glTF surface's mirror term fades linearly from full strength
   // at roughness 0 to nothing at this roughness (rougher surfaces keep only their GGX highlight).
   float mirror_roughness_limit = 0.25f;
@@ -62,6 +67,8 @@ struct shading_context {
   bool see_through_shadows = false;
   // Mip-mapped minification for ray-cone footprints; null: textures read level 0 only.
   const texture_filter* textures = nullptr;
+  // Raised (from another thread): camera samples stop spawning rays (see ray_budget.h).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // True when some material can pass light through itself (transmission or alphaMode BLEND), so
@@ -118,6 +125,7 @@ struct path_state {
   medium_stack media;       // the closed volumes the ray travels in (empty for camera rays)
   ray_cone cone;            // the ray's cone: at its origin when traced, at the hit when shaded
   float time = 0.0f;        // the sample's time in the shutter; unused until motion blur
+  ray_budget* budget = nullptr;  // the sample's rays left and cancel flag; null: unbounded
   // On the camera's own path (null for a secondary ray): alpha and mattes go there.
   camera_path* camera = nullptr;
   float share = 1.0f;         // the part of the camera sample this ray carries (BLEND layers, glass)
