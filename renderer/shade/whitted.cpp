@@ -141,8 +141,13 @@ bool scene_has_see_through(const scene& s) {
 }
 
 std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts) {
+  return find_visible_hit_from(ctx, r, ctx.accel.intersect(r), counts);
+}
+
+std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std::optional<hit> h,
+                                         ray_counts& counts) {
   for (int i = 0; i < max_culled_crossings; ++i) {
-    std::optional<hit> h = ctx.accel.intersect(r);
+    if (i > 0) h = ctx.accel.intersect(r);
     if (!h || !back_face_culled(ctx.world, *h, r)) return h;
     surface_point sp = make_surface_point(ctx.world, *h, r);
     vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);

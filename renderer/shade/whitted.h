@@ -80,6 +80,10 @@ bool scene_has_see_through(const scene& s);
 // it. Shadow rays do not cull (a single-sided surface still casts a shadow from behind).
 std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts);
 
+// find_visible_hit for a ray whose closest hit is already known (first = ctx.accel.intersect(r)).
+std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std::optional<hit> first,
+                                         ray_counts& counts);
+
 // Distance from start.origin to the hit h of r, where r is start advanced by find_visible_hit past
 // culled back faces (the ray cone keeps widening across them).
 float distance_to_hit(const ray& start, const ray& r, const hit& h);
