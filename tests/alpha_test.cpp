@@ -91,7 +91,7 @@ TEST(alpha, blend_composites_the_surface_over_what_is_behind_it) {
   shading_options options;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 seen = trace_radiance(ctx, make_ray(vec3(0.3f, 0.1f, 3), vec3(0, 0, -1)), 0, 1.0f, counts);
+  vec3 seen = trace_radiance(ctx, make_ray(vec3(0.3f, 0.1f, 3), vec3(0, 0, -1)), path_state{}, counts);
   EXPECT_NEAR(seen.x, alpha * front + (1 - alpha) * back, 1e-5f);
   EXPECT_EQ(counts.transparency, 1u);
 }
@@ -117,11 +117,11 @@ TEST(alpha, single_sided_back_faces_are_culled_double_sided_ones_are_not) {
   ray_counts counts;
   ray from_above = make_ray(vec3(0, 0, 1), vec3(0, 0, -1));
   ray from_below = make_ray(vec3(0, 0, -1), vec3(0, 0, 1));
-  EXPECT_EQ(trace_radiance(ctx, from_above, 0, 1.0f, counts).x, 2.0f);
-  EXPECT_EQ(trace_radiance(ctx, from_below, 0, 1.0f, counts).x, 0.5f);  // culled: the environment
+  EXPECT_EQ(trace_radiance(ctx, from_above, path_state{}, counts).x, 2.0f);
+  EXPECT_EQ(trace_radiance(ctx, from_below, path_state{}, counts).x, 0.5f);  // culled: the environment
   EXPECT_TRUE(accel.occluded(from_below));                              // still casts a shadow from behind
   s.materials[0].double_sided = true;
-  EXPECT_EQ(trace_radiance(ctx, from_below, 0, 1.0f, counts).x, 2.0f);
+  EXPECT_EQ(trace_radiance(ctx, from_below, path_state{}, counts).x, 2.0f);
 }
 
 }  // namespace
@@ -148,7 +148,7 @@ TEST(unlit, radiance_is_the_base_colour_whatever_the_lights) {
   shading_options options;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 seen = trace_radiance(ctx, testing::make_ray(vec3(0.1f, 0.2f, 1), vec3(0, 0, -1)), 0, 1.0f, counts);
+  vec3 seen = trace_radiance(ctx, testing::make_ray(vec3(0.1f, 0.2f, 1), vec3(0, 0, -1)), path_state{}, counts);
   EXPECT_EQ(seen, vec3(0.2f, 0.4f, 0.8f));
   EXPECT_EQ(counts.shadow + counts.reflection, 0u);
 }

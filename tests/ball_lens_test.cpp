@@ -126,7 +126,7 @@ vec3 rendered(const scene& s, const ray& camera, int max_depth) {
   options.min_throughput = 0.0f;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  return trace_radiance(ctx, camera, 0, 1.0f, counts);
+  return trace_radiance(ctx, camera, path_state{}, counts);
 }
 
 // Where the plane is hit along the most heavily weighted path (the twice-refracted one).

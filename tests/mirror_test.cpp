@@ -42,7 +42,7 @@ scene floor_under_emitter(float base, float roughness) {
 vec3 trace_down(const scene& s, const shading_options& options, ray_counts& counts) {
   embree_accelerator accel(s);
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
-  return trace_radiance(ctx, make_ray(vec3(0.3f, -0.2f, 1.0f), vec3(0, 0, -1)), 0, 1.0f, counts);
+  return trace_radiance(ctx, make_ray(vec3(0.3f, -0.2f, 1.0f), vec3(0, 0, -1)), path_state{}, counts);
 }
 
 TEST(mirror, smooth_metal_reflects_base_colour_times_the_mirrored_radiance) {
@@ -95,7 +95,7 @@ TEST(mirror, two_parallel_mirrors_bounce_exactly_max_depth_times) {
     options.max_depth = depth;
     shading_context ctx{s, accel, options, scene_has_see_through(s)};
     ray_counts counts;
-    trace_radiance(ctx, make_ray(vec3(0, 0, 0.5f), vec3(0.3f, 0.1f, -1.0f)), 0, 1.0f, counts);
+    trace_radiance(ctx, make_ray(vec3(0, 0, 0.5f), vec3(0.3f, 0.1f, -1.0f)), path_state{}, counts);
     EXPECT_EQ(counts.reflection, uint64_t(depth)) << depth;
   }
 }

@@ -88,7 +88,7 @@ TEST(quadric_shading, a_lat_long_texture_on_a_sphere_shows_the_texel_at_the_hit_
     // From outside along the normal, straight at the point.
     const ray r = testing::make_ray(vec3(centre + 3.0 * on_sphere), vec3(-on_sphere));
     ray_counts counts;
-    const vec3 colour = trace_radiance(ctx, r, 0, 1.0f, counts);
+    const vec3 colour = trace_radiance(ctx, r, path_state{}, counts);
     const int texel = p.row * 4 + p.column;
     const vec3 expected(texel & 1 ? 1.0f : 0.0f, texel & 2 ? 1.0f : 0.0f, texel & 4 ? 1.0f : 0.0f);
     for (int c = 0; c < 3; ++c) {

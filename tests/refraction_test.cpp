@@ -104,7 +104,7 @@ TEST(refraction, glass_slab_shifts_a_ray_by_the_snell_offset) {
     accel.rays.clear();
     ray_counts counts;
     ray camera = make_ray(vec3(0, 0, 1), vec3(std::sin(angle), 0.0f, -std::cos(angle)));
-    trace_radiance(ctx, camera, 0, 1.0f, counts);
+    trace_radiance(ctx, camera, path_state{}, counts);
     // The first ray that left the bottom face going down (later ones follow
     // internal reflections).
     const ray* exit = nullptr;
@@ -138,7 +138,7 @@ TEST(refraction, head_on_slab_reflects_the_fresnel_series) {
   options.min_throughput = 0.0f;  // the third term of the series weighs only F³
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 seen = trace_radiance(ctx, make_ray(vec3(0, 0, 1), vec3(0, 0, -1)), 0, 1.0f, counts);
+  vec3 seen = trace_radiance(ctx, make_ray(vec3(0, 0, 1), vec3(0, 0, -1)), path_state{}, counts);
   float f = (n - 1) * (n - 1) / ((n + 1) * (n + 1));
   EXPECT_NEAR(seen.x / radiance, 2.0f * f / (1.0f + f), 1e-5f);
   EXPECT_EQ(seen.x, seen.z);
@@ -155,11 +155,12 @@ TEST(refraction, total_internal_reflection_traces_no_refracted_ray) {
   options.max_depth = 1;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   const float critical = std::asin(1.0f / 1.5f);
-  medium_stack inside = medium_stack{}.with(0);
+  path_state inside;
+  inside.media = medium_stack{}.with(0);
   for (auto [angle, refracted] : {std::pair{critical + 0.02f, 0u}, {critical - 0.02f, 1u}}) {
     ray_counts counts;
-    trace_radiance(ctx, make_ray(vec3(0, 0, -0.5f), vec3(std::sin(angle), 0.0f, std::cos(angle))), 0, 1.0f,
-                   counts, inside);
+    trace_radiance(ctx, make_ray(vec3(0, 0, -0.5f), vec3(std::sin(angle), 0.0f, std::cos(angle))), inside,
+                   counts);
     EXPECT_EQ(counts.refraction, refracted) << angle;
     EXPECT_EQ(counts.reflection, 1u) << angle;
   }
@@ -182,7 +183,7 @@ TEST(refraction, beer_lambert_attenuation_over_a_known_length) {
   shading_options options;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 seen = trace_radiance(ctx, make_ray(vec3(0.1f, 0.2f, 3), vec3(0, 0, -1)), 0, 1.0f, counts);
+  vec3 seen = trace_radiance(ctx, make_ray(vec3(0.1f, 0.2f, 3), vec3(0, 0, -1)), path_state{}, counts);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], std::pow(colour[c], length / distance), 1e-5f) << c;
   EXPECT_NEAR(beer_transmittance(colour, distance, 0.0f).x, 1.0f, 0.0f);
 }

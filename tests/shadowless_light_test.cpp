@@ -34,7 +34,7 @@ TEST(shadowless_light, lights_through_an_occluder_that_blocks_a_shadow_casting_l
     s.lights[0].casts_shadows = casts;
     shading_context ctx{s, accel, options, scene_has_see_through(s)};
     ray_counts counts;
-    const vec3 radiance = trace_radiance(ctx, camera, 0, 1.0f, counts);
+    const vec3 radiance = trace_radiance(ctx, camera, path_state{}, counts);
     if (casts) {
       EXPECT_EQ(radiance, vec3(0.0f));
       EXPECT_EQ(counts.shadow, 1u);

@@ -344,6 +344,10 @@ void add_view_options(std::vector<option_spec>& t) {
   add(number_option<float>(
       "min-throughput", [](render_options& o) -> auto& { return o.min_throughput; }, 0.0, 1.0, "0.01",
       "Reflections weighted below this are not traced"));
+  add(unsigned_option<uint64_t>(
+      "max-rays-per-sample", [](render_options& o) -> auto& { return o.max_rays_per_sample; }, 1, ~0ull, "64",
+      "Reflected, refracted and continued rays one camera sample may spawn; past it the sample "
+      "keeps the light gathered so far"));
   add(number_option<float>(
           "texture-cache-mb", [](render_options& o) -> auto& { return o.texture_cache_mb; }, 1.0, 1e6, "64",
           "No effect (texture pyramids are kept in memory); accepted so existing command lines "

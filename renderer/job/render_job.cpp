@@ -271,6 +271,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.transmission_transparent = options.transmission_alpha == "transparent";
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
+  settings.shading.max_rays_per_sample = options.max_rays_per_sample;
   settings.packets = options.packets;
   settings.aovs = options.aovs;
   return settings;

@@ -60,6 +60,7 @@ struct render_options {
   float environment_intensity = 1.0f;
   int max_depth = 8;
   float min_throughput = 1e-3f;
+  uint64_t max_rays_per_sample = shading_options{}.max_rays_per_sample;  // --max-rays-per-sample
   float texture_cache_mb = 256.0f;  // no effect: accepted so existing command lines keep working
   bool allow_outside_files = false;
   gltf_limits limits;                   // --max-json-bytes, --max-json-depth, --max-nodes, ...

@@ -25,43 +25,80 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
                                   bool with_albedo, bool with_split) {
-  camera_sample s;
   const ray start = generate_camera_ray(cam, px, py);
-  ray r = start;  // find_visible_hit moves the origin past culled back faces
-  // Orthographic rays run along the view axis from the window plane: their distance is planar.
-  if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
-  ++counts.camera;
-  std::optional<hit> h = find_visible_hit(ctx, r, counts);
-  if (!h) {
-    if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
-    if (with_split) s.split.direct = vec3(s.rgba);
-    if (!is_finite(s.rgba)) return discard(s, counts);
-    return s;
-  }
-  const ray_cone at_hit = cone_at(cone, distance_to_hit(start, r, *h));
-  const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
+  return shade_camera_hit(ctx, cam, show_background, start, ctx.accel.intersect(start), cone, counts,
+                          with_albedo, with_split);
+}
+
+namespace {
+
+// The sample of a camera ray that hits nothing: the environment when the background is shown.
+camera_sample missed(const shading_context& ctx, camera_sample s, const ray& r, bool show_background,
+                     bool with_split, ray_counts& counts) {
+  if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
+  if (with_split) s.split.direct = vec3(s.rgba);
+  if (!is_finite(s.rgba)) return discard(s, counts);
+  return s;
+}
+
+// The geometry AOVs of the hit h at p (distance from the camera, also behind culled back faces).
+// They keep the hit even when its radiance has to be discarded. N is the normal the shading used:
+// after the normal map and the bend toward the viewer.
+void record_hit(const shading_context& ctx, const hit& h, const shading_point& p, float distance,
+                bool with_albedo, camera_sample& s) {
   const surface_point& sp = p.sp;
-  // The geometry AOVs keep the hit even when its radiance has to be discarded. N is the normal the
-  // shading used: after the normal map and the bend toward the viewer.
-  s.depth = distance_to_hit(start, r, *h);  // from the camera, also behind culled back faces
+  s.depth = distance;
   if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
-  s.instance = h->instance_id;
+  s.instance = h.instance_id;
   s.position = vec3(dvec3(sp.position) + ctx.world.render_origin);  // render space -> world
   s.uv = sp.uv0;
-  s.node = int32_t(ctx.world.instances[h->instance_id].node);
+  s.node = int32_t(ctx.world.instances[h.instance_id].node);
   s.material = ctx.world.materials[sp.material].source_index;
   if (with_albedo) s.albedo = p.mp.base_color;
+}
+
+// The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
+// the ray's cone there). The sample's ray tree gets its own budget.
+void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p, const ray_cone& at_hit,
+                       bool show_background, bool with_split, camera_sample& s, ray_counts& counts) {
   camera_path path;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
-  path.split = with_split ? &s.split : nullptr;
-  const vec3 radiance = shade_prepared(ctx, r, p, 0, 1.0f, counts, medium_stack{}, at_hit, &path);
+  ray_budget budget{ctx.options.max_rays_per_sample, ctx.cancel};
+  path_state state;
+  state.cone = at_hit;
+  state.budget = &budget;
+  state.camera = &path;
+  state.split = with_split ? &s.split : nullptr;
+  const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
   // Opaque paths keep alpha exactly 1 (1 − 0).
   const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
-  if (!is_finite(radiance)) return discard(s, counts);
+  if (!is_finite(radiance)) {
+    s = discard(s, counts);
+    return;
+  }
   s.rgba = vec4(radiance, alpha);
+}
+
+}  // namespace
+
+camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
+                               const ray& start, const std::optional<hit>& first, const ray_cone& cone,
+                               ray_counts& counts, bool with_albedo, bool with_split) {
+  camera_sample s;
+  ray r = start;  // find_visible_hit moves the origin past culled back faces
+  // Orthographic rays run along the view axis from the window plane: their distance is planar.
+  if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
+  ++counts.camera;
+  const std::optional<hit> h = find_visible_hit_from(ctx, r, first, counts);
+  if (!h) return missed(ctx, s, r, show_background, with_split, counts);
+  const float distance = distance_to_hit(start, r, *h);
+  const ray_cone at_hit = cone_at(cone, distance);
+  const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
+  record_hit(ctx, *h, p, distance, with_albedo, s);
+  shade_camera_path(ctx, r, p, at_hit, show_background, with_split, s, counts);
   return s;
 }
 

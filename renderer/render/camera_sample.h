@@ -44,6 +44,12 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
                                   bool with_albedo = false, bool with_split = false);
 
+// trace_camera_sample for the camera ray `start` whose closest hit `first` is already known (the
+// camera-ray stage of render/camera_rays.h traced it).
+camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
+                               const ray& start, const std::optional<hit>& first, const ray_cone& cone,
+                               ray_counts& counts, bool with_albedo = false, bool with_split = false);
+
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.
 void store_nearest_sample(const camera_sample& s, film& out, size_t i);

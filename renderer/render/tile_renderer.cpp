@@ -2,9 +2,9 @@
 
 #include "core/error.h"
 #include "render/adaptive_sampling.h"
+#include "render/camera_rays.h"
 #include "render/camera_sample.h"
 #include "render/flush_denormals.h"
-#include "render/primary_ray_batch.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
 
@@ -111,23 +111,23 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
   return out;
 }
 
-// Renders every stratified sample of one pixel and splats it through the filter. The nearest
-// sample decides depth, normal and the other AOVs (never filtered, so they stay valid for compositing).
+// Shades every stratified sample of one pixel from its camera ray and closest hit (made and traced
+// by the camera-ray stage, rays) and splats it through the filter. The nearest sample decides depth,
+// normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
-                  int y, pixel_splat& splat, splat_film& splats, tile_sums& sums, film& out,
-                  ray_counts& counts) {
-  const int spp = settings.samples_per_pixel;
-  const ray_cone cone = sample_cone(cam, spp);
+                  int y, camera_ray_batch& rays, pixel_splat& splat, splat_film& splats, tile_sums& sums,
+                  film& out, ray_counts& counts) {
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
-  for (int s = 0; s < spp; ++s) {
+  for (int s = 0; s < settings.samples_per_pixel; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
-    vec2 offset = pixel_sample_offset(settings.random_samples, uint32_t(x), uint32_t(y), uint32_t(s), uint32_t(spp));
-    camera_sample cs =
-        trace_camera_sample(ctx, cam, settings.show_background, x + double(offset.x), y + double(offset.y),
-                            cone, counts, settings.aovs.albedo, wants_light_split(settings.aovs));
+    const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
+    const camera_ray_source& source = rays.sources[k];
+    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
+                                        source.cone, counts, settings.aovs.albedo,
+                                        wants_light_split(settings.aovs));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
@@ -136,7 +136,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
       const bool hit = cs.layer_count > 0;
       sample_mattes mattes;
       if (hit && splat_wants_mattes) mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
-      splat.add(settings.filter, offset, cs.rgba, hit ? &mattes : nullptr, split);
+      splat.add(settings.filter, source.offset, cs.rgba, hit ? &mattes : nullptr, split);
     }
     if (cs.depth < nearest.depth) nearest = cs;
   }
@@ -165,16 +165,11 @@ void render_filtered_tile(const tile_job& job, const tile& tl, tile_sums& sums, 
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     wants_light_split(job.settings.aovs));
   job.splats.begin_tile(sums, tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0);
-  // With packets, the camera rays of each run of rows are traced together first (same hits).
-  primary_ray_batch batch(job.ctx.accel);
-  const shading_context batched = with_accelerator(job.ctx, batch);
-  const shading_context& ctx = job.settings.packets ? batched : job.ctx;
-  int batch_end = tl.y0;
+  // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
+  camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
-    if (job.settings.packets && y == batch_end)
-      batch_end = batch.prepare(job.cam, job.settings, tl.x0, tl.x1, y, tl.y1);
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
-      render_pixel(ctx, job.cam, job.settings, x, y, splat, job.splats, sums, job.out, counts);
+      render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, job.out, counts);
     count_row_done(job.settings, tl);
   }
   job.splats.finish_tile(sums, job.out);
@@ -284,7 +279,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   shading_options shading = settings.shading;
   // Adaptive samples carry the whole pixel's cone (sample_cone(cam, 1)).
   shading.highlight_footprint_scale = adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
-  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get()};
+  // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
+  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get(), settings.cancel};
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 

@@ -44,7 +44,8 @@ struct render_settings {
   // bit-identical to the same pixels of a full render.
   pixel_rect crop;
   // When set and it becomes true (e.g. from a signal handler), rendering stops at the next pixel
-  // (or sample batch) and render_image throws kiln::error of kind interrupted.
+  // (or sample batch) and render_image throws kiln::error of kind interrupted. A camera sample's
+  // ray tree also looks at it every ray_budget::poll_interval rays and then spawns no more.
   const std::atomic<bool>* cancel = nullptr;
   // When set, render_image counts the pixels it finishes here (read from any thread).
   render_progress* progress = nullptr;

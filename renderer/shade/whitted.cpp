@@ -141,8 +141,13 @@ bool scene_has_see_through(const scene& s) {
 }
 
 std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts) {
+  return find_visible_hit_from(ctx, r, ctx.accel.intersect(r), counts);
+}
+
+std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std::optional<hit> h,
+                                         ray_counts& counts) {
   for (int i = 0; i < max_culled_crossings; ++i) {
-    std::optional<hit> h = ctx.accel.intersect(r);
+    if (i > 0) h = ctx.accel.intersect(r);
     if (!h || !back_face_culled(ctx.world, *h, r)) return h;
     surface_point sp = make_surface_point(ctx.world, *h, r);
     vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);
@@ -157,123 +162,209 @@ namespace {
 
 float mean_component(const vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
 
-// The camera path's split, when it keeps one (null inside a refraction it follows for alpha).
-light_split* split_of(camera_path* path) { return path ? path->split : nullptr; }
-
 // Adds what a camera path sees directly (emission, direct light, background) to its split.
-void add_direct(camera_path* path, const vec3& radiance) {
-  if (path && path->split) path->split->direct += path->share * radiance;
+void add_direct(const path_state& s, const vec3& radiance) {
+  if (s.split) s.split->direct += s.share * radiance;
 }
 
-// The refracted ray of shade_covered: traced as the camera's own path (so the background it reaches
-// counts as transparent, scaled by the share the refraction carries) when transmission is
-// transparent, else as an ordinary secondary ray that sees the environment.
-vec3 trace_refraction(const shading_context& ctx, const ray& refracted, int depth, float throughput,
-                      ray_counts& counts, const medium_stack& beyond, const ray_cone& cone,
-                      const vec3& weight, camera_path* path) {
-  if (!path || !path->transmission_transparent)
-    return trace_radiance(ctx, refracted, depth, throughput, counts, beyond, cone);
-  camera_path through = *path;
-  through.share = path->share * mean_component(weight);
-  through.split = nullptr;        // the caller files all of it under refraction
-  through.record_layers = false;  // what glass shows bent belongs to the glass's matte
-  const vec3 radiance = trace_camera_path(ctx, refracted, depth, throughput, counts, beyond, cone, &through);
-  path->transparency = through.transparency;
-  return radiance;
+// The state of a secondary ray spawned by s: one bounce deeper, off the camera's path.
+path_state secondary(const path_state& s, float throughput, const medium_stack& media, const ray_cone& cone) {
+  path_state next = s;
+  ++next.depth;
+  next.throughput = throughput;
+  next.media = media;
+  next.cone = cone;
+  next.camera = nullptr;
+  next.split = nullptr;
+  return next;
+}
+
+// The refracted ray's state: traced as the camera's own path (so the background it reaches counts
+// as transparent, scaled by the share the refraction carries) when transmission is transparent,
+// else as an ordinary secondary ray that sees the environment.
+path_state refracted_state(const path_state& s, float throughput, const medium_stack& beyond,
+                           const ray_cone& cone, const vec3& weight) {
+  path_state next = secondary(s, throughput, beyond, cone);
+  if (!s.camera || !s.camera->transmission_transparent) return next;
+  next.camera = s.camera;
+  next.share = s.share * mean_component(weight);
+  next.record_layers = false;  // what glass shows bent belongs to the glass's matte; the caller
+                               // files all of its light under refraction
+  return next;
+}
+
+// The direction a refracted ray leaves in (empty: total internal reflection). Thin walls pass light
+// on unbent; volumes bend it by Snell's law about the shading normal, falling back to the geometric
+// normal when that would not cross the surface.
+std::optional<vec3> refraction_direction(const surface_point& sp, const vec3& incident,
+                                         const interface_crossing& crossing) {
+  if (!crossing.bends) return incident;
+  std::optional<vec3> direction = refract_direction(incident, sp.shading_normal, crossing.eta);
+  if (direction && glm::dot(*direction, sp.geometric_normal) >= 0.0f)
+    direction = refract_direction(incident, sp.geometric_normal, crossing.eta);
+  return direction;
+}
+
+// The refracted ray through a transmissive surface with weight `weight`, traced (when the throughput
+// and the budget allow) and filed under the split's refraction.
+vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const vec3& incident,
+                     const vec3& direction, const interface_crossing& crossing, const vec3& weight,
+                     const path_state& s, ray_counts& counts) {
+  const float next_throughput = s.throughput * max_component(weight);
+  if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
+  ray refracted;
+  refracted.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
+  refracted.direction = direction;
+  refracted.kind = ray_kind::refraction;
+  ++counts.refraction;
+  const ray_cone bent =
+      crossing.bends ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
+                                      glm::dot(direction, sp.geometric_normal))
+                     : s.cone;
+  const path_state next = refracted_state(s, next_throughput, crossing.beyond, bent, weight);
+  const vec3 refraction = weight * trace_radiance(ctx, refracted, next, counts);
+  if (s.split) s.split->refraction += s.share * refraction;
+  return refraction;
+}
+
+// The transmissive share of a surface: a smooth dielectric whatever its roughness (Whitted has no
+// blurred refraction), split by exact Fresnel into the refracted ray traced here and a reflected
+// part added to reflect_weight (all of it under total internal reflection).
+vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                        const vec3& incident, float cos_theta, const path_state& s, vec3& reflect_weight,
+                        ray_counts& counts) {
+  const float see_through = see_through_weight(mp);
+  if (!(see_through > 0.0f)) return vec3(0.0f);
+  const interface_crossing crossing = cross_interface(ctx.world, sp, s.media);
+  const float fresnel = fresnel_dielectric(cos_theta, crossing.eta);
+  reflect_weight += vec3(see_through * mp.specular_weight * fresnel);
+  const std::optional<vec3> direction = refraction_direction(sp, incident, crossing);
+  if (!direction) {
+    reflect_weight += vec3(see_through * (1.0f - mp.specular_weight * fresnel));
+    return vec3(0.0f);
+  }
+  const vec3 weight = mp.base_color * (see_through * (1.0f - fresnel));
+  return trace_refracted(ctx, sp, incident, *direction, crossing, weight, s, counts);
+}
+
+// The mirror ray with weight reflect_weight, traced (when the throughput and the budget allow) and
+// filed under the split's reflection.
+vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& incident,
+                  const vec3& reflect_weight, const path_state& s, ray_counts& counts) {
+  const float next_throughput = s.throughput * max_component(reflect_weight);
+  if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
+  vec3 direction = glm::reflect(incident, sp.shading_normal);
+  // An interpolated normal can send the mirror ray below the surface; use the true plane then.
+  if (glm::dot(direction, sp.geometric_normal) <= 0.0f) direction = glm::reflect(incident, sp.geometric_normal);
+  ray reflected;
+  reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
+  reflected.direction = glm::normalize(direction);
+  reflected.kind = ray_kind::reflection;
+  ++counts.reflection;
+  // A reflected ray stays in the medium it came from.
+  const path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone));
+  const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, next, counts);
+  if (s.split) s.split->reflection += s.share * reflection;
+  return reflection;
 }
 
 // Emission, direct light, mirror and refraction at a fully covering surface.
-vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
-                   const material_point& mp, int depth, float throughput, ray_counts& counts,
-                   const medium_stack& media, const ray_cone& cone, camera_path* path) {
+vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp, const material_point& mp,
+                   const path_state& s, ray_counts& counts) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) {
-    add_direct(path, mp.base_color);
+    add_direct(s, mp.base_color);
     return mp.base_color;
   }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
-
-  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, cone, counts);
-  add_direct(path, radiance);
-  if (depth >= ctx.options.max_depth) return radiance;
+  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, s.cone, counts);
+  add_direct(s, radiance);
+  if (s.depth >= ctx.options.max_depth) return radiance;
 
   const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
   vec3 reflect_weight = mirror_weight(ctx.options, mp, cos_theta);
-
-  // Transmissive share: a smooth dielectric whatever its roughness (Whitted has
-  // no blurred refraction), split by exact Fresnel into reflected and refracted
-  // rays.
-  const float see_through = see_through_weight(mp);
-  if (see_through > 0.0f) {
-    interface_crossing crossing = cross_interface(ctx.world, sp, media);
-    float fresnel = fresnel_dielectric(cos_theta, crossing.eta);
-    reflect_weight += vec3(see_through * mp.specular_weight * fresnel);
-    // Thin walls pass light on unbent; volumes bend it by Snell's law about the
-    // shading normal, falling back to the geometric normal when that would not
-    // cross the surface.
-    std::optional<vec3> direction = incident;
-    if (crossing.bends) {
-      direction = refract_direction(incident, sp.shading_normal, crossing.eta);
-      if (direction && glm::dot(*direction, sp.geometric_normal) >= 0.0f)
-        direction = refract_direction(incident, sp.geometric_normal, crossing.eta);
-    }
-    if (!direction) {
-      // Total internal reflection: all of the transmissive share goes to the
-      // mirror ray.
-      reflect_weight += vec3(see_through * (1.0f - mp.specular_weight * fresnel));
-    } else {
-      vec3 weight = mp.base_color * (see_through * (1.0f - fresnel));
-      float next_throughput = throughput * max_component(weight);
-      if (next_throughput >= ctx.options.min_throughput) {
-        ray refracted;
-        refracted.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, *direction);
-        refracted.direction = *direction;
-        refracted.kind = ray_kind::refraction;
-        ++counts.refraction;
-        const ray_cone bent =
-            crossing.bends ? refracted_cone(cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
-                                            glm::dot(*direction, sp.geometric_normal))
-                           : cone;
-        const vec3 refraction = weight * trace_refraction(ctx, refracted, depth + 1, next_throughput, counts,
-                                                          crossing.beyond, bent, weight, path);
-        if (light_split* split = split_of(path)) split->refraction += path->share * refraction;
-        radiance += refraction;
-      }
-    }
-  }
-
-  float next_throughput = throughput * max_component(reflect_weight);
-  if (next_throughput >= ctx.options.min_throughput) {
-    vec3 direction = glm::reflect(incident, sp.shading_normal);
-    // An interpolated normal can send the mirror ray below the surface; use the
-    // true plane then.
-    if (glm::dot(direction, sp.geometric_normal) <= 0.0f)
-      direction = glm::reflect(incident, sp.geometric_normal);
-    ray reflected;
-    reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
-    reflected.direction = glm::normalize(direction);
-    reflected.kind = ray_kind::reflection;
-    ++counts.reflection;
-    // A reflected ray stays in the medium it came from.
-    const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, depth + 1, next_throughput,
-                                                            counts, media, reflected_cone(cone));
-    if (light_split* split = split_of(path)) split->reflection += path->share * reflection;
-    radiance += reflection;
-  }
+  radiance += shade_transmission(ctx, sp, mp, incident, cos_theta, s, reflect_weight, counts);
+  radiance += trace_mirror(ctx, sp, incident, reflect_weight, s, counts);
   return radiance;
 }
 
 // shade_covered on a camera path: the surface covers its share of the sample, less what escapes
 // through it (transparent transmission) into the background.
 vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surface_point& sp,
-                           const material_point& mp, int depth, float throughput, ray_counts& counts,
-                           const medium_stack& media, const ray_cone& cone, camera_path* path) {
-  if (!path) return shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, nullptr);
-  const float escaped_before = path->transparency;
-  const vec3 radiance = shade_covered(ctx, r, sp, mp, depth, throughput, counts, media, cone, path);
-  if (path->record_layers) path->cover(sp.instance, path->share - (path->transparency - escaped_before));
+                           const material_point& mp, const path_state& s, ray_counts& counts) {
+  if (!s.camera) return shade_covered(ctx, r, sp, mp, s, counts);
+  const float escaped_before = s.camera->transparency;
+  const vec3 radiance = shade_covered(ctx, r, sp, mp, s, counts);
+  if (s.record_layers) s.camera->cover(sp.instance, s.share - (s.camera->transparency - escaped_before));
   return radiance;
+}
+
+// The part of a BLEND surface's ray that passes behind it (a share 1 − alpha), continued unbent
+// from the surface: one depth level, so stacked transparent layers stay bounded by max_depth.
+vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point& sp, float alpha,
+                  const path_state& s, ray_counts& counts) {
+  path_state next = s;
+  next.throughput = s.throughput * (1.0f - alpha);
+  next.share = s.share * (1.0f - alpha);
+  if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||
+      !spend_ray(s.budget)) {
+    // Not traced: the part behind stays covered by this surface, as opaque black, so the mattes
+    // still sum to alpha.
+    if (s.camera && s.record_layers) s.camera->cover(sp.instance, next.share);
+    return vec3(0.0f);
+  }
+  ray through;
+  through.direction = glm::normalize(r.direction);
+  through.kind = r.kind;  // the same ray, continued behind a partly transparent surface
+  through.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
+  ++counts.transparency;
+  // The continued ray starts where this cone ends: its width so far carries on. It is still the
+  // camera's ray, so its path (split, alpha, mattes) follows it to the surface behind.
+  ++next.depth;
+  return (1.0f - alpha) * trace_radiance(ctx, through, next, counts);
+}
+
+// What a ray that leaves the scene brings back: the environment, except on a camera path that does
+// not show the background, where that share of the sample is transparent (alpha 0, no colour).
+vec3 escape(const shading_context& ctx, const ray& r, const path_state& s, float weight = 1.0f) {
+  if (s.camera && !s.camera->background_visible) {
+    s.camera->transparency += s.share * weight;
+    return vec3(0.0f);
+  }
+  return environment_radiance(ctx.world, r.direction);
+}
+
+// shade_prepared for the closest hit h of r; s.cone is r's at the hit.
+vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, const path_state& s, ray_counts& counts) {
+  const surface_point sp = make_surface_point(ctx.world, h, r, s.cone.width);
+  return shade_prepared(ctx, r, prepare_shading(ctx, r, sp), s, counts);
+}
+
+// trace_radiance inside a volume: Beer-Lambert over the distance to the next surface. A ray that
+// leaves the scene from inside (an open mesh, no exit surface) is attenuated over the material's
+// thickness. r has been advanced to h; at_hit is s with the cone at the hit.
+vec3 trace_in_volume(const shading_context& ctx, const ray& r, const std::optional<hit>& h,
+                     const path_state& at_hit, ray_counts& counts) {
+  const material& inside = ctx.world.materials[at_hit.media.innermost()];
+  const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
+  const vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
+  if (absorption == vec3(0.0f)) return vec3(0.0f);
+  vec3 arriving(0.0f);
+  if (!h) {
+    arriving = escape(ctx, r, at_hit, mean_component(absorption));
+  } else {
+    // The camera's path goes on through the volume, its share attenuated like its radiance; the
+    // split files what arrives once, below.
+    path_state next = at_hit;
+    next.throughput = at_hit.throughput * max_component(absorption);
+    next.share = at_hit.share * mean_component(absorption);
+    next.split = nullptr;
+    arriving = shade_hit(ctx, r, *h, next, counts);
+  }
+  // Camera rays start outside every volume; should one not, its light counts as direct.
+  add_direct(at_hit, absorption * arriving);
+  return absorption * arriving;
 }
 
 }  // namespace
@@ -303,126 +394,40 @@ shading_point prepare_shading(const shading_context& ctx, const ray& r, const su
   return p;
 }
 
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& unmapped, int depth,
-                   float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
-                   camera_path* path) {
-  return shade_prepared(ctx, r, prepare_shading(ctx, r, unmapped), depth, throughput, counts, media, cone,
-                        path);
-}
-
-vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared, int depth,
-                    float throughput, ray_counts& counts, const medium_stack& media, const ray_cone& cone,
-                    camera_path* path) {
+vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared, const path_state& s,
+                    ray_counts& counts) {
   const material& m = ctx.world.materials[prepared.sp.material];
   const surface_point& sp = prepared.sp;
   const material_point& mp = prepared.mp;
-  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
-    return shade_covered_on_path(ctx, r, sp, mp, depth, throughput, counts, media, cone, path);
+  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f) return shade_covered_on_path(ctx, r, sp, mp, s, counts);
 
-  // BLEND: the surface covers a share alpha of the ray; the rest continues unbent behind it (one
-  // depth level, so stacked transparent layers stay bounded by max_depth).
+  // BLEND: the surface covers a share alpha of the ray; the rest continues behind it.
   const float alpha = std::max(mp.alpha, 0.0f);
   vec3 radiance(0.0f);
-  const float share = path ? path->share : 1.0f;
   if (alpha > 0.0f) {
-    if (path) path->share = share * alpha;
-    radiance +=
-        alpha * shade_covered_on_path(ctx, r, sp, mp, depth, throughput * alpha, counts, media, cone, path);
+    path_state covered = s;
+    covered.throughput = s.throughput * alpha;
+    covered.share = s.share * alpha;
+    radiance += alpha * shade_covered_on_path(ctx, r, sp, mp, covered, counts);
   }
-  const float behind = throughput * (1.0f - alpha);
-  if (depth < ctx.options.max_depth && behind >= ctx.options.min_throughput) {
-    ray through;
-    through.direction = glm::normalize(r.direction);
-    through.kind = r.kind;  // the same ray, continued behind a partly transparent surface
-    through.origin =
-        offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
-    ++counts.transparency;
-    // The continued ray starts where this cone ends: its width so far carries on. It is still the
-    // camera's ray, so its path (split, alpha, mattes) follows it to the surface behind.
-    if (path) path->share = share * (1.0f - alpha);
-    radiance +=
-        (1.0f - alpha) * trace_camera_path(ctx, through, depth + 1, behind, counts, media, cone, path);
-  } else if (path && path->record_layers) {
-    // The part behind is not traced (depth or throughput limit): it stays covered by this surface,
-    // as opaque black, so the mattes still sum to alpha.
-    path->share = share * (1.0f - alpha);
-    path->cover(sp.instance, path->share);
-  }
-  if (path) path->share = share;
+  radiance += trace_behind(ctx, r, sp, alpha, s, counts);
   return radiance;
-}
-
-vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
-               ray_counts& counts, const medium_stack& media, const ray_cone& cone) {
-  return shade_surface(ctx, r, make_surface_point(ctx.world, h, r, cone.width), depth, throughput, counts,
-                       media, cone);
 }
 
 float distance_to_hit(const ray& start, const ray& r, const hit& h) {
   return glm::length(r.origin - start.origin) + h.t * glm::length(r.direction);
 }
 
-vec3 trace_radiance(const shading_context& ctx, const ray& r_in, int depth, float throughput,
-                    ray_counts& counts, const medium_stack& media, const ray_cone& cone_in) {
-  return trace_camera_path(ctx, r_in, depth, throughput, counts, media, cone_in, nullptr);
-}
-
-namespace {
-
-// What a ray that leaves the scene brings back: the environment, except on a camera path that does
-// not show the background, where that share of the sample is transparent (alpha 0, no colour).
-vec3 escape(const shading_context& ctx, const ray& r, camera_path* path, float weight = 1.0f) {
-  if (path && !path->background_visible) {
-    path->transparency += path->share * weight;
-    return vec3(0.0f);
-  }
-  return environment_radiance(ctx.world, r.direction);
-}
-
-}  // namespace
-
-vec3 trace_camera_path(const shading_context& ctx, const ray& r_in, int depth, float throughput,
-                       ray_counts& counts, const medium_stack& media, const ray_cone& cone_in,
-                       camera_path* path) {
+vec3 trace_radiance(const shading_context& ctx, const ray& r_in, const path_state& s, ray_counts& counts) {
   ray r = r_in;
-  std::optional<hit> h = find_visible_hit(ctx, r, counts);
-  const ray_cone cone = h ? cone_at(cone_in, distance_to_hit(r_in, r, *h)) : cone_in;
-  if (media.empty()) {
-    if (h)
-      return shade_surface(ctx, r, make_surface_point(ctx.world, *h, r, cone.width), depth, throughput,
-                           counts, media, cone, path);
-    const vec3 background = escape(ctx, r, path);
-    add_direct(path, background);
-    return background;
-  }
-
-  // Inside a volume: Beer-Lambert over the distance to the next surface. A ray
-  // that leaves the scene from inside (an open mesh, no exit surface) is
-  // attenuated over the material's thickness.
-  const material& inside = ctx.world.materials[media.innermost()];
-  const float distance = h ? h->t * glm::length(r.direction) : inside.thickness_factor;
-  vec3 absorption = beer_transmittance(inside.attenuation_color, inside.attenuation_distance, distance);
-  if (absorption == vec3(0.0f)) return vec3(0.0f);
-  vec3 arriving(0.0f);
-  if (!h) {
-    arriving = escape(ctx, r, path, mean_component(absorption));
-  } else if (path) {
-    // The camera's path goes on through the volume, its share attenuated like its radiance; the
-    // split files what arrives once, below.
-    camera_path inner = *path;
-    inner.split = nullptr;
-    inner.share = path->share * mean_component(absorption);
-    arriving = shade_surface(ctx, r, make_surface_point(ctx.world, *h, r, cone.width), depth,
-                             throughput * max_component(absorption), counts, media, cone, &inner);
-    inner.split = path->split;
-    inner.share = path->share;
-    *path = inner;
-  } else {
-    arriving = shade_hit(ctx, r, *h, depth, throughput * max_component(absorption), counts, media, cone);
-  }
-  // Camera rays start outside every volume; should one not, its light counts as direct.
-  add_direct(path, absorption * arriving);
-  return absorption * arriving;
+  const std::optional<hit> h = find_visible_hit(ctx, r, counts);
+  path_state at_hit = s;
+  if (h) at_hit.cone = cone_at(s.cone, distance_to_hit(r_in, r, *h));
+  if (!s.media.empty()) return trace_in_volume(ctx, r, h, at_hit, counts);
+  if (h) return shade_hit(ctx, r, *h, at_hit, counts);
+  const vec3 background = escape(ctx, r, s);
+  add_direct(s, background);
+  return background;
 }
 
 }  // namespace kiln

@@ -10,6 +10,7 @@
 #include "scene/scene.h"
 #include "shade/dielectric.h"
 #include "shade/material_eval.h"
+#include "shade/ray_budget.h"
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_filter.h"
@@ -19,6 +20,10 @@ namespace kiln {
 struct shading_options {
   int max_depth = 8;             // camera ray is depth 0; reflections stop after this many bounces
   float min_throughput = 1e-3f;  // a reflection whose weight falls below this is not traced
+  // Reflected, refracted and continued rays one camera sample may spawn in all (its shadow rays
+  // are not counted: each shaded hit casts one per light). Past it the tree is cut where it has
+  // got to: a ray not spawned brings nothing back, like one under min_throughput.
+  uint64_t max_rays_per_sample = 4096;
   // Whitted's mirror is perfect; a glTF surface's mirror term fades linearly from full strength
   // at roughness 0 to nothing at this roughness (rougher surfaces keep only their GGX highlight).
   float mirror_roughness_limit = 0.25f;
@@ -62,6 +67,8 @@ struct shading_context {
   bool see_through_shadows = false;
   // Mip-mapped minification for ray-cone footprints; null: textures read level 0 only.
   const texture_filter* textures = nullptr;
+  // Raised (from another thread): camera samples stop spawning rays (see ray_budget.h).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // True when some material can pass light through itself (transmission or alphaMode BLEND), so
@@ -72,6 +79,10 @@ bool scene_has_see_through(const scene& s);
 // materials are culled, as glTF requires, by continuing the ray past them; r's origin moves with
 // it. Shadow rays do not cull (a single-sided surface still casts a shadow from behind).
 std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_counts& counts);
+
+// find_visible_hit for a ray whose closest hit is already known (first = ctx.accel.intersect(r)).
+std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std::optional<hit> first,
+                                         ray_counts& counts);
 
 // Distance from start.origin to the hit h of r, where r is start advanced by find_visible_hit past
 // culled back faces (the ray cone keeps widening across them).
@@ -93,24 +104,38 @@ struct path_layer {
 };
 constexpr int max_path_layers = 8;
 
-// The camera's own path through a sample: the ray itself, its continuations behind BLEND surfaces
-// and, with transmission_transparent, its refractions. Alpha is coverage × opacity along it: what
-// reaches a background the camera does not show is transparency (no colour, alpha 0), so a sample
-// through BLEND layers α1, α2, ... over nothing has alpha 1 − Π(1 − αi). Every surface met covers
-// its share less what escapes through it, so the layers' coverages plus the transparency sum to 1
-// and Cryptomatte coverage sums to alpha.
+// What the camera's own path through a sample collects: the ray itself, its continuations behind
+// BLEND surfaces and, with transmission_transparent, its refractions. Alpha is coverage × opacity
+// along it: what reaches a background the camera does not show is transparency (no colour, alpha
+// 0), so a sample through BLEND layers α1, α2, ... over nothing has alpha 1 − Π(1 − αi). Every
+// surface met covers its share less what escapes through it, so the layers' coverages plus the
+// transparency sum to 1 and Cryptomatte coverage sums to alpha.
 struct camera_path {
   bool background_visible = false;        // --show-background: the background is opaque, never escaped into
   bool transmission_transparent = false;  // refraction that reaches the background is transparent too
-  light_split* split = nullptr;           // filled by first event when asked for
-  float share = 1.0f;                     // the part of the sample being shaded (BLEND layers)
-  bool record_layers = true;              // false inside a refraction: what glass shows is the glass's
   float transparency = 0.0f;              // the part of the sample that escaped
   path_layer layers[max_path_layers];     // in the order met; a deeper layer folds into the last
   int layer_count = 0;
 
   // Adds coverage to instance's layer.
   void cover(uint32_t instance, float coverage);
+};
+
+// What one ray of a camera sample's tree carries down the Whitted recursion. Passed by value: a
+// branch changes its own copy, so nothing is changed and restored around a recursive call.
+struct path_state {
+  int depth = 0;            // bounces so far: the camera ray is depth 0
+  float throughput = 1.0f;  // the weight of this ray's radiance in the sample
+  medium_stack media;       // the closed volumes the ray travels in (empty for camera rays)
+  ray_cone cone;            // the ray's cone: at its origin when traced, at the hit when shaded
+  float time = 0.0f;        // the sample's time in the shutter; unused until motion blur
+  ray_budget* budget = nullptr;  // the sample's rays left and cancel flag; null: unbounded
+  // On the camera's own path (null for a secondary ray): alpha and mattes go there.
+  camera_path* camera = nullptr;
+  float share = 1.0f;         // the part of the camera sample this ray carries (BLEND layers, glass)
+  bool record_layers = true;  // false inside a refraction: what glass shows is the glass's matte
+  // Where this ray's radiance is filed by first event (null: not kept, or the caller files it).
+  light_split* split = nullptr;
 };
 
 // A hit made ready to shade: the material evaluated there, and the shading normal as shading uses
@@ -124,33 +149,15 @@ struct shading_point {
 // The shading point of sp, as seen along r (sp was built from r's closest hit).
 shading_point prepare_shading(const shading_context& ctx, const ray& r, const surface_point& sp);
 
-// shade_surface for a point prepare_shading has made ready.
-vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& p, int depth,
-                    float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
-                    const ray_cone& cone = {}, camera_path* path = nullptr);
-
-// Radiance leaving the shading point sp toward the origin of r (sp was built from r's closest hit).
-// media: the closed volumes r travels in (empty for camera rays). cone: r's ray cone at the hit
-// (the width sp's footprints were built with); reflected, refracted and continued rays carry it on.
-// path: r is (a continuation of) a camera ray; its alpha, mattes and split are filled in (the
+// Radiance leaving the shading point p toward the origin of r (p was built from r's closest hit, with
+// the width of state.cone there). On a camera path its alpha, mattes and split are filled in (the
 // returned radiance is premultiplied by the path's coverage).
-vec3 shade_surface(const shading_context& ctx, const ray& r, const surface_point& sp, int depth,
-                   float throughput, ray_counts& counts, const medium_stack& media = medium_stack{},
-                   const ray_cone& cone = {}, camera_path* path = nullptr);
+vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& p, const path_state& state,
+                    ray_counts& counts);
 
-// Radiance arriving along r from the surface at h (the closest hit of r); cone is r's at the hit.
-vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, int depth, float throughput,
-               ray_counts& counts, const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
-
-// Radiance arriving along r: shade the closest hit, or the environment on a miss; inside an
-// absorbing volume the result is attenuated by Beer-Lambert over the travelled distance.
-// cone: r's ray cone at its origin.
-vec3 trace_radiance(const shading_context& ctx, const ray& r, int depth, float throughput, ray_counts& counts,
-                    const medium_stack& media = medium_stack{}, const ray_cone& cone = {});
-
-// trace_radiance for the camera's own path (a camera ray, or its continuation behind a BLEND surface
-// or through transparent transmission): a miss is transparent unless the path shows the background.
-vec3 trace_camera_path(const shading_context& ctx, const ray& r, int depth, float throughput,
-                       ray_counts& counts, const medium_stack& media, const ray_cone& cone, camera_path* path);
+// Radiance arriving along r (state.cone at r's origin): shade the closest visible hit, or what a
+// miss sees; inside an absorbing volume the result is attenuated by Beer-Lambert over the travelled
+// distance. A miss on the camera's path is transparent unless the path shows the background.
+vec3 trace_radiance(const shading_context& ctx, const ray& r, const path_state& state, ray_counts& counts);
 
 }  // namespace kiln

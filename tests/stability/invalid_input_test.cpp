@@ -62,7 +62,7 @@ TEST(stability_invalid_input, non_finite_rays_are_refused_and_shade_to_a_finite_
     EXPECT_FALSE(accel.intersect(r));
     EXPECT_FALSE(accel.occluded(r));
     ray_counts counts;
-    const vec3 c = trace_radiance(ctx, r, 0, 1.0f, counts);
+    const vec3 c = trace_radiance(ctx, r, path_state{}, counts);
     EXPECT_TRUE(is_finite(c)) << c.x << " " << c.y << " " << c.z;
     // The box's top face, without the guard.
     bench::naive_triangle_hit h;

@@ -21,8 +21,8 @@ inline vec3 light_through_cover(scene s) {
   options.max_depth = 0;  // direct light only
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 open = trace_radiance(ctx, make_ray(vec3(-0.5f, 0, 0.5f), vec3(0, 0, -1)), 0, 1.0f, counts);
-  vec3 covered = trace_radiance(ctx, make_ray(vec3(0.5f, 0, 0.5f), vec3(0, 0, -1)), 0, 1.0f, counts);
+  vec3 open = trace_radiance(ctx, make_ray(vec3(-0.5f, 0, 0.5f), vec3(0, 0, -1)), path_state{}, counts);
+  vec3 covered = trace_radiance(ctx, make_ray(vec3(0.5f, 0, 0.5f), vec3(0, 0, -1)), path_state{}, counts);
   return open.x > 0.0f && open.y > 0.0f && open.z > 0.0f ? covered / open : vec3(-1.0f);
 }
 
