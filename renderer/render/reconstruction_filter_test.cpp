@@ -1,6 +1,7 @@
 // Filter kernels against their definitions, and the tile splat buffers' merge order.
 #include "render/reconstruction_filter.h"
 #include "render/splat_film.h"
+#include "render/tile_grid.h"
 
 #include <gtest/gtest.h>
 
@@ -102,25 +103,23 @@ TEST(splat_film, box_half_pixel_puts_each_sample_in_its_own_pixel_only) {
   for (size_t k = 0; k < 9; ++k) EXPECT_EQ(splat.weight[k], k == 4 ? 3.0f : 0.0f) << k;
 }
 
-// Splats a fixed field of samples over a w×h image rendered in tiles of tile_size, visiting the
-// tiles in `reverse` order or not, pixels in raster order inside each tile (as the renderer does).
+// Splats a fixed field of samples over a w×h image rendered in the given tiles, visiting them in
+// `reverse` order or not, pixels in raster order inside each tile (as the renderer does).
 // Every sample but some fourth ones hits an id in each Cryptomatte layer; the misses are transparent.
-film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bool reverse, bool constant) {
+film splat_field(const reconstruction_filter& f, int w, int h, std::vector<pixel_rect> tiles, bool reverse,
+                 bool constant) {
   const bool layers[matte_layer_count] = {true, true};
-  splat_film splats(w, h, tile_size, f, layers);
-  std::vector<std::pair<int, int>> tiles;
-  for (int ty = 0; ty < h; ty += tile_size)
-    for (int tx = 0; tx < w; tx += tile_size) tiles.push_back({tx, ty});
+  splat_film splats(w, h, tiles, f, layers);
   if (reverse) std::reverse(tiles.begin(), tiles.end());
   pixel_splat splat(splats.reach(), layers);
   aov_set aovs;
   aovs.crypto_object = aovs.crypto_material = true;
   film out(w, h, aovs);
   tile_sums sums;
-  for (auto [tx, ty] : tiles) {
-    splats.begin_tile(sums, tx, ty, std::min(tx + tile_size, w), std::min(ty + tile_size, h));
-    for (int y = ty; y < std::min(ty + tile_size, h); ++y)
-      for (int x = tx; x < std::min(tx + tile_size, w); ++x) {
+  for (const pixel_rect& tile : tiles) {
+    splats.begin_tile(sums, tile);
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
         splat.clear();
         for (int s = 0; s < 4; ++s) {
           float v = constant ? 0.7f : std::sin(float(x * 13 + y * 7 + s * 3)) + 1.5f;
@@ -143,7 +142,7 @@ film splat_field(const reconstruction_filter& f, int w, int h, int tile_size, bo
 
 TEST(splat_film, constant_radiance_stays_constant_under_every_filter) {
   for (filter_kind k : all_kinds) {
-    film out = splat_field(default_filter(k), 7, 5, 3, false, true);
+    film out = splat_field(default_filter(k), 7, 5, make_tiles({0, 0, 7, 5}, 3), false, true);
     for (const vec4& c : out.color) {  // within a few float ulps (sums of up to 100 weighted terms)
       EXPECT_NEAR(c.r, 0.7f, 2e-6f) << filter_name(k);
       EXPECT_NEAR(c.g, 0.49f, 2e-6f) << filter_name(k);
@@ -155,10 +154,10 @@ TEST(splat_film, constant_radiance_stays_constant_under_every_filter) {
 TEST(splat_film, bytes_do_not_depend_on_tile_size_or_tile_order) {
   for (filter_kind k : all_kinds) {
     reconstruction_filter f = default_filter(k);
-    film reference = splat_field(f, 11, 9, 100, false, false);
+    film reference = splat_field(f, 11, 9, make_tiles({0, 0, 11, 9}, 100), false, false);
     for (int tile_size : {1, 2, 3, 4, 5, 8}) {
       for (bool reverse : {false, true}) {
-        film other = splat_field(f, 11, 9, tile_size, reverse, false);
+        film other = splat_field(f, 11, 9, make_tiles({0, 0, 11, 9}, tile_size), reverse, false);
         EXPECT_EQ(
             std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)), 0)
             << filter_name(k) << " tiles of " << tile_size << (reverse ? " reversed" : "");
@@ -179,6 +178,30 @@ TEST(splat_film, bytes_do_not_depend_on_tile_size_or_tile_order) {
     // The field is not constant, so a wrong order would show.
     EXPECT_NE(reference.color[0].r, reference.color[40].r);
   }
+}
+
+// The film folds by the tile list it is given, not by a tile size: a grid of uneven columns and
+// rows (no single tile size makes it) gives the same bytes as one tile.
+TEST(splat_film, folds_by_the_tile_list_for_any_grid_of_columns_and_rows) {
+  const int xs[] = {0, 2, 7, 8, 11}, ys[] = {0, 5, 6, 9};
+  std::vector<pixel_rect> uneven;
+  for (int r = 0; r + 1 < 4; ++r)
+    for (int c = 0; c + 1 < 5; ++c) uneven.push_back({xs[c], ys[r], xs[c + 1], ys[r + 1]});
+  for (filter_kind k : all_kinds) {
+    const reconstruction_filter f = default_filter(k);
+    const film reference = splat_field(f, 11, 9, {{0, 0, 11, 9}}, false, false);
+    const film other = splat_field(f, 11, 9, uneven, true, false);
+    EXPECT_EQ(std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)), 0)
+        << filter_name(k);
+    EXPECT_EQ(reference.crypto_object, other.crypto_object) << filter_name(k);
+  }
+}
+
+TEST(tile_grid, tiles_cover_the_region_row_by_row_with_narrower_last_ones) {
+  const std::vector<pixel_rect> tiles = make_tiles({3, 2, 10, 7}, 4);
+  const std::vector<pixel_rect> expected = {{3, 2, 7, 6}, {7, 2, 10, 6}, {3, 6, 7, 7}, {7, 6, 10, 7}};
+  EXPECT_EQ(tiles, expected);
+  EXPECT_EQ(shifted(tiles, -3, -2)[1], (pixel_rect{4, 0, 7, 4}));
 }
 
 }  // namespace

@@ -59,17 +59,47 @@ void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& v
   }
 }
 
-splat_film::splat_film(int width, int height, int tile_size, const reconstruction_filter& f,
+namespace {
+
+// For each pixel along one axis, where its tile starts: start[i] = the low edge of the tile span
+// holding i. Every tile's span along the axis must be one of a partition of [0, size).
+std::vector<int> span_starts(const std::vector<pixel_rect>& tiles, int size, bool along_x) {
+  std::vector<int> start(size_t(std::max(0, size)), -1);
+  for (const pixel_rect& t : tiles) {
+    const int lo = along_x ? t.x0 : t.y0, hi = along_x ? t.x1 : t.y1;
+    KILN_CHECK(0 <= lo && lo < hi && hi <= size);
+    for (int i = lo; i < hi; ++i) {
+      KILN_CHECK(start[size_t(i)] == -1 || start[size_t(i)] == lo);  // spans overlap: not a grid
+      start[size_t(i)] = lo;
+    }
+  }
+  for (int s : start) KILN_CHECK(s >= 0);  // every pixel lies in some tile
+  return start;
+}
+
+// The number of distinct spans in starts (columns or rows).
+size_t span_count(const std::vector<int>& starts) {
+  size_t n = 0;
+  for (size_t i = 0; i < starts.size(); ++i) n += size_t(starts[i] == int(i));
+  return n;
+}
+
+}  // namespace
+
+splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& tiles, const reconstruction_filter& f,
                        const bool (&layers)[matte_layer_count], bool with_split)
     : width_(width),
       height_(height),
-      tile_size_(std::max(1, tile_size)),
       reach_(filter_reach(f)),
       window_((2 * reach_ + 1) * (2 * reach_ + 1)),
+      column_start_(span_starts(tiles, width, true)),
+      row_start_(span_starts(tiles, height, false)),
       with_split_(with_split),
       // A filter that reaches no neighbour (box 0.5, the default) leaves no pixel on a tile
       // border: no slots, and no frame-sized index to zero.
       slot_of_(reach_ > 0 ? size_t(width) * height : 0, -1) {
+  // One tile per column and row: the list is the grid, each cell once.
+  KILN_CHECK(tiles.size() == span_count(column_start_) * span_count(row_start_));
   for (int l = 0; l < matte_layer_count; ++l) layers_[l] = layers[l];
   if (slot_of_.empty()) return;
   int64_t slots = 0;
@@ -88,19 +118,22 @@ splat_film::splat_film(int width, int height, int tile_size, const reconstructio
 
 // True when every pixel within reach of (x, y) (inside the image) belongs to (x, y)'s tile.
 bool splat_film::within_one_tile(int x, int y) const {
-  auto same = [this](int a, int b) { return a / tile_size_ == b / tile_size_; };
-  return same(std::max(0, x - reach_), std::min(width_ - 1, x + reach_)) &&
-         same(std::max(0, y - reach_), std::min(height_ - 1, y + reach_));
+  return column_start_[size_t(std::max(0, x - reach_))] == column_start_[size_t(std::min(width_ - 1, x + reach_))] &&
+         row_start_[size_t(std::max(0, y - reach_))] == row_start_[size_t(std::min(height_ - 1, y + reach_))];
 }
 
-void splat_film::begin_tile(tile_sums& t, int x0, int y0, int x1, int y1) const {
+void splat_film::begin_tile(tile_sums& t, const pixel_rect& tile) const {
   // A tile off the grid would let a source fold into a pixel outside t.
-  KILN_CHECK(x0 % tile_size_ == 0 && y0 % tile_size_ == 0 && x0 < x1 && y0 < y1 &&
-             x1 == std::min(x0 + tile_size_, width_) && y1 == std::min(y0 + tile_size_, height_));
-  t.x0 = x0;
-  t.y0 = y0;
-  t.width = x1 - x0;
-  t.height = y1 - y0;
+  KILN_CHECK(tile.x0 >= 0 && tile.y0 >= 0 && tile.x0 < tile.x1 && tile.y0 < tile.y1 && tile.x1 <= width_ &&
+             tile.y1 <= height_ && column_start_[size_t(tile.x0)] == tile.x0 &&
+             column_start_[size_t(tile.x1 - 1)] == tile.x0 &&
+             (tile.x1 == width_ || column_start_[size_t(tile.x1)] == tile.x1) &&
+             row_start_[size_t(tile.y0)] == tile.y0 && row_start_[size_t(tile.y1 - 1)] == tile.y0 &&
+             (tile.y1 == height_ || row_start_[size_t(tile.y1)] == tile.y1));
+  t.x0 = tile.x0;
+  t.y0 = tile.y0;
+  t.width = tile.width();
+  t.height = tile.height();
   const size_t n = size_t(t.width) * t.height;
   t.sum.assign(n, dvec4(0.0));
   t.weight.assign(n, 0.0f);

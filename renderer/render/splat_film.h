@@ -53,14 +53,16 @@ class tile_sums {
 
 class splat_film {
  public:
+  // tiles: the render's tiles in film coordinates (render/tile_grid.h), a grid of columns and
+  // rows covering the film; a pixel folds in its tile when its whole reach lies in that tile.
   // layers: the Cryptomatte layers whose id weights are folded beside the colour.
-  splat_film(int width, int height, int tile_size, const reconstruction_filter& f,
+  splat_film(int width, int height, const std::vector<pixel_rect>& tiles, const reconstruction_filter& f,
              const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
 
   int reach() const { return reach_; }
 
-  // Starts the tile [x0, x1) × [y0, y1) of the tile_size grid (film coordinates) in t.
-  void begin_tile(tile_sums& t, int x0, int y0, int x1, int y1) const;
+  // Starts tile (one of the list given at construction, film coordinates) in t.
+  void begin_tile(tile_sums& t, const pixel_rect& tile) const;
   // Hands over source pixel (x, y)'s contributions; (x, y) lies in t's tile. Within a tile, call
   // in raster order; pixels of different tiles may be added concurrently.
   void add(int x, int y, const pixel_splat& splat, tile_sums& t);
@@ -76,7 +78,10 @@ class splat_film {
  private:
   bool within_one_tile(int x, int y) const;
 
-  int width_, height_, tile_size_, reach_, window_;
+  int width_, height_, reach_, window_;
+  // The tiles as a grid: the first column of each pixel column's tile, the first row of each pixel
+  // row's tile.
+  std::vector<int> column_start_, row_start_;
   bool layers_[matte_layer_count] = {};
   bool with_split_ = false;
   // Sums in double: a few very bright samples (near the float maximum) must not overflow a pixel

@@ -7,6 +7,7 @@
 #include "render/flush_denormals.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
+#include "render/tile_grid.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -29,19 +30,6 @@
 namespace kiln {
 
 namespace {
-
-struct tile {
-  int x0, y0, x1, y1;
-};
-
-// Tiles over a region of the frame, in frame pixels, aligned at the region's corner.
-std::vector<tile> make_tiles(const pixel_rect& r, int size) {
-  std::vector<tile> tiles;
-  for (int y = r.y0; y < r.y1; y += size)
-    for (int x = r.x0; x < r.x1; x += size)
-      tiles.push_back({x, y, std::min(x + size, r.x1), std::min(y + size, r.y1)});
-  return tiles;
-}
 
 bool cancel_requested(const render_settings& s) {
   return s.cancel && s.cancel->load(std::memory_order_relaxed);
@@ -155,16 +143,16 @@ struct tile_job {
   const std::vector<camera_sample>& corners;  // adaptive only: (W+1)×(H+1) pixel corners
 };
 
-void count_row_done(const render_settings& settings, const tile& tl) {
+void count_row_done(const render_settings& settings, const pixel_rect& tl) {
   if (settings.progress)
     settings.progress->pixels_done.fetch_add(uint64_t(tl.x1 - tl.x0), std::memory_order_relaxed);
 }
 
 // Stratified samples, splatted through the reconstruction filter.
-void render_filtered_tile(const tile_job& job, const tile& tl, tile_sums& sums, ray_counts& counts) {
+void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& sums, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     wants_light_split(job.settings.aovs));
-  job.splats.begin_tile(sums, tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0);
+  job.splats.begin_tile(sums, {tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0});
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
@@ -203,7 +191,7 @@ void store_adaptive_split(film& out, const adaptive_pixel& p, size_t i) {
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
-void render_adaptive_tile(const tile_job& job, const tile& tl, adaptive_scratch& scratch, ray_counts& counts) {
+void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_scratch& scratch, ray_counts& counts) {
   adaptive_options options = job.settings.adaptive;
   options.collect_corners = matte_layers(job.settings.aovs).any() || wants_light_split(job.settings.aovs);
   const size_t row = size_t(job.out.width) + 1;
@@ -250,7 +238,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const pixel_rect region =
       adaptive ? crop : render_region(crop, filter_reach(settings.filter), cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
-  const std::vector<tile> tiles = make_tiles(region, tile_size);
+  const std::vector<pixel_rect> tiles = make_tiles(region, tile_size);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
   // The film, the splat accumulator and the texture pyramids are set up side by side on the
@@ -263,8 +251,11 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     tbb::parallel_invoke(
         [&] { out = film(region.width(), region.height(), settings.aovs); },
         [&] {
+          // The splat film reads the same tiles, in its own coordinates.
           splats = std::make_unique<splat_film>(adaptive ? 0 : region.width(), adaptive ? 0 : region.height(),
-                                                tile_size, settings.filter, matte_layers(settings.aovs).on,
+                                                adaptive ? std::vector<pixel_rect>{}
+                                                         : shifted(tiles, -region.x0, -region.y0),
+                                                settings.filter, matte_layers(settings.aovs).on,
                                                 wants_light_split(settings.aovs));
         },
         [&] {
@@ -312,7 +303,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
       for (size_t t = range.begin(); t != range.end(); ++t) {
-        const tile& tl = tiles[t];
+        const pixel_rect& tl = tiles[t];
         ray_counts counts;
         if (adaptive)
           render_adaptive_tile(job, tl, scratch.local(), counts);
