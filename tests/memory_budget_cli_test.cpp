@@ -106,6 +106,19 @@ TEST(MemoryBudget, FilesOverTheSizeLimitAreRefusedWithoutReadingThem) {
   EXPECT_TRUE(contains(buffer.stderr_text, "2200000000 bytes, over kiln's limit")) << buffer.stderr_text;
 }
 
+TEST(MemoryBudget, JsonWhoseParseWouldPassTheBudgetIsRefusedBeforeParsing) {
+  const std::string dir = scratch_folder("memory_json");
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(textured_quad(dir, 4)));
+  // 2 MB of one-member objects: ~140 MB parsed, well inside --max-json-bytes.
+  doc["asset"]["extras"]["padding"] = nlohmann::json::array();
+  for (int i = 0; i < 260000; ++i) doc["asset"]["extras"]["padding"].push_back({{"k", 1}});
+  std::ofstream(dir + "/padded.gltf") << doc.dump();
+  const auto r = run_kiln({"render", dir + "/padded.gltf", "-o", dir + "/o.exr", "--max-memory", "64M"});
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_TRUE(contains(r.stderr_text, "padded.gltf: the JSON text and its parse need about")) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(dir + "/o.exr"));
+}
+
 // Runs kiln with its address space limited to `bytes`; the exit status as waitpid gives it.
 int run_kiln_limited(const std::vector<std::string>& arguments, rlim_t bytes, const std::string& err_file) {
   const pid_t pid = fork();
