@@ -376,6 +376,18 @@ void add_view_options(std::vector<option_spec>& t) {
   add(unsigned_option<size_t>(
       "max-pixels", [](render_options& o) -> auto& { return o.max_pixels; }, 1, ~0ull, "10",
       "Refuse images with more pixels than this (width x height)"));
+  // The job's memory budget does not change a pixel: a render it allows is the same image.
+  add(custom_option(
+          "max-memory",
+          [](render_options& o, const std::string& text) { o.max_memory = parse_memory_size(text, "--max-memory"); },
+          [](const render_options& o) -> std::optional<std::string> {
+            if (o.max_memory == 0) return std::nullopt;
+            return std::to_string(o.max_memory);
+          },
+          "8G",
+          "Memory budget of a job, in bytes or with K, M, G, T (binary): a file whose estimated "
+          "memory exceeds it is refused (default: 90% of the machine's or the cgroup's memory)"))
+      .effect = option_effect::none;
   add(number_option<double>(
       "grid-density", [](render_options& o) -> auto& { return o.grid.density; }, 1e-3, 1e3, "4",
       "Grid backends: aim for density x N cells for N items (the resolution heuristic; "

@@ -14,6 +14,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "job/memory_limit.h"
+#include "job/option_values.h"
 #include "job/render_fingerprint.h"
 
 namespace kiln {
@@ -155,6 +157,30 @@ TEST(option_table, the_readme_lists_every_option) {
     if (spec.name != "quiet") EXPECT_EQ(listed.count(spec.name), 1u) << "README lacks --" << spec.name;
   }
   for (const std::string& name : listed) EXPECT_EQ(table.count(name), 1u) << "README lists --" << name;
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(MemorySizes, BytesAndBinaryUnits) {
+  EXPECT_EQ(parse_memory_size("512", "--max-memory"), 512u);
+  EXPECT_EQ(parse_memory_size("4G", "--max-memory"), uint64_t(4) << 30);
+  EXPECT_EQ(parse_memory_size("3m", "--max-memory"), uint64_t(3) << 20);
+  EXPECT_EQ(parse_memory_size("2KiB", "--max-memory"), 2048u);
+  EXPECT_EQ(parse_memory_size("1T", "--max-memory"), uint64_t(1) << 40);
+  for (const char* bad : {"", "G", "1.5G", "0", "4X", "4GG", "99999999999T"})
+    EXPECT_THROW(parse_memory_size(bad, "--max-memory"), error) << bad;
+}
+
+TEST(MemorySizes, CgroupLimitFiles) {
+  EXPECT_EQ(parse_cgroup_limit("max\n"), 0u);
+  EXPECT_EQ(parse_cgroup_limit("4294967296\n"), uint64_t(4) << 30);
+  EXPECT_EQ(parse_cgroup_limit("9223372036854771712\n"), 0u);  // v1's "no limit"
+  EXPECT_EQ(parse_cgroup_limit(""), 0u);
+  EXPECT_GT(default_memory_budget(), 0u);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "job/option_values.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,30 @@ unsigned long long parse_unsigned(const std::string& text, const std::string& op
     refuse(option, "expects an integer from " + std::to_string(min) + " to " + std::to_string(max) +
                        ", got " + quoted(text));
   return value;
+}
+
+uint64_t parse_memory_size(const std::string& text, const std::string& option) {
+  const auto expected = [&] {
+    refuse(option, "expects a size in bytes, optionally with K, M, G or T (binary), got " + quoted(text));
+  };
+  size_t digits = 0;
+  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+  if (digits == 0) expected();
+  std::string unit = text.substr(digits);
+  for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
+  if (unit == "B") unit.clear();
+  if (unit.size() == 3 && unit.substr(1) == "IB") unit.resize(1);
+  if (unit.size() == 2 && unit[1] == 'B') unit.resize(1);
+  const std::string units = "KMGT";
+  if (unit.size() > 1 || (unit.size() == 1 && units.find(unit[0]) == std::string::npos)) expected();
+  const size_t power = unit.empty() ? 0 : units.find(unit[0]) + 1;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text.substr(0, digits).c_str(), nullptr, 10);
+  const int shift = int(power) * 10;
+  if (errno == ERANGE || (shift > 0 && value > (~0ull >> shift)))
+    refuse(option, "expects a size below 16 EiB, got " + quoted(text));
+  if (value == 0) refuse(option, "expects a size of at least 1 byte, got " + quoted(text));
+  return uint64_t(value) << shift;
 }
 
 double parse_number(const std::string& text, const std::string& option, double min, double max,

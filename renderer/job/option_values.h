@@ -16,6 +16,9 @@ namespace kiln {
 long long parse_integer(const std::string& text, const std::string& option, long long min, long long max);
 unsigned long long parse_unsigned(const std::string& text, const std::string& option, unsigned long long min,
                                   unsigned long long max);
+// A size in bytes: an integer, or one followed by K, M, G or T (binary: 1K = 1024; "KiB" and
+// "KB" read the same), at least 1 byte. "4G" is 4294967296.
+uint64_t parse_memory_size(const std::string& text, const std::string& option);
 // A finite number in [min, max]; with min_exclusive, in (min, max].
 double parse_number(const std::string& text, const std::string& option, double min, double max,
                     bool min_exclusive = false);

@@ -10,6 +10,7 @@
 #include "io/file/input_file.h"
 #include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_references.h"
+#include "job/memory_limit.h"
 
 namespace kiln {
 
@@ -40,6 +41,9 @@ std::vector<input_file> render_input_files(const render_options& options, const 
   rules.allow_files_outside_folder = options.allow_outside_files;
   rules.limits.max_json_bytes = options.limits.max_json_bytes;
   rules.cancel = cancel;
+  // JSON whose parse would pass the job's memory budget is not parsed here: the loader refuses it.
+  memory_budget budget(options.max_memory ? options.max_memory : default_memory_budget());
+  rules.memory = &budget;
   // A missing or unreadable asset names nothing: its render reports it (a batch fails that job only).
   if (input_file_missing(options.input) || !input_file_problem(options.input, max_gltf_file_bytes).empty())
     return files;

@@ -7,6 +7,7 @@
 #include "io/exr/environment_reader.h"
 #include "io/file/input_file.h"
 #include "io/gltf/gltf_references.h"
+#include "job/memory_limit.h"
 #include "job/option_table.h"
 
 namespace kiln {
@@ -58,6 +59,10 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
     rules.allow_files_outside_folder = options.allow_outside_files;
     rules.limits.max_json_bytes = options.limits.max_json_bytes;
     rules.cancel = cancel;
+    // Finding the references parses the JSON: not when that parse would pass the job's memory
+    // budget (the loader then refuses the file).
+    memory_budget budget(options.max_memory ? options.max_memory : default_memory_budget());
+    rules.memory = &budget;
     std::error_code ec;
     const fs::path folder = fs::weakly_canonical(fs::absolute(options.input, ec).parent_path(), ec);
     for (const std::string& file : gltf_referenced_files(options.input, rules)) {

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 #include <sstream>
 
 #include "accel/make_accelerator.h"
@@ -15,6 +16,8 @@
 #include "job/asset_file.h"
 #include "job/exr_storage_options.h"
 #include "job/job_stop.h"
+#include "job/memory_estimates.h"
+#include "job/memory_limit.h"
 #include "job/option_table.h"
 #include "job/option_values.h"
 #include "job/output_guard.h"
@@ -22,6 +25,7 @@
 #include "render/frame_bands.h"
 #include "render/render_space.h"
 #include "render/view_range.h"
+#include "shade/texture_filter.h"
 
 namespace kiln {
 
@@ -201,6 +205,15 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
   return metadata;
 }
 
+// An allocation that failed although the estimates fit the budget: the budget is more than the
+// process may really use (a ulimit, other processes), or an estimate fell short.
+error out_of_memory(const render_options& options, const std::string& stage) {
+  return error(error_kind::render, options.input, "",
+               "out of memory while " + stage + " (an allocation failed within the memory budget of " +
+                   memory_text(job_memory_limit(options)) +
+                   "; give --max-memory what the job may really use, and such files are refused instead)");
+}
+
 void throw_if_cancelled(const std::atomic<bool>* cancel, const std::string& output) {
   if (cancel && cancel->load())
     throw error(error_kind::interrupted, output, "", "render interrupted, nothing written");
@@ -212,6 +225,7 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
                              const std::function<void(const std::string&)>& warn) {
   check_asset_file(options.input);
   prepared_scene p;
+  p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
   const auto load_start = std::chrono::steady_clock::now();
   gltf_load_options load_options;
   load_options.scene_index = options.scene_index;
@@ -219,6 +233,7 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   load_options.limits = options.limits;
   load_options.cancel = cancel;            // a signal stops the reading of large files
   load_options.threads = options.threads;  // images decode on the render's threads
+  load_options.memory = p.memory.get();
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
@@ -295,29 +310,56 @@ void check_job(const render_options& options) {
   if (!options.preview.empty()) check_output_writable(options.preview);
 }
 
+uint64_t job_memory_limit(const render_options& options) {
+  return options.max_memory ? options.max_memory : default_memory_budget();
+}
+
 namespace {
 
-render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop) {
+// Where a job is, for the message of an allocation that fails there.
+struct job_stage {
+  const char* name = "checking the inputs";
+};
+
+// The film, the mip pyramids and the backend, charged before any is made: the scene is loaded,
+// so each is known; the largest failure is the one reported first.
+void charge_render_memory(const prepared_scene& prepared, const render_settings& settings) {
+  memory_budget& memory = *prepared.memory;
+  const std::string& file = prepared.world.source;
+  pixel_rect region = settings.crop;
+  if (region.width() <= 0) region = {0, 0, prepared.cam.width, prepared.cam.height};
+  memory.charge(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
+  memory.charge(accelerator_bytes(prepared.world), file, "the acceleration structures");
+  memory.charge(film_and_output_bytes(region, settings.aovs), file, "the film and AOV buffers");
+}
+
+render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop, job_stage& stage) {
   const render_options& options = job.options;
   render_job_result result;
   result.storage = resolve_exr_settings(options);
   // Hashed before loading: an asset edited during the render then reads as stale next time.
+  stage.name = "hashing the inputs";
   const render_fingerprint fingerprint = job.fingerprint ? *job.fingerprint : make_fingerprint(options, stop);
+  stage.name = "loading the scene";
   const prepared_scene prepared = prepare_scene(options, stop, job.warn);
   result.width = prepared.cam.width;
   result.height = prepared.cam.height;
   result.camera_description = prepared.camera_description;
   result.load_seconds = prepared.load_seconds;
 
+  render_settings settings = make_render_settings(options);
+  settings.crop = job_region(options, prepared.cam);
+  charge_render_memory(prepared, settings);
+
+  stage.name = "building the acceleration structure";
   const auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel = make_job_accelerator(prepared.world, options);
   result.build_seconds = seconds_since(build_start);
 
-  render_settings settings = make_render_settings(options);
+  stage.name = "rendering";
   const cryptomatte_layer objects = cryptomatte_objects(prepared.world);
   const cryptomatte_layer materials = cryptomatte_materials(prepared.world);
   settings.mattes = {objects.id_by_key, materials.id_by_key};
-  settings.crop = job_region(options, prepared.cam);
   settings.cancel = stop;
   settings.progress = job.progress;
   result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
@@ -334,8 +376,11 @@ render_job_result run_job(const render_job& job) {
   const render_options& options = job.options;
   check_job(options);
   const job_stop stop(job.cancel, options.time_limit_seconds);
+  job_stage stage;
   try {
-    return run_stoppable_job(job, stop.flag());
+    return run_stoppable_job(job, stop.flag(), stage);
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(options, stage.name);
   } catch (const error& e) {
     // Wherever the time limit found the job (hashing, loading, rendering), it ends in one message;
     // an interrupt names the file it was reading, or the output when it stopped the render.
@@ -350,9 +395,17 @@ render_job_result run_job(const render_job& job) {
 
 void write_job_outputs(const render_job_result& result, const render_options& options,
                        const std::atomic<bool>* cancel) {
-  write_exr(options.output, result.image, result.storage, result.metadata, cancel);
+  try {
+    write_exr(options.output, result.image, result.storage, result.metadata, cancel);
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(options, "writing the EXR");
+  }
   // From the file as written, so the preview shows exactly what the EXR holds.
-  if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
+  try {
+    if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(options, "writing the preview");
+  }
 }
 
 }  // namespace kiln

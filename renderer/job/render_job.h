@@ -11,6 +11,7 @@
 #include <string>
 
 #include "accel/accelerator.h"
+#include "core/memory_budget.h"
 #include "io/exr/exr_writer.h"
 #include "job/render_options.h"
 #include "render/film.h"
@@ -41,7 +42,13 @@ struct prepared_scene {
   view_camera cam;
   std::string camera_description;
   double load_seconds = 0.0;
+  // The job's memory budget (--max-memory), holding what the scene's meshes and images were
+  // estimated to take; the render stage charges its own allocations to it.
+  std::shared_ptr<memory_budget> memory;
 };
+
+// The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.
+uint64_t job_memory_limit(const render_options& options);
 
 // Loads options.input and chooses the view. Throws kiln::error for bad input.
 prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel = nullptr,
@@ -68,12 +75,13 @@ struct render_job_result {
 // kiln::error (input or io). run_job calls it; a client may call it earlier to fail fast.
 void check_job(const render_options& options);
 
-// Renders the job. Throws kiln::error: input for bad input, render for a backend failure,
+// Renders the job. Throws kiln::error: input for bad input or a file over the memory budget,
+// render for a backend failure or an allocation that failed (naming the stage it failed in),
 // interrupted when cancel was raised.
 render_job_result run_job(const render_job& job);
 
 // Writes result to options.output (and options.preview when set), each through a temporary file
-// renamed into place. Throws kiln::error (io) on failure, (interrupted) when cancel is raised
+// renamed into place. Throws kiln::error (io) on failure, (render) when memory runs out, (interrupted) when cancel is raised
 // before the EXR is renamed; an existing file is then untouched.
 void write_job_outputs(const render_job_result& result, const render_options& options,
                        const std::atomic<bool>* cancel = nullptr);

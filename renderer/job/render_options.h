@@ -65,6 +65,7 @@ struct render_options {
   bool allow_outside_files = false;
   gltf_limits limits;                   // --max-json-bytes, --max-json-depth, --max-nodes, ...
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel
+  uint64_t max_memory = 0;  // --max-memory: the job's memory budget in bytes; 0: job/memory_limit.h's default
   double time_limit_seconds = 0.0;  // --time-limit: the whole job (load and render); 0: none
   bool quiet = false;
   bool summary_line = true;        // the closing line with timings and ray counts (kiln batch prints its own)

@@ -73,4 +73,17 @@ struct film {
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 
+// The bytes a w × h film with aovs holds: its constructor's buffers, per pixel.
+inline uint64_t film_bytes(int w, int h, const aov_set& a) {
+  uint64_t per_pixel = sizeof(vec4);
+  per_pixel += a.depth ? sizeof(float) : 0;
+  for (bool three : {a.normal, a.position, a.albedo, a.direct, a.reflection, a.refraction})
+    per_pixel += three ? sizeof(vec3) : 0;
+  per_pixel += a.uv ? sizeof(vec2) : 0;
+  per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
+  for (bool crypto : {a.crypto_object, a.crypto_material})
+    per_pixel += crypto ? sizeof(id_coverage) * uint64_t(a.crypto_depth) : 0;
+  return per_pixel * uint64_t(w) * uint64_t(h);
+}
+
 }  // namespace kiln

@@ -45,9 +45,29 @@ void decode_row(const mip_pyramid& p, int level, int y, vec4* row) {
   for (int x = 0; x < w; ++x) row[x] = fetch_texel(*p.level0, x, y, p.encoding);
 }
 
+// Row y of `level` averaged along x into `row` (ow texels): exact pairs for an even width, the
+// overlap weights for an odd one. `source` is scratch of the level's width.
+void averaged_row(const mip_pyramid& p, int level, int y, const std::vector<box_taps>& tx, bool even_x,
+                  std::vector<vec4>& source, vec4* row) {
+  decode_row(p, level, y, source.data());
+  const size_t ow = tx.size();
+  if (even_x) {
+    for (size_t x = 0; x < ow; ++x) row[x] = 0.5f * source[2 * x] + 0.5f * source[2 * x + 1];
+    return;
+  }
+  for (size_t x = 0; x < ow; ++x) {
+    const box_taps& t = tx[x];
+    vec4 sum(0.0f);
+    for (int k = 0; k < t.count; ++k) sum += t.weight[k] * source[size_t(t.first + k)];
+    row[x] = sum;
+  }
+}
+
 // The level below `finer` (level number `level` of p, already built), averaged along x then y.
 // An even side averages exact pairs (0.5·a + 0.5·b, as the general taps compute it, so the result
-// is the same bit for bit); an odd side goes through its overlap weights.
+// is the same bit for bit); an odd side goes through its overlap weights. Each target row averages
+// the x-averaged source rows its taps name, computed for it alone: holding every x-averaged row
+// at once would take twice the new level's memory (2 GiB under a 16384² texture).
 mip_level next_level(const mip_pyramid& p, int level) {
   const int w = p.width(level), h = p.height(level);
   mip_level out;
@@ -56,38 +76,28 @@ mip_level next_level(const mip_pyramid& p, int level) {
   const std::vector<box_taps> tx = taps_for(w, out.width), ty = taps_for(h, out.height);
   const bool even_x = w == 2 * out.width, even_y = h == 2 * out.height;
   const size_t ow = size_t(out.width);
-  std::vector<vec4> rows(ow * size_t(h));  // averaged along x only
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
+  out.texels.resize(ow * size_t(out.height));
+  tbb::parallel_for(tbb::blocked_range<int>(0, out.height), [&](const tbb::blocked_range<int>& r) {
     std::vector<vec4> source(static_cast<size_t>(w));
+    std::vector<vec4> rows(ow * 4);  // the x-averaged rows of one target row's taps (at most 4)
     for (int y = r.begin(); y < r.end(); ++y) {
-      decode_row(p, level, y, source.data());
-      vec4* row = rows.data() + size_t(y) * ow;
-      if (even_x) {
-        for (size_t x = 0; x < ow; ++x) row[x] = 0.5f * source[2 * x] + 0.5f * source[2 * x + 1];
+      vec4* target = out.texels.data() + size_t(y) * ow;
+      if (even_y) {
+        averaged_row(p, level, 2 * y, tx, even_x, source, rows.data());
+        averaged_row(p, level, 2 * y + 1, tx, even_x, source, rows.data() + ow);
+        const vec4* a = rows.data();
+        const vec4* b = a + ow;
+        for (size_t x = 0; x < ow; ++x) target[x] = 0.5f * a[x] + 0.5f * b[x];
         continue;
       }
+      const box_taps& t = ty[size_t(y)];
+      for (int k = 0; k < t.count; ++k)
+        averaged_row(p, level, t.first + k, tx, even_x, source, rows.data() + size_t(k) * ow);
       for (size_t x = 0; x < ow; ++x) {
-        const box_taps& t = tx[x];
         vec4 sum(0.0f);
-        for (int k = 0; k < t.count; ++k) sum += t.weight[k] * source[size_t(t.first + k)];
-        row[x] = sum;
+        for (int k = 0; k < t.count; ++k) sum += t.weight[k] * rows[size_t(k) * ow + x];
+        target[x] = sum;
       }
-    }
-  });
-  out.texels.resize(ow * size_t(out.height));
-  tbb::parallel_for(0, out.height, [&](int y) {
-    vec4* target = out.texels.data() + size_t(y) * ow;
-    if (even_y) {
-      const vec4* a = rows.data() + size_t(2 * y) * ow;
-      const vec4* b = a + ow;
-      for (size_t x = 0; x < ow; ++x) target[x] = 0.5f * a[x] + 0.5f * b[x];
-      return;
-    }
-    const box_taps& t = ty[size_t(y)];
-    for (size_t x = 0; x < ow; ++x) {
-      vec4 sum(0.0f);
-      for (int k = 0; k < t.count; ++k) sum += t.weight[k] * rows[size_t(t.first + k) * ow + x];
-      target[x] = sum;
     }
   });
   return out;
@@ -99,6 +109,16 @@ int wrapped(int i, int size, wrap_mode mode) {
 }
 
 }  // namespace
+
+uint64_t mip_pyramid_bytes(int width, int height) {
+  uint64_t bytes = 0;
+  while (width > 1 || height > 1) {
+    width = std::max(1, width / 2);
+    height = std::max(1, height / 2);
+    bytes += uint64_t(width) * uint64_t(height) * sizeof(vec4);
+  }
+  return bytes;
+}
 
 mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool build) {
   mip_pyramid p;

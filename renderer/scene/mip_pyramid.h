@@ -4,6 +4,7 @@
 // halves both sides, rounding down, never below 1, until 1x1. Depends on scene only.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "scene/scene.h"
@@ -37,6 +38,9 @@ struct mip_pyramid {
 // parallel on the caller's TBB arena; every texel is computed on its own, so the result does not
 // depend on the thread count. A pyramid of levels 0 only (no coarser levels) when build is false.
 mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool build = true);
+
+// The bytes of a pyramid's coarser levels over a width × height image (level 0 is the image).
+uint64_t mip_pyramid_bytes(int width, int height);
 
 // One level of p read at uv (glTF UVs) by the sampler's wrap modes: the nearest texel, or the
 // bilinear blend of the four around uv.

@@ -90,6 +90,15 @@ texture_filter::texture_filter(const scene& s) : scene_(s), pyramids_(s.images.s
   });
 }
 
+uint64_t texture_filter_bytes(const scene& s) {
+  if (!scene_needs_texture_filter(s)) return 0;
+  const std::vector<bool> used = mip_mapped_uses(s);
+  uint64_t bytes = 0;
+  for (size_t k = 0; k < used.size(); ++k)
+    if (used[k]) bytes += mip_pyramid_bytes(s.images[k / 2].width, s.images[k / 2].height);
+  return bytes;
+}
+
 namespace {
 
 // What a lookup's footprint decides before any texel is read: the probes' count, spacing and

@@ -38,6 +38,10 @@ class texture_filter {
   std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0)
 };
 
+// The bytes the pyramids a texture_filter over s would build take (coarser levels only: level 0
+// is the scene's image), for the job's memory budget before the filter is made.
+uint64_t texture_filter_bytes(const scene& s);
+
 // True when some material texture could be minified through a mip-mapped sampler (only then is a
 // texture_filter worth building).
 bool scene_needs_texture_filter(const scene& s);

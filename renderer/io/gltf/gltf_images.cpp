@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "core/error.h"
+#include "io/gltf/gltf_memory.h"
 #include "io/gltf/image_header.h"
 #include "io/image_codecs/codecs_loader.h"
 
@@ -60,10 +61,19 @@ image_header checked_header(const encoded_image& in, const std::string& file, ui
 }  // namespace
 
 std::vector<image> decode_images(const std::vector<encoded_image>& batch, const std::string& file,
-                                 uint64_t max_texels, int threads) {
+                                 uint64_t max_texels, int threads, memory_budget* memory) {
   if (batch.empty()) return {};
   std::vector<image_header> headers;
   for (const encoded_image& in : batch) headers.push_back(checked_header(in, file, max_texels));
+  image_bytes need;
+  for (size_t i = 0; i < batch.size(); ++i) {
+    const image_bytes b = decoded_image_bytes(batch[i].data, batch[i].size, headers[i].width, headers[i].height);
+    need.kept += b.kept;
+    need.decoding += b.decoding;
+  }
+  charge_memory(memory, need.kept, file, "the decoded textures");
+  memory_charge decoding(memory);
+  decoding.add(need.decoding, file, "the decoded textures and their decoders' buffers");
   const image_codecs& codecs = load_image_codecs("textures need");
   std::vector<image> images(batch.size());
   // Each image records its own failure; the first in batch order is reported, so the message

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory_budget.h"
 #include "scene/scene.h"
 
 namespace kiln::gltf_internal {
@@ -26,8 +27,10 @@ struct encoded_image {
 // MIME types) on `threads` threads (0: all cores); the result is the same for any thread count.
 // Alpha stays straight (unassociated), as glTF stores it. An image whose header declares more than
 // max_texels texels is refused before it is decoded. Throws kiln::error (input) naming `file` and
-// the first failing image in batch order, or (io) when the codecs module cannot be loaded.
+// the first failing image in batch order, or (io) when the codecs module cannot be loaded. With a
+// budget, the decoded images (kept) and the decoders' buffers (while they run) are charged to it
+// from the headers before anything decodes.
 std::vector<image> decode_images(const std::vector<encoded_image>& batch, const std::string& file,
-                                 uint64_t max_texels, int threads = 0);
+                                 uint64_t max_texels, int threads = 0, memory_budget* memory = nullptr);
 
 }  // namespace kiln::gltf_internal

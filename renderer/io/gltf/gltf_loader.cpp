@@ -9,6 +9,7 @@
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
+#include "io/gltf/gltf_memory.h"
 #include "io/gltf/mesh_tangents.h"
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
@@ -37,6 +38,9 @@ struct build_context {
   std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
   std::vector<int> instance_gltf_material;            // per scene instance; -1: default material
   std::set<std::string> warned;                       // each distinct warning is reported once
+  // Primitives built from the same accessors into the same attributes share one scene mesh.
+  std::map<std::vector<int>, int32_t> geometry_cache;
+  memory_budget* memory = nullptr;  // gltf_load_options::memory
 };
 
 void warn_once(build_context& ctx, const std::string& message) {
@@ -154,6 +158,10 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
     return -1;
   }
 
+  // The mesh is charged for good; what reading the accessors needs on top of it is part of the
+  // estimate too, since both are held at once.
+  charge_memory(ctx.memory, primitive_bytes(ctx.model, prim), ctx.file, "meshes");
+
   mesh m;
   m.name = src.name.empty() ? "mesh " + std::to_string(mesh_index) : src.name;
   if (src.primitives.size() > 1) m.name += "/" + std::to_string(prim_index);
@@ -264,11 +272,39 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
   return static_cast<int32_t>(ctx.out.meshes.size() - 1);
 }
 
+// What a primitive's scene mesh is made of: its topology and every accessor build_mesh reads for
+// it (UV sets only when its material samples them; tangents only for a normal-mapped material,
+// generated from the normal texture's UV set when the file has none). Primitives with equal keys
+// build equal meshes, so one is built and shared by their instances, which keep their own
+// materials and transforms.
+std::vector<int> geometry_key(const build_context& ctx, const tinygltf::Primitive& prim) {
+  const auto attribute = [&](const char* name) {
+    auto found = prim.attributes.find(name);
+    return found == prim.attributes.end() ? -1 : found->second;
+  };
+  std::vector<int> key = {prim.mode, prim.indices, attribute("POSITION"), attribute("NORMAL"),
+                          attribute("COLOR_0")};
+  for (int set = 0; set < 2; ++set)
+    key.push_back(material_samples_texcoord(ctx.model, prim.material, set)
+                      ? attribute(set == 0 ? "TEXCOORD_0" : "TEXCOORD_1")
+                      : -2);
+  const bool normal_mapped =
+      prim.material >= 0 && ctx.model.materials[static_cast<size_t>(prim.material)].normalTexture.index >= 0;
+  key.push_back(normal_mapped ? material_normal_texcoord(ctx.model, prim.material) : -2);
+  key.push_back(normal_mapped ? attribute("TANGENT") : -2);
+  return key;
+}
+
 int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
   const auto key = std::make_pair(mesh_index, prim_index);
   auto cached = ctx.mesh_cache.find(key);
   if (cached != ctx.mesh_cache.end()) return cached->second;
-  const int32_t built = build_mesh(ctx, mesh_index, prim_index);
+  const tinygltf::Primitive& prim =
+      ctx.model.meshes[static_cast<size_t>(mesh_index)].primitives[static_cast<size_t>(prim_index)];
+  const std::vector<int> geometry = geometry_key(ctx, prim);
+  auto shared = ctx.geometry_cache.find(geometry);
+  const int32_t built = shared != ctx.geometry_cache.end() ? shared->second : build_mesh(ctx, mesh_index, prim_index);
+  ctx.geometry_cache.emplace(geometry, built);
   ctx.mesh_cache.emplace(key, built);
   return built;
 }
@@ -436,6 +472,7 @@ void convert_used_materials(build_context& ctx) {
   std::set<int> used(ctx.instance_gltf_material.begin(), ctx.instance_gltf_material.end());
   texture_remap remap = make_texture_remap(ctx.model);
   remap.max_texels = ctx.max_texels;
+  remap.memory = ctx.memory;
   std::map<int, uint32_t> scene_index;
   try {
     for (int gltf_material : used) {
@@ -493,7 +530,8 @@ int chosen_scene(const tinygltf::Model& model, const gltf_load_options& options,
 }  // namespace
 
 scene load_gltf(const std::string& path, const gltf_load_options& options) {
-  const tinygltf::Model model = parse_gltf_file(path, options);
+  memory_charge model_memory(options.memory);  // released once the model is gone
+  const tinygltf::Model model = parse_gltf_file(path, options, &model_memory);
   validate_model(model, path);
 
   scene out;
@@ -501,6 +539,7 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   const bool quantized = uses_extension(model, quantization_extension);
   build_context ctx{model, path, options.limits.max_instances, options.limits.max_texels, options.threads,
                     quantized, out, {}, {}, {}};
+  ctx.memory = options.memory;
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
   // were refused while parsing).

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/error.h"  // callers catch the kiln::error this throws
+#include "core/memory_budget.h"
 #include "scene/scene.h"
 
 #include <atomic>
@@ -37,6 +38,10 @@ struct gltf_load_options {
   // kind interrupted.
   const std::atomic<bool>* cancel = nullptr;
   int threads = 0;  // threads that decode images (0: all cores); the scene is the same for any count
+  // When set, the JSON and its parse, buffers, meshes and decoded images are charged to it before
+  // they are allocated; what would pass its limit is refused (kiln::error, input). The scene's
+  // meshes and images stay charged; what loading alone needs is released when it returns.
+  memory_budget* memory = nullptr;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.

@@ -287,7 +287,7 @@ texture_remap make_texture_remap(const tinygltf::Model& model) {
 }
 
 void decode_used_images(texture_remap& remap, scene& out, const std::string& file, int threads) {
-  std::vector<image> decoded = decode_images(remap.pending, file, remap.max_texels, threads);
+  std::vector<image> decoded = decode_images(remap.pending, file, remap.max_texels, threads, remap.memory);
   const size_t first = out.images.size() - decoded.size();
   for (size_t i = 0; i < decoded.size(); ++i) out.images[first + i] = std::move(decoded[i]);
   remap.pending.clear();

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory_budget.h"
 #include "io/gltf/gltf_images.h"
 #include "scene/scene.h"
 
@@ -20,6 +21,7 @@ struct texture_remap {
   std::vector<int32_t> images;
   std::vector<char> missing_source_warned;  // per glTF texture: warned once about a missing source
   uint64_t max_texels = uint64_t(1) << 28;  // gltf_limits::max_texels
+  memory_budget* memory = nullptr;          // decoded images are charged here; null: none
   // Images given a scene index but not decoded yet, in scene order; they are the last
   // pending.size() entries of scene::images, placeholders until decode_used_images.
   std::vector<encoded_image> pending;

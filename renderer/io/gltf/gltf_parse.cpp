@@ -5,6 +5,7 @@
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_image_use.h"
+#include "io/gltf/gltf_memory.h"
 #include "io/gltf/gltf_precheck.h"
 #include "io/gltf/gltf_schema_check.h"
 #include "io/gltf/gltf_uri_files.h"
@@ -34,6 +35,7 @@ struct fs_context {
   // large unused image file costs no memory (a missing one is still refused, by the pre-pass).
   std::vector<bool> image_used;              // by image index
   std::set<std::string> unused_image_files;  // canonical paths only unused images name
+  memory_charge* memory = nullptr;           // the JSON's parse and the buffers are charged here
 };
 
 // Reads a file the asset names or the asset itself: a regular file within kiln's size limit
@@ -201,6 +203,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   if (json_nesting_depth(text, size, limits.max_json_depth) > limits.max_json_depth)
     throw input_error(path, "", "JSON nests deeper than " + std::to_string(limits.max_json_depth) +
                                     " levels (--max-json-depth)");
+  if (context.memory) context.memory->add(json_parse_bytes(text, size), path, "the JSON text and its parse");
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded()) check_json_syntax(text, size, path);
   if (!doc.is_object())
@@ -220,6 +223,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   check_what_tinygltf_refuses(doc, path, sources);
   check_integer_properties(doc, path);
   check_camera_numbers(doc, path);
+  if (context.memory) context.memory->add(declared_buffer_bytes(doc), path, "the buffers");
   context.image_used = images_used_by_materials(doc);
   context.unused_image_files = unused_image_files(doc, context.image_used, context.rules.folder_prefix);
   refuse_missing_image_files(doc, context.rules.folder_prefix, path);
@@ -235,7 +239,13 @@ const std::vector<std::string>& supported_extensions() {
   return names;
 }
 
-tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options) {
+tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options,
+                                memory_charge* held) {
+  // The file's size from stat(), before it is read; a file over the size limit is refused by the
+  // reader, in its own words.
+  std::error_code size_error;
+  if (held && input_file_problem(path, max_gltf_file_bytes).empty())
+    if (const uintmax_t size = fs::file_size(path, size_error); !size_error) held->add(size, path, "the glTF file");
   // Throws for a FIFO, a device or a folder given as the asset, before a byte is read.
   const std::vector<uint8_t> bytes = read_whole_input_file(path, {max_gltf_file_bytes, options.cancel});
 
@@ -245,6 +255,7 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   fs_context context;
   context.rules = asset_uri_rules(path, options.allow_files_outside_folder);
   context.cancel = options.cancel;
+  context.memory = held;
 
   tinygltf::TinyGLTF parser;
   const bool is_glb = ends_with_glb(path) || has_glb_magic(bytes);
@@ -280,6 +291,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
     }
   } catch (const kiln::error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // not the file's fault: the job reports it with the stage it reached
   } catch (const std::exception& e) {
     throw input_error(path, "", std::string("invalid glTF: ") + e.what());
   }

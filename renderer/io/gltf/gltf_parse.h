@@ -23,6 +23,9 @@ const std::vector<std::string>& supported_extensions();
 // an asset version other than 2.x, an unsupported required extension, or JSON beyond
 // options.limits. Buffers and images are read only from inside the asset's folder unless
 // options.allow_files_outside_folder is set.
-tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options);
+// The file, its JSON parse and its buffers are charged to `held` (which the caller keeps while the
+// model lives) before they are read.
+tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options& options,
+                                memory_charge* held = nullptr);
 
 }  // namespace kiln::gltf_internal

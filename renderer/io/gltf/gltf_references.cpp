@@ -6,6 +6,7 @@
 #include "io/file/input_file.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_memory.h"
 #include "io/gltf/gltf_uri_files.h"
 
 namespace kiln {
@@ -25,6 +26,8 @@ std::vector<std::string> gltf_referenced_files(const std::string& asset_path,
     }
   }
   if (size > options.limits.max_json_bytes) return {};
+  if (options.memory && gltf_internal::json_parse_bytes(text, size) > options.memory->limit() - options.memory->used())
+    return {};
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return {};
   const gltf_internal::uri_rules rules =

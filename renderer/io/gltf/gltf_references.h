@@ -15,8 +15,9 @@ namespace kiln {
 // them, each an existing regular file. Throws kiln::error as the loader would for the asset itself
 // (missing, a FIFO, a device, a folder, too large; interrupted when options.cancel is raised) and
 // for a URI the loader refuses (absolute, outside the folder unless
-// options.allow_files_outside_folder, a FIFO or a device). Text that does not parse, or JSON over
-// options.limits.max_json_bytes, references nothing: the loader reports what is wrong with it.
+// options.allow_files_outside_folder, a FIFO or a device). Text that does not parse, JSON over
+// options.limits.max_json_bytes, or JSON whose parse would pass options.memory's budget references
+// nothing (and is not parsed): the loader reports what is wrong with it.
 std::vector<std::string> gltf_referenced_files(const std::string& asset_path,
                                                const gltf_load_options& options);
 
