@@ -7,17 +7,16 @@
 // cylinder and a torus as KILN_quadric, and as meshes of about 10^2 ... 10^6 triangles, all under
 // the same camera and light, so their images can be compared pixel by pixel.
 // Usage: make_bench_scenes OUTPUT_FOLDER [--skip-4m | --tessellation]
-#include "accel/grid/synthetic_scenes.h"
-
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "accel/grid/synthetic_scenes.h"
 
 namespace {
 
@@ -32,9 +31,9 @@ struct glb_writer {
     doc["asset"] = {{"version", "2.0"}, {"generator", "kiln make_bench_scenes"}};
     doc["scene"] = 0;
     doc["buffers"] = json::array({json::object()});
-    doc["materials"] = json::array({{{"pbrMetallicRoughness",
-                                      {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0},
-                                       {"roughnessFactor", 0.6}}}}});
+    doc["materials"] = json::array(
+        {{{"pbrMetallicRoughness",
+           {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}}});
   }
 
   int add_view(const void* data, size_t bytes, int target) {
@@ -42,7 +41,8 @@ struct glb_writer {
     const size_t offset = bin.size();
     bin.resize(offset + bytes);
     std::memcpy(bin.data() + offset, data, bytes);
-    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+    doc["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
     return int(doc["bufferViews"].size()) - 1;
   }
 
@@ -71,10 +71,11 @@ struct glb_writer {
     const int indices = add_view(m.indices.data(), m.indices.size() * sizeof(uint32_t), 34963);
     doc["accessors"].push_back(
         {{"bufferView", indices}, {"componentType", 5125}, {"count", m.indices.size()}, {"type", "SCALAR"}});
-    doc["meshes"].push_back({{"primitives",
-                              {{{"attributes", {{"POSITION", position_accessor}, {"NORMAL", normal_accessor}}},
-                                {"indices", int(doc["accessors"].size()) - 1},
-                                {"material", 0}}}}});
+    doc["meshes"].push_back(
+        {{"primitives",
+          {{{"attributes", {{"POSITION", position_accessor}, {"NORMAL", normal_accessor}}},
+            {"indices", int(doc["accessors"].size()) - 1},
+            {"material", 0}}}}});
     return int(doc["meshes"].size()) - 1;
   }
 
@@ -88,8 +89,8 @@ struct glb_writer {
     doc["extensionsUsed"].push_back("KHR_lights_punctual");
     doc["extensions"]["KHR_lights_punctual"]["lights"] =
         json::array({{{"type", "point"}, {"intensity", light_intensity}}});
-    doc["nodes"].push_back(
-        {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {distance, distance, distance}}});
+    doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}},
+                            {"translation", {distance, distance, distance}}});
   }
 
   void write(const std::string& path) {
@@ -141,9 +142,10 @@ void instanced(const std::string& path, size_t triangles, int n) {
   const int mesh = w.add_mesh(sphere_of(triangles));
   for (int i = 0; i < n * n * n; ++i) {
     const double x = i % n, y = (i / n) % n, z = i / (n * n);
-    w.doc["nodes"].push_back({{"mesh", mesh},
-                              {"translation", {(x - (n - 1) / 2.0) * 2.5, (y - (n - 1) / 2.0) * 2.5, (z - (n - 1) / 2.0) * 2.5}},
-                              {"scale", {0.9 + 0.02 * (i % 5), 0.9 + 0.02 * (i % 5), 0.9 + 0.02 * (i % 5)}}});
+    w.doc["nodes"].push_back(
+        {{"mesh", mesh},
+         {"translation", {(x - (n - 1) / 2.0) * 2.5, (y - (n - 1) / 2.0) * 2.5, (z - (n - 1) / 2.0) * 2.5}},
+         {"scale", {0.9 + 0.02 * (i % 5), 0.9 + 0.02 * (i % 5), 0.9 + 0.02 * (i % 5)}}});
   }
   w.add_camera_and_light(2.5 * n * 1.6, 60.0 * n * n);
   w.write(path);
@@ -155,9 +157,10 @@ void quadric_spheres(const std::string& path, int count) {
   const int side = int(std::ceil(std::cbrt(double(count))));
   for (int i = 0; i < count; ++i) {
     const double x = i % side, y = (i / side) % side, z = i / (side * side);
-    w.doc["nodes"].push_back({{"translation", {(x - side / 2.0) * 0.5, (y - side / 2.0) * 0.5, (z - side / 2.0) * 0.5}},
-                              {"scale", {0.2, 0.2, 0.2}},
-                              {"extensions", {{"KILN_quadric", {{"primitive", 0}, {"material", 0}}}}}});
+    w.doc["nodes"].push_back(
+        {{"translation", {(x - side / 2.0) * 0.5, (y - side / 2.0) * 0.5, (z - side / 2.0) * 0.5}},
+         {"scale", {0.2, 0.2, 0.2}},
+         {"extensions", {{"KILN_quadric", {{"primitive", 0}, {"material", 0}}}}}});
   }
   w.doc["extensionsUsed"].push_back("KILN_quadric");
   w.doc["extensions"]["KILN_quadric"]["primitives"] = json::array({{{"kind", "sphere"}, {"radius", 1.0}}});
@@ -186,8 +189,8 @@ normal_mesh cylinder_of(size_t triangles) {
   for (int i = 0; i < segments; ++i) {
     const float a = float(2.0 * M_PI * i / segments);
     const kiln::vec3 radial(std::cos(a), std::sin(a), 0.0f);
-    vertex(radial + kiln::vec3(0, 0, 1), radial);   // side, top ring
-    vertex(radial - kiln::vec3(0, 0, 1), radial);   // side, bottom ring
+    vertex(radial + kiln::vec3(0, 0, 1), radial);      // side, top ring
+    vertex(radial - kiln::vec3(0, 0, 1), radial);      // side, bottom ring
     vertex(radial + kiln::vec3(0, 0, 1), {0, 0, 1});   // top cap ring
     vertex(radial - kiln::vec3(0, 0, 1), {0, 0, -1});  // bottom cap ring
   }
@@ -217,8 +220,8 @@ normal_mesh torus_of(size_t triangles) {
   auto index = [&](int i, int j) { return uint32_t((i % u_count) * v_count + (j % v_count)); };
   for (int i = 0; i < u_count; ++i)
     for (int j = 0; j < v_count; ++j)
-      out.m.indices.insert(out.m.indices.end(), {index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j),
-                                                 index(i + 1, j + 1), index(i, j + 1)});
+      out.m.indices.insert(out.m.indices.end(), {index(i, j), index(i + 1, j), index(i + 1, j + 1),
+                                                 index(i, j), index(i + 1, j + 1), index(i, j + 1)});
   return out;
 }
 

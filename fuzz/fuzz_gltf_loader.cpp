@@ -3,8 +3,6 @@
 // sanitizer report, hang or runaway allocation is a finding. The input is written to a file
 // because the loader resolves buffers and images relative to the asset's folder; that folder
 // also holds the demo scene's .bin and .png so inputs mutated from the demo scene reach deep.
-#include "io/gltf/gltf_loader.h"
-
 #include <unistd.h>
 
 #include <cstdint>
@@ -12,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "io/gltf/gltf_loader.h"
 
 namespace {
 

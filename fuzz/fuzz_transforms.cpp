@@ -5,7 +5,6 @@
 // The asset then goes through the whole render job at 4x3 pixels, Embree included. The only
 // acceptable outcomes are an image or a kiln::error: Embree's assertion on a ray it cannot take
 // (abort), a crash or a sanitizer report is a finding.
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/error.h"
@@ -74,22 +74,24 @@ json make_asset(number_reader& in) {
   json doc = {{"asset", {{"version", "2.0"}}},
               {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 36}}}},
               {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
-              {"accessors",
-               {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}}},
+              {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}}},
               {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}}};
   if (flags & 2) {  // a sphere under the first node, placed by its own scale
     doc["extensionsUsed"] = {"KILN_quadric"};
     doc["extensions"]["KILN_quadric"]["primitives"] = {{{"kind", "sphere"}, {"radius", in.number(1.0)}}};
-    nodes.push_back({{"scale", in.numbers({1, 1, 1})}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}});
+    nodes.push_back(
+        {{"scale", in.numbers({1, 1, 1})}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}});
     nodes[0]["children"] = {1};
   }
   if (flags & 4) {  // a camera of the file's own
     json camera;
     if (flags & 8)
-      camera = {{"type", "orthographic"},
-                {"orthographic", {{"xmag", in.number(1)}, {"ymag", in.number(1)}, {"znear", 0.01}, {"zfar", 100}}}};
+      camera = {
+          {"type", "orthographic"},
+          {"orthographic", {{"xmag", in.number(1)}, {"ymag", in.number(1)}, {"znear", 0.01}, {"zfar", 100}}}};
     else
-      camera = {{"type", "perspective"}, {"perspective", {{"yfov", in.number(0.8)}, {"znear", in.number(0.01)}}}};
+      camera = {{"type", "perspective"},
+                {"perspective", {{"yfov", in.number(0.8)}, {"znear", in.number(0.01)}}}};
     doc["cameras"] = {camera};
     nodes.push_back({{"camera", 0}, {"translation", in.numbers({0, 0, 3})}});
     roots.push_back(nodes.size() - 1);

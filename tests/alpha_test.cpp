@@ -2,13 +2,13 @@
 // removes texels below the cutoff from both closest-hit and occlusion queries (the Embree filter
 // functions), BLEND composites alpha·surface + (1 - alpha)·behind and lets (1 - alpha) of the light
 // through to shadows, and doubleSided false culls back faces for camera and secondary rays.
+#include <gtest/gtest.h>
+
 #include "accel/embree/embree_accelerator.h"
 #include "scene/alpha_coverage.h"
 #include "shade/whitted.h"
 #include "support/shadow_probe.h"
 #include "support/test_scenes.h"
-
-#include <gtest/gtest.h>
 
 namespace kiln {
 namespace {
@@ -119,7 +119,7 @@ TEST(alpha, single_sided_back_faces_are_culled_double_sided_ones_are_not) {
   ray from_below = make_ray(vec3(0, 0, -1), vec3(0, 0, 1));
   EXPECT_EQ(trace_radiance(ctx, from_above, path_state{}, counts).x, 2.0f);
   EXPECT_EQ(trace_radiance(ctx, from_below, path_state{}, counts).x, 0.5f);  // culled: the environment
-  EXPECT_TRUE(accel.occluded(from_below));                              // still casts a shadow from behind
+  EXPECT_TRUE(accel.occluded(from_below));  // still casts a shadow from behind
   s.materials[0].double_sided = true;
   EXPECT_EQ(trace_radiance(ctx, from_below, path_state{}, counts).x, 2.0f);
 }
@@ -148,7 +148,8 @@ TEST(unlit, radiance_is_the_base_colour_whatever_the_lights) {
   shading_options options;
   shading_context ctx{s, accel, options, scene_has_see_through(s)};
   ray_counts counts;
-  vec3 seen = trace_radiance(ctx, testing::make_ray(vec3(0.1f, 0.2f, 1), vec3(0, 0, -1)), path_state{}, counts);
+  vec3 seen =
+      trace_radiance(ctx, testing::make_ray(vec3(0.1f, 0.2f, 1), vec3(0, 0, -1)), path_state{}, counts);
   EXPECT_EQ(seen, vec3(0.2f, 0.4f, 0.8f));
   EXPECT_EQ(counts.shadow + counts.reflection, 0u);
 }

@@ -2,17 +2,16 @@
 // Every visible, unshadowed pixel must equal (albedo/π)·I·cosθ/r² within 1e-3 relative, every
 // shadowed pixel must be exactly zero — at scene scales 1e-3, 1 and 1e4, which also proves that
 // shadow rays never re-hit the surface they start on (no shadow acne at any scale).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/tile_renderer.h"
 #include "support/gltf_builder.h"
-
-#include <gtest/gtest.h>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-
-#include <filesystem>
 
 namespace kiln {
 namespace {
@@ -27,7 +26,8 @@ const dvec3 shift(0.37, -1.21, 0.83);
 
 // World from the test's unit frame at a given scale.
 dmat4 world_from_unit(double scale) {
-  return glm::translate(dmat4(1.0), shift * scale) * glm::mat4_cast(tilt) * glm::scale(dmat4(1.0), dvec3(scale));
+  return glm::translate(dmat4(1.0), shift * scale) * glm::mat4_cast(tilt) *
+         glm::scale(dmat4(1.0), dvec3(scale));
 }
 
 const double occluder_x0 = -1.0, occluder_x1 = -0.4, occluder_y0 = -0.3, occluder_y1 = 0.3, occluder_z = 1.0;
@@ -38,7 +38,8 @@ std::string write_scene(double scale, bool scale_vertices) {
   testing::gltf_builder b;
   float v = scale_vertices ? float(scale) : 1.0f;
   int diffuse = b.add_material({{"pbrMetallicRoughness",
-                                 {{"baseColorFactor", {albedo, albedo, albedo, 1.0}}, {"metallicFactor", 0.0},
+                                 {{"baseColorFactor", {albedo, albedo, albedo, 1.0}},
+                                  {"metallicFactor", 0.0},
                                   {"roughnessFactor", 1.0}}},
                                 {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
   b.doc["extensionsUsed"].push_back("KHR_materials_specular");
@@ -46,7 +47,8 @@ std::string write_scene(double scale, bool scale_vertices) {
                          {0, 1, 2, 0, 2, 3}, diffuse);
   float x0 = float(occluder_x0) * v, x1 = float(occluder_x1) * v, y0 = float(occluder_y0) * v,
         y1 = float(occluder_y1) * v, z = float(occluder_z) * v;
-  int occluder = b.add_mesh({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, {0, 1, 2, 0, 2, 3}, diffuse);
+  int occluder =
+      b.add_mesh({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, {0, 1, 2, 0, 2, 3}, diffuse);
   double node_scale = scale_vertices ? 1.0 : scale;
   dvec3 t = shift * scale;
   int root = b.add_node({{"scale", {node_scale, node_scale, node_scale}},
@@ -56,7 +58,8 @@ std::string write_scene(double scale, bool scale_vertices) {
   b.add_child(root, b.add_node({{"mesh", occluder}}));
   int light = b.add_light({{"type", "point"}, {"intensity", intensity * scale * scale}});
   dvec3 lp = transform_point(world_from_unit(scale), light_position);
-  b.add_node({{"translation", {lp.x, lp.y, lp.z}}, {"extensions", {{"KHR_lights_punctual", {{"light", light}}}}}});
+  b.add_node(
+      {{"translation", {lp.x, lp.y, lp.z}}, {"extensions", {{"KHR_lights_punctual", {{"light", light}}}}}});
   auto path = std::filesystem::temp_directory_path() /
               ("kiln_analytic_" + std::to_string(::getpid()) + "_" + std::to_string(scale) + ".gltf");
   b.write(path.string());
@@ -64,7 +67,8 @@ std::string write_scene(double scale, bool scale_vertices) {
 }
 
 bool inside(double x, double y, double margin) {
-  return x > occluder_x0 - margin && x < occluder_x1 + margin && y > occluder_y0 - margin && y < occluder_y1 + margin;
+  return x > occluder_x0 - margin && x < occluder_x1 + margin && y > occluder_y0 - margin &&
+         y < occluder_y1 + margin;
 }
 
 void check_scale(double scale, bool scale_vertices) {
@@ -74,7 +78,8 @@ void check_scale(double scale, bool scale_vertices) {
   const int size = 96;
   const dmat4 world_from = world_from_unit(scale);
   const dmat4 unit_from = glm::inverse(world_from);
-  view_camera cam = make_look_at_camera(transform_point(world_from, dvec3(0, 0, 5)), transform_point(world_from, dvec3(0.0)),
+  view_camera cam = make_look_at_camera(transform_point(world_from, dvec3(0, 0, 5)),
+                                        transform_point(world_from, dvec3(0.0)),
                                         transform_vector(world_from, dvec3(0, 1, 0)), 50.0, size, size);
   render_settings settings;
   settings.threads = 2;

@@ -1,6 +1,12 @@
 // Reconstruction filters and adaptive supersampling on whole renders: pictures made of unlit
 // polygons placed in image space (a plane facing a pinhole camera maps lines to lines), so every
 // pixel's exact coverage is known and alpha must follow it.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
 #include "render/camera_sample.h"
@@ -9,12 +15,6 @@
 #include "shade/environment.h"
 #include "shade/texture_filter.h"
 #include "support/gltf_builder.h"
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-
-#include <cstring>
-#include <filesystem>
 
 namespace kiln {
 namespace {
@@ -118,9 +118,9 @@ TEST(filter_image, default_box_is_bit_identical_to_the_direct_mean_of_the_sample
       ray_counts counts;
       for (int s = 0; s < 5; ++s) {
         vec2 o = sample_offset(uint32_t(x), uint32_t(y), uint32_t(s), 5u);
-        sum += dvec4(trace_camera_sample(ctx, cam, true, x + double(o.x), y + double(o.y), sample_cone(cam, 5),
-                                         counts)
-                         .rgba);
+        sum += dvec4(
+            trace_camera_sample(ctx, cam, true, x + double(o.x), y + double(o.y), sample_cone(cam, 5), counts)
+                .rgba);
       }
       vec4 expected = vec4(sum / 5.0);
       ASSERT_EQ(std::memcmp(&image.color[image.index(x, y)], &expected, sizeof(vec4)), 0) << x << "," << y;

@@ -1,18 +1,18 @@
 // Optional asset suite: every glTF sample model in ../shared/assets renders at 256x256 from the
 // CLI with finite values and some geometry in view, or, when it requires an extension kiln does
 // not support, fails with exit code 2 and a message naming that extension. Skips when absent.
-#include "support/run_kiln.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
+
+#include "support/run_kiln.h"
 
 namespace kiln {
 namespace {
@@ -69,8 +69,8 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
     if (!supported.count(e)) unsupported = e;
 
   std::string out = testing::scratch_folder("asset_" + file.stem().string()) + "/out.exr";
-  auto result = testing::run_kiln({"render", file.string(), "-o", out, "--width", "256", "--height", "256",
-                                   "--threads", "2", "-q"});
+  auto result = testing::run_kiln(
+      {"render", file.string(), "-o", out, "--width", "256", "--height", "256", "--threads", "2", "-q"});
   if (!unsupported.empty()) {
     EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
     EXPECT_NE(result.stderr_text.find(unsupported), std::string::npos) << result.stderr_text;
@@ -120,8 +120,8 @@ TEST(asset_renders, quantized_duck_renders_like_the_float_duck) {
   const char* files[2] = {"Duck/glTF-Binary/Duck.glb", "Duck/glTF-Quantized/Duck.gltf"};
   for (int i = 0; i < 2; ++i) {
     const std::string out = folder + "/duck" + std::to_string(i) + ".exr";
-    auto result = testing::run_kiln({"render", (root / files[i]).string(), "-o", out, "--width", "128", "--height",
-                                     "128", "--threads", "2", "-q"});
+    auto result = testing::run_kiln({"render", (root / files[i]).string(), "-o", out, "--width", "128",
+                                     "--height", "128", "--threads", "2", "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     images[i] = read_rgb(out);
     ASSERT_EQ(images[i].size(), size_t(128) * 128 * 3);
@@ -130,7 +130,8 @@ TEST(asset_renders, quantized_duck_renders_like_the_float_duck) {
   double total = 0.0;
   for (size_t p = 0; p < images[0].size() / 3; ++p) {
     float worst = 0.0f;
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(images[0][3 * p + c] - images[1][3 * p + c]));
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(images[0][3 * p + c] - images[1][3 * p + c]));
     differing += worst > 0.02f;
     lit += images[0][3 * p] + images[0][3 * p + 1] + images[0][3 * p + 2] > 0.0f;
     total += worst;
@@ -145,7 +146,8 @@ TEST(asset_renders, quantized_duck_renders_like_the_float_duck) {
 INSTANTIATE_TEST_SUITE_P(shared_assets, asset_suite, ::testing::ValuesIn(asset_files()),
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
                            std::string name;
-                           for (char c : param_info.param) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           for (char c : param_info.param)
+                             name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
                          });
 

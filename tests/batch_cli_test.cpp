@@ -271,9 +271,9 @@ TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_override
       {"asset": "scenes/cornell_box.gltf", "resolution": "40x30", "spp": 3, "output": "sub/a.exr",
        "overrides": {"max-depth": 4, "aovs": "beauty,Z"}},
       {"asset": "scenes/cornell_box.gltf", "camera": "0"}]})");
-  const command_result result = run_kiln(
-      {"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string(), "-q",
-       "--compression", "piz", "--preview", "contact.png"});
+  const command_result result =
+      run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", (dir / "out").string(),
+                "-q", "--compression", "piz", "--preview", "contact.png"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   // --preview names the format only: each job's preview sits beside its EXR.
   EXPECT_EQ(files_in(dir / "out"),

@@ -1,12 +1,12 @@
 // The command line end to end: options, exit codes, outputs, and one-line errors for bad input.
-#include "support/run_kiln.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+
+#include "support/run_kiln.h"
 
 namespace kiln {
 namespace {
@@ -27,29 +27,45 @@ TEST(cli, help_documents_every_render_option) {
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(help_file);
   std::string help((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* option : {"--output", "--width", "--height", "--spp", "--threads", "--tile-size", "--camera",
-                             "--look-from", "--look-at", "--up", "--fov", "--scene", "--float", "--environment",
-                             "--environment-rotation", "--environment-intensity", "--filter", "--filter-radius",
-                             "--adaptive-threshold", "--adaptive-depth", "--aovs", "--crop"})
+  for (const char* option : {"--output",
+                             "--width",
+                             "--height",
+                             "--spp",
+                             "--threads",
+                             "--tile-size",
+                             "--camera",
+                             "--look-from",
+                             "--look-at",
+                             "--up",
+                             "--fov",
+                             "--scene",
+                             "--float",
+                             "--environment",
+                             "--environment-rotation",
+                             "--environment-intensity",
+                             "--filter",
+                             "--filter-radius",
+                             "--adaptive-threshold",
+                             "--adaptive-depth",
+                             "--aovs",
+                             "--crop"})
     EXPECT_NE(help.find(option), std::string::npos) << option;
 }
 
 TEST(cli, usage_errors_exit_2_with_one_line) {
-  for (const std::vector<std::string>& args :
-       std::vector<std::vector<std::string>>{{"render", demo_scene, "-o", "x.exr", "--no-such-option"},
-                                             {"render", demo_scene},
-                                             {"render", demo_scene, "-o", "x.exr", "--spp", "0"},
-                                             {"render", demo_scene, "-o", "x.exr", "--look-from", "1,2"},
-                                             {"render", demo_scene, "-o", "x.exr", "--width", "-5"},
-                                             {"render", demo_scene, "-o", "x.exr", "--filter", "lanczos"},
-                                             {"render", demo_scene, "-o", "x.exr", "--filter-radius", "0"},
-                                             {"render", demo_scene, "-o", "x.exr", "--filter-radius", "-1"},
-                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "-1"},
-                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-depth", "99"},
-                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1",
-                                              "--spp", "4"},
-                                             {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1",
-                                              "--filter", "tent"}}) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"render", demo_scene, "-o", "x.exr", "--no-such-option"},
+           {"render", demo_scene},
+           {"render", demo_scene, "-o", "x.exr", "--spp", "0"},
+           {"render", demo_scene, "-o", "x.exr", "--look-from", "1,2"},
+           {"render", demo_scene, "-o", "x.exr", "--width", "-5"},
+           {"render", demo_scene, "-o", "x.exr", "--filter", "lanczos"},
+           {"render", demo_scene, "-o", "x.exr", "--filter-radius", "0"},
+           {"render", demo_scene, "-o", "x.exr", "--filter-radius", "-1"},
+           {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "-1"},
+           {"render", demo_scene, "-o", "x.exr", "--adaptive-depth", "99"},
+           {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1", "--spp", "4"},
+           {"render", demo_scene, "-o", "x.exr", "--adaptive-threshold", "0.1", "--filter", "tent"}}) {
     auto result = run_kiln(args);
     EXPECT_EQ(result.exit_code, 2) << args.back();
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
@@ -105,9 +121,9 @@ TEST(cli, images_over_the_pixel_limit_are_refused_before_loading) {
 TEST(cli, glass_showcase_renders_with_its_environment_map) {
   const std::string scenes = std::string(KILN_SOURCE_DIR) + "/scenes/";
   std::string out = scratch_folder("showcase") + "/out.exr";
-  auto result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--width", "64", "--height", "48",
-                          "--environment", scenes + "glass_showcase_sky.hdr", "--environment-intensity", "2",
-                          "--show-background", "--threads", "2"});
+  auto result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--width", "64", "--height",
+                          "48", "--environment", scenes + "glass_showcase_sky.hdr", "--environment-intensity",
+                          "2", "--show-background", "--threads", "2"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("refraction rays"), std::string::npos) << result.stderr_text;
   EXPECT_EQ(result.stderr_text.find(" 0 refraction rays"), std::string::npos) << result.stderr_text;
@@ -120,8 +136,8 @@ TEST(cli, glass_showcase_renders_with_its_environment_map) {
     EXPECT_EQ(in->spec().get_string_attribute("kiln/discarded_samples"), "0");
   }
   // A file OpenImageIO cannot read is bad input naming the option.
-  result = run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--environment",
-                     scenes + "README.md"});
+  result =
+      run_kiln({"render", scenes + "glass_showcase.gltf", "-o", out, "--environment", scenes + "README.md"});
   EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("--environment"), std::string::npos) << result.stderr_text;
   EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
@@ -166,7 +182,8 @@ TEST(cli, impossible_camera_is_bad_input) {
   EXPECT_NE(result.stderr_text.find("same point"), std::string::npos) << result.stderr_text;
   result = run_kiln({"render", demo_scene, "-o", out, "--camera", "no_such_camera"});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.stderr_text.find("main"), std::string::npos) << "lists the cameras: " << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("main"), std::string::npos)
+      << "lists the cameras: " << result.stderr_text;
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -222,7 +239,8 @@ TEST(cli, renders_demo_scene_to_exr_with_aovs_and_camera_aspect) {
 
 TEST(cli, float_option_writes_32_bit_colour) {
   std::string out = scratch_folder("float") + "/f.exr";
-  auto result = run_kiln({"render", demo_scene, "-o", out, "--width", "16", "--height", "12", "--float", "-q"});
+  auto result =
+      run_kiln({"render", demo_scene, "-o", out, "--width", "16", "--height", "12", "--float", "-q"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   auto in = OIIO::ImageInput::open(out);
   ASSERT_TRUE(in);
@@ -240,7 +258,8 @@ TEST(cli, bad_input_files_exit_2_with_one_line_naming_the_file) {
     auto result = run_kiln({"render", entry.path().string(), "-o", out, "--width", "8", "--height", "8"});
     EXPECT_EQ(result.exit_code, 2) << entry.path() << ": " << result.stderr_text;
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
-    EXPECT_NE(result.stderr_text.find(entry.path().filename().string()), std::string::npos) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(entry.path().filename().string()), std::string::npos)
+        << result.stderr_text;
     EXPECT_FALSE(fs::exists(out));
     ++checked;
   }

@@ -1,7 +1,7 @@
-// The demo scene (a room with a mirror, glass, quadrics and a textured floor) rendered at scene scales 1e-3, 1
-// and 1e4, moved far from the origin as well: secondary rays (shadow and mirror) must never re-hit
-// the surface they leave, so every scaled image equals the unit-scale one except for rounding at
-// edges. Shadow acne or a self-reflecting mirror darkens a large share of the pixels instead.
+// The demo scene (a room with a mirror, glass, quadrics and a textured floor) rendered at scene scales 1e-3,
+// 1 and 1e4, moved far from the origin as well: secondary rays (shadow and mirror) must never re-hit the
+// surface they leave, so every scaled image equals the unit-scale one except for rounding at edges. Shadow
+// acne or a self-reflecting mirror darkens a large share of the pixels instead.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -111,7 +111,8 @@ TEST(demo_scene_scale, secondary_rays_never_rehit_their_surface_at_any_scale) {
       // changes by 1.2% in a dark channel. Shadow acne or self-reflection would change thousands.
       // Scaled about the origin, nothing may change.
       const bool shifted = shift != dvec3(0.0);
-      EXPECT_LE(d.differing_share, shifted ? 2.0 / 6000.0 : 0.0) << "scale " << scale << ", shift " << shift.x;
+      EXPECT_LE(d.differing_share, shifted ? 2.0 / 6000.0 : 0.0)
+          << "scale " << scale << ", shift " << shift.x;
     }
   }
 }

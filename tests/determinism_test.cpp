@@ -1,14 +1,14 @@
 // The image must be bit-identical for any thread count and tile size: samples are seeded by
 // (pixel, sample index) alone and each pixel is computed by one task in a fixed order.
-#include "accel/embree/embree_accelerator.h"
-#include "io/gltf/gltf_loader.h"
-#include "render/tile_renderer.h"
-#include "support/run_kiln.h"
-
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
+
+#include "accel/embree/embree_accelerator.h"
+#include "io/gltf/gltf_loader.h"
+#include "render/tile_renderer.h"
+#include "support/run_kiln.h"
 
 namespace kiln {
 namespace {
@@ -54,8 +54,8 @@ std::vector<float> read_pixels(const std::string& path) {
 
 TEST(determinism, cli_thread_count_does_not_change_pixels) {
   std::string dir = testing::scratch_folder("determinism");
-  auto a = testing::run_kiln({"render", demo_scene, "-o", dir + "/a.exr", "--width", "64", "--spp", "2",
-                              "--threads", "1", "-q"});
+  auto a = testing::run_kiln(
+      {"render", demo_scene, "-o", dir + "/a.exr", "--width", "64", "--spp", "2", "--threads", "1", "-q"});
   auto b = testing::run_kiln({"render", demo_scene, "-o", dir + "/b.exr", "--width", "64", "--spp", "2",
                               "--threads", "3", "--tile-size", "5", "-q"});
   ASSERT_EQ(a.exit_code, 0) << a.stderr_text;

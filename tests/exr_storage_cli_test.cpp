@@ -173,7 +173,8 @@ TEST(exr_storage_cli, tiled_and_multipart_files_hold_the_single_part_scanline_pi
   const std::string plain = render(dir, "plain.exr", with({}));
   const std::string tiled = render(dir, "tiled.exr", with({"--tiled"}));
   const std::string tiled16 = render(dir, "tiled16.exr", with({"--exr-tile-size", "16"}));
-  const std::string multi = render(dir, "multi.exr", with({"--multipart", "--tiled", "--exr-tile-size", "8"}));
+  const std::string multi =
+      render(dir, "multi.exr", with({"--multipart", "--tiled", "--exr-tile-size", "8"}));
   EXPECT_EQ(read_parts(plain).front().spec.tile_width, 0);  // scanlines
   EXPECT_EQ(read_parts(tiled).front().spec.tile_width, 64);
   EXPECT_EQ(read_parts(tiled).front().spec.tile_height, 64);
@@ -247,8 +248,8 @@ TEST(exr_storage_cli, png_preview_is_the_view_transform_of_the_exr_within_one_co
         partial += c == 3 && p.codes[i * 4 + 3] > 0 && p.codes[i * 4 + 3] < 255;
         const double x = v.at(names[c])[i], a = std::clamp(double(v.at("A")[i]), 0.0, 1.0);
         // PNG holds straight colour: the premultiplied colour divided by alpha where there is any.
-        const int expected =
-            c < 3 ? srgb_code(a > 0.0 ? x / a : x, exposure) : int(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
+        const int expected = c < 3 ? srgb_code(a > 0.0 ? x / a : x, exposure)
+                                   : int(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
         worst = std::max(worst, std::abs(int(p.codes[i * 4 + size_t(c)]) - expected));
       }
     EXPECT_LE(worst, 1) << "exposure " << exposure;

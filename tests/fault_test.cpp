@@ -1,12 +1,8 @@
 // Faults from outside the renderer: signals during a render, a full disk, and outputs that are not
 // files. In every case kiln exits non-zero with one line, leaves no temporary file, and never
 // touches an output that already existed.
-#include "support/kiln_process.h"
-#include "support/run_kiln.h"
-
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -20,14 +16,17 @@
 #include <sstream>
 #include <thread>
 
+#include "support/kiln_process.h"
+#include "support/run_kiln.h"
+
 namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
 using testing::child_process;
 using testing::lines;
-using testing::start_kiln;
 using testing::scratch_folder;
+using testing::start_kiln;
 
 const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
 const std::string previous_content = "an earlier render that must survive\n";
@@ -53,7 +52,8 @@ std::vector<std::string> stray_files(const std::string& folder, const std::strin
 
 // A render that takes many seconds, so a signal always arrives mid-render.
 std::vector<std::string> long_render(const std::string& output) {
-  return {"render", demo_scene, "-o", output, "--width", "1920", "--height", "1440", "--spp", "1024", "--threads", "2"};
+  return {"render",   demo_scene, "-o",    output, "--width",   "1920",
+          "--height", "1440",     "--spp", "1024", "--threads", "2"};
 }
 
 // Few pixels of a huge number of samples in one tile: each pixel takes long, so a check per tile
@@ -71,7 +71,8 @@ void expect_signal_stops_render(
   child_process child = start_kiln(args(output), folder);
   // Wait until kiln handles the signal (a loaded machine may take a while to start it), then
   // give it time to load the scene and start tracing.
-  for (int i = 0; i < 1000 && !child.catches(signo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 1000 && !child.catches(signo); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_TRUE(child.catches(signo)) << "kiln never installed a handler for signal " << signo;
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   auto sent = std::chrono::steady_clock::now();
@@ -89,9 +90,13 @@ void expect_signal_stops_render(
   EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a temporary file was left behind";
 }
 
-TEST(faults, sigint_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGINT); }
+TEST(faults, sigint_stops_the_render_within_a_second_and_writes_nothing) {
+  expect_signal_stops_render(SIGINT);
+}
 
-TEST(faults, sigterm_stops_the_render_within_a_second_and_writes_nothing) { expect_signal_stops_render(SIGTERM); }
+TEST(faults, sigterm_stops_the_render_within_a_second_and_writes_nothing) {
+  expect_signal_stops_render(SIGTERM);
+}
 
 TEST(faults, sigint_stops_a_render_of_65536_samples_a_pixel_within_a_second) {
   expect_signal_stops_render(SIGINT, long_pixels_render);
@@ -99,8 +104,8 @@ TEST(faults, sigint_stops_a_render_of_65536_samples_a_pixel_within_a_second) {
 
 // Writing 800x800 one-pixel tiles takes seconds: long enough to signal kiln mid-write.
 std::vector<std::string> long_write(const std::string& output) {
-  return {"render", demo_scene, "-o", output, "--width", "800", "--height", "800", "--exr-tile-size", "1",
-          "--aovs", "beauty", "--threads", "2", "-q"};
+  return {"render",          demo_scene, "-o",     output,   "--width",   "800", "--height", "800",
+          "--exr-tile-size", "1",        "--aovs", "beauty", "--threads", "2",   "-q"};
 }
 
 // The temporary file kiln writes beside output (".frame.exr.tmp-HOST-PID"), once it exists.
@@ -198,9 +203,19 @@ TEST(faults, full_disk_fails_cleanly_and_keeps_the_earlier_output) {
 // both measured by a first render, so only the preview's write runs out of room.
 TEST(faults, a_preview_on_a_full_disk_fails_and_leaves_no_truncated_file) {
   const std::string folder = scratch_folder("full_disk_preview");
-  const std::vector<std::string> args = {"render",  demo_scene, "-o",          folder + "/frame.exr", "--width",
-                                         "320",     "--aovs",   "beauty",      "--compression",      "dwab",
-                                         "-q",      "--preview", folder + "/frame.png"};
+  const std::vector<std::string> args = {"render",
+                                         demo_scene,
+                                         "-o",
+                                         folder + "/frame.exr",
+                                         "--width",
+                                         "320",
+                                         "--aovs",
+                                         "beauty",
+                                         "--compression",
+                                         "dwab",
+                                         "-q",
+                                         "--preview",
+                                         folder + "/frame.png"};
   ASSERT_EQ(testing::run_kiln(args).exit_code, 0);
   const uintmax_t exr = fs::file_size(folder + "/frame.exr"), png = fs::file_size(folder + "/frame.png");
   ASSERT_GT(png, exr + 2048) << "the preview must be the larger file for this test";

@@ -1,14 +1,14 @@
 // Replays every input the fuzzers found (tests/data/fuzz_regressions/) through the loader. Each
 // one once crashed or tripped a sanitizer; each must now be refused with one clear kiln::error
 // naming the file. Under the sanitizer stage of the test command, any memory error fails here.
-#include "io/gltf/gltf_loader.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "io/gltf/gltf_loader.h"
 
 namespace kiln {
 namespace {
@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> regression_inputs() {
   std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(std::string(KILN_SOURCE_DIR) + "/tests/data/fuzz_regressions")) {
+  for (const auto& entry :
+       fs::directory_iterator(std::string(KILN_SOURCE_DIR) + "/tests/data/fuzz_regressions")) {
     std::string ext = entry.path().extension().string();
     if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path().string());
   }
@@ -43,8 +44,8 @@ TEST(fuzz_regressions, every_found_input_is_refused_with_a_clear_error) {
 }
 
 TEST(fuzz_regressions, position_reference_is_checked_before_other_attributes_use_it) {
-  const std::string file =
-      std::string(KILN_SOURCE_DIR) + "/tests/data/fuzz_regressions/position_index_out_of_range_after_normal.gltf";
+  const std::string file = std::string(KILN_SOURCE_DIR) +
+                           "/tests/data/fuzz_regressions/position_index_out_of_range_after_normal.gltf";
   try {
     load_gltf(file);
     FAIL() << "loaded without error";

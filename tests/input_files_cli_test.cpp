@@ -170,7 +170,8 @@ TEST(input_files, batch_naming_a_fifo_is_refused_before_anything_renders) {
                              dir);
   ASSERT_TRUE(result.code.has_value()) << "kiln batch hung";
   EXPECT_EQ(*result.code, 2) << result.message;
-  EXPECT_NE(result.message.find((dir / "pipe.gltf").string() + " is a FIFO"), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find((dir / "pipe.gltf").string() + " is a FIFO"), std::string::npos)
+      << result.message;
   EXPECT_FALSE(fs::exists(dir / "out/scene.exr")) << result.message;
 }
 

@@ -2,12 +2,11 @@
 // is refused with one line and exit 2 before anything is written; a file over the size limit is
 // refused from stat() alone; an allocation that fails although the estimates fit (a ulimit
 // below the budget) ends the job with a message and exit 1, never a signal.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,7 +21,9 @@ namespace fs = std::filesystem;
 using kiln::testing::run_kiln;
 using kiln::testing::scratch_folder;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 // A quad whose base colour (sRGB) and metallic-roughness (linear) read one side × side PNG
 // through a mip-mapped sampler: two pyramids, about 10.7 bytes a texel, over an image of 4.
@@ -31,7 +32,8 @@ std::string textured_quad(const std::string& folder, int side) {
   auto out = OIIO::ImageOutput::create(png);
   OIIO::ImageSpec spec(side, side, 3, OIIO::TypeDesc::UINT8);
   std::vector<uint8_t> texels(size_t(side) * side * 3, 128);
-  EXPECT_TRUE(out && out->open(png, spec) && out->write_image(OIIO::TypeDesc::UINT8, texels.data()) && out->close());
+  EXPECT_TRUE(out && out->open(png, spec) && out->write_image(OIIO::TypeDesc::UINT8, texels.data()) &&
+              out->close());
   const std::vector<float> data = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 1, 1, 1, 1, 0, 0, 0};
   std::ofstream(folder + "/quad.bin", std::ios::binary)
       .write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
@@ -39,16 +41,25 @@ std::string textured_quad(const std::string& folder, int side) {
       {"asset", {{"version", "2.0"}}},
       {"scenes", {{{"nodes", {0}}}}},
       {"nodes", {{{"mesh", 0}, {"translation", {0, 0, -3}}}}},
-      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}, {"mode", 6}}}}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}, {"mode", 6}}}}}}},
       {"materials",
-       {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}}}}},
+       {{{"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}}}}},
       {"textures", {{{"source", 0}, {"sampler", 0}}}},
       {"samplers", {{{"minFilter", 9987}}}},
       {"images", {{{"uri", "texture.png"}}}},
       {"buffers", {{{"uri", "quad.bin"}, {"byteLength", 80}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteLength", 48}}, {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}}}},
       {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {-1, -1, 0}}, {"max", {1, 1, 0}}},
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {-1, -1, 0}},
+         {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}}}},
   };
   std::ofstream(folder + "/quad.gltf") << doc.dump();
@@ -60,7 +71,8 @@ TEST(MemoryBudget, PyramidsOverTheBudgetAreRefusedAndNothingIsWritten) {
   const std::string asset = textured_quad(dir, 1024);  // 4 MiB decoded, 10.7 MiB of pyramids
   const std::string out = dir + "/out.exr";
   // 12 MiB holds the image and its decoding (9 MiB), not the image and its two pyramids.
-  const auto refused = run_kiln({"render", asset, "-o", out, "--width", "16", "--height", "16", "--max-memory", "12M"});
+  const auto refused =
+      run_kiln({"render", asset, "-o", out, "--width", "16", "--height", "16", "--max-memory", "12M"});
   EXPECT_EQ(refused.exit_code, 2) << refused.stderr_text;
   EXPECT_TRUE(contains(refused.stderr_text, "quad.gltf: the textures' mip pyramids need about 11 MiB more"))
       << refused.stderr_text;
@@ -68,7 +80,8 @@ TEST(MemoryBudget, PyramidsOverTheBudgetAreRefusedAndNothingIsWritten) {
       << refused.stderr_text;
   EXPECT_FALSE(fs::exists(out));
   // The same job with room for them renders.
-  const auto rendered = run_kiln({"render", asset, "-o", out, "--width", "16", "--height", "16", "--max-memory", "64M"});
+  const auto rendered =
+      run_kiln({"render", asset, "-o", out, "--width", "16", "--height", "16", "--max-memory", "64M"});
   EXPECT_EQ(rendered.exit_code, 0) << rendered.stderr_text;
   EXPECT_TRUE(fs::exists(out));
 }
@@ -115,7 +128,8 @@ TEST(MemoryBudget, JsonWhoseParseWouldPassTheBudgetIsRefusedBeforeParsing) {
   std::ofstream(dir + "/padded.gltf") << doc.dump();
   const auto r = run_kiln({"render", dir + "/padded.gltf", "-o", dir + "/o.exr", "--max-memory", "64M"});
   EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
-  EXPECT_TRUE(contains(r.stderr_text, "padded.gltf: the JSON text and its parse need about")) << r.stderr_text;
+  EXPECT_TRUE(contains(r.stderr_text, "padded.gltf: the JSON text and its parse need about"))
+      << r.stderr_text;
   EXPECT_FALSE(fs::exists(dir + "/o.exr"));
 }
 
@@ -148,8 +162,8 @@ TEST(MemoryBudget, AnAllocationThatFailsWithinTheBudgetIsAnErrorNotACrash) {
   const std::string out = dir + "/out.exr";
   // A 64 GiB budget lets a 12000² film (9 GiB with the writer's copy) through; 1 GB of address
   // space does not.
-  const int status = run_kiln_limited({"render", kiln::testing::copy_scene(dir), "-o", out, "-q", "--width", "12000",
-                                       "--height", "12000", "--max-memory", "64G"},
+  const int status = run_kiln_limited({"render", kiln::testing::copy_scene(dir), "-o", out, "-q", "--width",
+                                       "12000", "--height", "12000", "--max-memory", "64G"},
                                       rlim_t(1) << 30, err);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   EXPECT_EQ(WEXITSTATUS(status), 1);

@@ -24,7 +24,7 @@ void check(const bad_case& c) {
   b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});  // the builder needs a non-empty buffer
   b.doc["extensionsUsed"] = {"KILN_quadric"};
   b.doc["extensions"]["KILN_quadric"]["primitives"] = {json{{"kind", "sphere"}, {"radius", 1.0}},
-                                                          c.definition};
+                                                       c.definition};
   b.add_node({{"name", "fine"}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}});
   json node = {{"name", "culprit"}, {"extensions", {{"KILN_quadric", {{"primitive", 1}}}}}};
   node.update(c.node, true);
@@ -79,7 +79,8 @@ TEST(quadric_input, bad_references) {
   check({"primitive_out_of_range",
          {{"kind", "sphere"}, {"radius", 1.0}},
          {{"extensions", {{"KILN_quadric", {{"primitive", 7}}}}}},
-         {"/nodes/1/extensions/KILN_quadric/primitive", "/extensions/KILN_quadric/primitives/7 does not exist"}});
+         {"/nodes/1/extensions/KILN_quadric/primitive",
+          "/extensions/KILN_quadric/primitives/7 does not exist"}});
   check({"material_out_of_range",
          {{"kind", "sphere"}, {"radius", 1.0}},
          {{"extensions", {{"KILN_quadric", {{"primitive", 1}, {"material", 3}}}}}},

@@ -3,17 +3,17 @@
 // reflectance of a slab sums the Fresnel series, total internal reflection
 // sends nothing through, Beer-Lambert absorption over a known length, and
 // shadows through a transmissive sheet take its transmission colour.
-#include "accel/embree/embree_accelerator.h"
-#include "shade/dielectric.h"
-#include "shade/whitted.h"
-#include "support/shadow_probe.h"
-#include "support/test_scenes.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <mutex>
 #include <vector>
+
+#include "accel/embree/embree_accelerator.h"
+#include "shade/dielectric.h"
+#include "shade/whitted.h"
+#include "support/shadow_probe.h"
+#include "support/test_scenes.h"
 
 namespace kiln {
 namespace {

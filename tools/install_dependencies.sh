@@ -9,6 +9,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libglm-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-openimageio
+  clang-format-14
 )
 [ $# -eq 0 ] || packages=("$@")
 

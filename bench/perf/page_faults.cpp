@@ -18,8 +18,12 @@ int main() {
     }
     auto t1 = std::chrono::steady_clock::now();
     char* two = static_cast<char*>(std::calloc(n, 1));  // fresh zero pages, faulted on first write
-    std::thread a([&] { for (size_t i = 0; i < n / 2; i += 4096) two[i] = 1; });
-    std::thread b([&] { for (size_t i = n / 2; i < n; i += 4096) two[i] = 1; });
+    std::thread a([&] {
+      for (size_t i = 0; i < n / 2; i += 4096) two[i] = 1;
+    });
+    std::thread b([&] {
+      for (size_t i = n / 2; i < n; i += 4096) two[i] = 1;
+    });
     a.join();
     b.join();
     auto t2 = std::chrono::steady_clock::now();
@@ -29,7 +33,8 @@ int main() {
     for (size_t i = 0; i < n; i += 4096) one[i] = 1;
     auto t4 = std::chrono::steady_clock::now();
     std::free(one);
-    std::printf("zero-filled vector %.1f ms | calloc, first touch on 2 threads %.1f ms | on 1 thread %.1f ms\n",
-                ms(t0, t1), ms(t1, t2), ms(t3, t4));
+    std::printf(
+        "zero-filled vector %.1f ms | calloc, first touch on 2 threads %.1f ms | on 1 thread %.1f ms\n",
+        ms(t0, t1), ms(t1, t2), ms(t3, t4));
   }
 }

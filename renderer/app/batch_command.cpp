@@ -8,19 +8,19 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "job/asset_file.h"
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
-#include "app/output_lock.h"
 #include "app/cli_checks.h"
-#include "app/interrupt.h"
-#include "job/option_table.h"
 #include "app/cli_suggest.h"
-#include "job/output_guard.h"
-#include "job/render_fingerprint.h"
+#include "app/interrupt.h"
+#include "app/output_lock.h"
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
+#include "job/asset_file.h"
+#include "job/option_table.h"
+#include "job/output_guard.h"
+#include "job/render_fingerprint.h"
 
 namespace kiln {
 
@@ -83,7 +83,8 @@ std::string render_command_line(const render_options& o) {
   for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
     line += " " + shell_quoted(a);
   if (!o.preview.empty())
-    line += " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
+    line +=
+        " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
   return line;
 }
 
@@ -208,7 +209,8 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     job.options.output = output.lexically_normal().string();
     // --preview in a batch names the format only: each job's preview sits beside its EXR.
     if (!job.options.preview.empty())
-      job.options.preview = fs::path(job.options.output).replace_extension(fs::path(job.options.preview).extension()).string();
+      job.options.preview =
+          fs::path(job.options.output).replace_extension(fs::path(job.options.preview).extension()).string();
     job.options.command_line = render_command_line(job.options);
     auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
     if (!inserted)

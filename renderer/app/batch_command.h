@@ -22,8 +22,8 @@ struct batch_options {
   std::string out_dir;
   bool resume = false;
   bool wait_for_lock = false;  // another batch holds --out-dir: wait instead of refusing
-  std::string summary;  // JSON summary path; empty: none
-  std::string plan;     // --plan-only: write the job plan here and render nothing
+  std::string summary;         // JSON summary path; empty: none
+  std::string plan;            // --plan-only: write the job plan here and render nothing
 };
 
 // One resolved job: the options `kiln render` would get, or why they are invalid.

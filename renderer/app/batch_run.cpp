@@ -9,11 +9,11 @@
 
 #include "app/batch_child.h"
 #include "app/interrupt.h"
-#include "job/render_fingerprint.h"
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/preview_writer.h"
+#include "job/render_fingerprint.h"
 
 namespace kiln {
 
@@ -59,7 +59,8 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
   const auto start = std::chrono::steady_clock::now();
   try {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options, &interrupt_requested()), job.options.preview)) {
+    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options, &interrupt_requested()),
+                                    job.options.preview)) {
       result.status = job_status::skipped;
       result.seconds = seconds_since(start);
       return result;

@@ -178,8 +178,10 @@ int run_compare(const compare_options& o) {
   if (!o.json.empty()) check_output_writable(o.json);
   prepared_scene prepared = prepare_cli_scene(o.view);
   const scene& world = prepared.world;
-  std::unique_ptr<accelerator> tested = make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid, o.view.embree);
-  std::unique_ptr<accelerator> reference = make_accelerator(world, *parse_accel_kind(o.against), o.view.grid, o.view.embree);
+  std::unique_ptr<accelerator> tested =
+      make_accelerator(world, *parse_accel_kind(o.accel), o.view.grid, o.view.embree);
+  std::unique_ptr<accelerator> reference =
+      make_accelerator(world, *parse_accel_kind(o.against), o.view.grid, o.view.embree);
   render_settings settings = make_render_settings(o.view);
   settings.cancel = &interrupt_requested();
 

@@ -2,11 +2,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "job/output_guard.h"
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_stitch.h"
 #include "io/exr/exr_writer.h"
+#include "job/output_guard.h"
 
 namespace kiln {
 

@@ -5,11 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define KILN_CHECK(condition)                                                              \
-  do {                                                                                     \
-    if (!(condition)) {                                                                    \
-      std::fprintf(stderr, "kiln: internal check failed: %s at %s:%d\n", #condition,      \
-                   __FILE__, __LINE__);                                                    \
-      std::abort();                                                                        \
-    }                                                                                      \
+#define KILN_CHECK(condition)                                                                             \
+  do {                                                                                                    \
+    if (!(condition)) {                                                                                   \
+      std::fprintf(stderr, "kiln: internal check failed: %s at %s:%d\n", #condition, __FILE__, __LINE__); \
+      std::abort();                                                                                       \
+    }                                                                                                     \
   } while (false)

@@ -28,8 +28,7 @@ class error : public std::runtime_error {
   const std::string& reason() const { return reason_; }
 
  private:
-  static std::string format(const std::string& file, const std::string& location,
-                            const std::string& reason) {
+  static std::string format(const std::string& file, const std::string& location, const std::string& reason) {
     // The CLI prefixes "kiln: "; an error without a file is just its location and reason.
     std::string line = file;
     if (!location.empty()) line += (line.empty() ? "" : ": ") + location;

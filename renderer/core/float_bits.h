@@ -3,11 +3,11 @@
 // bound of the hit point's rounding error. Depends on core/math only.
 #pragma once
 
-#include "core/math.h"
-
 #include <cstdint>
 #include <cstring>
 #include <limits>
+
+#include "core/math.h"
 
 namespace kiln {
 

@@ -3,9 +3,8 @@
 // lose bits); per-vertex data and rays are float, as Embree consumes them.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cmath>
+#include <glm/glm.hpp>
 #include <limits>
 
 namespace kiln {

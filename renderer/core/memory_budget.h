@@ -91,7 +91,8 @@ class memory_charge {
 };
 
 // Charges budget when there is one.
-inline void charge_memory(memory_budget* budget, uint64_t bytes, const std::string& file, const std::string& what) {
+inline void charge_memory(memory_budget* budget, uint64_t bytes, const std::string& file,
+                          const std::string& what) {
   if (budget) budget->charge(bytes, file, what);
 }
 

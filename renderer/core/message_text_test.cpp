@@ -24,7 +24,8 @@ TEST(message_text, control_characters_cannot_break_the_line) {
 TEST(message_text, a_cut_never_splits_a_utf8_sequence) {
   // 199 ASCII bytes and then a two-byte 'é' across the limit: the cut drops the whole 'é'.
   const std::string text = std::string(max_shown_bytes - 1, 'x') + "\xC3\xA9" + "tail";
-  EXPECT_EQ(shown(text), std::string(max_shown_bytes - 1, 'x') + "... (" + std::to_string(text.size()) + " bytes)");
+  EXPECT_EQ(shown(text),
+            std::string(max_shown_bytes - 1, 'x') + "... (" + std::to_string(text.size()) + " bytes)");
 }
 
 }  // namespace

@@ -2,9 +2,9 @@
 // Depends on core/math only: shading and accelerators share these types, nothing else.
 #pragma once
 
-#include "core/math.h"
-
 #include <cstdint>
+
+#include "core/math.h"
 
 namespace kiln {
 

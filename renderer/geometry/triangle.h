@@ -3,10 +3,10 @@
 // Depends on core and scene only.
 #pragma once
 
+#include <array>
+
 #include "core/float_bits.h"
 #include "scene/scene.h"
-
-#include <array>
 
 namespace kiln {
 
@@ -41,7 +41,8 @@ inline surface_position triangle_hit_position(const instance& inst, const mesh& 
   dvec3 world = transform_point(inst.world_from_object, dvec3(obj));
   dmat3 abs_linear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
   dvec3 world_error = abs_linear * dvec3(obj_error) * (1.0 + 4.0 * gamma_bound(3)) +
-                      double(gamma_bound(3)) * (abs_linear * glm::abs(dvec3(obj)) + glm::abs(dvec3(inst.world_from_object[3])));
+                      double(gamma_bound(3)) *
+                          (abs_linear * glm::abs(dvec3(obj)) + glm::abs(dvec3(inst.world_from_object[3])));
   surface_position result;
   result.point = vec3(world);
   // Rounding the double result to float adds half an ulp per axis.

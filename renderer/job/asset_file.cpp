@@ -19,7 +19,7 @@ const char* kind_of(mode_t mode) {
 }  // namespace
 
 void check_asset_file(const std::string& path, const std::string& where) {
-  struct stat s{};
+  struct stat s {};
   if (::stat(path.c_str(), &s) != 0 || S_ISREG(s.st_mode)) return;
   const std::string reason = std::string(kind_of(s.st_mode)) + ", not a glTF file (.gltf or .glb)";
   if (where.empty()) throw input_error(path, "", reason);

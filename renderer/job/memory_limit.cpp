@@ -64,8 +64,8 @@ uint64_t parse_cgroup_limit(const std::string& text) {
 uint64_t usable_memory() {
   uint64_t usable = physical_memory();
   usable = lower_of(usable, lowest_cgroup_limit("/sys/fs/cgroup", cgroup_path(""), "memory.max"));
-  usable = lower_of(usable, lowest_cgroup_limit("/sys/fs/cgroup/memory", cgroup_path("memory"),
-                                                "memory.limit_in_bytes"));
+  usable = lower_of(
+      usable, lowest_cgroup_limit("/sys/fs/cgroup/memory", cgroup_path("memory"), "memory.limit_in_bytes"));
   return usable;
 }
 

@@ -207,7 +207,7 @@ void parse_aovs(render_options& o, const std::string& text) {
 }
 
 void check_existing_file(const std::string& path, const std::string& option) {
-  struct stat s{};
+  struct stat s {};
   if (::stat(path.c_str(), &s) != 0) throw input_error("", option, "no such file '" + path + "'");
   if (S_ISDIR(s.st_mode)) throw input_error("", option, "'" + path + "' is a folder, not a file");
 }
@@ -224,22 +224,23 @@ void add_view_options(std::vector<option_spec>& t) {
     return t.back();
   };
   add(optional_side(
-      "width", [](render_options& o) -> auto& { return o.width; }, "64",
+      "width", [](render_options & o) -> auto& { return o.width; }, "64",
       "Image width in pixels (default 640, or from --height and the camera's aspect)"));
   add(optional_side(
-      "height", [](render_options& o) -> auto& { return o.height; }, "48",
+      "height", [](render_options & o) -> auto& { return o.height; }, "48",
       "Image height in pixels (default 480, or from the camera's aspect ratio)"));
   add(integer_option<int>(
-          "spp", [](render_options& o) -> auto& { return o.samples_per_pixel; }, 1, 1 << 16, "4",
+          "spp", [](render_options & o) -> auto& { return o.samples_per_pixel; }, 1, 1 << 16, "4",
           "Samples per pixel, stratified and jittered (1 = pixel centre)"))
       .recorded_as = "kiln/samples_per_pixel";
   add(choice_option(
-          "sampler", [](render_options& o) -> auto& { return o.sampler; }, {"stratified", "random"}, "random",
+          "sampler", [](render_options & o) -> auto& { return o.sampler; }, {"stratified", "random"},
+          "random",
           "Sample positions inside a pixel: jittered strata, or independent uniform samples (the "
           "baseline stratification is measured against)"))
       .recorded_as = "kiln/sampler";
   add(choice_option(
-      "filter", [](render_options& o) -> auto& { return o.filter; },
+      "filter", [](render_options & o) -> auto& { return o.filter; },
       {"box", "tent", "gaussian", "blackman-harris"}, "tent",
       "Reconstruction filter for the stratified samples (default radius: box 0.5, tent 1, gaussian "
       "1.5 with sigma radius/3, blackman-harris 2)"));
@@ -254,19 +255,19 @@ void add_view_options(std::vector<option_spec>& t) {
           "0.75", "Filter radius in pixels, in (0, 16] (default: the filter's own)"))
       .type = option_type::number;
   add(number_option<float>(
-      "adaptive-threshold", [](render_options& o) -> auto& { return o.adaptive_threshold; }, 0.0, 1e9, "0.1",
+      "adaptive-threshold", [](render_options & o) -> auto& { return o.adaptive_threshold; }, 0.0, 1e9, "0.1",
       "Whitted's adaptive supersampling: split a pixel square while its corners differ by more "
       "than T in R, G, B or A, or hit different instances (0 = off; replaces --spp and "
       "--filter)"));
   add(integer_option<int>(
-      "adaptive-depth", [](render_options& o) -> auto& { return o.adaptive_depth; }, 0, max_adaptive_depth,
+      "adaptive-depth", [](render_options & o) -> auto& { return o.adaptive_depth; }, 0, max_adaptive_depth,
       "2", "Adaptive supersampling: most splits per pixel"));
   add(integer_option<int>(
-          "threads", [](render_options& o) -> auto& { return o.threads; }, 0, 4096, "3",
+          "threads", [](render_options & o) -> auto& { return o.threads; }, 0, 4096, "3",
           "Render threads (0 = all cores)"))
       .effect = option_effect::none;
   add(integer_option<int>(
-      "tile-size", [](render_options& o) -> auto& { return o.tile_size; }, 1, 4096, "16",
+      "tile-size", [](render_options & o) -> auto& { return o.tile_size; }, 1, 4096, "16",
       "Tile side in pixels"));
   add(custom_option(
       "camera", [](render_options& o, const std::string& text) { o.camera = text; },
@@ -275,17 +276,17 @@ void add_view_options(std::vector<option_spec>& t) {
       },
       "1", "glTF camera by name or index (default: the first camera in the file)"));
   add(optional_triple(
-      "look-from", [](render_options& o) -> auto& { return o.look_from; }, "1,2,3",
+      "look-from", [](render_options & o) -> auto& { return o.look_from; }, "1,2,3",
       "Look-at camera position X,Y,Z (overrides --camera; needs --look-at)"));
   add(optional_triple(
-      "look-at", [](render_options& o) -> auto& { return o.look_at; }, "0,0,-1",
+      "look-at", [](render_options & o) -> auto& { return o.look_at; }, "0,0,-1",
       "Look-at camera target X,Y,Z"));
   add(custom_option(
       "up", [](render_options& o, const std::string& text) { o.up = parse_triple(text, "--up"); },
       [](const render_options& o) -> std::optional<std::string> { return triple_text(o.up); }, "0,0,1",
       "Look-at camera up vector X,Y,Z (default 0,1,0)"));
   add(number_option<double>(
-      "fov", [](render_options& o) -> auto& { return o.fov_degrees; }, 1e-3, 179.999, "30",
+      "fov", [](render_options & o) -> auto& { return o.fov_degrees; }, 1e-3, 179.999, "30",
       "Look-at camera vertical field of view in degrees"));
   option_spec& scene = add(custom_option(
       "scene",
@@ -322,64 +323,67 @@ void add_view_options(std::vector<option_spec>& t) {
       "",
       "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene"));
   add(number_option<double>(
-      "environment-rotation", [](render_options& o) -> auto& { return o.environment_rotation_degrees; },
+      "environment-rotation", [](render_options & o) -> auto& { return o.environment_rotation_degrees; },
       -36000.0, 36000.0, "90",
       "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)"));
   add(number_option<float>(
-      "environment-intensity", [](render_options& o) -> auto& { return o.environment_intensity; }, 0.0, 1e9,
+      "environment-intensity", [](render_options & o) -> auto& { return o.environment_intensity; }, 0.0, 1e9,
       "2", "Scale of the environment map's radiance"));
   add(flag_option(
-      "show-background", [](render_options& o) -> auto& { return o.show_background; },
+      "show-background", [](render_options & o) -> auto& { return o.show_background; },
       "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)"));
   add(choice_option(
-          "transmission-alpha", [](render_options& o) -> auto& { return o.transmission_alpha; },
+          "transmission-alpha", [](render_options & o) -> auto& { return o.transmission_alpha; },
           {"opaque", "transparent"}, "transparent",
           "What glass contributes to alpha: opaque (it holds out, what it shows is baked in) or "
           "transparent (refraction reaching a background the camera does not show is transparent)"))
       .recorded_as = "kiln/transmission_alpha";
   add(integer_option<int>(
-          "max-depth", [](render_options& o) -> auto& { return o.max_depth; }, 0, 64, "2",
+          "max-depth", [](render_options & o) -> auto& { return o.max_depth; }, 0, 64, "2",
           "Maximum reflection depth"))
       .recorded_as = "kiln/max_depth";
   add(number_option<float>(
-      "min-throughput", [](render_options& o) -> auto& { return o.min_throughput; }, 0.0, 1.0, "0.01",
+      "min-throughput", [](render_options & o) -> auto& { return o.min_throughput; }, 0.0, 1.0, "0.01",
       "Reflections weighted below this are not traced"));
   add(unsigned_option<uint64_t>(
-      "max-rays-per-sample", [](render_options& o) -> auto& { return o.max_rays_per_sample; }, 1, ~0ull, "64",
+      "max-rays-per-sample", [](render_options & o) -> auto& { return o.max_rays_per_sample; }, 1, ~0ull,
+      "64",
       "Reflected, refracted and continued rays one camera sample may spawn; past it the sample "
       "keeps the light gathered so far"));
   add(number_option<float>(
-          "texture-cache-mb", [](render_options& o) -> auto& { return o.texture_cache_mb; }, 1.0, 1e6, "64",
+          "texture-cache-mb", [](render_options & o) -> auto& { return o.texture_cache_mb; }, 1.0, 1e6, "64",
           "No effect (texture pyramids are kept in memory); accepted so existing command lines "
           "keep working"))
       .effect = option_effect::none;
   add(flag_option(
-      "allow-outside-files", [](render_options& o) -> auto& { return o.allow_outside_files; },
+      "allow-outside-files", [](render_options & o) -> auto& { return o.allow_outside_files; },
       "Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that "
       "lead out); absolute paths and URLs stay refused"));
   // The loader's limits: their defaults are gltf_limits' own.
   add(unsigned_option<size_t>(
-      "max-json-bytes", [](render_options& o) -> auto& { return o.limits.max_json_bytes; }, 1, ~0ull, "1000",
+      "max-json-bytes", [](render_options & o) -> auto& { return o.limits.max_json_bytes; }, 1, ~0ull, "1000",
       "Refuse glTF JSON larger than this (bytes)"));
   add(unsigned_option<size_t>(
-      "max-json-depth", [](render_options& o) -> auto& { return o.limits.max_json_depth; }, 1, 100000, "10",
+      "max-json-depth", [](render_options & o) -> auto& { return o.limits.max_json_depth; }, 1, 100000, "10",
       "Refuse glTF JSON nested deeper than this"));
   add(unsigned_option<size_t>(
-      "max-nodes", [](render_options& o) -> auto& { return o.limits.max_nodes; }, 1, ~0ull, "10",
+      "max-nodes", [](render_options & o) -> auto& { return o.limits.max_nodes; }, 1, ~0ull, "10",
       "Refuse glTF files with more nodes than this"));
   add(unsigned_option<size_t>(
-      "max-instances", [](render_options& o) -> auto& { return o.limits.max_instances; }, 1, ~0ull, "10",
+      "max-instances", [](render_options & o) -> auto& { return o.limits.max_instances; }, 1, ~0ull, "10",
       "Refuse glTF files whose EXT_mesh_gpu_instancing takes the scene past this many mesh instances"));
   add(unsigned_option<uint64_t>(
-      "max-texels", [](render_options& o) -> auto& { return o.limits.max_texels; }, 1, ~0ull, "10",
+      "max-texels", [](render_options & o) -> auto& { return o.limits.max_texels; }, 1, ~0ull, "10",
       "Refuse glTF images declaring more texels than this (width x height), before decoding"));
   add(unsigned_option<size_t>(
-      "max-pixels", [](render_options& o) -> auto& { return o.max_pixels; }, 1, ~0ull, "10",
+      "max-pixels", [](render_options & o) -> auto& { return o.max_pixels; }, 1, ~0ull, "10",
       "Refuse images with more pixels than this (width x height)"));
   // The job's memory budget does not change a pixel: a render it allows is the same image.
   add(custom_option(
           "max-memory",
-          [](render_options& o, const std::string& text) { o.max_memory = parse_memory_size(text, "--max-memory"); },
+          [](render_options& o, const std::string& text) {
+            o.max_memory = parse_memory_size(text, "--max-memory");
+          },
           [](const render_options& o) -> std::optional<std::string> {
             if (o.max_memory == 0) return std::nullopt;
             return std::to_string(o.max_memory);
@@ -389,7 +393,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "memory exceeds it is refused (default: 90% of the machine's or the cgroup's memory)"))
       .effect = option_effect::none;
   add(number_option<double>(
-      "grid-density", [](render_options& o) -> auto& { return o.grid.density; }, 1e-3, 1e3, "4",
+      "grid-density", [](render_options & o) -> auto& { return o.grid.density; }, 1e-3, 1e3, "4",
       "Grid backends: aim for density x N cells for N items (the resolution heuristic; "
       "default 2)"));
   add(custom_option(
@@ -402,10 +406,10 @@ void add_view_options(std::vector<option_spec>& t) {
       },
       "8", "Grid backends: N or X,Y,Z cells per axis for every grid, instead of the heuristic"));
   add(integer_option<int>(
-      "grid-max-items", [](render_options& o) -> auto& { return o.grid.max_items_per_cell; }, 1, 1000000, "3",
-      "Adaptive grid: a cell holding more items than this is subdivided"));
+      "grid-max-items", [](render_options & o) -> auto& { return o.grid.max_items_per_cell; }, 1, 1000000,
+      "3", "Adaptive grid: a cell holding more items than this is subdivided"));
   add(integer_option<int>(
-      "grid-max-depth", [](render_options& o) -> auto& { return o.grid.max_depth; }, 0, max_grid_depth, "1",
+      "grid-max-depth", [](render_options & o) -> auto& { return o.grid.max_depth; }, 0, max_grid_depth, "1",
       "Adaptive grid: levels of subdivision below the top grid"));
   add(custom_option(
       "bvh-quality",
@@ -421,7 +425,7 @@ void add_view_options(std::vector<option_spec>& t) {
   t.back().choices = quality_names();
   // Pixels do not depend on the BVH build, but a plan must reproduce the run.
   add(flag_option(
-          "bvh-compact", [](render_options& o) -> auto& { return o.embree.compact; },
+          "bvh-compact", [](render_options & o) -> auto& { return o.embree.compact; },
           "Embree: compact BVH layout (less memory, slower rays)"))
       .recorded_as = "kiln/bvh_compact";
   // --packets can pick the other of two coincident surfaces, so it counts as a pixel setting.
@@ -437,13 +441,13 @@ void add_view_options(std::vector<option_spec>& t) {
       "on", "Trace each tile's camera rays together as Embree packets: on or off (default off)"));
   t.back().recorded_as = "kiln/packets";
   t.back().choices = {"on", "off"};
-  add(number_option<double>("time-limit", [](render_options& o) -> auto& { return o.time_limit_seconds; }, 0.0,
-                            1e9, "60",
-                            "Stop a job still loading or rendering after this many seconds: nothing is written, "
-                            "exit 124 (0 = no limit)"))
+  add(number_option<double>(
+          "time-limit", [](render_options & o) -> auto& { return o.time_limit_seconds; }, 0.0, 1e9, "60",
+          "Stop a job still loading or rendering after this many seconds: nothing is written, "
+          "exit 124 (0 = no limit)"))
       .effect = option_effect::none;
   option_spec& quiet = add(flag_option(
-      "quiet", [](render_options& o) -> auto& { return o.quiet; }, "No progress line or summary"));
+      "quiet", [](render_options & o) -> auto& { return o.quiet; }, "No progress line or summary"));
   quiet.short_name = "q";
   quiet.effect = option_effect::none;
 }
@@ -455,7 +459,7 @@ void add_image_options(std::vector<option_spec>& t) {
     return t.back();
   };
   add(flag_option(
-      "float", [](render_options& o) -> auto& { return o.full_float; },
+      "float", [](render_options & o) -> auto& { return o.full_float; },
       "Write RGBA, N, albedo and the light split (direct, reflection, refraction) as 32-bit float "
       "instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are "
       "always float)"));
@@ -473,7 +477,7 @@ void add_image_options(std::vector<option_spec>& t) {
       "Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (" + selectable_format_aovs() +
           "; Z, P and id are always float)"));
   add(choice_option(
-      "compression", [](render_options& o) -> auto& { return o.exr.compression; }, exr_compression_names(),
+      "compression", [](render_options & o) -> auto& { return o.exr.compression; }, exr_compression_names(),
       "piz",
       "EXR codec; pxr24, b44, b44a, dwaa and dwab are lossy and need --multipart when the file "
       "holds Z, P or id (which then keep zip)"));
@@ -489,7 +493,7 @@ void add_image_options(std::vector<option_spec>& t) {
       "9", "zip/zips: zlib level 1-9 (default 4); dwaa/dwab: dwaCompressionLevel (default 45)"));
   level.type = option_type::integer;
   add(flag_option(
-      "tiled", [](render_options& o) -> auto& { return o.exr_tiled; },
+      "tiled", [](render_options & o) -> auto& { return o.exr_tiled; },
       "Tiled EXR (64x64 tiles unless --exr-tile-size) instead of scanlines"));
   option_spec& exr_tile = add(custom_option(
       "exr-tile-size",
@@ -503,7 +507,7 @@ void add_image_options(std::vector<option_spec>& t) {
       "16", "Tiled EXR with NxN tiles (implies --tiled)"));
   exr_tile.type = option_type::integer;
   add(flag_option(
-      "multipart", [](render_options& o) -> auto& { return o.exr.multipart; },
+      "multipart", [](render_options & o) -> auto& { return o.exr.multipart; },
       "One EXR part per layer (" + exr_part_list() + "), each with the full header"));
   option_spec& preview = add(custom_option(
       "preview",
@@ -518,8 +522,8 @@ void add_image_options(std::vector<option_spec>& t) {
       "x.png", "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty"));
   preview.effect = option_effect::none;  // an output, not a setting of the EXR's pixels
   add(number_option<double>(
-          "preview-exposure", [](render_options& o) -> auto& { return o.preview_exposure; }, -64.0, 64.0, "1",
-          "Preview: scale linear colour by 2^EV"))
+          "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
+          "1", "Preview: scale linear colour by 2^EV"))
       .effect = option_effect::none;
   add(custom_option(
           "aovs", parse_aovs,
@@ -531,7 +535,7 @@ void add_image_options(std::vector<option_spec>& t) {
           "first event) (default beauty,Z,N)"))
       .recorded_as = "kiln/aovs";
   add(integer_option<int>(
-      "cryptomatte-depth", [](render_options& o) -> auto& { return o.aovs.crypto_depth; }, 1,
+      "cryptomatte-depth", [](render_options & o) -> auto& { return o.aovs.crypto_depth; }, 1,
       max_cryptomatte_depth, "4",
       "Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set"));
   add(custom_option(
@@ -571,15 +575,15 @@ void add_image_options(std::vector<option_spec>& t) {
   band.alias = "tile";  // the name before render tiles, EXR tiles and farm bands were told apart
   // compare and bench name their backends with their own --accel.
   add(choice_option(
-          "accel", [](render_options& o) -> auto& { return o.accel; }, {"embree", "grid", "adaptive-grid"},
+          "accel", [](render_options & o) -> auto& { return o.accel; }, {"embree", "grid", "adaptive-grid"},
           "grid", "Traversal backend"))
       .recorded_as = "kiln/accelerator";
 }
 
 void add_progress_options(std::vector<option_spec>& t) {
   option_spec s = number_option<double>(
-      "progress-interval", [](render_options& o) -> auto& { return o.progress_interval; }, 0.01, 86400.0, "1",
-      "Seconds between progress lines when stderr is not a terminal (a log or a pipe)");
+      "progress-interval", [](render_options & o) -> auto& { return o.progress_interval; }, 0.01, 86400.0,
+      "1", "Seconds between progress lines when stderr is not a terminal (a log or a pipe)");
   s.scope = option_scope::progress;
   s.effect = option_effect::none;
   t.push_back(std::move(s));

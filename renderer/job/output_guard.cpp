@@ -54,7 +54,8 @@ std::vector<input_file> render_input_files(const render_options& options, const 
 }
 
 bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa{}, sb{};
+  struct stat sa {
+  }, sb{};
   const bool a_exists = ::stat(a.c_str(), &sa) == 0, b_exists = ::stat(b.c_str(), &sb) == 0;
   if (a_exists && b_exists) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   if (a_exists != b_exists) return false;
@@ -64,7 +65,7 @@ bool same_file(const std::string& a, const std::string& b) {
 input_index index_inputs(const std::vector<input_file>& inputs) {
   input_index index;
   for (const input_file& input : inputs) {
-    struct stat s{};
+    struct stat s {};
     if (::stat(input.path.c_str(), &s) == 0)
       index.by_inode.emplace(std::make_pair(s.st_dev, s.st_ino), input);
     else
@@ -97,7 +98,7 @@ void check_not_symlink(const std::string& path, const std::string& option) {
 void check_output_spares_inputs(const std::string& output, const std::string& option,
                                 const input_index& inputs) {
   // An existing output can only be an existing input, a missing one only a missing input.
-  struct stat s{};
+  struct stat s {};
   const input_file* hit = nullptr;
   if (::stat(output.c_str(), &s) == 0) {
     auto it = inputs.by_inode.find({s.st_dev, s.st_ino});

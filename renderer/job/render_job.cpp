@@ -56,7 +56,8 @@ const camera& select_camera(const scene& world, const std::string& which) {
     if (c.name == which) return c;
     names += (names.empty() ? "" : ", ") + quoted(c.name);
   }
-  throw input_error(world.source, "--camera", "no camera named " + quoted(which) + " (cameras: " + names + ")");
+  throw input_error(world.source, "--camera",
+                    "no camera named " + quoted(which) + " (cameras: " + names + ")");
 }
 
 // The film holds 32 bytes a pixel (RGBA, Z, N) and the EXR writer a copy; past max_pixels the

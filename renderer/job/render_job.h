@@ -81,8 +81,8 @@ void check_job(const render_options& options);
 render_job_result run_job(const render_job& job);
 
 // Writes result to options.output (and options.preview when set), each through a temporary file
-// renamed into place. Throws kiln::error (io) on failure, (render) when memory runs out, (interrupted) when cancel is raised
-// before the EXR is renamed; an existing file is then untouched.
+// renamed into place. Throws kiln::error (io) on failure, (render) when memory runs out, (interrupted) when
+// cancel is raised before the EXR is renamed; an existing file is then untouched.
 void write_job_outputs(const render_job_result& result, const render_options& options,
                        const std::atomic<bool>* cancel = nullptr);
 

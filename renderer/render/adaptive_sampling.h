@@ -6,10 +6,10 @@
 // Depends on core and render only; the tracing is a callback.
 #pragma once
 
-#include "render/camera_sample.h"
-
 #include <functional>
 #include <vector>
+
+#include "render/camera_sample.h"
 
 namespace kiln {
 
@@ -42,7 +42,7 @@ struct weighted_corner {
 
 // What a refined pixel contributes to the film.
 struct adaptive_pixel {
-  vec4 rgba{0.0f};    // area-weighted mean of the squares' corner means
+  vec4 rgba{0.0f};        // area-weighted mean of the squares' corner means
   camera_sample nearest;  // the nearest sample the pixel used: its depth, normal and other AOVs
   // With collect_corners: the corners of each final square.
   std::vector<weighted_corner> corners;

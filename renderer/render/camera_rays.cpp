@@ -26,7 +26,8 @@ struct sample_run {
 sample_run run_from(const camera_ray_batch& b, size_t begin, int spp) {
   const size_t per_row = size_t(b.x1 - b.x0) * size_t(spp);
   const size_t total = per_row * size_t(b.y1 - b.y0);
-  if (per_row > camera_ray_batch::max_rays) return {begin, std::min(total, begin + camera_ray_batch::max_rays), false};
+  if (per_row > camera_ray_batch::max_rays)
+    return {begin, std::min(total, begin + camera_ray_batch::max_rays), false};
   const size_t row = begin / per_row;  // a run of rows starts at a row's first sample
   const size_t rows = std::max<size_t>(1, camera_ray_batch::max_rays / per_row);
   return {row * per_row, std::min(total, (row + rows) * per_row), true};

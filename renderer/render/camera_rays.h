@@ -19,11 +19,11 @@ struct render_settings;
 
 // Where a camera ray comes from.
 struct camera_ray_source {
-  int x = 0, y = 0;      // the pixel, in frame pixels
-  uint32_t sample = 0;   // its index among the pixel's samples (what seeds its position)
-  vec2 offset{0.0f};     // the film position inside the pixel, in [0, 1)²: the filter weighs it
-  ray_cone cone;         // the ray's footprint at the camera
-  float time = 0.0f;     // the sample's time in the shutter; 0 until motion blur
+  int x = 0, y = 0;     // the pixel, in frame pixels
+  uint32_t sample = 0;  // its index among the pixel's samples (what seeds its position)
+  vec2 offset{0.0f};    // the film position inside the pixel, in [0, 1)²: the filter weighs it
+  ray_cone cone;        // the ray's footprint at the camera
+  float time = 0.0f;    // the sample's time in the shutter; 0 until motion blur
 };
 
 // The camera rays of one run of a tile's samples, with their closest hits, index by index.

@@ -60,7 +60,8 @@ TEST(camera_rays, each_sample_has_the_ray_its_pixel_and_index_seed_and_its_hit) 
         EXPECT_EQ(src.sample, uint32_t(s));
         const vec2 offset = pixel_sample_offset(false, uint32_t(x), uint32_t(y), uint32_t(s), 3);
         EXPECT_EQ(src.offset, offset);
-        EXPECT_TRUE(same_bits(b.rays[k], generate_camera_ray(cam, x + double(offset.x), y + double(offset.y))));
+        EXPECT_TRUE(
+            same_bits(b.rays[k], generate_camera_ray(cam, x + double(offset.x), y + double(offset.y))));
         EXPECT_EQ(src.cone.spread, sample_cone(cam, 3).spread);
         EXPECT_EQ(src.time, 0.0f);
         ASSERT_TRUE(b.hits[k].has_value());

@@ -59,8 +59,9 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
 
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
 // the ray's cone there). The sample's ray tree gets its own budget.
-void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p, const ray_cone& at_hit,
-                       bool show_background, bool with_split, camera_sample& s, ray_counts& counts) {
+void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p,
+                       const ray_cone& at_hit, bool show_background, bool with_split, camera_sample& s,
+                       ray_counts& counts) {
   camera_path path;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;

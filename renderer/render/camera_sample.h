@@ -3,12 +3,12 @@
 // Depends on shade and render; never on a backend.
 #pragma once
 
+#include <cstdint>
+
 #include "render/film.h"
 #include "render/view_camera.h"
 #include "shade/ray_cone.h"
 #include "shade/whitted.h"
-
-#include <cstdint>
 
 namespace kiln {
 
@@ -23,10 +23,10 @@ struct camera_sample {
   float view_cosine = 1.0f;
   vec3 normal{0.0f};  // world shading normal of the hit; 0 on a miss
   uint32_t instance = no_instance;
-  vec3 position{0.0f};  // world hit point; 0 on a miss
-  vec3 albedo{0.0f};    // base colour after textures and vertex colours (only when asked for); 0 on a miss
-  vec2 uv{0.0f};        // TEXCOORD_0; 0 on a miss
-  int32_t node = -1;    // glTF node of the instance hit; -1 on a miss
+  vec3 position{0.0f};    // world hit point; 0 on a miss
+  vec3 albedo{0.0f};      // base colour after textures and vertex colours (only when asked for); 0 on a miss
+  vec2 uv{0.0f};          // TEXCOORD_0; 0 on a miss
+  int32_t node = -1;      // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
   // With with_split: rgba's colour by first event.
   light_split split;

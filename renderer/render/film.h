@@ -3,11 +3,11 @@
 // buffers; the others stay empty. Colour always has one: the renderer resolves into it.
 #pragma once
 
-#include "core/math.h"
-#include "render/aov_list.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "core/math.h"
+#include "render/aov_list.h"
 
 namespace kiln {
 

@@ -1,8 +1,8 @@
 #include "render/reconstruction_filter.h"
 
-#include "core/math.h"
-
 #include <cmath>
+
+#include "core/math.h"
 
 namespace kiln {
 

@@ -1,13 +1,14 @@
 // Filter kernels against their definitions, and the tile splat buffers' merge order.
 #include "render/reconstruction_filter.h"
-#include "render/splat_film.h"
-#include "render/tile_grid.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+
+#include "render/splat_film.h"
+#include "render/tile_grid.h"
 
 namespace kiln {
 namespace {
@@ -191,7 +192,8 @@ TEST(splat_film, folds_by_the_tile_list_for_any_grid_of_columns_and_rows) {
     const reconstruction_filter f = default_filter(k);
     const film reference = splat_field(f, 11, 9, {{0, 0, 11, 9}}, false, false);
     const film other = splat_field(f, 11, 9, uneven, true, false);
-    EXPECT_EQ(std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)), 0)
+    EXPECT_EQ(std::memcmp(reference.color.data(), other.color.data(), reference.color.size() * sizeof(vec4)),
+              0)
         << filter_name(k);
     EXPECT_EQ(reference.crypto_object, other.crypto_object) << filter_name(k);
   }

@@ -2,9 +2,9 @@
 // bit-identical for any thread count and tile order. Depends on core only.
 #pragma once
 
-#include "core/math.h"
-
 #include <cstdint>
+
+#include "core/math.h"
 
 namespace kiln {
 

@@ -7,9 +7,7 @@
 namespace kiln {
 namespace {
 
-TEST(sample_pattern, one_sample_is_the_pixel_centre) {
-  EXPECT_EQ(sample_offset(3, 9, 0, 1), vec2(0.5f));
-}
+TEST(sample_pattern, one_sample_is_the_pixel_centre) { EXPECT_EQ(sample_offset(3, 9, 0, 1), vec2(0.5f)); }
 
 TEST(sample_pattern, samples_depend_only_on_pixel_and_index) {
   EXPECT_EQ(sample_offset(5, 6, 3, 16), sample_offset(5, 6, 3, 16));

@@ -1,11 +1,11 @@
 #include "render/splat_film.h"
 
-#include "core/check.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+
+#include "core/check.h"
 
 namespace kiln {
 
@@ -86,8 +86,9 @@ size_t span_count(const std::vector<int>& starts) {
 
 }  // namespace
 
-splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& tiles, const reconstruction_filter& f,
-                       const bool (&layers)[matte_layer_count], bool with_split)
+splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& tiles,
+                       const reconstruction_filter& f, const bool (&layers)[matte_layer_count],
+                       bool with_split)
     : width_(width),
       height_(height),
       reach_(filter_reach(f)),
@@ -118,7 +119,8 @@ splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& til
 
 // True when every pixel within reach of (x, y) (inside the image) belongs to (x, y)'s tile.
 bool splat_film::within_one_tile(int x, int y) const {
-  return column_start_[size_t(std::max(0, x - reach_))] == column_start_[size_t(std::min(width_ - 1, x + reach_))] &&
+  return column_start_[size_t(std::max(0, x - reach_))] ==
+             column_start_[size_t(std::min(width_ - 1, x + reach_))] &&
          row_start_[size_t(std::max(0, y - reach_))] == row_start_[size_t(std::min(height_ - 1, y + reach_))];
 }
 
@@ -213,31 +215,32 @@ void splat_film::finish_tile(const tile_sums& t, film& out) const {
 
 void splat_film::resolve(film& out) const {
   // Border pixels in parallel: each is folded from its own slots alone, in slot (source) order.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, slot_of_.size(), 4096), [&](const tbb::blocked_range<size_t>& rows) {
-    id_weights ids[matte_layer_count];
-    for (size_t p = rows.begin(); p < rows.end(); ++p) {
-      if (slot_of_[p] < 0) continue;
-      const size_t first = size_t(slot_of_[p]), end = first + size_t(window_);
-      dvec4 sum(0.0);
-      float weight = 0.0f;
-      dvec3 split[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
-      for (size_t k = first; k < end; ++k) {
-        sum += slot_sum_[k];
-        weight += slot_weight_[k];
-      }
-      if (with_split_)
-        for (size_t c = 0; c < 3; ++c)
-          for (size_t k = first; k < end; ++k) split[c] += slot_split_[3 * k + c];
-      const id_weights* id_sums[matte_layer_count] = {};
-      for (int l = 0; l < matte_layer_count; ++l) {
-        if (slot_ids_[l].empty()) continue;
-        ids[l].clear();
-        for (size_t k = first; k < end; ++k) add_id_weights(ids[l], slot_ids_[l][k]);
-        id_sums[l] = &ids[l];
-      }
-      store_pixel(out, p, sum, weight, with_split_ ? split : nullptr, id_sums);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, slot_of_.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& rows) {
+                      id_weights ids[matte_layer_count];
+                      for (size_t p = rows.begin(); p < rows.end(); ++p) {
+                        if (slot_of_[p] < 0) continue;
+                        const size_t first = size_t(slot_of_[p]), end = first + size_t(window_);
+                        dvec4 sum(0.0);
+                        float weight = 0.0f;
+                        dvec3 split[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
+                        for (size_t k = first; k < end; ++k) {
+                          sum += slot_sum_[k];
+                          weight += slot_weight_[k];
+                        }
+                        if (with_split_)
+                          for (size_t c = 0; c < 3; ++c)
+                            for (size_t k = first; k < end; ++k) split[c] += slot_split_[3 * k + c];
+                        const id_weights* id_sums[matte_layer_count] = {};
+                        for (int l = 0; l < matte_layer_count; ++l) {
+                          if (slot_ids_[l].empty()) continue;
+                          ids[l].clear();
+                          for (size_t k = first; k < end; ++k) add_id_weights(ids[l], slot_ids_[l][k]);
+                          id_sums[l] = &ids[l];
+                        }
+                        store_pixel(out, p, sum, weight, with_split_ ? split : nullptr, id_sums);
+                      }
+                    });
 }
 
 }  // namespace kiln

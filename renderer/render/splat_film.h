@@ -7,12 +7,12 @@
 // additions therefore happen in one order for any schedule. Depends on core and render only.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "render/film.h"
 #include "render/id_coverage.h"
 #include "render/reconstruction_filter.h"
-
-#include <cstdint>
-#include <vector>
 
 namespace kiln {
 
@@ -88,7 +88,7 @@ class splat_film {
   // to +inf although each sample and their mean are finite.
   std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere (empty: none)
   int64_t slot_of(size_t p) const { return slot_of_.empty() ? -1 : slot_of_[p]; }
-  std::vector<dvec4> slot_sum_;   // per border pixel, one slot per source, raster order
+  std::vector<dvec4> slot_sum_;  // per border pixel, one slot per source, raster order
   std::vector<float> slot_weight_;
   // Cryptomatte layers, laid out like slot_sum_; empty for a layer not asked for.
   std::vector<id_weights> slot_ids_[matte_layer_count];

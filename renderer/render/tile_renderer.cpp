@@ -1,14 +1,5 @@
 #include "render/tile_renderer.h"
 
-#include "core/error.h"
-#include "render/adaptive_sampling.h"
-#include "render/camera_rays.h"
-#include "render/camera_sample.h"
-#include "render/flush_denormals.h"
-#include "render/sample_pattern.h"
-#include "render/splat_film.h"
-#include "render/tile_grid.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -24,6 +15,14 @@
 #include <mutex>
 #include <vector>
 
+#include "core/error.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_rays.h"
+#include "render/camera_sample.h"
+#include "render/flush_denormals.h"
+#include "render/sample_pattern.h"
+#include "render/splat_film.h"
+#include "render/tile_grid.h"
 #include "shade/environment.h"
 #include "shade/texture_filter.h"
 
@@ -92,7 +91,8 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
   for (int k = 0; k < count; ++k) {
     const instance& inst = world.instances[layers[k].instance];
     out.ids[k][object_layer] = matte_id(mattes.object_by_node, int32_t(inst.node));
-    out.ids[k][material_layer] = matte_id(mattes.material_by_source, world.materials[inst.material].source_index);
+    out.ids[k][material_layer] =
+        matte_id(mattes.material_by_source, world.materials[inst.material].source_index);
     out.coverage[k] = layers[k].coverage;
   }
   out.count = count;
@@ -113,9 +113,9 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
-    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
-                                        source.cone, counts, settings.aovs.albedo,
-                                        wants_light_split(settings.aovs));
+    camera_sample cs =
+        shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
+                         settings.aovs.albedo, wants_light_split(settings.aovs));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
@@ -123,7 +123,8 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (cs.finite) {
       const bool hit = cs.layer_count > 0;
       sample_mattes mattes;
-      if (hit && splat_wants_mattes) mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
+      if (hit && splat_wants_mattes)
+        mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
       splat.add(settings.filter, source.offset, cs.rgba, hit ? &mattes : nullptr, split);
     }
     if (cs.depth < nearest.depth) nearest = cs;
@@ -152,7 +153,8 @@ void count_row_done(const render_settings& settings, const pixel_rect& tl) {
 void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& sums, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     wants_light_split(job.settings.aovs));
-  job.splats.begin_tile(sums, {tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0});
+  job.splats.begin_tile(sums,
+                        {tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0});
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
@@ -173,7 +175,8 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
     id_weights sums;
     for (const weighted_corner& h : p.corners) {
       const sample_mattes mattes = mattes_of(job.ctx.world, job.settings.mattes, h.layers, h.layer_count);
-      for (int k = 0; k < mattes.count; ++k) add_id_weight(sums, mattes.ids[k][l], h.weight * mattes.coverage[k]);
+      for (int k = 0; k < mattes.count; ++k)
+        add_id_weight(sums, mattes.ids[k][l], h.weight * mattes.coverage[k]);
     }
     store_ranks(sums, 1.0f, int(depth), ranks[l]->data() + i * depth);
   }
@@ -191,7 +194,8 @@ void store_adaptive_split(film& out, const adaptive_pixel& p, size_t i) {
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
-void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_scratch& scratch, ray_counts& counts) {
+void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_scratch& scratch,
+                          ray_counts& counts) {
   adaptive_options options = job.settings.adaptive;
   options.collect_corners = matte_layers(job.settings.aovs).any() || wants_light_split(job.settings.aovs);
   const size_t row = size_t(job.out.width) + 1;
@@ -248,20 +252,19 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   std::unique_ptr<splat_film> splats;
   std::unique_ptr<texture_filter> textures;
   arena.execute([&] {
-    tbb::parallel_invoke(
-        [&] { out = film(region.width(), region.height(), settings.aovs); },
-        [&] {
-          // The splat film reads the same tiles, in its own coordinates.
-          splats = std::make_unique<splat_film>(adaptive ? 0 : region.width(), adaptive ? 0 : region.height(),
-                                                adaptive ? std::vector<pixel_rect>{}
-                                                         : shifted(tiles, -region.x0, -region.y0),
-                                                settings.filter, matte_layers(settings.aovs).on,
-                                                wants_light_split(settings.aovs));
-        },
-        [&] {
-          if (scene_needs_texture_filter(world))
-            textures = std::make_unique<texture_filter>(world);
-        });
+    tbb::parallel_invoke([&] { out = film(region.width(), region.height(), settings.aovs); },
+                         [&] {
+                           // The splat film reads the same tiles, in its own coordinates.
+                           splats = std::make_unique<splat_film>(
+                               adaptive ? 0 : region.width(), adaptive ? 0 : region.height(),
+                               adaptive ? std::vector<pixel_rect>{} : shifted(tiles, -region.x0, -region.y0),
+                               settings.filter, matte_layers(settings.aovs).on,
+                               wants_light_split(settings.aovs));
+                         },
+                         [&] {
+                           if (scene_needs_texture_filter(world))
+                             textures = std::make_unique<texture_filter>(world);
+                         });
   });
   out.x0 = region.x0;
   out.y0 = region.y0;
@@ -269,7 +272,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   out.full_height = cam.height;
   shading_options shading = settings.shading;
   // Adaptive samples carry the whole pixel's cone (sample_cone(cam, 1)).
-  shading.highlight_footprint_scale = adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
+  shading.highlight_footprint_scale =
+      adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
   // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
   shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get(), settings.cancel};
   std::vector<camera_sample> corners;
@@ -300,21 +304,22 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
     }
     tbb::enumerable_thread_specific<adaptive_scratch> scratch;
     tbb::enumerable_thread_specific<tile_sums> sums;  // reused tile after tile: no per-tile allocation
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
-      for (size_t t = range.begin(); t != range.end(); ++t) {
-        const pixel_rect& tl = tiles[t];
-        ray_counts counts;
-        if (adaptive)
-          render_adaptive_tile(job, tl, scratch.local(), counts);
-        else
-          render_filtered_tile(job, tl, sums.local(), counts);
-        std::lock_guard<std::mutex> lock(merge_mutex);
-        total_counts += counts;
-        size_t done = ++tiles_done;
-        if (progress) progress(done, tiles.size());
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+          const scoped_flush_denormals ftz;  // per task: TBB may run it on any thread of the arena
+          for (size_t t = range.begin(); t != range.end(); ++t) {
+            const pixel_rect& tl = tiles[t];
+            ray_counts counts;
+            if (adaptive)
+              render_adaptive_tile(job, tl, scratch.local(), counts);
+            else
+              render_filtered_tile(job, tl, sums.local(), counts);
+            std::lock_guard<std::mutex> lock(merge_mutex);
+            total_counts += counts;
+            size_t done = ++tiles_done;
+            if (progress) progress(done, tiles.size());
+          }
+        });
   });
 
   if (cancelled()) throw error(error_kind::interrupted, "", "", "render interrupted");

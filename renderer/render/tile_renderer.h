@@ -5,15 +5,15 @@
 // Depends on shade (through the accelerator interface) and render; never on a backend.
 #pragma once
 
+#include <atomic>
+#include <functional>
+
 #include "render/adaptive_sampling.h"
 #include "render/film.h"
 #include "render/id_coverage.h"
 #include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
 #include "shade/whitted.h"
-
-#include <atomic>
-#include <functional>
 
 namespace kiln {
 
@@ -27,11 +27,11 @@ struct render_progress {
 
 struct render_settings {
   int samples_per_pixel = 1;
-  bool random_samples = false;  // independent uniform samples instead of jittered strata
-  int threads = 0;      // 0: all cores
-  int tile_size = 32;   // pixels per tile side
+  bool random_samples = false;   // independent uniform samples instead of jittered strata
+  int threads = 0;               // 0: all cores
+  int tile_size = 32;            // pixels per tile side
   reconstruction_filter filter;  // how stratified samples become pixels (box 0.5: the pixel's mean)
-  adaptive_options adaptive;      // threshold > 0: Whitted's adaptive corner sampling instead of spp
+  adaptive_options adaptive;     // threshold > 0: Whitted's adaptive corner sampling instead of spp
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
   // Camera rays of a tile traced together (accelerator::intersect_coherent) before shading; the

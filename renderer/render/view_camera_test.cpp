@@ -134,7 +134,8 @@ TEST(view_camera, bounds_too_large_to_frame_are_named) {
   } catch (const error& e) {
     EXPECT_EQ(e.kind(), error_kind::input);
     EXPECT_EQ(e.location(), "default camera");
-    EXPECT_EQ(e.reason(), "the scene's bounds reach 1e+308, too far to frame (give --look-from and --look-at)");
+    EXPECT_EQ(e.reason(),
+              "the scene's bounds reach 1e+308, too far to frame (give --look-from and --look-at)");
   }
 }
 

@@ -13,7 +13,8 @@ float alpha_at(const scene& s, uint32_t instance_id, uint32_t primitive_id, floa
   if (!shape.colors0.empty())
     alpha *= interpolate(shape.colors0[idx[0]].a, shape.colors0[idx[1]].a, shape.colors0[idx[2]].a, u, v);
   const texture_ref& ref = m.base_color_texture;
-  const std::vector<vec2>& set = ref.texcoord == 1 && !shape.texcoords1.empty() ? shape.texcoords1 : shape.texcoords0;
+  const std::vector<vec2>& set =
+      ref.texcoord == 1 && !shape.texcoords1.empty() ? shape.texcoords1 : shape.texcoords0;
   if (ref.present() && !set.empty()) {
     vec2 uv = transform_uv(ref, interpolate(set[idx[0]], set[idx[1]], set[idx[2]], u, v));
     alpha *= sample_texture(s, s.textures[size_t(ref.texture)], uv, texel_encoding::linear).a;

@@ -4,10 +4,10 @@
 // Depends on scene only; never on a backend or on shading.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace kiln {
 

@@ -5,7 +5,8 @@ namespace kiln {
 bounds3 world_bounds(const scene& s) {
   bounds3 result;
   for (const instance& inst : s.instances) {
-    const bounds3& b = inst.kind == shape_kind::quadric ? s.quadrics[inst.shape].bounds : s.meshes[inst.shape].bounds;
+    const bounds3& b =
+        inst.kind == shape_kind::quadric ? s.quadrics[inst.shape].bounds : s.meshes[inst.shape].bounds;
     result.extend(transform_bounds(inst.world_from_object, b));
   }
   return result;

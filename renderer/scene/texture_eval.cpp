@@ -46,7 +46,8 @@ const std::array<float, 256> srgb8_to_linear = [] {
   return t;
 }();
 
-vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv, texel_encoding encoding) {
+vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv,
+                   texel_encoding encoding) {
   mip_pyramid level0;  // a view: no coarser levels
   level0.level0 = &img;
   level0.encoding = encoding;

@@ -58,11 +58,13 @@ inline vec4 fetch_texel(const image& img, int x, int y, texel_encoding encoding)
   if (!img.texels8.empty()) {
     const uint8_t* t = &img.texels8[i];
     if (encoding == texel_encoding::srgb)
-      return {srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]], float(t[3]) * (1.0f / 255.0f)};
+      return {srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
+              float(t[3]) * (1.0f / 255.0f)};
     return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3])) * (1.0f / 255.0f);
   }
   const float* t = &img.texels32[i];
-  if (encoding == texel_encoding::srgb) return {srgb_to_linear(t[0]), srgb_to_linear(t[1]), srgb_to_linear(t[2]), t[3]};
+  if (encoding == texel_encoding::srgb)
+    return {srgb_to_linear(t[0]), srgb_to_linear(t[1]), srgb_to_linear(t[2]), t[3]};
   return {t[0], t[1], t[2], t[3]};
 }
 
@@ -75,6 +77,7 @@ inline bool sampleable(const image& img, vec2 uv) {
 }
 
 // Level 0 of img read at uv with one texel filter (nearest or bilinear) and smp's wrap modes.
-vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv, texel_encoding encoding);
+vec4 sample_level0(const image& img, const sampler& smp, filter_mode filter, vec2 uv,
+                   texel_encoding encoding);
 
 }  // namespace kiln

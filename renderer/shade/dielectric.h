@@ -4,10 +4,10 @@
 // arguments; depends on scene (for material iors) only.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <array>
 #include <optional>
+
+#include "scene/scene.h"
 
 namespace kiln {
 

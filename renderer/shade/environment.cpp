@@ -1,9 +1,9 @@
 #include "shade/environment.h"
 
-#include "shade/texture_sampling.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "shade/texture_sampling.h"
 
 namespace kiln {
 

@@ -8,9 +8,9 @@
 namespace kiln {
 
 struct light_sample {
-  vec3 direction{0.0f};    // unit, from the shading point toward the light
-  float distance = inf;    // to the light; infinite for directional lights
-  vec3 irradiance{0.0f};   // W/m² (glTF units) on a surface perpendicular to direction
+  vec3 direction{0.0f};   // unit, from the shading point toward the light
+  float distance = inf;   // to the light; infinite for directional lights
+  vec3 irradiance{0.0f};  // W/m² (glTF units) on a surface perpendicular to direction
 };
 
 light_sample sample_light(const light& l, const vec3& point);

@@ -8,8 +8,8 @@
 
 #include <vector>
 
-#include "scene/scene.h"
 #include "scene/mip_pyramid.h"
+#include "scene/scene.h"
 #include "shade/texture_sampling.h"
 
 namespace kiln {

@@ -217,10 +217,10 @@ vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const 
   refracted.direction = direction;
   refracted.kind = ray_kind::refraction;
   ++counts.refraction;
-  const ray_cone bent =
-      crossing.bends ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
-                                      glm::dot(direction, sp.geometric_normal))
-                     : s.cone;
+  const ray_cone bent = crossing.bends
+                            ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
+                                             glm::dot(direction, sp.geometric_normal))
+                            : s.cone;
   const path_state next = refracted_state(s, next_throughput, crossing.beyond, bent, weight);
   const vec3 refraction = weight * trace_radiance(ctx, refracted, next, counts);
   if (s.split) s.split->refraction += s.share * refraction;
@@ -255,7 +255,8 @@ vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   vec3 direction = glm::reflect(incident, sp.shading_normal);
   // An interpolated normal can send the mirror ray below the surface; use the true plane then.
-  if (glm::dot(direction, sp.geometric_normal) <= 0.0f) direction = glm::reflect(incident, sp.geometric_normal);
+  if (glm::dot(direction, sp.geometric_normal) <= 0.0f)
+    direction = glm::reflect(incident, sp.geometric_normal);
   ray reflected;
   reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
   reflected.direction = glm::normalize(direction);
@@ -269,8 +270,8 @@ vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec
 }
 
 // Emission, direct light, mirror and refraction at a fully covering surface.
-vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp, const material_point& mp,
-                   const path_state& s, ray_counts& counts) {
+vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point& sp,
+                   const material_point& mp, const path_state& s, ray_counts& counts) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) {
     add_direct(s, mp.base_color);
@@ -336,7 +337,8 @@ vec3 escape(const shading_context& ctx, const ray& r, const path_state& s, float
 }
 
 // shade_prepared for the closest hit h of r; s.cone is r's at the hit.
-vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, const path_state& s, ray_counts& counts) {
+vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, const path_state& s,
+               ray_counts& counts) {
   const surface_point sp = make_surface_point(ctx.world, h, r, s.cone.width);
   return shade_prepared(ctx, r, prepare_shading(ctx, r, sp), s, counts);
 }
@@ -394,12 +396,13 @@ shading_point prepare_shading(const shading_context& ctx, const ray& r, const su
   return p;
 }
 
-vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared, const path_state& s,
-                    ray_counts& counts) {
+vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared,
+                    const path_state& s, ray_counts& counts) {
   const material& m = ctx.world.materials[prepared.sp.material];
   const surface_point& sp = prepared.sp;
   const material_point& mp = prepared.mp;
-  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f) return shade_covered_on_path(ctx, r, sp, mp, s, counts);
+  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
+    return shade_covered_on_path(ctx, r, sp, mp, s, counts);
 
   // BLEND: the surface covers a share alpha of the ray; the rest continues behind it.
   const float alpha = std::max(mp.alpha, 0.0f);

@@ -44,7 +44,7 @@ struct ray_counts {
   uint64_t shadow = 0;
   uint64_t reflection = 0;
   uint64_t refraction = 0;
-  uint64_t transparency = 0;  // continuations through BLEND surfaces and culled back faces
+  uint64_t transparency = 0;       // continuations through BLEND surfaces and culled back faces
   uint64_t discarded_samples = 0;  // camera samples whose radiance was NaN or infinite, left out
 
   ray_counts& operator+=(const ray_counts& o) {
@@ -124,11 +124,11 @@ struct camera_path {
 // What one ray of a camera sample's tree carries down the Whitted recursion. Passed by value: a
 // branch changes its own copy, so nothing is changed and restored around a recursive call.
 struct path_state {
-  int depth = 0;            // bounces so far: the camera ray is depth 0
-  float throughput = 1.0f;  // the weight of this ray's radiance in the sample
-  medium_stack media;       // the closed volumes the ray travels in (empty for camera rays)
-  ray_cone cone;            // the ray's cone: at its origin when traced, at the hit when shaded
-  float time = 0.0f;        // the sample's time in the shutter; unused until motion blur
+  int depth = 0;                 // bounces so far: the camera ray is depth 0
+  float throughput = 1.0f;       // the weight of this ray's radiance in the sample
+  medium_stack media;            // the closed volumes the ray travels in (empty for camera rays)
+  ray_cone cone;                 // the ray's cone: at its origin when traced, at the hit when shaded
+  float time = 0.0f;             // the sample's time in the shutter; unused until motion blur
   ray_budget* budget = nullptr;  // the sample's rays left and cancel flag; null: unbounded
   // On the camera's own path (null for a secondary ray): alpha and mattes go there.
   camera_path* camera = nullptr;

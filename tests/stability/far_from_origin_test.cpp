@@ -40,8 +40,7 @@ std::string write_scene(double offset, const std::string& name) {
   const int plane =
       b.add_mesh({{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}, {0, 1, 2, 0, 2, 3}, white);
   b.doc["extensionsUsed"] = {"KILN_quadric"};
-  b.doc["extensions"]["KILN_quadric"]["primitives"] = {
-      json{{"kind", "sphere"}, {"radius", sphere_radius}}};
+  b.doc["extensions"]["KILN_quadric"]["primitives"] = {json{{"kind", "sphere"}, {"radius", sphere_radius}}};
   const int root = b.add_node({{"name", "root"}, {"translation", {offset, offset, offset}}});
   const int plane_index = b.add_node({{"name", "plane"}, {"mesh", plane}});
   EXPECT_EQ(plane_index, plane_node);

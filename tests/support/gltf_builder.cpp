@@ -67,8 +67,8 @@ int gltf_builder::add_view(const void* data, size_t size, int stride) {
   return push(doc["bufferViews"], view);
 }
 
-int gltf_builder::add_accessor(int view, int component_type, size_t count, const std::string& type, size_t offset,
-                               bool normalized) {
+int gltf_builder::add_accessor(int view, int component_type, size_t count, const std::string& type,
+                               size_t offset, bool normalized) {
   json acc = {{"componentType", component_type}, {"count", count}, {"type", type}};
   if (view >= 0) acc["bufferView"] = view;
   if (offset != 0) acc["byteOffset"] = offset;
@@ -82,8 +82,9 @@ int gltf_builder::add_mesh(const json& primitive) {
   return push(doc["meshes"], json{{"primitives", json::array({primitive})}});
 }
 
-int gltf_builder::add_mesh(const std::vector<std::array<float, 3>>& positions, const std::vector<uint32_t>& indices,
-                           int material, const std::vector<std::array<float, 3>>& normals,
+int gltf_builder::add_mesh(const std::vector<std::array<float, 3>>& positions,
+                           const std::vector<uint32_t>& indices, int material,
+                           const std::vector<std::array<float, 3>>& normals,
                            const std::vector<std::array<float, 2>>& texcoords) {
   std::array<float, 3> lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
   for (const auto& p : positions)
@@ -102,7 +103,8 @@ int gltf_builder::add_mesh(const std::vector<std::array<float, 3>>& positions, c
   doc["accessors"][position]["min"] = lo;
   doc["accessors"][position]["max"] = hi;
   primitive["attributes"]["POSITION"] = position;
-  if (!normals.empty()) primitive["attributes"]["NORMAL"] = attribute(normals.data(), normals.size(), 3, "VEC3");
+  if (!normals.empty())
+    primitive["attributes"]["NORMAL"] = attribute(normals.data(), normals.size(), 3, "VEC3");
   if (!texcoords.empty())
     primitive["attributes"]["TEXCOORD_0"] = attribute(texcoords.data(), texcoords.size(), 2, "VEC2");
   const int index_view = add_view(indices.data(), indices.size() * sizeof(uint32_t));
@@ -118,7 +120,8 @@ int gltf_builder::add_camera(const json& camera) { return push(doc["cameras"], c
 
 int gltf_builder::add_light(const json& light) {
   json& used = doc["extensionsUsed"];
-  if (std::find(used.begin(), used.end(), "KHR_lights_punctual") == used.end()) used.push_back("KHR_lights_punctual");
+  if (std::find(used.begin(), used.end(), "KHR_lights_punctual") == used.end())
+    used.push_back("KHR_lights_punctual");
   return push(doc["extensions"]["KHR_lights_punctual"]["lights"], light);
 }
 
@@ -154,7 +157,8 @@ std::string gltf_builder::write_external(const std::string& path, const std::str
   write_file(path, text.data(), text.size());
   if (write_bin) {
     const size_t slash = path.find_last_of('/');
-    write_file((slash == std::string::npos ? "" : path.substr(0, slash + 1)) + bin_name, bin.data(), bin.size());
+    write_file((slash == std::string::npos ? "" : path.substr(0, slash + 1)) + bin_name, bin.data(),
+               bin.size());
   }
   return path;
 }

@@ -4,10 +4,9 @@
 // Used by the loader's unit tests and the end-to-end tests alike; depends on nlohmann::json only.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <array>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -63,7 +62,8 @@ struct gltf_builder {
   std::string write(const std::string& path) const;
 
   // Writes a .gltf whose buffer is the file bin_name beside it (written unless write_bin is false).
-  std::string write_external(const std::string& path, const std::string& bin_name, bool write_bin = true) const;
+  std::string write_external(const std::string& path, const std::string& bin_name,
+                             bool write_bin = true) const;
 
   // The GLB bytes of the document (buffer 0 in the BIN chunk).
   std::vector<uint8_t> glb_bytes() const;

@@ -191,7 +191,8 @@ struct oiio_texture_reference::impl {
   }
 };
 
-oiio_texture_reference::oiio_texture_reference(const scene& s, float cache_mb) : impl_(std::make_unique<impl>()) {
+oiio_texture_reference::oiio_texture_reference(const scene& s, float cache_mb)
+    : impl_(std::make_unique<impl>()) {
   // Nothing is shared with the loader's decoding. The in-memory scanline images are cut into 64²
   // tiles as they are read. Their pyramids are built here rather than by the cache's automip, which
   // resamples texel by texel through the cache and, with a cache smaller than the textures,
@@ -252,7 +253,7 @@ oiio_texture_reference::oiio_texture_reference(const scene& s, float cache_mb) :
 oiio_texture_reference::~oiio_texture_reference() = default;
 
 vec4 oiio_texture_reference::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
-                              const uv_footprint& footprint) const {
+                                      const uv_footprint& footprint) const {
   const impl::lookup& l = impl_->lookups[slot(texture_index, encoding)];
   if (!l.handle) return vec4(1.0f);
   OIIO::TextureOpt options = l.options;  // texture() may write to its options
@@ -263,6 +264,5 @@ vec4 oiio_texture_reference::minified(uint32_t texture_index, texel_encoding enc
     return vec4(1.0f);
   return {result[0], result[1], result[2], result[3]};
 }
-
 
 }  // namespace kiln::testing

@@ -26,8 +26,8 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
     // Both backends call the same double-precision quadric code; what is left is the hit point's
     // own error bound and the float rounding of t, seen along the ray.
     quadric_world_point w = quadric_world_hit(inst, s.quadrics[inst.shape], r, h.t, h.primitive_id);
-    const float error = glm::length(w.error) +
-                        gamma_bound(8) * (max_abs(r.origin) + std::abs(h.t) * max_abs(r.direction));
+    const float error =
+        glm::length(w.error) + gamma_bound(8) * (max_abs(r.origin) + std::abs(h.t) * max_abs(r.direction));
     const float cosine = std::abs(glm::dot(r.direction, w.normal));
     return 4.0f * error / std::max(cosine, floor * glm::length(r.direction));
   }
@@ -63,7 +63,8 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h) {
   // Triangle edges; a quadric's (u, v) are its parametric coordinates and mark no edge.
   const float b0 = 1.0f - h.u - h.v;
-  if (s.instances[h.instance_id].kind == shape_kind::mesh && std::min({h.u, h.v, b0}) <= edge_margin) return true;
+  if (s.instances[h.instance_id].kind == shape_kind::mesh && std::min({h.u, h.v, b0}) <= edge_margin)
+    return true;
   const float tolerance = hit_t_tolerance(s, r, h);
   return h.t - r.tmin <= tolerance || r.tmax - h.t <= tolerance;
 }

@@ -15,9 +15,7 @@
 
 namespace kiln {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 // Embree reports errors through a C callback; the log records the first message and kiln throws
 // after the Embree call has returned: after each build stage, and after rendering. The device is
@@ -257,9 +255,7 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
   for (size_t k = 0; k < queries.size(); ++k) out[index[k]] = kiln_hit(scene_, queries[k], rays[index[k]]);
 }
 
-size_t embree_accelerator::embree_bytes() const {
-  return size_t(std::max<int64_t>(0, state_->built_bytes));
-}
+size_t embree_accelerator::embree_bytes() const { return size_t(std::max<int64_t>(0, state_->built_bytes)); }
 size_t embree_accelerator::embree_peak_bytes() const {
   return size_t(std::max<int64_t>(0, state_->peak_bytes));
 }

@@ -108,7 +108,8 @@ TEST(embree_accelerator, world_normal_matches_the_vertices_under_any_instance_tr
   for (uint32_t i = 0; i < s.instances.size(); ++i)
     for (uint32_t t = 0; t < m.triangle_count(); ++t) {
       const auto p = triangle_vertices(m, t);
-      const dvec3 centroid = transform_point(s.instances[i].world_from_object, dvec3(p[0] + p[1] + p[2]) / 3.0);
+      const dvec3 centroid =
+          transform_point(s.instances[i].world_from_object, dvec3(p[0] + p[1] + p[2]) / 3.0);
       const dvec3 n = dvec3(triangle_world_normal(s.instances[i], m, t));
       ray r;
       r.origin = vec3(centroid + 50.0 * n);  // straight down onto the triangle's centroid

@@ -33,8 +33,9 @@ bool count_memory(void* /*user*/, ssize_t bytes, bool /*post*/) {
 RTCDevice create_device() {
   RTCDevice device = rtcNewDevice("verbose=0");
   if (!device)
-    throw error(error_kind::render, "", "",
-                "cannot create Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    throw error(
+        error_kind::render, "", "",
+        "cannot create Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   rtcSetDeviceErrorFunction(device, &report_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(device, &count_memory, nullptr);
   return device;

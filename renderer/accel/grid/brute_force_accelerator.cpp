@@ -5,7 +5,8 @@
 namespace kiln {
 
 brute_force_accelerator::brute_force_accelerator(const scene& s) : scene_(s) {
-  for (const instance& inst : s.instances) object_from_world_.push_back(to_float_affine(inst.object_from_world));
+  for (const instance& inst : s.instances)
+    object_from_world_.push_back(to_float_affine(inst.object_from_world));
 }
 
 std::optional<hit> brute_force_accelerator::intersect(const ray& r) const {

@@ -20,8 +20,8 @@ std::optional<quadric_ray_hit> intersect_quadric_instance(const scene& s, const 
 // Every triangle of the mesh in primitive order (the brute-force reference): the closest hit, the
 // lowest primitive among equal t, or with any_hit the first one found.
 std::optional<shape_hit> intersect_all_triangles(const mesh& m, const vec3& origin, const vec3& direction,
-                                                 float tmin, float tmax, const alpha_filter& alpha, bool any_hit,
-                                                 traversal_counters& counters) {
+                                                 float tmin, float tmax, const alpha_filter& alpha,
+                                                 bool any_hit, traversal_counters& counters) {
   const sheared_ray sheared = shear_ray(origin, direction);
   std::optional<shape_hit> best;
   for (uint32_t p = 0; p < m.triangle_count(); ++p) {
@@ -50,9 +50,11 @@ std::optional<shape_hit> intersect_instance_shape(const scene& s, uint32_t insta
     case shape_kind::mesh: {
       const mesh& m = s.meshes[inst.shape];
       const alpha_filter alpha = alpha_filter_for(s, instance_id);
-      if (!grid) return intersect_all_triangles(m, origin, direction, world_ray.tmin, tmax, alpha, false, counters);
+      if (!grid)
+        return intersect_all_triangles(m, origin, direction, world_ray.tmin, tmax, alpha, false, counters);
       shape_hit h;
-      if (intersect_mesh_grid(*grid, m, origin, direction, world_ray.tmin, tmax, h, counters, alpha)) return h;
+      if (intersect_mesh_grid(*grid, m, origin, direction, world_ray.tmin, tmax, h, counters, alpha))
+        return h;
       return std::nullopt;
     }
     case shape_kind::quadric: {
@@ -73,7 +75,8 @@ bool occluded_instance_shape(const scene& s, uint32_t instance_id, const ray& wo
       const mesh& m = s.meshes[inst.shape];
       const alpha_filter alpha = alpha_filter_for(s, instance_id);
       if (!grid)
-        return intersect_all_triangles(m, origin, direction, world_ray.tmin, world_ray.tmax, alpha, true, counters)
+        return intersect_all_triangles(m, origin, direction, world_ray.tmin, world_ray.tmax, alpha, true,
+                                       counters)
             .has_value();
       return occluded_mesh_grid(*grid, m, origin, direction, world_ray.tmin, world_ray.tmax, counters, alpha);
     }
@@ -84,7 +87,8 @@ bool occluded_instance_shape(const scene& s, uint32_t instance_id, const ray& wo
   return false;
 }
 
-hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint32_t primitive, float u, float v) {
+hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint32_t primitive, float u,
+               float v) {
   const instance& inst = s.instances[instance_id];
   hit h;
   h.t = t;

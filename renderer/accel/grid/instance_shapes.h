@@ -4,11 +4,11 @@
 // meet traversal in one place. Depends on scene, geometry and the grid core; never on Embree.
 #pragma once
 
+#include <optional>
+
 #include "accel/grid/mesh_grid.h"
 #include "core/ray.h"
 #include "scene/scene.h"
-
-#include <optional>
 
 namespace kiln {
 
@@ -28,6 +28,7 @@ bool occluded_instance_shape(const scene& s, uint32_t instance_id, const ray& wo
 
 // The backend-neutral hit for a shape hit, filled exactly as the Embree backend fills it
 // (triangle normal through the normal matrix; quadric normal and parametric UV in double).
-hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint32_t primitive, float u, float v);
+hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint32_t primitive, float u,
+               float v);
 
 }  // namespace kiln

@@ -57,7 +57,8 @@ struct any_visitor {
       ++counters.items_tested;
       auto p = triangle_vertices(m, primitive);
       triangle_hit h;
-      return intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h) && !alpha.rejects(primitive, h.u, h.v);
+      return intersect_watertight(sheared, p[0], p[1], p[2], tmin, tmax, h) &&
+             !alpha.rejects(primitive, h.u, h.v);
     });
   }
   bool done_within(double) const { return false; }
@@ -94,7 +95,8 @@ bool intersect_mesh_grid(const mesh_grid& g, const mesh& m, const vec3& origin, 
                          float tmin, float tmax, shape_hit& best, traversal_counters& counters,
                          const alpha_filter& alpha) {
   if (g.cells.empty()) return false;
-  closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, alpha, false, {}};
+  closest_visitor visit{g.cells, m, shear_ray(origin, direction), tmin, tmax, best, counters, alpha,
+                        false,   {}};
   traverse_grid(g.cells, 0, to_dda(origin, direction), tmin, tmax, visit, counters);
   return visit.found;
 }

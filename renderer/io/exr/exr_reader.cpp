@@ -1,7 +1,5 @@
 #include "io/exr/exr_reader.h"
 
-#include "io/exr/exr_header_copy.h"
-
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfInputPart.h>
@@ -17,6 +15,7 @@
 
 #include "core/error.h"
 #include "io/exr/exr_header.h"
+#include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
 #include "io/exr/exr_threads.h"
 

@@ -55,13 +55,13 @@ constexpr size_t chunk_bytes = size_t(1) << 20;
 }  // namespace
 
 std::string input_file_problem(const std::string& path, uint64_t max_bytes) {
-  struct stat info{};
+  struct stat info {};
   if (::stat(path.c_str(), &info) != 0) return "";  // missing or unreadable: the reader says which
   return problem_of(info, max_bytes);
 }
 
 bool input_file_missing(const std::string& path) {
-  struct stat info{};
+  struct stat info {};
   return ::stat(path.c_str(), &info) != 0 && (errno == ENOENT || errno == ENOTDIR);
 }
 
@@ -77,7 +77,7 @@ struct open_file {
 // wait for a writer), opens it with O_NONBLOCK (should the path have become a FIFO since, open()
 // returns at once) and checks again with fstat().
 void open_checked(const std::string& path, const input_file_request& request, open_file& out) {
-  struct stat info{};
+  struct stat info {};
   if (::stat(path.c_str(), &info) != 0)
     throw refusal(error_kind::input, path, request, std::string("cannot open file: ") + std::strerror(errno));
   if (std::string why = problem_of(info, request.max_bytes); !why.empty())

@@ -1,8 +1,8 @@
 #include "io/gltf/glb_container.h"
 
-#include "core/error.h"
-
 #include <cstdio>
+
+#include "core/error.h"
 
 namespace kiln::gltf_internal {
 namespace {

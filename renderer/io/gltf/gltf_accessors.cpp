@@ -1,11 +1,11 @@
 #include "io/gltf/gltf_accessors.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "core/check.h"
 #include "core/error.h"
 #include "io/gltf/gltf_common.h"
-
-#include <algorithm>
-#include <cstring>
 
 namespace kiln::gltf_internal {
 namespace {
@@ -13,10 +13,14 @@ namespace {
 // Rows of one matrix column (or the whole vector for non-matrix types).
 size_t rows_per_column(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_MAT2: return 2;
-    case TINYGLTF_TYPE_MAT3: return 3;
-    case TINYGLTF_TYPE_MAT4: return 4;
-    default: return component_count(type);
+    case TINYGLTF_TYPE_MAT2:
+      return 2;
+    case TINYGLTF_TYPE_MAT3:
+      return 3;
+    case TINYGLTF_TYPE_MAT4:
+      return 4;
+    default:
+      return component_count(type);
   }
 }
 
@@ -41,7 +45,8 @@ T load(const uint8_t* p) {
 // One component as float, decoding normalised integers per the glTF specification.
 float decode_float(const uint8_t* p, int component_type, bool normalized) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
       const float v = load<int8_t>(p);
       return normalized ? std::max(v / 127.0f, -1.0f) : v;
@@ -58,17 +63,25 @@ float decode_float(const uint8_t* p, int component_type, bool normalized) {
       const float v = load<uint16_t>(p);
       return normalized ? v / 65535.0f : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return static_cast<float>(load<uint32_t>(p));
-    default: KILN_CHECK(false && "component type was validated"); return 0.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return static_cast<float>(load<uint32_t>(p));
+    default:
+      KILN_CHECK(false && "component type was validated");
+      return 0.0f;
   }
 }
 
 uint32_t decode_uint(const uint8_t* p, int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<uint16_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<uint32_t>(p);
-    default: KILN_CHECK(false && "index component type was validated"); return 0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return load<uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return load<uint16_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return load<uint32_t>(p);
+    default:
+      KILN_CHECK(false && "index component type was validated");
+      return 0;
   }
 }
 
@@ -137,25 +150,37 @@ void for_each_element(const tinygltf::Model& model, int index, const std::string
 size_t component_size(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 size_t component_count(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
@@ -171,28 +196,45 @@ size_t element_size(int component_type, int type) {
 
 std::string component_type_name(int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return "DOUBLE";
-    default: return "componentType " + std::to_string(component_type);
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT:
+      return "INT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "FLOAT";
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+      return "DOUBLE";
+    default:
+      return "componentType " + std::to_string(component_type);
   }
 }
 
 std::string type_name(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "type " + std::to_string(type);
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "type " + std::to_string(type);
   }
 }
 

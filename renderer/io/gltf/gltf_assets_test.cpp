@@ -3,9 +3,6 @@
 // get the outcome gltf_invalid_corpus_table.h names (a refusal at a JSON pointer, or a load with a
 // warning), never crash; the ones whose damage makes rendering unsafe must throw.
 // Skips when ../shared/assets is absent (the project's own tests must pass without it).
-#include "io/gltf/gltf_invalid_corpus_table.h"
-#include "io/gltf/gltf_loader.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +11,9 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "io/gltf/gltf_invalid_corpus_table.h"
+#include "io/gltf/gltf_loader.h"
 
 namespace kiln {
 namespace {
@@ -169,8 +169,10 @@ TEST(GltfAssets, QuantizedDuckMatchesTheFloatDuck) {
       if (glm::length(pp - qp) > 1.5 * step) continue;
       best = std::min(best, double(glm::length(quv - (pm.texcoords0[j] + pref.offset))));
     }
-    if (best == 1e9) ++unmatched;
-    else worst_uv = std::max(worst_uv, best);
+    if (best == 1e9)
+      ++unmatched;
+    else
+      worst_uv = std::max(worst_uv, best);
   }
   EXPECT_EQ(unmatched, 0u);
   EXPECT_LT(worst_uv, uv_step);

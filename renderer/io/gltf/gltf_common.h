@@ -3,12 +3,12 @@
 // standard library only.
 #pragma once
 
-#include "core/message_text.h"
-
 #include <cctype>
 #include <cstdint>
 #include <limits>
 #include <string>
+
+#include "core/message_text.h"
 
 namespace kiln::gltf_internal {
 

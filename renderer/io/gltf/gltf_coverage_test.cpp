@@ -120,7 +120,8 @@ TEST(GltfCoverage, TruncatedOrCorruptJpegIsRefused) {
     b.doc["images"] = json::array({json{{"uri", "data:image/jpeg;base64," + base64_encode(bytes)}}});
     const std::string path = b.write(dir.file("scene.gltf"));
     const std::string message = error_of([&] { load_gltf(path); });
-    EXPECT_EQ(message.rfind(path + ": /images/0: cannot decode image: JPEG error: " + reason, 0), 0u) << message;
+    EXPECT_EQ(message.rfind(path + ": /images/0: cannot decode image: JPEG error: " + reason, 0), 0u)
+        << message;
     EXPECT_EQ(message.find("image.jpg"), std::string::npos) << message;
   }
 }

@@ -1,10 +1,10 @@
 // Which files an asset may make kiln read: buffers and images resolve relative to the asset's
 // folder; ".." escapes and absolute paths that leave it are refused unless allowed; percent-
 // encoded URIs and names with spaces work.
+#include <gtest/gtest.h>
+
 #include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_test_util.h"
-
-#include <gtest/gtest.h>
 
 namespace kiln {
 namespace {
@@ -13,7 +13,8 @@ using namespace gltf_test;
 
 // The single triangle with its buffer under the URI `uri`, written to dir/sub/scene.gltf; the
 // buffer bytes go to dir/<bin_location> (relative to dir).
-std::string write_with_buffer_at(const temp_folder& dir, const std::string& uri, const std::string& bin_location) {
+std::string write_with_buffer_at(const temp_folder& dir, const std::string& uri,
+                                 const std::string& bin_location) {
   gltf_builder b = single_triangle();
   fs::create_directories(dir.file("sub"));
   const std::string path = dir.file("sub/scene.gltf");

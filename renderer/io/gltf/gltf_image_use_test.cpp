@@ -72,7 +72,8 @@ TEST(GltfImageUse, UnusedMissingImageFileIsStillRefused) {
     load_gltf(path);
     ADD_FAILURE() << "a missing image file loaded";
   } catch (const error& e) {
-    EXPECT_NE(std::string(e.what()).find("/images/1/uri: cannot read image file 'gone.png'"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("/images/1/uri: cannot read image file 'gone.png'"),
+              std::string::npos)
         << e.what();
   }
 }

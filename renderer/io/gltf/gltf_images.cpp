@@ -67,7 +67,8 @@ std::vector<image> decode_images(const std::vector<encoded_image>& batch, const 
   for (const encoded_image& in : batch) headers.push_back(checked_header(in, file, max_texels));
   image_bytes need;
   for (size_t i = 0; i < batch.size(); ++i) {
-    const image_bytes b = decoded_image_bytes(batch[i].data, batch[i].size, headers[i].width, headers[i].height);
+    const image_bytes b =
+        decoded_image_bytes(batch[i].data, batch[i].size, headers[i].width, headers[i].height);
     need.kept += b.kept;
     need.decoding += b.decoding;
   }

@@ -1,11 +1,11 @@
 #include "io/gltf/gltf_instancing.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
-
-#include <algorithm>
-#include <cmath>
 
 namespace kiln::gltf_internal {
 namespace {

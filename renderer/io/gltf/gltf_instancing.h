@@ -5,13 +5,13 @@
 // /nodes/3/extensions/EXT_mesh_gpu_instancing/attributes/ROTATION.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <tiny_gltf.h>
 
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace kiln::gltf_internal {
 

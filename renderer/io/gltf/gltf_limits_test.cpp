@@ -1,10 +1,10 @@
 // Resource limits: files that would exhaust the stack, memory or time are refused with a message
 // that names the limit and the option that raises it.
-#include "io/gltf/gltf_loader.h"
-#include "io/gltf/gltf_test_util.h"
-
 #include <gtest/gtest.h>
 #include <stdlib.h>
+
+#include "io/gltf/gltf_loader.h"
+#include "io/gltf/gltf_test_util.h"
 
 namespace kiln {
 namespace {
@@ -95,8 +95,9 @@ TEST(GltfLimits, ProgressiveJpegWithHugeDeclaredSizeIsRefusedBeforeAnyDecoder) {
   ::setenv("KILN_IMAGE_CODECS", "/nonexistent/codecs.so", 1);  // a decode would fail on the module
   const std::string message = load_error(path);
   ::unsetenv("KILN_IMAGE_CODECS");
-  EXPECT_NE(message.find("/images/0: image is 20000x20000 texels, over the limit of 268435456 (--max-texels)"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find("/images/0: image is 20000x20000 texels, over the limit of 268435456 (--max-texels)"),
+      std::string::npos)
       << message;
 }
 
@@ -112,7 +113,8 @@ TEST(GltfLimits, TexelLimitIsOverridable) {
   gltf_load_options options;
   options.limits.max_texels = 3;
   const std::string message = load_error(path, options);
-  EXPECT_NE(message.find("/images/0: image is 2x2 texels, over the limit of 3 (--max-texels)"), std::string::npos)
+  EXPECT_NE(message.find("/images/0: image is 2x2 texels, over the limit of 3 (--max-texels)"),
+            std::string::npos)
       << message;
 }
 

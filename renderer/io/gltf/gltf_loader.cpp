@@ -4,22 +4,22 @@
 // convert the materials, lights and cameras the scene uses.
 #include "io/gltf/gltf_loader.h"
 
+#include <algorithm>
+#include <map>
+#include <set>
+#include <utility>
+
 #include "core/error.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
 #include "io/gltf/gltf_memory.h"
-#include "io/gltf/mesh_tangents.h"
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
+#include "io/gltf/mesh_tangents.h"
 #include "scene/coordinate_range.h"
-
-#include <algorithm>
-#include <map>
-#include <set>
-#include <utility>
 
 namespace kiln {
 namespace {
@@ -233,19 +233,22 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
     for (size_t i = 0; i < vertex_count; ++i) out[i] = vec2(t[2 * i], t[2 * i + 1]);
   }
   if (material_samples_other_texcoords(ctx.model, prim.material))
-    warn_once(ctx, pointer("materials", prim.material) +
-                       ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
+    warn_once(ctx,
+              pointer("materials", prim.material) +
+                  ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
 
   // Tangent frames only for normal-mapped materials: the file's TANGENT when it has one and
   // smooth normals, generated from the normal texture's UV set otherwise. Without NORMAL the mesh
   // is flat-shaded and glTF says to ignore TANGENT; generated tangents then follow the faces.
   if (prim.material >= 0) {
     const tinygltf::Material& mat = ctx.model.materials[static_cast<size_t>(prim.material)];
-    const std::vector<vec2>& uv = material_normal_texcoord(ctx.model, prim.material) == 1 ? m.texcoords1 : m.texcoords0;
+    const std::vector<vec2>& uv =
+        material_normal_texcoord(ctx.model, prim.material) == 1 ? m.texcoords1 : m.texcoords0;
     if (mat.normalTexture.index >= 0 && uv.size() == vertex_count) {
       auto tangent = prim.attributes.find("TANGENT");
       if (tangent != prim.attributes.end() && !m.normals.empty()) {
-        const std::vector<float> t = read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
+        const std::vector<float> t =
+            read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
         m.tangents.resize(vertex_count);
         for (size_t i = 0; i < vertex_count; ++i) {
           const vec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
@@ -261,8 +264,10 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
   // COLOR_0 always multiplies the base colour, so it is stored whenever present (already linear).
   auto color = prim.attributes.find("COLOR_0");
   if (color != prim.attributes.end()) {
-    const std::vector<float> c = read_finite(ctx, color->second, pointer_join(attributes, "COLOR_0"), "COLOR_0");
-    const size_t n = ctx.model.accessors[static_cast<size_t>(color->second)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    const std::vector<float> c =
+        read_finite(ctx, color->second, pointer_join(attributes, "COLOR_0"), "COLOR_0");
+    const size_t n =
+        ctx.model.accessors[static_cast<size_t>(color->second)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
     m.colors0.resize(vertex_count);
     for (size_t i = 0; i < vertex_count; ++i)
       m.colors0[i] = vec4(c[n * i], c[n * i + 1], c[n * i + 2], n == 4 ? c[n * i + 3] : 1.0f);
@@ -303,7 +308,8 @@ int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
       ctx.model.meshes[static_cast<size_t>(mesh_index)].primitives[static_cast<size_t>(prim_index)];
   const std::vector<int> geometry = geometry_key(ctx, prim);
   auto shared = ctx.geometry_cache.find(geometry);
-  const int32_t built = shared != ctx.geometry_cache.end() ? shared->second : build_mesh(ctx, mesh_index, prim_index);
+  const int32_t built =
+      shared != ctx.geometry_cache.end() ? shared->second : build_mesh(ctx, mesh_index, prim_index);
   ctx.geometry_cache.emplace(geometry, built);
   ctx.mesh_cache.emplace(key, built);
   return built;
@@ -361,7 +367,8 @@ void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
 
 // A KILN_quadric placement: one instance of a shared definition. Unlike a mesh, a quadric
 // with a singular transform is an error: its object-space ray would be undefined.
-void place_quadric(build_context& ctx, int node_index, const quadric_placement& placement, const dmat4& world) {
+void place_quadric(build_context& ctx, int node_index, const quadric_placement& placement,
+                   const dmat4& world) {
   instance inst;
   inst.kind = shape_kind::quadric;
   inst.shape = placement.primitive;
@@ -369,8 +376,9 @@ void place_quadric(build_context& ctx, int node_index, const quadric_placement& 
   inst.world_from_object = world;
   finish_instance_transform(inst);
   if (!is_finite(inst.object_from_world) || glm::determinant(dmat3(world)) == 0.0)
-    throw input_error(ctx.file, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension),
-                      "the node's transform is not invertible (zero scale); a quadric cannot be placed by it");
+    throw input_error(
+        ctx.file, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), quadric_extension),
+        "the node's transform is not invertible (zero scale); a quadric cannot be placed by it");
   if (auto problem = transform_range_problem(world))
     throw input_error(ctx.file, range_pointer(ctx.model.nodes[static_cast<size_t>(node_index)], node_index),
                       "its world transform is out of range: " + *problem);
@@ -537,8 +545,16 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   scene out;
   out.source = path;
   const bool quantized = uses_extension(model, quantization_extension);
-  build_context ctx{model, path, options.limits.max_instances, options.limits.max_texels, options.threads,
-                    quantized, out, {}, {}, {}};
+  build_context ctx{model,
+                    path,
+                    options.limits.max_instances,
+                    options.limits.max_texels,
+                    options.threads,
+                    quantized,
+                    out,
+                    {},
+                    {},
+                    {}};
   ctx.memory = options.memory;
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
@@ -546,7 +562,8 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   const auto& supported = supported_extensions();
   std::vector<std::string> unsupported;
   for (const std::string& name : model.extensionsUsed)
-    if (std::find(supported.begin(), supported.end(), name) == supported.end()) unsupported.push_back(shown(name));
+    if (std::find(supported.begin(), supported.end(), name) == supported.end())
+      unsupported.push_back(shown(name));
   if (unsupported.size() == 1)
     warn_once(ctx, "extension " + unsupported[0] + " is not supported; it is ignored");
   if (unsupported.size() > 1) {

@@ -4,12 +4,12 @@
 // (e.g. /accessors/7) and the reason.
 #pragma once
 
+#include <atomic>
+#include <string>
+
 #include "core/error.h"  // callers catch the kiln::error this throws
 #include "core/memory_budget.h"
 #include "scene/scene.h"
-
-#include <atomic>
-#include <string>
 
 namespace kiln {
 

@@ -1,13 +1,13 @@
 // Bad-input tests: every kind of broken reference, layout, container or value must be refused
 // with one kiln::error whose message names the file, the JSON pointer and the reason.
-#include "io/gltf/gltf_loader.h"
-#include "io/gltf/gltf_test_util.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <map>
+
+#include "io/gltf/gltf_loader.h"
+#include "io/gltf/gltf_test_util.h"
 
 namespace kiln {
 namespace {

@@ -25,8 +25,10 @@ uint64_t json_parse_bytes(const uint8_t* text, size_t size) {
   for (size_t i = 0; i < size; ++i) {
     const uint8_t c = text[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == ':') {

@@ -3,11 +3,11 @@
 // are rough upper bounds measured on kiln's own allocations and tinygltf's; internal to io/gltf.
 #pragma once
 
+#include <tiny_gltf.h>
+
 #include <cstddef>
 #include <cstdint>
-
 #include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
 
 namespace kiln::gltf_internal {
 
@@ -28,8 +28,8 @@ uint64_t primitive_bytes(const tinygltf::Model& model, const tinygltf::Primitive
 // One decoded image (texels8 or texels32) and, while it decodes, kiln's buffer of it and the
 // decoder's rows; width and height from its header, 16-bit PNGs from their IHDR.
 struct image_bytes {
-  uint64_t kept = 0;       // the scene's image
-  uint64_t decoding = 0;   // freed once the image is decoded
+  uint64_t kept = 0;      // the scene's image
+  uint64_t decoding = 0;  // freed once the image is decoded
 };
 image_bytes decoded_image_bytes(const uint8_t* data, size_t size, uint64_t width, uint64_t height);
 

@@ -1,9 +1,8 @@
 // Shared geometry and the loader's memory charges: primitives on the same accessors build one
 // scene mesh, and a budget too small for a file's JSON, buffers or meshes refuses it.
-#include "io/gltf/gltf_loader.h"
-
 #include <gtest/gtest.h>
 
+#include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_test_util.h"
 
 namespace kiln {
@@ -70,7 +69,8 @@ TEST(GltfMemoryBudget, ChargesTheSceneAndRefusesPastTheBudget) {
     FAIL() << "a 1000-byte budget was accepted";
   } catch (const error& e) {
     EXPECT_EQ(e.kind(), error_kind::input);
-    EXPECT_NE(e.reason().find("over the memory budget of 1000 bytes (raise it with --max-memory)"), std::string::npos)
+    EXPECT_NE(e.reason().find("over the memory budget of 1000 bytes (raise it with --max-memory)"),
+              std::string::npos)
         << e.what();
   }
   EXPECT_EQ(tight.used(), 0u);  // what loading charged is released again

@@ -1,7 +1,16 @@
 #include "io/gltf/gltf_parse.h"
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <system_error>
+
 #include "core/error.h"
 #include "core/message_text.h"
+#include "io/file/input_file.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_image_use.h"
@@ -9,16 +18,6 @@
 #include "io/gltf/gltf_precheck.h"
 #include "io/gltf/gltf_schema_check.h"
 #include "io/gltf/gltf_uri_files.h"
-#include "io/file/input_file.h"
-
-#include <nlohmann/json.hpp>
-
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-#include <fstream>
-#include <set>
-#include <system_error>
 
 namespace kiln::gltf_internal {
 namespace {
@@ -176,8 +175,10 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
   for (size_t i = 0; i < size && deepest <= limit; ++i) {
     const uint8_t c = text[i];
     if (in_string) {
-      if (c == '\\') ++i;  // skip the escaped character
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;  // skip the escaped character
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
@@ -194,15 +195,16 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
 // relative references: an absolute path or a file: URI is never followed; ".." that leaves the
 // folder only with the allow option. Each refusal names the JSON pointer. Records in context
 // which images materials sample.
-void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path,
-                               fs_context& context, const gltf_limits& limits,
-                               const buffer_sources& sources) {
+void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path, fs_context& context,
+                               const gltf_limits& limits, const buffer_sources& sources) {
   if (size > limits.max_json_bytes)
-    throw input_error(path, "", "JSON is " + std::to_string(size) + " bytes, over the limit of " +
-                                    std::to_string(limits.max_json_bytes) + " (--max-json-bytes)");
+    throw input_error(path, "",
+                      "JSON is " + std::to_string(size) + " bytes, over the limit of " +
+                          std::to_string(limits.max_json_bytes) + " (--max-json-bytes)");
   if (json_nesting_depth(text, size, limits.max_json_depth) > limits.max_json_depth)
-    throw input_error(path, "", "JSON nests deeper than " + std::to_string(limits.max_json_depth) +
-                                    " levels (--max-json-depth)");
+    throw input_error(
+        path, "",
+        "JSON nests deeper than " + std::to_string(limits.max_json_depth) + " levels (--max-json-depth)");
   if (context.memory) context.memory->add(json_parse_bytes(text, size), path, "the JSON text and its parse");
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded()) check_json_syntax(text, size, path);
@@ -212,8 +214,9 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
         std::string("invalid glTF: the top-level JSON value is ") + doc.type_name() + ", not an object");
   auto nodes = doc.find("nodes");
   if (nodes != doc.end() && nodes->is_array() && nodes->size() > limits.max_nodes)
-    throw input_error(path, "/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
-                                          std::to_string(limits.max_nodes) + " (--max-nodes)");
+    throw input_error(path, "/nodes",
+                      std::to_string(nodes->size()) + " nodes, over the limit of " +
+                          std::to_string(limits.max_nodes) + " (--max-nodes)");
   for_each_file_uri(doc, [&](const std::string& where, const std::string& uri) {
     checked_uri_files(path, where, uri, context.rules);
   });
@@ -232,10 +235,17 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {
-      "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-      "KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform",
-      "KHR_materials_unlit",        "KHR_mesh_quantization", "EXT_mesh_gpu_instancing", "KILN_quadric"};
+  static const std::vector<std::string> names = {"KHR_lights_punctual",
+                                                 "KHR_materials_emissive_strength",
+                                                 "KHR_materials_ior",
+                                                 "KHR_materials_specular",
+                                                 "KHR_materials_transmission",
+                                                 "KHR_materials_volume",
+                                                 "KHR_texture_transform",
+                                                 "KHR_materials_unlit",
+                                                 "KHR_mesh_quantization",
+                                                 "EXT_mesh_gpu_instancing",
+                                                 "KILN_quadric"};
   return names;
 }
 
@@ -245,7 +255,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
   // reader, in its own words.
   std::error_code size_error;
   if (held && input_file_problem(path, max_gltf_file_bytes).empty())
-    if (const uintmax_t size = fs::file_size(path, size_error); !size_error) held->add(size, path, "the glTF file");
+    if (const uintmax_t size = fs::file_size(path, size_error); !size_error)
+      held->add(size, path, "the glTF file");
   // Throws for a FIFO, a device or a folder given as the asset, before a byte is read.
   const std::vector<uint8_t> bytes = read_whole_input_file(path, {max_gltf_file_bytes, options.cancel});
 
@@ -297,7 +308,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
     throw input_error(path, "", std::string("invalid glTF: ") + e.what());
   }
   if (!context.interrupted_file.empty())
-    throw error(error_kind::interrupted, context.interrupted_file, "", "interrupted while reading, nothing written");
+    throw error(error_kind::interrupted, context.interrupted_file, "",
+                "interrupted while reading, nothing written");
   if (!ok) {
     check_required_extensions_in_json(bytes.data() + json_offset, json_length, path);
     std::string line = first_line(err);

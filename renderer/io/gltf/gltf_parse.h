@@ -5,12 +5,12 @@
 // extensions. Internal to io/gltf. No scene construction and no validation of references here.
 #pragma once
 
-#include "io/gltf/gltf_loader.h"
-
 #include <tiny_gltf.h>
 
 #include <string>
 #include <vector>
+
+#include "io/gltf/gltf_loader.h"
 
 namespace kiln::gltf_internal {
 

@@ -227,9 +227,9 @@ void check_index_accessors(const json& doc, const std::string& path) {
       const json* view =
           accessor.is_object() && accessor.contains("bufferView") ? &accessor["bufferView"] : nullptr;
       if (!view || !is_index(*view) || view->get<uint64_t>() >= view_count)
-        throw input_error(
-            path, where,
-            "index accessor " + shown(indices.dump()) + " has no valid bufferView (indices need stored data)");
+        throw input_error(path, where,
+                          "index accessor " + shown(indices.dump()) +
+                              " has no valid bufferView (indices need stored data)");
     }
   }
 }

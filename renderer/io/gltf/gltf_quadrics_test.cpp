@@ -72,8 +72,9 @@ TEST(GltfQuadrics, MalformedExtensionObjects) {
   b.doc["extensions"]["KILN_quadric"] = {
       {"primitives", json::array({json{{"kind", "sphere"}, {"radius", 1}}})}};
   b.doc["nodes"][0]["extensions"]["KILN_quadric"] = {{"primitive", "zero"}};
-  EXPECT_NE(error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("/nodes/0/extensions/KILN_quadric"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("/nodes/0/extensions/KILN_quadric"),
+      std::string::npos);
   b.doc["nodes"][0]["extensions"]["KILN_quadric"] = {{"primitive", 0}};
   b.doc["extensions"]["KILN_quadric"]["primitives"][0]["radius"] = "big";
   EXPECT_NE(error_of([&] { load_gltf(b.write(dir.file("scene.gltf"))); }).find("must be a finite number"),

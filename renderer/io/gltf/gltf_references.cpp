@@ -26,7 +26,8 @@ std::vector<std::string> gltf_referenced_files(const std::string& asset_path,
     }
   }
   if (size > options.limits.max_json_bytes) return {};
-  if (options.memory && gltf_internal::json_parse_bytes(text, size) > options.memory->limit() - options.memory->used())
+  if (options.memory &&
+      gltf_internal::json_parse_bytes(text, size) > options.memory->limit() - options.memory->used())
     return {};
   const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return {};

@@ -13,8 +13,8 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int64_t int_max = std::numeric_limits<int32_t>::max();  // what tinygltf's int fields hold
-constexpr int64_t wide_max = std::numeric_limits<int64_t>::max();  // its size_t fields
+constexpr int64_t int_max = std::numeric_limits<int32_t>::max();     // what tinygltf's int fields hold
+constexpr int64_t wide_max = std::numeric_limits<int64_t>::max();    // its size_t fields
 constexpr int64_t no_minimum = std::numeric_limits<int32_t>::min();  // enums: validation names them
 
 // A collection an index points into: where it sits in the document and how messages name it.
@@ -34,11 +34,14 @@ struct integer_rule {
 };
 
 const collection accessors{{"accessors"}, "accessors"}, buffers{{"buffers"}, "buffers"},
-    buffer_views{{"bufferViews"}, "bufferViews"}, cameras{{"cameras"}, "cameras"}, images{{"images"}, "images"},
-    materials{{"materials"}, "materials"}, meshes{{"meshes"}, "meshes"}, nodes{{"nodes"}, "nodes"},
-    samplers{{"samplers"}, "samplers"}, scenes{{"scenes"}, "scenes"}, skins{{"skins"}, "skins"},
-    textures{{"textures"}, "textures"}, lights{{"extensions", "KHR_lights_punctual", "lights"}, "lights"},
-    quadrics{{"extensions", "KILN_quadric", "primitives"}, "extensions/KILN_quadric/primitives", "quadric definitions"};
+    buffer_views{{"bufferViews"}, "bufferViews"}, cameras{{"cameras"}, "cameras"},
+    images{{"images"}, "images"}, materials{{"materials"}, "materials"}, meshes{{"meshes"}, "meshes"},
+    nodes{{"nodes"}, "nodes"}, samplers{{"samplers"}, "samplers"}, scenes{{"scenes"}, "scenes"},
+    skins{{"skins"}, "skins"}, textures{{"textures"}, "textures"},
+    lights{{"extensions", "KHR_lights_punctual", "lights"}, "lights"},
+    quadrics{{"extensions", "KILN_quadric", "primitives"},
+             "extensions/KILN_quadric/primitives",
+             "quadric definitions"};
 
 std::vector<integer_rule> make_rules() {
   std::vector<integer_rule> rules = {
@@ -87,12 +90,13 @@ std::vector<integer_rule> make_rules() {
       {"textures/*/source", &images},
   };
   // Every textureInfo a material may hold, with KHR_texture_transform's texCoord override.
-  for (const char* info : {"pbrMetallicRoughness/baseColorTexture", "pbrMetallicRoughness/metallicRoughnessTexture",
-                           "normalTexture", "occlusionTexture", "emissiveTexture",
-                           "extensions/KHR_materials_transmission/transmissionTexture",
-                           "extensions/KHR_materials_volume/thicknessTexture",
-                           "extensions/KHR_materials_specular/specularTexture",
-                           "extensions/KHR_materials_specular/specularColorTexture"}) {
+  for (const char* info :
+       {"pbrMetallicRoughness/baseColorTexture", "pbrMetallicRoughness/metallicRoughnessTexture",
+        "normalTexture", "occlusionTexture", "emissiveTexture",
+        "extensions/KHR_materials_transmission/transmissionTexture",
+        "extensions/KHR_materials_volume/thicknessTexture",
+        "extensions/KHR_materials_specular/specularTexture",
+        "extensions/KHR_materials_specular/specularColorTexture"}) {
     const std::string at = std::string("materials/*/") + info;
     rules.push_back({at + "/index", &textures});
     rules.push_back({at + "/texCoord"});
@@ -137,20 +141,24 @@ void check_value(const json& doc, const json& value, const integer_rule& rule, c
   const int64_t v = huge ? wide_max : value.get<int64_t>();
   if (rule.target) {
     if (v < 0)
-      throw input_error(path, where,
-                        "index " + value.dump() + " is negative (glTF leaves a reference out rather than use -1)");
+      throw input_error(
+          path, where,
+          "index " + value.dump() + " is negative (glTF leaves a reference out rather than use -1)");
     const size_t size = collection_size(doc, *rule.target);
     if (huge || uint64_t(v) >= size)
       throw input_error(path, where,
-                        std::string("/") + rule.target->name + "/" + value.dump() + " does not exist (file has " +
-                            std::to_string(size) + " " + rule.target->noun + ")");
+                        std::string("/") + rule.target->name + "/" + value.dump() +
+                            " does not exist (file has " + std::to_string(size) + " " + rule.target->noun +
+                            ")");
     return;
   }
   if (v < rule.min)
-    throw input_error(path, where, what + " must be at least " + std::to_string(rule.min) + ", got " + value.dump());
-  if (huge || v > rule.max)
     throw input_error(path, where,
-                      what + " is " + value.dump() + ", larger than kiln reads (at most " + std::to_string(rule.max) + ")");
+                      what + " must be at least " + std::to_string(rule.min) + ", got " + value.dump());
+  if (huge || v > rule.max)
+    throw input_error(
+        path, where,
+        what + " is " + value.dump() + ", larger than kiln reads (at most " + std::to_string(rule.max) + ")");
 }
 
 // Visits every value the pattern's keys reach from `at`, in document order.

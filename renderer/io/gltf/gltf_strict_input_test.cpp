@@ -1,9 +1,9 @@
 // Input an adversarial tester found loading silently or reported badly: each is refused with
 // one line naming the file, the JSON pointer and the problem, and echoes user text cut short.
+#include <gtest/gtest.h>
+
 #include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_test_util.h"
-
-#include <gtest/gtest.h>
 
 namespace kiln {
 namespace {
@@ -35,7 +35,8 @@ TEST(GltfStrictInput, AnEightMegabyteUriIsShownCutShort) {
   const std::string message = message_of(textured_triangle(uri));
   EXPECT_LT(message.size(), 600u);
   EXPECT_NE(message.find("/images/0/uri: 'aaaa"), std::string::npos) << message.substr(0, 300);
-  EXPECT_NE(message.find("...' (8000004 bytes) cannot name a file"), std::string::npos) << message.substr(0, 600);
+  EXPECT_NE(message.find("...' (8000004 bytes) cannot name a file"), std::string::npos)
+      << message.substr(0, 600);
 }
 
 TEST(GltfStrictInput, ALongBufferUriIsShownCutShort) {
@@ -47,18 +48,19 @@ TEST(GltfStrictInput, ALongBufferUriIsShownCutShort) {
   const std::string message = error_of([&] { load_gltf(path); });
   EXPECT_LT(message.size(), 600u);
   EXPECT_NE(message.find("/buffers/0/uri: 'bbbb"), std::string::npos) << message.substr(0, 300);
-  EXPECT_NE(message.find("...' (100004 bytes) cannot name a file"), std::string::npos) << message.substr(0, 600);
+  EXPECT_NE(message.find("...' (100004 bytes) cannot name a file"), std::string::npos)
+      << message.substr(0, 600);
 }
 
 // A missing image whose name is long but possible: the "cannot read" message cuts it too.
 TEST(GltfStrictInput, ALongMissingImageNameIsShownCutShort) {
   const std::string uri = std::string(250, 'c') + ".png";
   const std::string message = message_of(textured_triangle(uri));
-  EXPECT_NE(message.find("/images/0/uri: cannot read image file '" + std::string(200, 'c') + "...' (254 bytes)"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find("/images/0/uri: cannot read image file '" + std::string(200, 'c') + "...' (254 bytes)"),
+      std::string::npos)
       << message;
 }
-
 
 // ---- integer properties: read as JSON integers and range-checked before tinygltf narrows them --
 
@@ -80,8 +82,8 @@ TEST(GltfStrictInput, AChildIndexPastTwoToThe32IsOutOfRangeNotTruncated) {
           doc["scenes"][0]["nodes"].push_back(1);
         },
         "/nodes/1/children/0", "/nodes/" + std::to_string(index) + " does not exist (file has 2 nodes)");
-  expect_refused([](json& doc) { doc["nodes"][0]["mesh"] = uint64_t(18446744073709551615u); }, "/nodes/0/mesh",
-                 "/meshes/18446744073709551615 does not exist (file has 1 meshes)");
+  expect_refused([](json& doc) { doc["nodes"][0]["mesh"] = uint64_t(18446744073709551615u); },
+                 "/nodes/0/mesh", "/meshes/18446744073709551615 does not exist (file has 1 meshes)");
 }
 
 TEST(GltfStrictInput, AQuadricPrimitivePastTwoToThe32IsOutOfRange) {
@@ -89,7 +91,8 @@ TEST(GltfStrictInput, AQuadricPrimitivePastTwoToThe32IsOutOfRange) {
       [](json& doc) {
         doc["extensionsUsed"] = {"KILN_quadric"};
         doc["extensions"]["KILN_quadric"]["primitives"] = {{{"kind", "sphere"}, {"radius", 1.0}}};
-        doc["nodes"].push_back(json{{"extensions", {{"KILN_quadric", {{"primitive", int64_t(4294967296)}}}}}});
+        doc["nodes"].push_back(
+            json{{"extensions", {{"KILN_quadric", {{"primitive", int64_t(4294967296)}}}}}});
         doc["scenes"][0]["nodes"].push_back(1);
       },
       "/nodes/1/extensions/KILN_quadric/primitive",
@@ -101,16 +104,21 @@ TEST(GltfStrictInput, NegativeIndicesAreRefused) {
   expect_refused([](json& doc) { doc["nodes"][0]["mesh"] = -1; }, "/nodes/0/mesh", negative);
   expect_refused([](json& doc) { doc["meshes"][0]["primitives"][0]["material"] = -1; },
                  "/meshes/0/primitives/0/material", negative);
-  expect_refused([](json& doc) { doc["accessors"][0]["bufferView"] = -1; }, "/accessors/0/bufferView", negative);
+  expect_refused([](json& doc) { doc["accessors"][0]["bufferView"] = -1; }, "/accessors/0/bufferView",
+                 negative);
   expect_refused([](json& doc) { doc["scene"] = -1; }, "/scene", negative);
   expect_refused(
       [](json& doc) {
-        doc["materials"] = json::array({json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", -1}}}}}}});
+        doc["materials"] =
+            json::array({json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", -1}}}}}}});
         doc["meshes"][0]["primitives"][0]["material"] = 0;
       },
       "/materials/0/pbrMetallicRoughness/baseColorTexture/index", negative);
-  expect_refused([](json& doc) { doc["textures"] = json::array({json{{"source", -1}}}); }, "/textures/0/source",
-                 negative);
+  expect_refused(
+      [](json& doc) {
+        doc["textures"] = json::array({json{{"source", -1}}});
+      },
+      "/textures/0/source", negative);
 }
 
 TEST(GltfStrictInput, FractionalAndNonNumericIndicesAreRefused) {
@@ -138,7 +146,8 @@ TEST(GltfStrictInput, ByteOffsetsAndCountsFollowTheSchemaMinimums) {
 TEST(GltfStrictInput, EnumsPastIntAreRefusedNotTruncated) {
   // 2^32 + 5126 would read as FLOAT.
   expect_refused([](json& doc) { doc["accessors"][0]["componentType"] = int64_t(4294972422); },
-                 "/accessors/0/componentType", "componentType is 4294972422, larger than kiln reads (at most 2147483647)");
+                 "/accessors/0/componentType",
+                 "componentType is 4294972422, larger than kiln reads (at most 2147483647)");
 }
 
 TEST(GltfStrictInput, ExplicitZeroIndicesStillLoad) {

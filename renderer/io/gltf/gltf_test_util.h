@@ -4,18 +4,18 @@
 // of kiln_io_gltf.
 #pragma once
 
-#include "core/error.h"
-#include "support/gltf_builder.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "core/error.h"
+#include "support/gltf_builder.h"
 
 namespace kiln::gltf_test {
 

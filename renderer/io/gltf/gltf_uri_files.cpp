@@ -90,7 +90,8 @@ std::vector<std::string> checked_uri_files(const std::string& asset, const std::
     if (!rules.allow_outside && !inside_asset_folder(path, rules))
       throw input_error(
           asset, pointer,
-          quoted(decoded) + " refers to a file outside the asset's folder (allow with --allow-outside-files)");
+          quoted(decoded) +
+              " refers to a file outside the asset's folder (allow with --allow-outside-files)");
     if (input_file_missing(path)) continue;
     if (const std::string why = input_file_problem(path, max_gltf_file_bytes); !why.empty())
       throw input_error(asset, pointer, quoted(decoded) + " " + why);

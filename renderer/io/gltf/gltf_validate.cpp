@@ -361,8 +361,9 @@ void check_transform_array(const std::vector<double>& values, size_t expected, c
 void check_affine(const std::vector<double>& m, const std::string& file, const std::string& where) {
   if (m.size() != 16 || (m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0)) return;
   throw input_error(file, pointer_join(where, "matrix"),
-                    "the last row must be 0, 0, 0, 1 (a node matrix is affine), got " + format_number(m[3]) + ", " +
-                        format_number(m[7]) + ", " + format_number(m[11]) + ", " + format_number(m[15]));
+                    "the last row must be 0, 0, 0, 1 (a node matrix is affine), got " + format_number(m[3]) +
+                        ", " + format_number(m[7]) + ", " + format_number(m[11]) + ", " +
+                        format_number(m[15]));
 }
 
 void validate_nodes(const tinygltf::Model& model, const std::string& file) {
@@ -467,7 +468,8 @@ void validate_cameras(const tinygltf::Model& model, const std::string& file) {
         throw input_error(file, pointer_join(at, "aspectRatio"), "aspectRatio must be positive");
       // glTF's schema: exclusiveMinimum 0 (a perspective projection divides by znear).
       if (!(p.znear > 0.0))
-        throw input_error(file, pointer_join(at, "znear"), "znear must be greater than 0, got " + format_number(p.znear));
+        throw input_error(file, pointer_join(at, "znear"),
+                          "znear must be greater than 0, got " + format_number(p.znear));
       if (p.zfar != 0.0 && p.zfar <= p.znear)
         throw input_error(file, pointer_join(at, "zfar"), "zfar must be greater than znear");
     } else if (cam.type == "orthographic") {

@@ -8,9 +8,9 @@
 // so it agrees with MikkTSpace on smooth, consistently mapped surfaces and differs at UV seams.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace kiln {
 
