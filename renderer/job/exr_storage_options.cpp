@@ -21,6 +21,7 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
   if (aov == "direct") return &formats.direct;
   if (aov == "reflection") return &formats.reflection;
   if (aov == "refraction") return &formats.refraction;
+  if (aov == "lightgroups") return &formats.light_groups;
   if (aov == "Z" || aov == "P" || aov == "id") {
     if (format == "float") return nullptr;  // what it is anyway
     throw input_error("", "--channel-format",
@@ -34,7 +35,7 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
 }  // namespace
 
 const std::string& selectable_format_aovs() {
-  static const std::string list = "beauty, N, albedo, uv, direct, reflection, refraction";
+  static const std::string list = "beauty, N, albedo, uv, direct, reflection, refraction, lightgroups";
   return list;
 }
 
@@ -62,7 +63,7 @@ exr_settings resolve_exr_settings(const render_options& options) {
   if (options.exr_tiled || options.exr_tile_size > 0)
     settings.tile_size = options.exr_tile_size > 0 ? options.exr_tile_size : default_exr_tile;
   const sample_format all = options.full_float ? sample_format::float32 : sample_format::half;
-  settings.formats = {all, all, all, sample_format::float32, all, all, all};  // uv: float either way
+  settings.formats = {all, all, all, sample_format::float32, all, all, all, all};  // uv: float either way
   apply_channel_formats(options.channel_formats, settings.formats);
   const std::string& codec = settings.compression;
   if (settings.compression_level > 0) {

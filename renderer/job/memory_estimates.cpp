@@ -18,9 +18,9 @@ uint64_t accelerator_bytes(const scene& world) {
   return triangles * bytes_per_triangle + uint64_t(world.instances.size()) * bytes_per_instance;
 }
 
-uint64_t film_and_output_bytes(const pixel_rect& region, const aov_set& aovs) {
+uint64_t film_and_output_bytes(const pixel_rect& region, const aov_set& aovs, int light_groups) {
   // The writer converts every layer to the file's layout at once: at most the film's size again.
-  return 2 * film_bytes(region.width(), region.height(), aovs);
+  return 2 * film_bytes(region.width(), region.height(), aovs, light_groups);
 }
 
 }  // namespace kiln

@@ -16,6 +16,6 @@ uint64_t accelerator_bytes(const scene& world);
 
 // Bytes of the film over region with aovs, the renderer's per-thread accumulation aside, and the
 // EXR writer's copy of it in the file's layout.
-uint64_t film_and_output_bytes(const pixel_rect& region, const aov_set& aovs);
+uint64_t film_and_output_bytes(const pixel_rect& region, const aov_set& aovs, int light_groups = 0);
 
 }  // namespace kiln

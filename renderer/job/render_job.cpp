@@ -23,6 +23,7 @@
 #include "job/output_guard.h"
 #include "job/render_fingerprint.h"
 #include "render/frame_bands.h"
+#include "render/light_groups.h"
 #include "render/render_space.h"
 #include "render/view_range.h"
 #include "shade/texture_filter.h"
@@ -133,7 +134,7 @@ void add_default_light(scene& world, const view_camera& cam) {
   bounds3 b = world_bounds(world);
   double distance = b.empty() ? 1.0 : std::max(glm::length(b.center() - cam.eye), 1e-6);
   light headlight;
-  headlight.name = "kiln default headlight";
+  headlight.name = "headlight";  // its light group is lightgroup_headlight
   headlight.kind = light_kind::point;
   headlight.position = cam.eye;
   headlight.intensity = float(pi * distance * distance);
@@ -331,7 +332,8 @@ void charge_render_memory(const prepared_scene& prepared, const render_settings&
   if (region.width() <= 0) region = {0, 0, prepared.cam.width, prepared.cam.height};
   memory.charge(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
   memory.charge(accelerator_bytes(prepared.world), file, "the acceleration structures");
-  memory.charge(film_and_output_bytes(region, settings.aovs), file, "the film and AOV buffers");
+  memory.charge(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
+                "the film and AOV buffers");
 }
 
 render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop, job_stage& stage) {

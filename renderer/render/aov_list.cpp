@@ -25,6 +25,7 @@ constexpr aov_name aov_names[] = {
     {"direct", &aov_set::direct},
     {"reflection", &aov_set::reflection},
     {"refraction", &aov_set::refraction},
+    {"lightgroups", &aov_set::light_groups},
 };
 
 // Shorthand for both Cryptomatte layers.

@@ -32,6 +32,10 @@ struct aov_set {
   bool direct = false;
   bool reflection = false;
   bool refraction = false;
+  // lightgroup_<light>.RGB per punctual light (the headlight too), lightgroup_emission.RGB and
+  // lightgroup_environment.RGB: the beauty by the source its light came from, through every
+  // reflection and refraction, filtered like it; they sum to R G B (render/light_groups.h).
+  bool light_groups = false;
   // Cryptomatte ranks (id, coverage pairs) kept per pixel.
   int crypto_depth = default_cryptomatte_depth;
   // What Z holds.
@@ -39,12 +43,18 @@ struct aov_set {
 };
 
 // Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, crypto_object,
-// crypto_material, and cryptomatte for both, direct, reflection, refraction; case-sensitive, each at most
-// once, at least one). Returns empty and sets *bad to the offending item otherwise.
+// crypto_material, and cryptomatte for both, direct, reflection, refraction, lightgroups; case-sensitive,
+// each at most once, at least one). Returns empty and sets *bad to the offending item otherwise.
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad);
 
 // True when some output needs the light split.
 inline bool wants_light_split(const aov_set& a) { return a.direct || a.reflection || a.refraction; }
+
+// The colour parts filtered beside the beauty, per sample: the light split's three (direct,
+// reflection, refraction) when some output needs it, then one per light group when asked for.
+inline int beauty_part_count(const aov_set& a, int light_groups) {
+  return (wants_light_split(a) ? 3 : 0) + (a.light_groups ? light_groups : 0);
+}
 
 // The canonical comma-separated list, in channel order: "beauty,Z,N" for the default (the
 // cryptomatte shorthand is listed as crypto_object,crypto_material).

@@ -15,6 +15,7 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   ++counts.discarded_samples;
   s.rgba = vec4(0.0f);
   s.split = light_split{};
+  std::fill(s.groups.begin(), s.groups.end(), vec3(0.0f));
   s.layer_count = 0;
   s.finite = false;
   return s;
@@ -24,10 +25,10 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo, bool with_split) {
+                                  bool with_albedo, bool with_split, bool with_groups) {
   const ray start = generate_camera_ray(cam, px, py);
   return shade_camera_hit(ctx, cam, show_background, start, ctx.accel.intersect(start), cone, counts,
-                          with_albedo, with_split);
+                          with_albedo, with_split, with_groups);
 }
 
 namespace {
@@ -37,6 +38,7 @@ camera_sample missed(const shading_context& ctx, camera_sample s, const ray& r, 
                      bool with_split, ray_counts& counts) {
   if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
   if (with_split) s.split.direct = vec3(s.rgba);
+  if (!s.groups.empty()) s.groups[environment_group(ctx.world)] = vec3(s.rgba);
   if (!is_finite(s.rgba)) return discard(s, counts);
   return s;
 }
@@ -71,6 +73,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
   state.budget = &budget;
   state.camera = &path;
   state.split = with_split ? &s.split : nullptr;
+  state.groups = s.groups.empty() ? nullptr : s.groups.data();
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
@@ -87,8 +90,9 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
 
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
-                               ray_counts& counts, bool with_albedo, bool with_split) {
+                               ray_counts& counts, bool with_albedo, bool with_split, bool with_groups) {
   camera_sample s;
+  if (with_groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
   ray r = start;  // find_visible_hit moves the origin past culled back faces
   // Orthographic rays run along the view axis from the window plane: their distance is planar.
   if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));

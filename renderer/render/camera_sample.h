@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "render/film.h"
 #include "render/view_camera.h"
@@ -30,6 +31,8 @@ struct camera_sample {
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
   // With with_split: rgba's colour by first event.
   light_split split;
+  // With with_groups: rgba's colour by light group (render/light_groups.h); else empty.
+  std::vector<vec3> groups;
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
   int layer_count = 0;
@@ -39,16 +42,19 @@ struct camera_sample {
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
 // cone is the ray's footprint at the camera (for texture filtering along the whole path).
-// with_albedo evaluates the material once more for the albedo AOV; with_split fills split.
+// with_albedo evaluates the material once more for the albedo AOV; with_split fills split,
+// with_groups groups.
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo = false, bool with_split = false);
+                                  bool with_albedo = false, bool with_split = false,
+                                  bool with_groups = false);
 
 // trace_camera_sample for the camera ray `start` whose closest hit `first` is already known (the
 // camera-ray stage of render/camera_rays.h traced it).
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
-                               ray_counts& counts, bool with_albedo = false, bool with_split = false);
+                               ray_counts& counts, bool with_albedo = false, bool with_split = false,
+                               bool with_groups = false);
 
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/math.h"
@@ -47,13 +48,18 @@ struct film {
   std::vector<vec3> direct;
   std::vector<vec3> reflection;
   std::vector<vec3> refraction;
+  // Light groups (render/light_groups.h): their EXR layer names, and per pixel one premultiplied
+  // colour per group, filtered like the beauty; empty unless asked for.
+  std::vector<std::string> light_group_layers;
+  std::vector<vec3> light_groups;
   // Cryptomatte: aovs.crypto_depth ranks a pixel, coverage descending; empty unless asked for.
   std::vector<id_coverage> crypto_object;
   std::vector<id_coverage> crypto_material;
   aov_set aovs;  // what the file should hold
 
   film() = default;
-  film(int w, int h, const aov_set& a = aov_set{})
+  // group_layers: the light groups' layers (kept only when a.light_groups).
+  film(int w, int h, const aov_set& a = aov_set{}, const std::vector<std::string>& group_layers = {})
       : width(w), height(h), full_width(w), full_height(h), aovs(a) {
     const size_t n = size_t(w) * h;
     color.assign(n, vec4(0.0f));
@@ -66,19 +72,25 @@ struct film {
     if (a.direct) direct.assign(n, vec3(0.0f));
     if (a.reflection) reflection.assign(n, vec3(0.0f));
     if (a.refraction) refraction.assign(n, vec3(0.0f));
+    if (a.light_groups) {
+      light_group_layers = group_layers;
+      light_groups.assign(n * group_layers.size(), vec3(0.0f));
+    }
     if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
     if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
+  int light_group_count() const { return int(light_group_layers.size()); }
 };
 
-// The bytes a w × h film with aovs holds: its constructor's buffers, per pixel.
-inline uint64_t film_bytes(int w, int h, const aov_set& a) {
+// The bytes a w × h film with aovs (and light_groups groups) holds: its constructor's buffers.
+inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0) {
   uint64_t per_pixel = sizeof(vec4);
   per_pixel += a.depth ? sizeof(float) : 0;
   for (bool three : {a.normal, a.position, a.albedo, a.direct, a.reflection, a.refraction})
     per_pixel += three ? sizeof(vec3) : 0;
+  per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;
   per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
   for (bool crypto : {a.crypto_object, a.crypto_material})

@@ -9,11 +9,12 @@
 
 namespace kiln {
 
-pixel_splat::pixel_splat(int r, const bool (&layers)[matte_layer_count], bool with_split)
+pixel_splat::pixel_splat(int r, const bool (&layers)[matte_layer_count], int parts_per_sample)
     : reach(r),
       sum(size_t(2 * r + 1) * (2 * r + 1)),
       weight(sum.size()),
-      split(with_split ? 3 * sum.size() : 0) {
+      part_count(parts_per_sample),
+      parts(size_t(parts_per_sample) * sum.size()) {
   for (int l = 0; l < matte_layer_count; ++l)
     if (layers[l]) ids[l].resize(sum.size());
   clear();
@@ -22,13 +23,13 @@ pixel_splat::pixel_splat(int r, const bool (&layers)[matte_layer_count], bool wi
 void pixel_splat::clear() {
   std::fill(sum.begin(), sum.end(), dvec4(0.0));
   std::fill(weight.begin(), weight.end(), 0.0f);
-  std::fill(split.begin(), split.end(), dvec3(0.0));
+  std::fill(parts.begin(), parts.end(), dvec3(0.0));
   for (std::vector<id_weights>& layer : ids)
     for (id_weights& w : layer) w.clear();
 }
 
 void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& value,
-                      const sample_mattes* mattes, const vec3* sample_split) {
+                      const sample_mattes* mattes, const vec3* sample_parts) {
   constexpr int max_reach = 32;
   const int r = std::min(reach, max_reach);
   const int n = 2 * r + 1;
@@ -47,9 +48,9 @@ void pixel_splat::add(const reconstruction_filter& f, vec2 offset, const vec4& v
       if (w == 0.0f) continue;
       sum[size_t(j) * n + i] += dvec4(value) * double(w);
       weight[size_t(j) * n + i] += w;
-      if (!split.empty() && sample_split)
-        for (size_t c = 0; c < 3; ++c)
-          split[3 * (size_t(j) * n + i) + c] += dvec3(sample_split[c]) * double(w);
+      if (sample_parts)
+        for (size_t c = 0; c < size_t(part_count); ++c)
+          parts[size_t(part_count) * (size_t(j) * n + i) + c] += dvec3(sample_parts[c]) * double(w);
       if (!mattes) continue;
       for (int l = 0; l < matte_layer_count; ++l)
         if (!ids[l].empty())
@@ -88,14 +89,14 @@ size_t span_count(const std::vector<int>& starts) {
 
 splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& tiles,
                        const reconstruction_filter& f, const bool (&layers)[matte_layer_count],
-                       bool with_split)
+                       int part_count)
     : width_(width),
       height_(height),
       reach_(filter_reach(f)),
       window_((2 * reach_ + 1) * (2 * reach_ + 1)),
       column_start_(span_starts(tiles, width, true)),
       row_start_(span_starts(tiles, height, false)),
-      with_split_(with_split),
+      parts_(part_count),
       // A filter that reaches no neighbour (box 0.5, the default) leaves no pixel on a tile
       // border: no slots, and no frame-sized index to zero.
       slot_of_(reach_ > 0 ? size_t(width) * height : 0, -1) {
@@ -112,7 +113,7 @@ splat_film::splat_film(int width, int height, const std::vector<pixel_rect>& til
       }
   slot_sum_.assign(size_t(slots), dvec4(0.0));
   slot_weight_.assign(size_t(slots), 0.0f);
-  if (with_split) slot_split_.assign(3 * size_t(slots), dvec3(0.0));
+  slot_parts_.assign(size_t(parts_) * size_t(slots), dvec3(0.0));
   for (int l = 0; l < matte_layer_count; ++l)
     if (layers[l]) slot_ids_[l].resize(size_t(slots));
 }
@@ -139,7 +140,7 @@ void splat_film::begin_tile(tile_sums& t, const pixel_rect& tile) const {
   const size_t n = size_t(t.width) * t.height;
   t.sum.assign(n, dvec4(0.0));
   t.weight.assign(n, 0.0f);
-  t.split.assign(with_split_ ? 3 * n : 0, dvec3(0.0));
+  t.parts.assign(size_t(parts_) * n, dvec3(0.0));
   for (int l = 0; l < matte_layer_count; ++l) {
     t.ids[l].resize(layers_[l] ? n : 0);
     for (id_weights& w : t.ids[l]) w.clear();
@@ -163,8 +164,8 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
         const size_t q = t.index(px, py);
         t.sum[q] += splat.sum[from];
         t.weight[q] += splat.weight[from];
-        if (!t.split.empty())
-          for (size_t c = 0; c < 3; ++c) t.split[3 * q + c] += splat.split[3 * from + c];
+        const size_t k = size_t(parts_);
+        for (size_t c = 0; c < k; ++c) t.parts[k * q + c] += splat.parts[k * from + c];
         for (int l = 0; l < matte_layer_count; ++l)
           if (!t.ids[l].empty()) add_id_weights(t.ids[l][q], splat.ids[l][from]);
       } else {
@@ -172,8 +173,8 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
         const size_t to = size_t(slot) + size_t(reach_ - j) * n + size_t(reach_ - i);
         slot_sum_[to] = splat.sum[from];
         slot_weight_[to] = splat.weight[from];
-        if (!slot_split_.empty())
-          for (size_t c = 0; c < 3; ++c) slot_split_[3 * to + c] = splat.split[3 * from + c];
+        const size_t k = size_t(parts_);
+        for (size_t c = 0; c < k; ++c) slot_parts_[k * to + c] = splat.parts[k * from + c];
         for (int l = 0; l < matte_layer_count; ++l)
           if (!slot_ids_[l].empty()) slot_ids_[l][to] = splat.ids[l][from];
       }
@@ -181,16 +182,33 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
   }
 }
 
+namespace {}  // namespace
+
+void store_beauty_parts(film& out, size_t p, const vec3* parts) {
+  if (wants_light_split(out.aovs)) {
+    std::vector<vec3>* split[3] = {&out.direct, &out.reflection, &out.refraction};
+    for (size_t c = 0; c < 3; ++c)
+      if (!split[c]->empty()) (*split[c])[p] = parts[c];
+    parts += 3;
+  }
+  const size_t groups = size_t(out.light_group_count());
+  if (!out.light_groups.empty()) std::copy(parts, parts + groups, out.light_groups.begin() + p * groups);
+}
+
 namespace {
 
 // One pixel's folded sums, divided by its weight into the film.
-void store_pixel(film& out, size_t p, const dvec4& sum, float weight, const dvec3* split,
+void store_pixel(film& out, size_t p, const dvec4& sum, float weight, const dvec3* parts, int part_count,
                  const id_weights* const (&ids)[matte_layer_count]) {
   out.color[p] = weight > 0.0f ? vec4(sum / double(weight)) : vec4(0.0f);
-  if (split) {
-    std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
-    for (size_t c = 0; c < 3; ++c)
-      if (!parts[c]->empty()) (*parts[c])[p] = weight > 0.0f ? vec3(split[c] / double(weight)) : vec3(0.0f);
+  if (part_count > 0) {
+    constexpr int stack_parts = 64;
+    std::vector<vec3> heap(part_count > stack_parts ? size_t(part_count) : 0);
+    vec3 stack[stack_parts];
+    vec3* means = heap.empty() ? stack : heap.data();
+    for (int c = 0; c < part_count; ++c)
+      means[c] = weight > 0.0f ? vec3(parts[c] / double(weight)) : vec3(0.0f);
+    store_beauty_parts(out, p, means);
   }
   std::vector<id_coverage>* ranks[matte_layer_count] = {&out.crypto_object, &out.crypto_material};
   const size_t depth = size_t(out.aovs.crypto_depth);
@@ -209,7 +227,7 @@ void splat_film::finish_tile(const tile_sums& t, film& out) const {
       const id_weights* ids[matte_layer_count] = {};
       for (int l = 0; l < matte_layer_count; ++l)
         if (!t.ids[l].empty()) ids[l] = &t.ids[l][q];
-      store_pixel(out, p, t.sum[q], t.weight[q], t.split.empty() ? nullptr : &t.split[3 * q], ids);
+      store_pixel(out, p, t.sum[q], t.weight[q], t.parts.data() + size_t(parts_) * q, parts_, ids);
     }
 }
 
@@ -218,19 +236,21 @@ void splat_film::resolve(film& out) const {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, slot_of_.size(), 4096),
                     [&](const tbb::blocked_range<size_t>& rows) {
                       id_weights ids[matte_layer_count];
+                      std::vector<dvec3> part_sums(static_cast<size_t>(parts_));
                       for (size_t p = rows.begin(); p < rows.end(); ++p) {
                         if (slot_of_[p] < 0) continue;
                         const size_t first = size_t(slot_of_[p]), end = first + size_t(window_);
                         dvec4 sum(0.0);
                         float weight = 0.0f;
-                        dvec3 split[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
                         for (size_t k = first; k < end; ++k) {
                           sum += slot_sum_[k];
                           weight += slot_weight_[k];
                         }
-                        if (with_split_)
-                          for (size_t c = 0; c < 3; ++c)
-                            for (size_t k = first; k < end; ++k) split[c] += slot_split_[3 * k + c];
+                        const size_t parts = part_sums.size();
+                        for (size_t c = 0; c < parts; ++c) {
+                          part_sums[c] = dvec3(0.0);
+                          for (size_t k = first; k < end; ++k) part_sums[c] += slot_parts_[parts * k + c];
+                        }
                         const id_weights* id_sums[matte_layer_count] = {};
                         for (int l = 0; l < matte_layer_count; ++l) {
                           if (slot_ids_[l].empty()) continue;
@@ -238,7 +258,7 @@ void splat_film::resolve(film& out) const {
                           for (size_t k = first; k < end; ++k) add_id_weights(ids[l], slot_ids_[l][k]);
                           id_sums[l] = &ids[l];
                         }
-                        store_pixel(out, p, sum, weight, with_split_ ? split : nullptr, id_sums);
+                        store_pixel(out, p, sum, weight, part_sums.data(), parts_, id_sums);
                       }
                     });
 }

@@ -23,18 +23,19 @@ struct pixel_splat {
   std::vector<float> weight;  // Σ w
   // Per Cryptomatte layer asked for, Σ w of the samples that hit each id (else empty).
   std::vector<id_weights> ids[matte_layer_count];
-  // With the light split: Σ w·(direct, reflection, refraction), three per window pixel (else empty).
-  std::vector<dvec3> split;
+  // The beauty's parts (render/aov_list.h's beauty_part_count: the light split, then the light
+  // groups): Σ w·part, `part_count` per window pixel (else empty).
+  int part_count = 0;
+  std::vector<dvec3> parts;
 
-  explicit pixel_splat(int r = 0, const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
+  explicit pixel_splat(int r = 0, const bool (&layers)[matte_layer_count] = {}, int part_count = 0);
   void clear();
   // Adds one sample taken at offset (each coordinate in [0, 1)) inside the source pixel; mattes
   // holds the ids it covers in each layer with their coverage, or is null for a sample that hit
   // nothing (it only adds weight): an id's weight grows by w × its coverage.
-  // sample_split is its colour by first event, (direct, reflection, refraction), used when the
-  // splat keeps the split.
+  // sample_parts holds its part_count parts of the colour, used when the splat keeps parts.
   void add(const reconstruction_filter& f, vec2 offset, const vec4& value,
-           const sample_mattes* mattes = nullptr, const vec3* sample_split = nullptr);
+           const sample_mattes* mattes = nullptr, const vec3* sample_parts = nullptr);
 };
 
 // The sums of the pixels one tile folds itself (those whose whole reach lies in the tile), laid
@@ -47,17 +48,23 @@ class tile_sums {
   std::vector<dvec4> sum;
   std::vector<float> weight;
   std::vector<id_weights> ids[matte_layer_count];
-  std::vector<dvec3> split;
+  std::vector<dvec3> parts;
   size_t index(int x, int y) const { return size_t(y - y0) * width + (x - x0); }
 };
+
+// Writes a pixel's resolved beauty parts (beauty_part_count of them, in its order) into the film's
+// light split and light group buffers that exist.
+void store_beauty_parts(film& out, size_t p, const vec3* parts);
 
 class splat_film {
  public:
   // tiles: the render's tiles in film coordinates (render/tile_grid.h), a grid of columns and
   // rows covering the film; a pixel folds in its tile when its whole reach lies in that tile.
-  // layers: the Cryptomatte layers whose id weights are folded beside the colour.
+  // layers: the Cryptomatte layers whose id weights are folded beside the colour; part_count: the
+  // beauty's parts folded beside it (the light split's three, then the light groups: see
+  // store_pixel in the source for where each goes).
   splat_film(int width, int height, const std::vector<pixel_rect>& tiles, const reconstruction_filter& f,
-             const bool (&layers)[matte_layer_count] = {}, bool with_split = false);
+             const bool (&layers)[matte_layer_count] = {}, int part_count = 0);
 
   int reach() const { return reach_; }
 
@@ -83,7 +90,7 @@ class splat_film {
   // row's tile.
   std::vector<int> column_start_, row_start_;
   bool layers_[matte_layer_count] = {};
-  bool with_split_ = false;
+  int parts_ = 0;
   // Sums in double: a few very bright samples (near the float maximum) must not overflow a pixel
   // to +inf although each sample and their mean are finite.
   std::vector<int64_t> slot_of_;  // first slot of a tile-border pixel; -1 elsewhere (empty: none)
@@ -92,8 +99,8 @@ class splat_film {
   std::vector<float> slot_weight_;
   // Cryptomatte layers, laid out like slot_sum_; empty for a layer not asked for.
   std::vector<id_weights> slot_ids_[matte_layer_count];
-  // The light split, three per slot; empty when not asked for.
-  std::vector<dvec3> slot_split_;
+  // The beauty's parts, parts_ per slot; empty when none.
+  std::vector<dvec3> slot_parts_;
 };
 
 }  // namespace kiln

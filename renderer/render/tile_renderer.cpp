@@ -20,6 +20,7 @@
 #include "render/camera_rays.h"
 #include "render/camera_sample.h"
 #include "render/flush_denormals.h"
+#include "render/light_groups.h"
 #include "render/sample_pattern.h"
 #include "render/splat_film.h"
 #include "render/tile_grid.h"
@@ -43,7 +44,7 @@ pixel_rect render_region(const pixel_rect& crop, int reach, int width, int heigh
 
 // The pixels of `from` that lie in frame region `to` (inside from's region).
 film crop_film(const film& from, const pixel_rect& to) {
-  film out(to.width(), to.height(), from.aovs);
+  film out(to.width(), to.height(), from.aovs, from.light_group_layers);
   out.x0 = to.x0;
   out.y0 = to.y0;
   out.full_width = from.full_width;
@@ -64,6 +65,12 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.direct, out.direct);
   copy(from.reflection, out.reflection);
   copy(from.refraction, out.refraction);
+  const size_t groups = size_t(from.light_group_count());
+  if (!from.light_groups.empty())
+    for (int y = to.y0; y < to.y1; ++y)
+      for (int x = to.x0; x < to.x1; ++x)
+        std::copy_n(from.light_groups.begin() + from.index(x - from.x0, y - from.y0) * groups, groups,
+                    out.light_groups.begin() + out.index(x - to.x0, y - to.y0) * groups);
   const size_t depth = size_t(from.aovs.crypto_depth);
   auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
     if (src.empty()) return;
@@ -99,12 +106,22 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
   return out;
 }
 
+// The beauty's parts of one sample (the light split, then the light groups), as the film keeps them.
+void gather_beauty_parts(const aov_set& aovs, const vec3 (&split)[3], const std::vector<vec3>& groups,
+                         std::vector<vec3>& parts) {
+  parts.clear();
+  if (wants_light_split(aovs)) parts.insert(parts.end(), split, split + 3);
+  if (aovs.light_groups) parts.insert(parts.end(), groups.begin(), groups.end());
+}
+
+bool wants_beauty_parts(const aov_set& aovs) { return wants_light_split(aovs) || aovs.light_groups; }
+
 // Shades every stratified sample of one pixel from its camera ray and closest hit (made and traced
 // by the camera-ray stage, rays) and splats it through the filter. The nearest sample decides depth,
 // normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, camera_ray_batch& rays, pixel_splat& splat, splat_film& splats, tile_sums& sums,
-                  film& out, ray_counts& counts) {
+                  std::vector<vec3>& parts, film& out, ray_counts& counts) {
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
@@ -115,17 +132,18 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     const camera_ray_source& source = rays.sources[k];
     camera_sample cs =
         shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
-                         settings.aovs.albedo, wants_light_split(settings.aovs));
+                         settings.aovs.albedo, wants_light_split(settings.aovs), settings.aovs.light_groups);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
     const vec3 split[3] = {cs.split.direct, cs.split.reflection, cs.split.refraction};
+    gather_beauty_parts(settings.aovs, split, cs.groups, parts);
     if (cs.finite) {
       const bool hit = cs.layer_count > 0;
       sample_mattes mattes;
       if (hit && splat_wants_mattes)
         mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
-      splat.add(settings.filter, source.offset, cs.rgba, hit ? &mattes : nullptr, split);
+      splat.add(settings.filter, source.offset, cs.rgba, hit ? &mattes : nullptr, parts.data());
     }
     if (cs.depth < nearest.depth) nearest = cs;
   }
@@ -152,14 +170,16 @@ void count_row_done(const render_settings& settings, const pixel_rect& tl) {
 // Stratified samples, splatted through the reconstruction filter.
 void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& sums, ray_counts& counts) {
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
-                    wants_light_split(job.settings.aovs));
+                    beauty_part_count(job.settings.aovs, light_group_count(job.ctx.world)));
+  std::vector<vec3> parts;  // one sample's beauty parts, reused
   job.splats.begin_tile(sums,
                         {tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0});
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
-      render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, job.out, counts);
+      render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, parts, job.out,
+                   counts);
     count_row_done(job.settings, tl);
   }
   job.splats.finish_tile(sums, job.out);
@@ -182,27 +202,28 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
   }
 }
 
-// The light split of an adaptive pixel: the weighted mean of its final squares' corners.
-void store_adaptive_split(film& out, const adaptive_pixel& p, size_t i) {
-  std::vector<vec3>* parts[3] = {&out.direct, &out.reflection, &out.refraction};
-  for (size_t c = 0; c < 3; ++c) {
-    if (parts[c]->empty()) continue;
-    vec3 mean(0.0f);
-    for (const weighted_corner& corner : p.corners) mean += corner.weight * corner.split[c];
-    (*parts[c])[i] = mean;
+// The light split and light groups of an adaptive pixel: the weighted mean of its final squares'
+// corners.
+void store_adaptive_parts(film& out, const adaptive_pixel& p, size_t i) {
+  std::vector<vec3> mean, parts;
+  for (const weighted_corner& corner : p.corners) {
+    gather_beauty_parts(out.aovs, corner.split, corner.groups, parts);
+    mean.resize(parts.size(), vec3(0.0f));
+    for (size_t c = 0; c < parts.size(); ++c) mean[c] += corner.weight * parts[c];
   }
+  if (!mean.empty()) store_beauty_parts(out, i, mean.data());
 }
 
 // Whitted's adaptive refinement, starting from the pixel corners traced beforehand.
 void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_scratch& scratch,
                           ray_counts& counts) {
   adaptive_options options = job.settings.adaptive;
-  options.collect_corners = matte_layers(job.settings.aovs).any() || wants_light_split(job.settings.aovs);
+  options.collect_corners = matte_layers(job.settings.aovs).any() || wants_beauty_parts(job.settings.aovs);
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
     return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
                                sample_cone(job.cam, 1), counts, job.settings.aovs.albedo,
-                               wants_light_split(job.settings.aovs));
+                               wants_light_split(job.settings.aovs), job.settings.aovs.light_groups);
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
@@ -214,7 +235,7 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
       job.out.color[i] = p.rgba;
       store_nearest_sample(p.nearest, job.out, i);
       if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
-      if (wants_light_split(job.settings.aovs)) store_adaptive_split(job.out, p, i);
+      if (wants_beauty_parts(job.settings.aovs)) store_adaptive_parts(job.out, p, i);
     }
     count_row_done(job.settings, tl);
   }
@@ -248,18 +269,20 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   // The film, the splat accumulator and the texture pyramids are set up side by side on the
   // render's threads: zeroing the buffers and building the pyramids come before the first pixel,
   // and done on one thread they held two-thread renders well under twice the speed of one.
+  const std::vector<std::string> group_layers =
+      settings.aovs.light_groups ? light_group_layers(world) : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
   std::unique_ptr<texture_filter> textures;
   arena.execute([&] {
-    tbb::parallel_invoke([&] { out = film(region.width(), region.height(), settings.aovs); },
+    tbb::parallel_invoke([&] { out = film(region.width(), region.height(), settings.aovs, group_layers); },
                          [&] {
                            // The splat film reads the same tiles, in its own coordinates.
                            splats = std::make_unique<splat_film>(
                                adaptive ? 0 : region.width(), adaptive ? 0 : region.height(),
                                adaptive ? std::vector<pixel_rect>{} : shifted(tiles, -region.x0, -region.y0),
                                settings.filter, matte_layers(settings.aovs).on,
-                               wants_light_split(settings.aovs));
+                               beauty_part_count(settings.aovs, light_group_count(world)));
                          },
                          [&] {
                            if (scene_needs_texture_filter(world))
@@ -295,9 +318,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
         const scoped_flush_denormals ftz;
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
-          corners[(y - region.y0) * row + (x - region.x0)] =
-              trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts,
-                                  settings.aovs.albedo, wants_light_split(settings.aovs));
+          corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
+              ctx, cam, settings.show_background, x, y, pixel, counts, settings.aovs.albedo,
+              wants_light_split(settings.aovs), settings.aovs.light_groups);
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

@@ -45,10 +45,18 @@ vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts
   return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
 }
 
+// Direct light from every punctual light; with light groups, each light's share is filed in its
+// group (times the ray's tint).
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                  const vec3& to_viewer, const ray_cone& cone, ray_counts& counts) {
+                  const vec3& to_viewer, const path_state& s, ray_counts& counts) {
+  const ray_cone& cone = s.cone;
   vec3 total(0.0f);
-  for (const light& l : ctx.world.lights) {
+  auto add = [&](size_t i, const vec3& light) {
+    total += light;
+    if (s.groups) s.groups[i] += s.tint * light;
+  };
+  for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
+    const light& l = ctx.world.lights[i];
     light_sample ls = sample_light(l, sp.position);
     if (ls.irradiance == vec3(0.0f)) continue;
     // A light behind the surface cannot reach it, whatever the shading normal says. The surface is
@@ -65,7 +73,7 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
     if (f == vec3(0.0f)) continue;
 
     if (!l.casts_shadows) {
-      total += f * ls.irradiance * cos_theta;
+      add(i, f * ls.irradiance * cos_theta);
       continue;
     }
     ray shadow;
@@ -80,7 +88,7 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
                       : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
     vec3 visibility = shadow_visibility(ctx, shadow, counts);
     if (visibility == vec3(0.0f)) continue;
-    total += f * ls.irradiance * cos_theta * visibility;
+    add(i, f * ls.irradiance * cos_theta * visibility);
   }
   return total;
 }
@@ -167,6 +175,11 @@ void add_direct(const path_state& s, const vec3& radiance) {
   if (s.split) s.split->direct += s.share * radiance;
 }
 
+// Files light of a source group (emission, environment) that ray s adds.
+void add_to_group(const path_state& s, size_t group, const vec3& radiance) {
+  if (s.groups) s.groups[group] += s.tint * radiance;
+}
+
 // The state of a secondary ray spawned by s: one bounce deeper, off the camera's path.
 path_state secondary(const path_state& s, float throughput, const medium_stack& media, const ray_cone& cone) {
   path_state next = s;
@@ -221,7 +234,8 @@ vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const 
                             ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
                                              glm::dot(direction, sp.geometric_normal))
                             : s.cone;
-  const path_state next = refracted_state(s, next_throughput, crossing.beyond, bent, weight);
+  path_state next = refracted_state(s, next_throughput, crossing.beyond, bent, weight);
+  next.tint = s.tint * weight;
   const vec3 refraction = weight * trace_radiance(ctx, refracted, next, counts);
   if (s.split) s.split->refraction += s.share * refraction;
   return refraction;
@@ -263,7 +277,8 @@ vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec
   reflected.kind = ray_kind::reflection;
   ++counts.reflection;
   // A reflected ray stays in the medium it came from.
-  const path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone));
+  path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone));
+  next.tint = s.tint * reflect_weight;
   const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, next, counts);
   if (s.split) s.split->reflection += s.share * reflection;
   return reflection;
@@ -275,11 +290,13 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) {
     add_direct(s, mp.base_color);
+    add_to_group(s, emission_group(ctx.world), mp.base_color);
     return mp.base_color;
   }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
-  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, s.cone, counts);
+  add_to_group(s, emission_group(ctx.world), mp.emission);
+  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, s, counts);
   add_direct(s, radiance);
   if (s.depth >= ctx.options.max_depth) return radiance;
 
@@ -308,6 +325,7 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   path_state next = s;
   next.throughput = s.throughput * (1.0f - alpha);
   next.share = s.share * (1.0f - alpha);
+  next.tint = s.tint * (1.0f - alpha);
   if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||
       !spend_ray(s.budget)) {
     // Not traced: the part behind stays covered by this surface, as opaque black, so the mattes
@@ -355,6 +373,7 @@ vec3 trace_in_volume(const shading_context& ctx, const ray& r, const std::option
   vec3 arriving(0.0f);
   if (!h) {
     arriving = escape(ctx, r, at_hit, mean_component(absorption));
+    add_to_group(at_hit, environment_group(ctx.world), absorption * arriving);
   } else {
     // The camera's path goes on through the volume, its share attenuated like its radiance; the
     // split files what arrives once, below.
@@ -362,6 +381,7 @@ vec3 trace_in_volume(const shading_context& ctx, const ray& r, const std::option
     next.throughput = at_hit.throughput * max_component(absorption);
     next.share = at_hit.share * mean_component(absorption);
     next.split = nullptr;
+    next.tint = at_hit.tint * absorption;
     arriving = shade_hit(ctx, r, *h, next, counts);
   }
   // Camera rays start outside every volume; should one not, its light counts as direct.
@@ -411,6 +431,7 @@ vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_poin
     path_state covered = s;
     covered.throughput = s.throughput * alpha;
     covered.share = s.share * alpha;
+    covered.tint = s.tint * alpha;
     radiance += alpha * shade_covered_on_path(ctx, r, sp, mp, covered, counts);
   }
   radiance += trace_behind(ctx, r, sp, alpha, s, counts);
@@ -430,6 +451,7 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, const path_stat
   if (h) return shade_hit(ctx, r, *h, at_hit, counts);
   const vec3 background = escape(ctx, r, s);
   add_direct(s, background);
+  add_to_group(s, environment_group(ctx.world), background);
   return background;
 }
 

@@ -136,7 +136,17 @@ struct path_state {
   bool record_layers = true;  // false inside a refraction: what glass shows is the glass's matte
   // Where this ray's radiance is filed by first event (null: not kept, or the caller files it).
   light_split* split = nullptr;
+  // The camera sample's light groups (null: not kept): one colour per scene light, then emission,
+  // then the environment (render/light_groups.h). Every ray of the tree files the light it adds,
+  // times tint: the colour its radiance is weighted by in the sample (mirror and refraction
+  // weights, BLEND alpha and absorption along the way).
+  vec3* groups = nullptr;
+  vec3 tint{1.0f};
 };
+
+// Where path_state::groups files emission and the environment, after the lights.
+inline size_t emission_group(const scene& s) { return s.lights.size(); }
+inline size_t environment_group(const scene& s) { return s.lights.size() + 1; }
 
 // A hit made ready to shade: the material evaluated there, and the shading normal as shading uses
 // it (the normal map applied, then bent toward the viewer where it faces away: see

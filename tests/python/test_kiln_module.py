@@ -56,9 +56,9 @@ def assert_arrays_match_exr(result, path):
 
 OPTIONS = {"width": 40, "height": 30, "spp": 2, "threads": 2,
            "aovs": ["beauty", "Z", "N", "P", "albedo", "uv", "id", "direct", "reflection", "refraction",
-                    "cryptomatte"]}
+                    "cryptomatte", "lightgroups"]}
 ARGUMENTS = ["--width", "40", "--height", "30", "--spp", "2", "--threads", "2", "--aovs",
-             "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte"]
+             "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,lightgroups"]
 
 
 @pytest.mark.parametrize("extra,arguments", [({}, []), ({"float": True}, ["--float"]),
@@ -77,6 +77,17 @@ def test_arrays_equal_the_cli_exr_bit_for_bit(tmp_path, extra, arguments):
     assert result.metadata["kiln/settings_hash"] == oiio.ImageInput.open(out).spec().get_string_attribute(
         "kiln/settings_hash")
     assert result.stats["camera_rays"] == 40 * 30 * 2
+
+
+def test_light_groups_are_arrays_that_sum_to_the_beauty():
+    result = kiln.render(CORNELL, width=32, height=24, spp=2, float=True, aovs="beauty,lightgroups")
+    groups = sorted(name for name in result.aovs if name.startswith("lightgroup_"))
+    assert groups == ["lightgroup_ceiling_light", "lightgroup_emission", "lightgroup_environment",
+                      "lightgroup_fill_light"]
+    total = sum(result.aovs[name] for name in groups)
+    beauty = result.aovs["beauty"][:, :, :3]
+    assert beauty.max() > 0.1
+    assert np.abs(total - beauty).max() <= 1e-5 * max(1.0, beauty.max())
 
 
 def test_output_writes_the_exr_the_cli_writes(tmp_path):

@@ -157,6 +157,20 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
                             }});
     out.push_back(std::move(l));
   }
+  // Light groups: colour like R G B, one layer (and with --multipart one part) per group.
+  if (a.light_groups) {
+    const size_t groups = size_t(f.light_group_count());
+    for (size_t g = 0; g < groups; ++g) {
+      const std::string& name = f.light_group_layers[g];
+      layer l{name, type_of(formats.light_groups), false, {}};
+      const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
+      for (int c = 0; c < 3; ++c)
+        l.channels.push_back({name + rgb[c], [&f, groups, g, c, limit](size_t i) {
+                                return std::clamp(f.light_groups[i * groups + g][c], -limit, limit);
+                              }});
+      out.push_back(std::move(l));
+    }
+  }
   if (a.crypto_object)
     out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
   if (a.crypto_material)
