@@ -133,6 +133,7 @@ std::vector<int> chosen_animations(const tinygltf::Model& model, const std::stri
   std::vector<int> all;
   for (int a = 0; a < count; ++a) all.push_back(a);
   if (which.empty() || which == "all") return all;
+  if (which == "none") return {};
   if (count == 0) throw input_error(file, "--animation", "the file has no animations");
   const bool numeric = std::all_of(which.begin(), which.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (numeric && which.size() < 10) {
@@ -152,7 +153,7 @@ std::vector<int> chosen_animations(const tinygltf::Model& model, const std::stri
     if (!name.empty()) known += " " + quoted(name);
   }
   throw input_error(file, "--animation",
-                    "no animation " + quoted(which) + " (animations: " + known + "; or all)");
+                    "no animation " + quoted(which) + " (animations: " + known + "; or all, or none)");
 }
 
 size_t morph_target_count(const tinygltf::Model& model, int mesh, const std::string& file) {

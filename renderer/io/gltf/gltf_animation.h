@@ -42,7 +42,9 @@ struct animation_pose {
   bool empty() const { return nodes.empty(); }
 };
 
-// The animations `which` names: "" or "all" every animation, else a name or an index. Throws
+// The animations `which` names: "" or "all" every animation, "none" none (the rest pose: skins in
+// their bind pose by the nodes' own transforms, morph targets by the default weights), else a name
+// or an index. Throws
 // kiln::error (input, location --animation) naming the known animations when none matches.
 std::vector<int> chosen_animations(const tinygltf::Model& model, const std::string& which,
                                    const std::string& file);

@@ -875,7 +875,8 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
   if (!std::isfinite(options.time))
     throw input_error(path, "--time", "the time must be a finite number of seconds");
   // A still asset (no animation) skips this: its scene is what it always was.
-  if (!model.animations.empty() || !(options.animation.empty() || options.animation == "all")) {
+  if (!model.animations.empty() ||
+      !(options.animation.empty() || options.animation == "all" || options.animation == "none")) {
     ctx.pose =
         evaluate_animations(model, chosen_animations(model, options.animation, path), options.time, path);
     for (const std::string& warning : ctx.pose.warnings) warn_once(ctx, warning);

@@ -45,7 +45,7 @@ struct gltf_load_options {
   // The pose (glTF 2.0 §3.11): the chosen animations sampled at `time` seconds (finite; before the
   // first key or after the last the end values hold). `animation`: "" or "all" plays every
   // animation of the file together, else one animation by name or index. A file without
-  // animations ignores the time; morph weights and skins pose the meshes either way.
+  // animations ignores the time; "none" is the rest pose; morph weights and skins pose the meshes either way.
   double time = 0.0;
   std::string animation;
 };
