@@ -242,8 +242,12 @@ posed_attributes pose_primitive(build_context& ctx, const tinygltf::Primitive& p
       if (into == nullptr || into->empty()) continue;  // other targets, or deltas of an attribute it lacks
       const std::string at = pointer_join(target_at, name);
       const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(accessor)];
-      check_vertex_accessor(ctx, accessor, TINYGLTF_TYPE_VEC3, n, at, "VEC3 FLOAT or normalized integers",
-                            is_float_or_normalized_integer(acc));
+      // KHR_mesh_quantization also allows 8- and 16-bit deltas that are not normalized.
+      const bool quantized_ok = ctx.quantized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                                  acc.componentType == TINYGLTF_COMPONENT_TYPE_SHORT);
+      check_vertex_accessor(ctx, accessor, TINYGLTF_TYPE_VEC3, n, at,
+                            ctx.quantized ? "VEC3 FLOAT, BYTE or SHORT" : "VEC3 FLOAT or normalized integers",
+                            is_float_or_normalized_integer(acc) || quantized_ok);
       const std::vector<float> delta = read_finite(ctx, accessor, at, "morph target " + name);
       for (size_t i = 0; i < n; ++i)
         (*into)[i] += w * dvec3(delta[3 * i], delta[3 * i + 1], delta[3 * i + 2]);
@@ -581,13 +585,18 @@ const std::vector<dmat4>& skin_joint_matrices(build_context& ctx, int skin_index
   return ctx.skin_joints.emplace(skin_index, std::move(joints)).first->second;
 }
 
-// How the node deforms its mesh, or nothing when it is placed rigidly (no skin, all morph
-// weights zero): then its primitives are the shared meshes every other node uses.
+// How the node deforms its mesh, or nothing when it is placed rigidly (no skin, no weights
+// channel, all morph weights zero): then its primitives are the shared meshes every other node
+// uses.
 std::optional<deformation> node_deformation(build_context& ctx, int node_index) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
   deformation d;
   d.weights = morph_weights(ctx, node_index);
-  if (std::all_of(d.weights.begin(), d.weights.end(), [](double w) { return w == 0.0; })) d.weights.clear();
+  // Weights a channel drives keep their posed mesh even when all are zero at this time, so which
+  // meshes a scene has does not depend on the time (frames of one shot share the structure).
+  const bool animated = !ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights;
+  if (!animated && std::all_of(d.weights.begin(), d.weights.end(), [](double w) { return w == 0.0; }))
+    d.weights.clear();
   if (node.skin >= 0) {
     d.skin = node.skin;
     d.joints = &skin_joint_matrices(ctx, node.skin);

@@ -228,15 +228,21 @@ TEST(GltfMorph, NodeWeightsOverrideTheMeshsAndSparseDeltasApply) {
   expect_position(s.meshes.at(0), 2, 2.0, 1.0, 0.0);  // the sparse delta's only vertex
 }
 
-TEST(GltfMorph, ZeroWeightsShareTheRestMeshAndAWeightsChannelAnimates) {
+TEST(GltfMorph, ZeroDefaultWeightsShareTheRestMeshAndAWeightsChannelAnimates) {
   temp_folder dir;
   gltf_builder b = morph_triangle(nullptr, nullptr);
   b.add_node({{"mesh", 0}, {"translation", {5, 0, 0}}});
   // Node 0's weights: (0, 0) at t = 0 to (1, 0.5) at t = 2; node 1 keeps the zero defaults.
   add_animation(b, 0, "weights", {0, 2}, {0, 0, 1, 0.5f}, "SCALAR", 1);
+  // A still without the animation: both nodes place the one rest mesh.
+  const scene still = load_at(b, dir, 0.0, "none");
+  ASSERT_EQ(still.meshes.size(), 1u);
+  EXPECT_EQ(still.instances.size(), 2u);
+  // At t = 0 the channel's weights are zero, yet node 0 keeps its own mesh (the scene's structure
+  // does not change with time), in the rest shape.
   const scene rest = load_at(b, dir, 0.0);
-  ASSERT_EQ(rest.meshes.size(), 1u);  // both nodes place the one rest mesh
-  EXPECT_EQ(rest.instances.size(), 2u);
+  ASSERT_EQ(rest.meshes.size(), 2u);
+  expect_position(rest.meshes[rest.instances.at(0).shape], 0, 0.0, 0.0, 0.0);
   const scene s = load_at(b, dir, 1.0);  // weights (0.5, 0.25)
   ASSERT_EQ(s.meshes.size(), 2u);        // node 0's posed mesh and the shared rest mesh
   expect_position(s.meshes[s.instances.at(0).shape], 0, 1.0, 0.0, 0.5);
@@ -309,6 +315,35 @@ TEST(GltfSkin, TwoBoneArmAtAKnownTimeMatchesTheHandComputedPose) {
     EXPECT_NEAR(m.normals[2].x, c, tol);  // C's normal (1, 0, 0) turns with joint 1
     EXPECT_NEAR(m.normals[2].y, sn, tol);
   }
+}
+
+// One joint scaled 2x along x (no inverse bind matrices: identity): positions stretch, and the
+// normal (1, 1, 0)/√2 goes by the inverse transpose, diag(1/2, 1, 1), to (1, 2, 0)/√5, not
+// the stretched (2, 1, 0)/√5 of the matrix itself.
+TEST(GltfSkin, NormalsFollowTheInverseTransposeOfTheJointMatrix) {
+  temp_folder dir;
+  gltf_builder b;
+  const int pos = b.add_positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const float h = std::sqrt(0.5f);
+  const int nrm = b.add_data(std::vector<float>{h, h, 0, h, h, 0, h, h, 0}, k_float, "VEC3", 3);
+  const int joints = b.add_data(std::vector<uint8_t>(12, 0), k_ubyte, "VEC4", 4);
+  const int weights = b.add_data(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, k_float, "VEC4", 4);
+  const int idx = b.add_data(std::vector<uint16_t>{0, 1, 2}, k_ushort, "SCALAR", 1);
+  json primitive = {{"indices", idx}};
+  primitive["attributes"] = {
+      {"POSITION", pos}, {"NORMAL", nrm}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}};
+  b.add_mesh(primitive);
+  b.add_node({{"mesh", 0}, {"skin", 0}});
+  const int joint = b.add_node({{"scale", {2, 1, 1}}});
+  b.doc["skins"].push_back({{"joints", {joint}}});
+  const scene s = load_gltf(b.write(dir.file("scaled.gltf")));
+  const mesh& m = s.meshes.at(0);
+  expect_position(m, 1, 2.0, 0.0, 0.0);
+  expect_position(m, 2, 0.0, 1.0, 0.0);
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_NEAR(m.normals[0].x, 1 / std::sqrt(5.0), tol);
+  EXPECT_NEAR(m.normals[0].y, 2 / std::sqrt(5.0), tol);
+  EXPECT_NEAR(m.normals[0].z, 0.0, tol);
 }
 
 TEST(GltfSkin, BadJointsAndWeightsAreRefusedNamingTheAttribute) {
