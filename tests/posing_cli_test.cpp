@@ -5,6 +5,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <vector>
 
 #include "support/gltf_builder.h"
@@ -43,6 +45,19 @@ std::string sliding_quad(const std::string& folder, bool bad_times = false) {
   animation("slide", bad_times ? std::vector<float>{1, 0} : std::vector<float>{0, 1}, {0, 0, 0, 1, 0, 0});
   animation("stay", {0, 1}, {-1, 0, 0, -1, 0, 0});
   return b.write(folder + "/quad.gltf");
+}
+
+// Every pixel's alpha.
+std::vector<float> alpha_of(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  std::vector<float> alpha;
+  for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i)
+    alpha.push_back(pixels[i * spec.nchannels + spec.channelindex("A")]);
+  return alpha;
 }
 
 // Alpha of the middle row, column by column.
@@ -147,6 +162,58 @@ TEST(posing_cli, bad_times_animations_and_keyframes_exit_2_with_one_line) {
     EXPECT_EQ(lines(result.stderr_text).size(), 1u) << result.stderr_text;
     EXPECT_NE(result.stderr_text.find(c.says), std::string::npos) << result.stderr_text;
   }
+}
+
+// The shared animated, skinned and morphed sample models render at several times through the
+// CLI; the walking CesiumMan covers other pixels than its T-pose (the same fixed view).
+TEST(posing_cli, shared_animated_assets_render_at_several_times) {
+  const std::string assets = KILN_SHARED_ASSETS;
+  if (!std::filesystem::exists(assets + "/README.md")) GTEST_SKIP() << "no sample assets at " << assets;
+  const std::string dir = scratch_folder("posing_assets");
+  for (const char* file :
+       {"SimpleMorph/glTF/SimpleMorph.gltf", "AnimatedMorphSphere/glTF-Binary/AnimatedMorphSphere.glb",
+        "MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb", "SimpleSkin/glTF/SimpleSkin.gltf",
+        "RiggedSimple/glTF-Binary/RiggedSimple.glb", "RiggedFigure/glTF-Binary/RiggedFigure.glb",
+        "CesiumMan/glTF-Binary/CesiumMan.glb", "BrainStem/glTF-Binary/BrainStem.glb",
+        "RecursiveSkeletons/glTF-Binary/RecursiveSkeletons.glb",
+        "InterpolationTest/glTF-Binary/InterpolationTest.glb", "BoxAnimated/glTF-Binary/BoxAnimated.glb",
+        "AnimatedCube/glTF/AnimatedCube.gltf", "AnimatedTriangle/glTF/AnimatedTriangle.gltf"})
+    for (const char* time : {"0", "0.5", "1.25"}) {
+      SCOPED_TRACE(std::string(file) + " at " + time);
+      const std::string out = dir + "/asset.exr";
+      const auto result = run_kiln({"render", assets + "/" + file, "-o", out, "--width", "24", "--height",
+                                    "24", "--time", time, "-q", "--threads", "2"});
+      ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+      const std::vector<float> alpha = alpha_of(out);
+      EXPECT_GT(*std::max_element(alpha.begin(), alpha.end()), 0.0f);  // something is in view
+    }
+  const std::string man = assets + "/CesiumMan/glTF-Binary/CesiumMan.glb";
+  const std::vector<std::string> view = {"--width",     "48",        "--height", "48", "--look-from",
+                                         "0.3,0.9,2.6", "--look-at", "0,0.75,0", "-q"};
+  std::vector<std::string> rest = {"render", man, "-o", dir + "/rest.exr", "--animation", "none"};
+  std::vector<std::string> walk = {"render", man, "-o", dir + "/walk.exr", "--time", "0.5"};
+  rest.insert(rest.end(), view.begin(), view.end());
+  walk.insert(walk.end(), view.begin(), view.end());
+  ASSERT_EQ(run_kiln(rest).exit_code, 0);
+  ASSERT_EQ(run_kiln(walk).exit_code, 0);
+  const std::vector<float> a = alpha_of(dir + "/rest.exr"), b = alpha_of(dir + "/walk.exr");
+  ASSERT_EQ(a.size(), b.size());
+  // The T-pose's outstretched arms make its widest row (first to last covered pixel) span over a
+  // metre; walking, the arms hang and the widest row is the stride or the shoulders.
+  const auto widest = [](const std::vector<float>& alpha) {
+    int most = 0;
+    for (int y = 0; y < 48; ++y) {
+      int first = 48, last = -1;
+      for (int x = 0; x < 48; ++x)
+        if (alpha[size_t(y) * 48 + x] > 0.0f) {
+          first = std::min(first, x);
+          last = x;
+        }
+      most = std::max(most, last - first + 1);
+    }
+    return most;
+  };
+  EXPECT_LT(widest(b), widest(a) * 0.6) << widest(a) << " " << widest(b);
 }
 
 }  // namespace
