@@ -188,7 +188,8 @@ def test_time_keywords_pose_the_scene_as_the_cli_does(tmp_path):
     assert np.array_equal(walk.aovs["beauty"], frame.aovs["beauty"])
     assert not np.array_equal(walk.aovs["beauty"], rest.aovs["beauty"])
     out = str(tmp_path / "walk.exr")
-    assert cli(["render", CESIUM_MAN, "-o", out, "--time", "0.5", "--width", "24", "--height", "24", "-q"]).returncode == 0
+    args = ["render", CESIUM_MAN, "-o", out, "--time", "0.5", "--width", "24", "--height", "24", "-q"]
+    assert cli(args).returncode == 0
     assert np.array_equal(read_channels(out)["R"], walk.aovs["beauty"][:, :, 0])
     with pytest.raises(kiln.InputError, match="no animation 'walk'"):
         kiln.render(CESIUM_MAN, animation="walk", **view)
