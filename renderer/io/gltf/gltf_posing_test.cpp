@@ -406,6 +406,29 @@ TEST(GltfAnimation, BadSamplersAreRefusedNamingThePointer) {
     EXPECT_NE(message.find("/animations/0/samplers/0/interpolation"), std::string::npos) << message;
   }
   {
+    gltf_builder b = triangle_node({{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+    add_animation(b, 0, "translation", {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", 3);
+    const std::string message = error_of([&] { load_at(b, dir, 0.5); });
+    EXPECT_NE(message.find("/animations/0/channels/0/target/node: /nodes/0 has a matrix"), std::string::npos)
+        << message;
+  }
+  {
+    gltf_builder b = triangle_node();  // its mesh has no morph targets
+    add_animation(b, 0, "weights", {0, 1}, {0, 1}, "SCALAR", 1);
+    const std::string message = error_of([&] { load_at(b, dir, 0.5); });
+    EXPECT_NE(message.find("/animations/0/channels/0/target/node"), std::string::npos) << message;
+    EXPECT_NE(message.find("no mesh with morph targets"), std::string::npos) << message;
+  }
+  {
+    gltf_builder b = triangle_node();
+    add_animation(b, 0, "translation", {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", 3);
+    b.doc["animations"][0]["channels"].push_back(
+        {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}});
+    const std::string message = error_of([&] { load_at(b, dir, 0.5); });
+    EXPECT_NE(message.find("/animations/0/channels/1/target: a second channel"), std::string::npos)
+        << message;
+  }
+  {
     gltf_builder b = triangle_node();
     const std::string message = error_of([&] { load_at(b, dir, std::nan("")); });
     EXPECT_NE(message.find("--time"), std::string::npos) << message;
