@@ -249,6 +249,23 @@ TEST(GltfMorph, ZeroDefaultWeightsShareTheRestMeshAndAWeightsChannelAnimates) {
   expect_position(s.meshes[s.instances.at(1).shape], 0, 0.0, 0.0, 0.0);
 }
 
+// CUBICSPLINE weights store, per key, the in-tangents of every target, then the values, then the
+// out-tangents. Keys at 0 and 2 s; at 1 s (u = 1/2, h10 = 1/8, h01 = 1/2, h11 = -1/8):
+// w0 = h10·2·1 + h01·1 = 0.75 and w1 = h01·0.5 + h11·2·3 = -0.5.
+TEST(GltfMorph, CubicSplineWeightsKeepTheirPerTargetLayout) {
+  temp_folder dir;
+  gltf_builder b = morph_triangle(nullptr, nullptr);
+  add_animation(
+      b, 0, "weights", {0, 2},
+      {/*key 0: in*/ 9, 9, /*value*/ 0, 0, /*out*/ 1, 0, /*key 1: in*/ 0, 3, /*value*/ 1, 0.5f, /*out*/ 9, 9},
+      "SCALAR", 1, "CUBICSPLINE");
+  const scene s = load_at(b, dir, 1.0);
+  // p + 0.75 d0 - 0.5 d1, d0 = z (1, 2, 0), d1 = x (4, 0, 4).
+  expect_position(s.meshes.at(0), 0, -2.0, 0.0, 0.75);
+  expect_position(s.meshes.at(0), 1, 1.0, 0.0, 1.5);
+  expect_position(s.meshes.at(0), 2, -2.0, 1.0, 0.0);
+}
+
 TEST(GltfMorph, WeightsThatDoNotMatchTheTargetsAreRefused) {
   temp_folder dir;
   const std::string message =
