@@ -2,8 +2,8 @@
 // sample the chosen animations at the requested time (gltf_animation), flatten the chosen scene's
 // node forest to double-precision world transforms, build each (mesh, primitive) pair once as a
 // triangle mesh, place one instance per node that uses it, and convert the materials, lights and
-// cameras the scene uses. A node whose mesh is skinned or morphed (non-zero weights) gets its own
-// posed copy of each primitive; every other mesh is built once and shared, as in a still asset.
+// cameras the scene uses. A node whose mesh is skinned or morphed (non-zero or animated weights)
+// gets its own posed copy of each primitive; every other mesh is built once and shared, as in a still asset.
 #include "io/gltf/gltf_loader.h"
 
 #include <algorithm>
@@ -55,8 +55,8 @@ struct build_context {
   std::set<std::pair<int, int>> posed_primitives;      // (mesh, primitive) built posed
 };
 
-// How a node deforms its mesh: morph weights (non-zero ones; empty: none) and the joint matrices
-// of its skin (null: not skinned).
+// How a node deforms its mesh: morph weights (empty: none) and the joint matrices of its skin
+// (null: not skinned).
 struct deformation {
   std::vector<double> weights;
   const std::vector<dmat4>* joints = nullptr;
