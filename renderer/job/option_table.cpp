@@ -298,6 +298,57 @@ void add_view_options(std::vector<option_spec>& t) {
       },
       "1", "glTF scene index (default: the file's default scene)"));
   scene.type = option_type::unsigned_integer;
+  // The pose: which animations play and at what time. All optional, so a still's arguments (and
+  // its settings hash) stay what they were; job/render_job.h's scene_time resolves them.
+  add(custom_option(
+          "time",
+          [](render_options& o, const std::string& text) {
+            o.time = parse_number(text, "--time", -max_scene_seconds, max_scene_seconds);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.time ? std::optional<std::string>(exact_text(*o.time)) : std::nullopt;
+          },
+          "0.5", "Pose the scene at this time in seconds of its animations (default 0; or --frame)"))
+      .recorded_as = "kiln/time";
+  t.back().type = option_type::number;
+  add(custom_option(
+          "frame",
+          [](render_options& o, const std::string& text) {
+            o.frame = parse_integer(text, "--frame", -max_frame_number, max_frame_number);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.frame ? std::optional<std::string>(std::to_string(*o.frame)) : std::nullopt;
+          },
+          "12", "Pose the scene at frame N: time (N - frame-start) / fps seconds (instead of --time)"))
+      .recorded_as = "kiln/frame";
+  t.back().type = option_type::integer;
+  add(custom_option(
+          "fps",
+          [](render_options& o, const std::string& text) {
+            o.fps = parse_number(text, "--fps", 0.0, 1e6, true);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.fps ? std::optional<std::string>(exact_text(*o.fps)) : std::nullopt;
+          },
+          "30", "Frames per second of --frame (default 24)"))
+      .recorded_as = "kiln/fps";
+  t.back().type = option_type::number;
+  add(custom_option(
+          "frame-start",
+          [](render_options& o, const std::string& text) {
+            o.frame_start = parse_integer(text, "--frame-start", -max_frame_number, max_frame_number);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.frame_start ? std::optional<std::string>(std::to_string(*o.frame_start)) : std::nullopt;
+          },
+          "0", "The frame number at time 0 for --frame (default 1)"))
+      .recorded_as = "kiln/frame_start";
+  t.back().type = option_type::integer;
+  add(custom_option(
+          "animation", [](render_options& o, const std::string& text) { o.animation = text; },
+          [](const render_options& o) -> std::optional<std::string> { return o.animation; }, "1",
+          "glTF animations to play: all, or one by name or index (default all)"))
+      .recorded_as = "kiln/animation";
   add(custom_option(
           "background",
           [](render_options& o, const std::string& text) {

@@ -197,6 +197,8 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
       {"kiln/frame_settings_hash", fingerprint.frame_settings_hash},
   };
   metadata.attributes.insert(metadata.attributes.end(), resolved.begin(), resolved.end());
+  if (options.time || options.frame)
+    metadata.attributes.emplace_back("kiln/time_seconds", exact_text(scene_time(options)));
   for (const auto* layer :
        {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
     if (layer)
@@ -223,6 +225,16 @@ void throw_if_cancelled(const std::atomic<bool>* cancel, const std::string& outp
 
 }  // namespace
 
+double scene_time(const render_options& options) {
+  if (options.time && options.frame)
+    throw input_error("", "--time", "--time and --frame both choose the time; give one of them");
+  if (!options.frame && (options.fps || options.frame_start))
+    throw input_error("", options.fps ? "--fps" : "--frame-start", "only applies to --frame; give --frame N");
+  if (options.time) return *options.time;
+  if (!options.frame) return 0.0;
+  return double(*options.frame - options.frame_start.value_or(1)) / options.fps.value_or(24.0);
+}
+
 prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel,
                              const std::function<void(const std::string&)>& warn) {
   check_asset_file(options.input);
@@ -236,6 +248,8 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   load_options.cancel = cancel;            // a signal stops the reading of large files
   load_options.threads = options.threads;  // images decode on the render's threads
   load_options.memory = p.memory.get();
+  load_options.time = scene_time(options);
+  load_options.animation = options.animation.value_or("");
   p.world = load_gltf(options.input, load_options);
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
@@ -300,6 +314,7 @@ std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const rend
 
 void check_job(const render_options& options) {
   check_asset_file(options.input);  // before the fingerprint reads it
+  scene_time(options);
   if (options.crop && options.band_count > 0)
     throw input_error("", "--crop", "--crop and --band both choose the region; give one of them");
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.

@@ -50,6 +50,11 @@ struct prepared_scene {
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.
 uint64_t job_memory_limit(const render_options& options);
 
+// The time in seconds the scene is posed at: --time, or (--frame - --frame-start) / --fps with
+// the defaults 1 and 24, or 0. Throws kiln::error (input) for --time with --frame, or --fps or
+// --frame-start without --frame.
+double scene_time(const render_options& options);
+
 // Loads options.input and chooses the view. Throws kiln::error for bad input.
 prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel = nullptr,
                              const std::function<void(const std::string&)>& warn = {});

@@ -18,6 +18,10 @@
 
 namespace kiln {
 
+// Bounds of --time and --frame: far past any shot, small enough that a frame's time is exact.
+constexpr double max_scene_seconds = 1e9;
+constexpr long long max_frame_number = 1000000000;
+
 struct render_options {
   std::string input;
   std::string output;
@@ -37,8 +41,14 @@ struct render_options {
   dvec3 up{0.0, 1.0, 0.0};
   double fov_degrees = 45.0;
   int scene_index = -1;
-  bool full_float = false;      // --float: every colour-like layer float
-  std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
+  // The pose (job/render_job.h: scene_time); each nullopt until given, so a still's settings stay.
+  std::optional<double> time;            // --time SECONDS
+  std::optional<long long> frame;        // --frame N
+  std::optional<double> fps;             // --fps F (default 24)
+  std::optional<long long> frame_start;  // --frame-start N: the frame at time 0 (default 1)
+  std::optional<std::string> animation;  // --animation NAME|INDEX|all (default all)
+  bool full_float = false;               // --float: every colour-like layer float
+  std::string channel_formats;           // --channel-format AOV=half|float,... (checked when parsed)
   // --compression, --compression-level, --multipart; the formats come from resolve_exr_settings.
   exr_settings exr;
   bool exr_tiled = false;  // --tiled

@@ -184,3 +184,23 @@ def test_options_are_the_clis():
     assert {"--spp", "--aovs", "--band", "--look-from"} <= names
     spp = next(o for o in kiln.options() if o["name"] == "spp")
     assert spp["type"] == "int" and spp["default"] == "1"
+
+
+CESIUM_MAN = os.path.join(SOURCE, "..", "shared", "assets", "CesiumMan", "glTF-Binary", "CesiumMan.glb")
+
+
+@pytest.mark.skipif(not os.path.exists(CESIUM_MAN), reason="no shared sample assets")
+def test_time_keywords_pose_the_scene_as_the_cli_does(tmp_path):
+    view = dict(width=24, height=24, quiet=True)
+    walk = kiln.render(CESIUM_MAN, time=0.5, **view)
+    # Frame 13 at 24 fps from frame 1 is t = 0.5 s: the same image, bit for bit.
+    frame = kiln.render(CESIUM_MAN, frame=13, fps=24, frame_start=1, animation="0", **view)
+    rest = kiln.render(CESIUM_MAN, animation="none", **view)
+    assert np.array_equal(walk.aovs["beauty"], frame.aovs["beauty"])
+    assert not np.array_equal(walk.aovs["beauty"], rest.aovs["beauty"])
+    out = str(tmp_path / "walk.exr")
+    args = ["render", CESIUM_MAN, "-o", out, "--time", "0.5", "--width", "24", "--height", "24", "-q"]
+    assert cli(args).returncode == 0
+    assert np.array_equal(read_channels(out)["R"], walk.aovs["beauty"][:, :, 0])
+    with pytest.raises(kiln.InputError, match="no animation 'walk'"):
+        kiln.render(CESIUM_MAN, animation="walk", **view)

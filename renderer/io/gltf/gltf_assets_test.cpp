@@ -270,3 +270,111 @@ TEST(GltfAssets, InvalidCorpusFilesGetTheirExpectedOutcome) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+// World-space bounds of every vertex the scene places (tighter than world_bounds' boxes).
+bounds3 vertex_bounds(const scene& s) {
+  bounds3 b;
+  for (const instance& inst : s.instances) {
+    if (inst.kind != shape_kind::mesh) continue;
+    for (const vec3& p : s.meshes[inst.shape].positions)
+      b.extend(transform_point(inst.world_from_object, dvec3(p)));
+  }
+  return b;
+}
+
+// The sum of every placed vertex's world position: any motion of any vertex changes it.
+dvec3 vertex_sum(const scene& s) {
+  dvec3 sum(0.0);
+  for (const instance& inst : s.instances)
+    if (inst.kind == shape_kind::mesh)
+      for (const vec3& p : s.meshes[inst.shape].positions)
+        sum += transform_point(inst.world_from_object, dvec3(p));
+  return sum;
+}
+
+scene load_posed(const fs::path& path, double time, const std::string& animation = "") {
+  gltf_load_options options;
+  options.time = time;
+  options.animation = animation;
+  return load_gltf(path.string(), options);
+}
+
+// Every animated, skinned and morphed sample model poses at several times (and in its rest pose,
+// --animation none) with finite bounds, and every animated one moves.
+TEST(GltfAssets, AnimatedSkinnedAndMorphedModelsPoseAtSeveralTimes) {
+  if (!fs::exists(assets / "README.md")) GTEST_SKIP() << "no sample assets at " << assets;
+  const std::pair<const char*, bool> files[] = {
+      {"SimpleMorph/glTF/SimpleMorph.gltf", true},
+      {"AnimatedMorphSphere/glTF-Binary/AnimatedMorphSphere.glb", true},
+      {"MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb", false},  // default weights, no animation
+      {"SimpleSkin/glTF/SimpleSkin.gltf", true},
+      {"RiggedSimple/glTF-Binary/RiggedSimple.glb", true},
+      {"RiggedFigure/glTF-Binary/RiggedFigure.glb", true},
+      {"CesiumMan/glTF-Binary/CesiumMan.glb", true},
+      {"BrainStem/glTF-Binary/BrainStem.glb", true},
+      {"RecursiveSkeletons/glTF-Binary/RecursiveSkeletons.glb", true},
+      {"InterpolationTest/glTF-Binary/InterpolationTest.glb", true},
+      {"BoxAnimated/glTF-Binary/BoxAnimated.glb", true},
+      {"AnimatedCube/glTF/AnimatedCube.gltf", true},
+      {"AnimatedTriangle/glTF/AnimatedTriangle.gltf", true},
+  };
+  for (const auto& [file, animated] : files) {
+    SCOPED_TRACE(file);
+    const fs::path path = assets / file;
+    bool moved = false;
+    dvec3 first_sum(0.0);
+    for (const double t : {-1.0, 0.0, 0.3, 0.5, 1.0, 1.7}) {
+      SCOPED_TRACE(t);
+      scene s;
+      try {
+        s = load_posed(path, std::max(t, 0.0), t < 0 ? "none" : "");  // -1: the rest pose
+      } catch (const kiln::error& e) {
+        ADD_FAILURE() << e.what();
+        continue;
+      }
+      EXPECT_TRUE(s.stats.warnings.empty()) << s.stats.warnings.front();
+      const bounds3 b = vertex_bounds(s);
+      ASSERT_FALSE(b.empty());
+      EXPECT_TRUE(is_finite(b.lower) && is_finite(b.upper));
+      const dvec3 sum = vertex_sum(s);
+      if (t == 0.0) first_sum = sum;
+      if (t > 0.0) moved |= glm::length(sum - first_sum) > 1e-6 * (1.0 + glm::length(first_sum));
+    }
+    EXPECT_EQ(moved, animated);
+  }
+}
+
+void expect_bounds(const bounds3& b, dvec3 lower, dvec3 upper, double tolerance) {
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(b.lower[axis], lower[axis], tolerance) << "axis " << axis;
+    EXPECT_NEAR(b.upper[axis], upper[axis], tolerance) << "axis " << axis;
+  }
+}
+
+// Poses whose bounds follow from the models' documented animations.
+TEST(GltfAssets, PosedBoundsFollowTheAnimations) {
+  if (!fs::exists(assets / "README.md")) GTEST_SKIP() << "no sample assets at " << assets;
+  // AnimatedTriangle turns a quarter about +Z every 0.25 s: at 0.5 s the unit right triangle
+  // at the origin has turned 180°.
+  expect_bounds(vertex_bounds(load_posed(assets / "AnimatedTriangle/glTF/AnimatedTriangle.gltf", 0.5)),
+                dvec3(-1, -1, 0), dvec3(0, 0, 0), 1e-6);
+  // SimpleSkin: a 1 x 2 strip (x -0.5..0.5, y 0..2) whose upper joint, at y = 1, has turned 90°
+  // about +Z at 1 s: the upper half lies over x -1..0, y 0.5..1.5, the lower half stays.
+  expect_bounds(vertex_bounds(load_posed(assets / "SimpleSkin/glTF/SimpleSkin.gltf", 1.0)), dvec3(-1, 0, 0),
+                dvec3(0.5, 1.5, 0), 1e-5);
+  expect_bounds(vertex_bounds(load_posed(assets / "SimpleSkin/glTF/SimpleSkin.gltf", 0.0, "none")),
+                dvec3(-0.5, 0, 0), dvec3(0.5, 2, 0), 1e-6);
+  // CesiumMan: the bind pose is a T-pose (arms along x, span over 1 m); walking at 0.5 s its arms
+  // hang (span under 0.5 m) while its height stays within 3%.
+  const bounds3 bind = vertex_bounds(load_posed(assets / "CesiumMan/glTF-Binary/CesiumMan.glb", 0.0, "none"));
+  const bounds3 walk = vertex_bounds(load_posed(assets / "CesiumMan/glTF-Binary/CesiumMan.glb", 0.5));
+  EXPECT_GT(bind.upper.x - bind.lower.x, 1.0);
+  EXPECT_LT(walk.upper.x - walk.lower.x, 0.5);
+  EXPECT_NEAR(walk.upper.y - walk.lower.y, bind.upper.y - bind.lower.y, 0.03 * (bind.upper.y - bind.lower.y));
+}
+
+}  // namespace
+}  // namespace kiln

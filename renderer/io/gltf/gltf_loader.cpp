@@ -1,16 +1,22 @@
 // load_gltf: parse (gltf_parse), validate everything (gltf_validate), then build the scene:
-// flatten the chosen scene's node forest to double-precision world transforms, build each
-// (mesh, primitive) pair once as a triangle mesh, place one instance per node that uses it, and
-// convert the materials, lights and cameras the scene uses.
+// sample the chosen animations at the requested time (gltf_animation), flatten the chosen scene's
+// node forest to double-precision world transforms, build each (mesh, primitive) pair once as a
+// triangle mesh, place one instance per node that uses it, and convert the materials, lights and
+// cameras the scene uses. A node whose mesh is skinned or morphed (non-zero or animated weights)
+// gets its own posed copy of each primitive; every other mesh is built once and shared, as in a still asset.
 #include "io/gltf/gltf_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "io/gltf/gltf_accessors.h"
+#include "io/gltf/gltf_animation.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
@@ -41,6 +47,20 @@ struct build_context {
   // Primitives built from the same accessors into the same attributes share one scene mesh.
   std::map<std::vector<int>, int32_t> geometry_cache;
   memory_budget* memory = nullptr;  // gltf_load_options::memory
+  // Posing; all empty for an asset without animations, skins and morph weights.
+  animation_pose pose;                                 // the chosen animations at the chosen time
+  std::vector<dmat4> node_world;                       // every node's world transform, once a skin needs it
+  std::map<int, std::vector<dmat4>> skin_joints;       // skin -> world(joint) * inverseBindMatrix
+  std::map<std::pair<int, int>, int32_t> posed_cache;  // (node, primitive) -> its posed scene mesh
+  std::set<std::pair<int, int>> posed_primitives;      // (mesh, primitive) built posed
+};
+
+// How a node deforms its mesh: morph weights (empty: none) and the joint matrices of its skin
+// (null: not skinned).
+struct deformation {
+  std::vector<double> weights;
+  const std::vector<dmat4>* joints = nullptr;
+  int skin = -1;
 };
 
 void warn_once(build_context& ctx, const std::string& message) {
@@ -61,6 +81,15 @@ dmat4 local_transform(const tinygltf::Node& node) {
   return trs_matrix(t.size() == 3 ? dvec3(t[0], t[1], t[2]) : dvec3(0.0),
                     r.size() == 4 ? dvec4(r[0], r[1], r[2], r[3]) : dvec4(0, 0, 0, 1),
                     s.size() == 3 ? dvec3(s[0], s[1], s[2]) : dvec3(1.0));
+}
+
+// A node's parent_from_node in the pose: the animated TRS when a channel drives it.
+dmat4 posed_local(const build_context& ctx, int node_index) {
+  if (!ctx.pose.empty()) {
+    const animated_node& a = ctx.pose.nodes[static_cast<size_t>(node_index)];
+    if (a.transform) return trs_matrix(a.translation, a.rotation, a.scale);
+  }
+  return local_transform(ctx.model.nodes[static_cast<size_t>(node_index)]);
 }
 
 // What a range problem of a node's world transform points at: the node's own matrix, translation
@@ -144,8 +173,162 @@ std::vector<uint32_t> to_triangle_list(build_context& ctx, const std::vector<uin
   return tris;
 }
 
-// Builds the kiln mesh of one glTF primitive, or -1 when it has nothing to render.
-int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
+// A morph target or skin attribute's accessor: `type`, one element per vertex.
+void check_vertex_accessor(build_context& ctx, int accessor, int type, size_t vertex_count,
+                           const std::string& where, const std::string& expected_format, bool format_ok) {
+  const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(accessor)];
+  if (acc.type != type || !format_ok)
+    throw input_error(ctx.file, where,
+                      "must be " + expected_format + " (got " + type_name(acc.type) + " " +
+                          component_type_name(acc.componentType) + (acc.normalized ? " normalized" : "") +
+                          ")");
+  if (acc.count != vertex_count)
+    throw input_error(ctx.file, where,
+                      "accessor has " + std::to_string(acc.count) + " elements but POSITION has " +
+                          std::to_string(vertex_count));
+}
+
+bool is_float_or_normalized_integer(const tinygltf::Accessor& acc) {
+  const int ct = acc.componentType;
+  return ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+         (acc.normalized &&
+          (ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+           ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+}
+
+// NORMAL and TANGENT of a posed primitive, as read from its accessors (empty when absent), after
+// the deformation.
+struct posed_attributes {
+  std::vector<float> normals;   // 3 per vertex
+  std::vector<float> tangents;  // 4 per vertex
+};
+
+// Deforms a primitive's vertices as glTF 2.0 §3.7.2.2 and §3.7.3 say: morph targets first
+// (POSITION, NORMAL and TANGENT deltas times the weights), then skinning: each vertex by the
+// weighted sum of its joints' matrices (weights renormalized when they do not sum to 1), normals
+// by that matrix's inverse transpose, tangents by the matrix itself (tangents are directions in
+// the surface; the two agree for rigid joints).
+posed_attributes pose_primitive(build_context& ctx, const tinygltf::Primitive& prim, const std::string& where,
+                                const deformation& d, std::vector<vec3>& positions) {
+  const std::string attributes = pointer_join(where, "attributes");
+  const size_t n = positions.size();
+  std::vector<dvec3> p(positions.begin(), positions.end());
+  std::vector<dvec3> normals, tangents;
+  posed_attributes out;
+  auto normal = prim.attributes.find("NORMAL");
+  if (normal != prim.attributes.end()) {
+    out.normals = read_finite(ctx, normal->second, pointer_join(attributes, "NORMAL"), "NORMAL");
+    normals.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      normals[i] = dvec3(out.normals[3 * i], out.normals[3 * i + 1], out.normals[3 * i + 2]);
+  }
+  auto tangent = prim.attributes.find("TANGENT");
+  if (tangent != prim.attributes.end()) {
+    out.tangents = read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
+    tangents.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      tangents[i] = dvec3(out.tangents[4 * i], out.tangents[4 * i + 1], out.tangents[4 * i + 2]);
+  }
+
+  for (size_t t = 0; t < d.weights.size() && t < prim.targets.size(); ++t) {
+    const double w = d.weights[t];
+    if (w == 0.0) continue;
+    const std::string target_at = pointer_join(pointer_join(where, "targets"), static_cast<int64_t>(t));
+    for (const auto& [name, accessor] : prim.targets[t]) {
+      std::vector<dvec3>* into = name == "POSITION"  ? &p
+                                 : name == "NORMAL"  ? &normals
+                                 : name == "TANGENT" ? &tangents
+                                                     : nullptr;
+      if (into == nullptr || into->empty()) continue;  // other targets, or deltas of an attribute it lacks
+      const std::string at = pointer_join(target_at, name);
+      const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(accessor)];
+      // KHR_mesh_quantization also allows 8- and 16-bit deltas that are not normalized.
+      const bool quantized_ok = ctx.quantized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                                  acc.componentType == TINYGLTF_COMPONENT_TYPE_SHORT);
+      check_vertex_accessor(ctx, accessor, TINYGLTF_TYPE_VEC3, n, at,
+                            ctx.quantized ? "VEC3 FLOAT, BYTE or SHORT" : "VEC3 FLOAT or normalized integers",
+                            is_float_or_normalized_integer(acc) || quantized_ok);
+      const std::vector<float> delta = read_finite(ctx, accessor, at, "morph target " + name);
+      for (size_t i = 0; i < n; ++i)
+        (*into)[i] += w * dvec3(delta[3 * i], delta[3 * i + 1], delta[3 * i + 2]);
+    }
+  }
+
+  if (d.joints != nullptr) {
+    const std::vector<dmat4>& joints = *d.joints;
+    const std::string skin = pointer("skins", d.skin);
+    std::vector<std::vector<float>> joint_sets, weight_sets;
+    std::vector<std::string> weight_at;
+    for (int set = 0;; ++set) {
+      const std::string jname = "JOINTS_" + std::to_string(set), wname = "WEIGHTS_" + std::to_string(set);
+      auto j = prim.attributes.find(jname);
+      auto w = prim.attributes.find(wname);
+      if (j == prim.attributes.end() && w == prim.attributes.end()) break;
+      if (j == prim.attributes.end() || w == prim.attributes.end())
+        throw input_error(
+            ctx.file, attributes,
+            (j == prim.attributes.end() ? wname + " has no " + jname : jname + " has no " + wname) +
+                " (skin attributes come in pairs)");
+      const tinygltf::Accessor& ja = ctx.model.accessors[static_cast<size_t>(j->second)];
+      const tinygltf::Accessor& wa = ctx.model.accessors[static_cast<size_t>(w->second)];
+      const int jct = ja.componentType, wct = wa.componentType;
+      check_vertex_accessor(ctx, j->second, TINYGLTF_TYPE_VEC4, n, pointer_join(attributes, jname),
+                            "VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT",
+                            !ja.normalized && (jct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                               jct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+      check_vertex_accessor(ctx, w->second, TINYGLTF_TYPE_VEC4, n, pointer_join(attributes, wname),
+                            "VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+                            wct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                                (wa.normalized && (wct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                   wct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+      joint_sets.push_back(read_accessor_floats(ctx.model, j->second, ctx.file));
+      weight_sets.push_back(read_finite(ctx, w->second, pointer_join(attributes, wname), wname));
+      weight_at.push_back(pointer_join(attributes, wname));
+    }
+    if (joint_sets.empty())
+      throw input_error(ctx.file, attributes,
+                        "the mesh is skinned by " + skin + " but has no JOINTS_0 and WEIGHTS_0");
+    for (size_t v = 0; v < n; ++v) {
+      dmat4 m(0.0);
+      double sum = 0.0;
+      for (size_t set = 0; set < joint_sets.size(); ++set)
+        for (size_t c = 0; c < 4; ++c) {
+          const double w = weight_sets[set][4 * v + c];
+          if (w < 0.0)
+            throw input_error(
+                ctx.file, weight_at[set],
+                "vertex " + std::to_string(v) + " has a negative weight (" + format_number(w) + ")");
+          if (w == 0.0) continue;
+          const size_t joint = static_cast<size_t>(joint_sets[set][4 * v + c]);
+          if (joint >= joints.size())
+            throw input_error(ctx.file, pointer_join(attributes, "JOINTS_" + std::to_string(set)),
+                              "vertex " + std::to_string(v) + " names joint " + std::to_string(joint) +
+                                  ", but " + skin + " has " + std::to_string(joints.size()) + " joints");
+          m += w * joints[joint];
+          sum += w;
+        }
+      if (!(sum > 0.0))
+        throw input_error(ctx.file, weight_at[0],
+                          "vertex " + std::to_string(v) + "'s joint weights are all zero");
+      m /= sum;
+      p[v] = dvec3(m * dvec4(p[v], 1.0));
+      const dmat3 linear(m);
+      if (!normals.empty()) normals[v] = glm::transpose(glm::inverse(linear)) * normals[v];
+      if (!tangents.empty()) tangents[v] = linear * tangents[v];
+    }
+  }
+
+  for (size_t i = 0; i < n; ++i) positions[i] = vec3(p[i]);
+  for (size_t i = 0; i < normals.size(); ++i)
+    for (int c = 0; c < 3; ++c) out.normals[3 * i + c] = static_cast<float>(normals[i][c]);
+  for (size_t i = 0; i < tangents.size(); ++i)
+    for (int c = 0; c < 3; ++c) out.tangents[4 * i + c] = static_cast<float>(tangents[i][c]);
+  return out;
+}
+
+// Builds the kiln mesh of one glTF primitive, or -1 when it has nothing to render. With a
+// deformation the mesh is the primitive posed by one node (see pose_primitive).
+int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const deformation* posed = nullptr) {
   const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(mesh_index)];
   const tinygltf::Primitive& prim = src.primitives[static_cast<size_t>(prim_index)];
   const std::string where = primitive_pointer(mesh_index, prim_index);
@@ -160,7 +343,10 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
 
   // The mesh is charged for good; what reading the accessors needs on top of it is part of the
   // estimate too, since both are held at once.
-  charge_memory(ctx.memory, primitive_bytes(ctx.model, prim), ctx.file, "meshes");
+  uint64_t bytes = primitive_bytes(ctx.model, prim);
+  // Posing holds double copies of positions, normals and tangents, a delta and the skin sets.
+  if (posed) bytes += ctx.model.accessors[static_cast<size_t>(prim.attributes.at("POSITION"))].count * 160;
+  charge_memory(ctx.memory, bytes, ctx.file, "meshes");
 
   mesh m;
   m.name = src.name.empty() ? "mesh " + std::to_string(mesh_index) : src.name;
@@ -172,6 +358,10 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
   const size_t vertex_count = pos.size() / 3;
   m.positions.resize(vertex_count);
   for (size_t i = 0; i < vertex_count; ++i) m.positions[i] = vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+  posed_attributes deformed;
+  if (posed) {
+    deformed = pose_primitive(ctx, prim, where, *posed, m.positions);
+  }
 
   const std::vector<uint32_t> topology = primitive_indices(ctx, prim, vertex_count, where);
   const std::vector<uint32_t> tris = to_triangle_list(ctx, topology, prim.mode, where);
@@ -202,7 +392,8 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
   auto normal = prim.attributes.find("NORMAL");
   if (normal != prim.attributes.end()) {
     const std::vector<float> n =
-        read_finite(ctx, normal->second, pointer_join(attributes, "NORMAL"), "NORMAL");
+        posed ? deformed.normals
+              : read_finite(ctx, normal->second, pointer_join(attributes, "NORMAL"), "NORMAL");
     m.normals.resize(vertex_count);
     bool all_usable = true;
     for (size_t i = 0; i < vertex_count && all_usable; ++i) {
@@ -248,7 +439,8 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index) {
       auto tangent = prim.attributes.find("TANGENT");
       if (tangent != prim.attributes.end() && !m.normals.empty()) {
         const std::vector<float> t =
-            read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
+            posed ? deformed.tangents
+                  : read_finite(ctx, tangent->second, pointer_join(attributes, "TANGENT"), "TANGENT");
         m.tangents.resize(vertex_count);
         for (size_t i = 0; i < vertex_count; ++i) {
           const vec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
@@ -315,9 +507,122 @@ int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
   return built;
 }
 
+// The morph weights a node's mesh is posed with: a weights channel's, else the node's `weights`,
+// else the mesh's, else zeros (glTF 2.0 §3.7.2.2); empty when its mesh has no morph targets.
+std::vector<double> morph_weights(build_context& ctx, int node_index) {
+  const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  const size_t targets = morph_target_count(ctx.model, node.mesh, ctx.file);
+  if (targets == 0) return {};
+  if (!ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights)
+    return ctx.pose.nodes[static_cast<size_t>(node_index)].morph_weights;
+  const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(node.mesh)];
+  const bool own = !node.weights.empty();
+  const std::vector<double>& defaults = own ? node.weights : src.weights;
+  if (defaults.empty()) return std::vector<double>(targets, 0.0);
+  const std::string where = own ? pointer_join(pointer("nodes", node_index), "weights")
+                                : pointer_join(pointer("meshes", node.mesh), "weights");
+  if (defaults.size() != targets)
+    throw input_error(ctx.file, where,
+                      "has " + std::to_string(defaults.size()) + " weights but the mesh has " +
+                          std::to_string(targets) + " morph targets");
+  for (double w : defaults)
+    if (!std::isfinite(w)) throw input_error(ctx.file, where, "a weight is NaN or infinite");
+  return defaults;
+}
+
+// Every node's world transform in the pose, from the roots of the whole node forest (a skin's
+// joints need not lie in the rendered scene).
+void compute_node_worlds(build_context& ctx) {
+  const size_t count = ctx.model.nodes.size();
+  std::vector<char> is_child(count, 0);
+  for (const tinygltf::Node& node : ctx.model.nodes)
+    for (int child : node.children) is_child[static_cast<size_t>(child)] = 1;
+  ctx.node_world.assign(count, dmat4(1.0));
+  std::vector<std::pair<int, dmat4>> stack;
+  for (size_t n = count; n-- > 0;)
+    if (!is_child[n]) stack.emplace_back(static_cast<int>(n), dmat4(1.0));
+  while (!stack.empty()) {
+    const auto [node_index, parent_world] = stack.back();
+    stack.pop_back();
+    const dmat4 world = parent_world * posed_local(ctx, node_index);
+    ctx.node_world[static_cast<size_t>(node_index)] = world;
+    for (int child : ctx.model.nodes[static_cast<size_t>(node_index)].children)
+      stack.emplace_back(child, world);
+  }
+}
+
+// The joint matrices of a skin: world(joint) * inverseBindMatrix (identity when absent).
+const std::vector<dmat4>& skin_joint_matrices(build_context& ctx, int skin_index) {
+  auto cached = ctx.skin_joints.find(skin_index);
+  if (cached != ctx.skin_joints.end()) return cached->second;
+  if (ctx.node_world.empty()) compute_node_worlds(ctx);
+  const tinygltf::Skin& skin = ctx.model.skins[static_cast<size_t>(skin_index)];
+  const std::string where = pointer("skins", skin_index);
+  if (skin.joints.empty())
+    throw input_error(ctx.file, pointer_join(where, "joints"), "a skin needs at least one joint");
+  std::vector<float> inverse_bind;
+  if (skin.inverseBindMatrices >= 0) {
+    const std::string at = pointer_join(where, "inverseBindMatrices");
+    const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(skin.inverseBindMatrices)];
+    if (acc.type != TINYGLTF_TYPE_MAT4 || acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      throw input_error(ctx.file, at,
+                        "must be MAT4 FLOAT (got " + type_name(acc.type) + " " +
+                            component_type_name(acc.componentType) + ")");
+    if (acc.count < skin.joints.size())
+      throw input_error(ctx.file, at,
+                        "has " + std::to_string(acc.count) + " matrices for " +
+                            std::to_string(skin.joints.size()) + " joints");
+    inverse_bind = read_finite(ctx, skin.inverseBindMatrices, at, "inverseBindMatrices");
+  }
+  std::vector<dmat4> joints(skin.joints.size());
+  for (size_t j = 0; j < joints.size(); ++j) {
+    dmat4 ibm(1.0);
+    if (!inverse_bind.empty())
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) ibm[c][r] = inverse_bind[16 * j + static_cast<size_t>(4 * c + r)];
+    joints[j] = ctx.node_world[static_cast<size_t>(skin.joints[j])] * ibm;
+  }
+  return ctx.skin_joints.emplace(skin_index, std::move(joints)).first->second;
+}
+
+// How the node deforms its mesh, or nothing when it is placed rigidly (no skin, no weights
+// channel, all morph weights zero): then its primitives are the shared meshes every other node
+// uses.
+std::optional<deformation> node_deformation(build_context& ctx, int node_index) {
+  const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  deformation d;
+  d.weights = morph_weights(ctx, node_index);
+  // Weights a channel drives keep their posed mesh even when all are zero at this time, so which
+  // meshes a scene has does not depend on the time (frames of one shot share the structure).
+  const bool animated = !ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights;
+  if (!animated && std::all_of(d.weights.begin(), d.weights.end(), [](double w) { return w == 0.0; }))
+    d.weights.clear();
+  if (node.skin >= 0) {
+    d.skin = node.skin;
+    d.joints = &skin_joint_matrices(ctx, node.skin);
+  }
+  if (d.weights.empty() && d.joints == nullptr) return std::nullopt;
+  return d;
+}
+
+// The scene mesh of a node's primitive: its own posed mesh when the node deforms it, else the
+// shared one.
+int32_t mesh_for_node(build_context& ctx, int node_index, int prim_index, const deformation* posed) {
+  const int mesh_index = ctx.model.nodes[static_cast<size_t>(node_index)].mesh;
+  if (posed == nullptr) return mesh_for(ctx, mesh_index, prim_index);
+  const auto key = std::make_pair(node_index, prim_index);
+  auto cached = ctx.posed_cache.find(key);
+  if (cached != ctx.posed_cache.end()) return cached->second;
+  const int32_t built = build_mesh(ctx, mesh_index, prim_index, posed);
+  ctx.posed_cache.emplace(key, built);
+  ctx.posed_primitives.emplace(mesh_index, prim_index);
+  return built;
+}
+
 // Places every primitive of the node's mesh at `world`; false (nothing placed) when `world` is
 // singular. Primitives are built first, so their data is checked even when nothing is placed.
-bool place_primitives(build_context& ctx, int node_index, const dmat4& world, const std::string& where) {
+bool place_primitives(build_context& ctx, int node_index, const dmat4& world, const std::string& where,
+                      const deformation* posed) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
   const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(node.mesh)];
   instance inst;
@@ -330,7 +635,7 @@ bool place_primitives(build_context& ctx, int node_index, const dmat4& world, co
     if (auto problem = transform_range_problem(world))
       throw input_error(ctx.file, where, "its world transform is out of range: " + *problem);
   for (size_t p = 0; p < src.primitives.size(); ++p) {
-    const int32_t shape = mesh_for(ctx, node.mesh, static_cast<int>(p));
+    const int32_t shape = mesh_for_node(ctx, node_index, static_cast<int>(p), posed);
     if (shape < 0 || singular) continue;
     inst.shape = static_cast<uint32_t>(shape);
     ctx.out.instances.push_back(inst);
@@ -340,15 +645,19 @@ bool place_primitives(build_context& ctx, int node_index, const dmat4& world, co
 }
 
 // A node's mesh: placed once, or once per EXT_mesh_gpu_instancing instance at
-// world * node_from_instance (the node's transform is the instances' parent).
-void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
+// world * node_from_instance (the node's transform is the instances' parent). A skinned mesh is
+// posed in world space by its joints, so the node's own transform is ignored (glTF 2.0 §3.7.3).
+void place_mesh(build_context& ctx, int node_index, const dmat4& node_world) {
   const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
+  const std::optional<deformation> posed = node_deformation(ctx, node_index);
+  const deformation* deform = posed ? &*posed : nullptr;
+  const dmat4 world = node.skin >= 0 ? dmat4(1.0) : node_world;
   const instance_budget budget{ctx.out.instances.size(),
                                ctx.model.meshes[static_cast<size_t>(node.mesh)].primitives.size(),
                                ctx.max_instances};
   const auto instances = read_gpu_instances(ctx.model, node_index, ctx.quantized, budget, ctx.file);
   if (!instances) {
-    if (!place_primitives(ctx, node_index, world, range_pointer(node, node_index)))
+    if (!place_primitives(ctx, node_index, world, range_pointer(node, node_index), deform))
       warn_once(ctx,
                 pointer("nodes", node_index) + ": singular transform (zero scale); its mesh is not placed");
     return;
@@ -357,7 +666,7 @@ void place_mesh(build_context& ctx, int node_index, const dmat4& world) {
   const std::string where =
       pointer_join(pointer_join(pointer("nodes", node_index), "extensions"), gpu_instancing_extension);
   for (const dmat4& node_from_instance : *instances)
-    singular += !place_primitives(ctx, node_index, world * node_from_instance, where);
+    singular += !place_primitives(ctx, node_index, world * node_from_instance, where, deform);
   if (singular != 0)
     warn_once(ctx, pointer_join(pointer_join(pointer("nodes", node_index), "extensions"),
                                 gpu_instancing_extension) +
@@ -462,7 +771,7 @@ void place_nodes(build_context& ctx, const std::vector<int>& roots) {
     const auto [node_index, parent_world] = stack.back();
     stack.pop_back();
     const tinygltf::Node& node = ctx.model.nodes[static_cast<size_t>(node_index)];
-    const dmat4 world = parent_world * local_transform(node);
+    const dmat4 world = parent_world * posed_local(ctx, node_index);
     if (!is_finite(world))
       throw input_error(ctx.file, pointer("nodes", node_index), "world transform overflows to infinity");
     if (node.mesh >= 0) place_mesh(ctx, node_index, world);
@@ -512,7 +821,8 @@ void check_unplaced_indices(build_context& ctx) {
     const auto& primitives = ctx.model.meshes[m].primitives;
     for (size_t p = 0; p < primitives.size(); ++p) {
       const auto key = std::make_pair(static_cast<int>(m), static_cast<int>(p));
-      if (ctx.mesh_cache.count(key) != 0 || primitives[p].indices < 0) continue;
+      if (ctx.mesh_cache.count(key) != 0 || ctx.posed_primitives.count(key) != 0 || primitives[p].indices < 0)
+        continue;
       const size_t vertex_count =
           ctx.model.accessors[static_cast<size_t>(primitives[p].attributes.at("POSITION"))].count;
       primitive_indices(ctx, primitives[p], vertex_count, primitive_pointer(key.first, key.second));
@@ -571,8 +881,15 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
     for (size_t i = 1; i < unsupported.size(); ++i) names += ", " + unsupported[i];
     warn_once(ctx, "extensions " + names + " are not supported; they are ignored");
   }
-  if (!model.skins.empty() || !model.animations.empty())
-    warn_once(ctx, "skins and animations are ignored; meshes are rendered in their rest pose");
+  if (!std::isfinite(options.time))
+    throw input_error(path, "--time", "the time must be a finite number of seconds");
+  // A still asset (no animation) skips this: its scene is what it always was.
+  if (!model.animations.empty() ||
+      !(options.animation.empty() || options.animation == "all" || options.animation == "none")) {
+    ctx.pose =
+        evaluate_animations(model, chosen_animations(model, options.animation, path), options.time, path);
+    for (const std::string& warning : ctx.pose.warnings) warn_once(ctx, warning);
+  }
 
   out.quadrics = read_quadric_definitions(model, path);
   out.node_names.reserve(model.nodes.size());

@@ -42,6 +42,12 @@ struct gltf_load_options {
   // they are allocated; what would pass its limit is refused (kiln::error, input). The scene's
   // meshes and images stay charged; what loading alone needs is released when it returns.
   memory_budget* memory = nullptr;
+  // The pose (glTF 2.0 §3.11): the chosen animations sampled at `time` seconds (finite; before the
+  // first key or after the last the end values hold). `animation`: "" or "all" plays every
+  // animation of the file together, else one animation by name or index. A file without
+  // animations ignores the time; "none" is the rest pose; morph weights and skins pose the meshes either way.
+  double time = 0.0;
+  std::string animation;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.
