@@ -389,6 +389,35 @@ void add_view_options(std::vector<option_spec>& t) {
           "What glass contributes to alpha: opaque (it holds out, what it shows is baked in) or "
           "transparent (refraction reaching a background the camera does not show is transparent)"))
       .recorded_as = "kiln/transmission_alpha";
+  // Holdouts: the patterns are checked for their form here and against the file's nodes at load.
+  auto node_patterns = [](const std::string& name, std::string render_options::*at, const std::string& help) {
+    return custom_option(
+        name,
+        [name, at](render_options& o, const std::string& text) {
+          if (text.empty() || text.front() == ',' || text.back() == ',' ||
+              text.find(",,") != std::string::npos)
+            throw input_error("", "--" + name, "expects node names or globs separated by commas");
+          o.*at = text;
+        },
+        [at](const render_options& o) -> std::optional<std::string> {
+          return (o.*at).empty() ? std::nullopt : std::optional<std::string>(o.*at);
+        },
+        "wheel_*,body", help);
+  };
+  add(node_patterns(
+          "holdout", &render_options::holdout,
+          "Render these nodes (names or globs, comma-separated) as holdout mattes: they cut alpha to "
+          "zero and hide what is behind them, but still cast shadows and show in reflections"))
+      .recorded_as = "kiln/holdout";
+  add(node_patterns("only", &render_options::only,
+                    "Render only these nodes (names or globs); every other node is a holdout (a render "
+                    "layer)"))
+      .recorded_as = "kiln/only";
+  add(flag_option(
+          "holdout-invisible", [](render_options & o) -> auto& { return o.holdout_invisible; },
+          "Holdouts matte the camera only: they cast no shadows and do not show in reflections or "
+          "through glass"))
+      .recorded_as = "kiln/holdout_invisible";
   add(integer_option<int>(
           "max-depth", [](render_options & o) -> auto& { return o.max_depth; }, 0, 64, "2",
           "Maximum reflection depth"))

@@ -15,6 +15,7 @@
 #include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
 #include "job/exr_storage_options.h"
+#include "job/holdouts.h"
 #include "job/job_stop.h"
 #include "job/memory_estimates.h"
 #include "job/memory_limit.h"
@@ -266,6 +267,7 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
            (dropped == 1 ? "" : "s") + " (repeated vertices or zero area)");
   }
 
+  apply_holdouts(p.world, options.holdout, options.only, options.holdout_invisible);
   p.cam = choose_view(options, p.world, p.camera_description);
   // Before any accelerator is built, for every backend and every client (render, batch, compare,
   // bench): no coordinate a ray can reach may pass Embree's limit.

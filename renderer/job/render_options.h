@@ -61,6 +61,9 @@ struct render_options {
   vec3 background{0.0f};
   bool show_background = false;
   std::string transmission_alpha = "opaque";    // --transmission-alpha opaque|transparent
+  std::string holdout;                          // --holdout NODE,...: node names or globs held out
+  std::string only;                             // --only NODE,...: everything else held out
+  bool holdout_invisible = false;               // --holdout-invisible: holdouts only matte the camera
   std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   embree_options embree;                        // --bvh-quality, --bvh-compact

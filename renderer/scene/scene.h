@@ -147,8 +147,14 @@ enum class shape_kind { mesh, quadric };
 
 // One placement of a shape in the world. A thousand instances of one mesh cost a thousand of
 // these, not a thousand meshes.
+// A holdout matte (--holdout, --only): to the camera the instance cuts alpha to zero and hides what
+// lies behind it. A matte holdout still casts shadows and shows in mirrors and through glass; an
+// invisible one is seen by nothing but the camera's own path.
+enum class holdout_kind : uint8_t { none, matte, invisible };
+
 struct instance {
   shape_kind kind = shape_kind::mesh;
+  holdout_kind holdout = holdout_kind::none;
   uint32_t shape = 0;     // index into scene.meshes (or scene.quadrics for shape_kind::quadric)
   uint32_t material = 0;  // index into scene.materials
   uint32_t node = 0;      // glTF node that placed it (for ids and messages)

@@ -36,11 +36,13 @@ vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint6
     std::optional<hit> h = accel.intersect(r);
     ++crossings;
     if (!h) return transmittance;
+    const instance& blocker = s.instances[h->instance_id];
+    const bool invisible = blocker.holdout == holdout_kind::invisible;  // casts no shadow: walk past it
     // An opaque blocker ends the walk: the same product surface_transmittance would give (times
     // 0), without reconstructing the surface point (a quadric's costs a projection onto it).
-    if (passes_no_light(s.materials[s.instances[h->instance_id].material])) return transmittance * vec3(0.0f);
+    if (!invisible && passes_no_light(s.materials[blocker.material])) return transmittance * vec3(0.0f);
     surface_point sp = make_surface_point(s, *h, r);
-    transmittance *= surface_transmittance(s, sp);
+    if (!invisible) transmittance *= surface_transmittance(s, sp);
     if (transmittance == vec3(0.0f)) return transmittance;
     // Continue from just beyond the surface; the segment keeps its far end.
     vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);

@@ -27,7 +27,11 @@ float max_component(const vec3& v) { return std::max({v.x, v.y, v.z}); }
 // glTF: doubleSided false enables back-face culling. Transmissive volumes are exempt: their rays
 // leave through back faces.
 bool back_face_culled(const scene& s, const hit& h, const ray& r) {
-  const material& m = s.materials[s.instances[h.instance_id].material];
+  const instance& inst = s.instances[h.instance_id];
+  // An invisible holdout exists for the camera's own rays only (they keep kind camera behind BLEND
+  // surfaces); every other ray passes it like a culled face.
+  if (inst.holdout == holdout_kind::invisible && r.kind != ray_kind::camera) return true;
+  const material& m = s.materials[inst.material];
   if (m.double_sided || m.transmission_factor > 0.0f) return false;
   return glm::dot(h.geometric_normal, r.direction) > 0.0f;
 }
@@ -142,6 +146,9 @@ interface_crossing cross_interface(const scene& s, const surface_point& sp, cons
 }  // namespace
 
 bool scene_has_see_through(const scene& s) {
+  // Shadow rays walk past invisible holdouts, so those need the walk too.
+  for (const instance& i : s.instances)
+    if (i.holdout == holdout_kind::invisible) return true;
   for (const material& m : s.materials)
     if ((m.transmission_factor > 0.0f && m.metallic_factor < 1.0f) || m.alpha == alpha_mode::blend)
       return true;
@@ -418,6 +425,12 @@ shading_point prepare_shading(const shading_context& ctx, const ray& r, const su
 
 vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared,
                     const path_state& s, ray_counts& counts) {
+  // A holdout on the camera's path: its share of the sample is transparent and brings no colour,
+  // and nothing behind it is traced.
+  if (s.camera && ctx.world.instances[prepared.sp.instance].holdout != holdout_kind::none) {
+    s.camera->transparency += s.share;
+    return vec3(0.0f);
+  }
   const material& m = ctx.world.materials[prepared.sp.material];
   const surface_point& sp = prepared.sp;
   const material_point& mp = prepared.mp;

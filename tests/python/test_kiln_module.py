@@ -90,6 +90,18 @@ def test_light_groups_are_arrays_that_sum_to_the_beauty():
     assert np.abs(total - beauty).max() <= 1e-5 * max(1.0, beauty.max())
 
 
+def test_render_layers_from_python_match_the_cli(tmp_path):
+    out = str(tmp_path / "layer.exr")
+    done = cli(["render", CORNELL, "-o", out, "-q", "--width", "32", "--height", "24", "--only", "*wall*"])
+    assert done.returncode == 0, done.stderr
+    result = kiln.render(CORNELL, width=32, height=24, only="*wall*")
+    assert_arrays_match_exr(result, out)
+    alpha = result.aovs["beauty"][:, :, 3]
+    assert np.count_nonzero(alpha == 0) > 50 and np.count_nonzero(alpha == 1) > 50  # floor held out, walls kept
+    with pytest.raises(kiln.InputError, match="--holdout"):
+        kiln.render(CORNELL, width=8, height=6, holdout="no_such_node")
+
+
 def test_output_writes_the_exr_the_cli_writes(tmp_path):
     out = str(tmp_path / "python.exr")
     result = kiln.render(CORNELL, output=out, width=32, height=24, look_from=(0.0, 1.0, 3.5),
