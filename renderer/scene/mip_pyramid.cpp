@@ -5,6 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace kiln {
 
@@ -141,6 +146,61 @@ vec4 blend(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty)
   return glm::mix(top, bottom, ty);
 }
 
+#if defined(__SSE2__)
+
+// The four channels at once, as glm::mix computes each: a·(1 - t) + b·t, rounded after each
+// operation (SSE2 has no fused multiply-add), so the sum is the scalar one bit for bit.
+inline __m128 mix4(__m128 a, __m128 b, float t) {
+  return _mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(1.0f - t)), _mm_mul_ps(b, _mm_set1_ps(t)));
+}
+
+template <typename Read>
+vec4 blend4(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty) {
+  const __m128 top = mix4(read(x0, y0), read(x1, y0), tx);
+  const __m128 bottom = mix4(read(x0, y1), read(x1, y1), tx);
+  vec4 out;
+  _mm_storeu_ps(&out.x, mix4(top, bottom, ty));
+  return out;
+}
+
+// An 8-bit RGBA texel's four codes as floats (exact).
+inline __m128 codes4(const uint8_t* t) {
+  int32_t word;
+  std::memcpy(&word, t, sizeof word);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i bytes = _mm_cvtsi32_si128(word);
+  return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero));
+}
+
+vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
+  if (level > 0) {
+    const mip_level& l = p.coarser[size_t(level - 1)];
+    const vec4* texels = l.texels.data();
+    const size_t w = size_t(l.width);
+    return blend4([&](int x, int y) { return _mm_loadu_ps(&texels[size_t(y) * w + size_t(x)].x); }, x0, x1,
+                  y0, y1, tx, ty);
+  }
+  const image& img = *p.level0;
+  const size_t w = size_t(img.width);
+  if (img.texels8.empty())
+    return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
+  const uint8_t* texels = img.texels8.data();
+  if (p.encoding == texel_encoding::srgb)
+    return blend4(
+        [&](int x, int y) {
+          const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
+          return _mm_setr_ps(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
+                             float(t[3]) * (1.0f / 255.0f));
+        },
+        x0, x1, y0, y1, tx, ty);
+  // Linear 8-bit: blend the codes, scale once.
+  const vec4 codes = blend4([&](int x, int y) { return codes4(texels + (size_t(y) * w + size_t(x)) * 4); },
+                            x0, x1, y0, y1, tx, ty);
+  return codes * (1.0f / 255.0f);
+}
+
+#else
+
 vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
   if (level > 0) {
     const mip_level& l = p.coarser[size_t(level - 1)];
@@ -170,6 +230,8 @@ vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1
              x0, x1, y0, y1, tx, ty) *
          (1.0f / 255.0f);
 }
+
+#endif
 
 }  // namespace
 
@@ -221,12 +283,33 @@ int nearest_along(float u, int size, wrap_mode mode) {
 
 }  // namespace
 
+level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampler& smp, filter_mode filter) {
+  level_taps t;
+  t.level = level;
+  t.nearest = filter == filter_mode::nearest;
+  if (t.nearest) {
+    t.x0 = t.x1 = nearest_along(uv.x, width, smp.wrap_s);
+    t.y0 = t.y1 = nearest_along(uv.y, height, smp.wrap_t);
+    t.tx = t.ty = 0.0f;
+    return t;
+  }
+  const texel_pair x = pair_along(uv.x, width, smp.wrap_s), y = pair_along(uv.y, height, smp.wrap_t);
+  t.x0 = x.first;
+  t.x1 = x.second;
+  t.y0 = y.first;
+  t.y1 = y.second;
+  t.tx = x.t;
+  t.ty = y.t;
+  return t;
+}
+
+vec4 read_level_taps(const mip_pyramid& p, const level_taps& t) {
+  if (t.nearest) return p.texel(t.level, t.x0, t.y0);
+  return blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);
+}
+
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter) {
-  const int w = p.width(level), h = p.height(level);
-  if (filter == filter_mode::nearest)
-    return p.texel(level, nearest_along(uv.x, w, smp.wrap_s), nearest_along(uv.y, h, smp.wrap_t));
-  const texel_pair x = pair_along(uv.x, w, smp.wrap_s), y = pair_along(uv.y, h, smp.wrap_t);
-  return blend_level(p, level, x.first, x.second, y.first, y.second, x.t, y.t);
+  return read_level_taps(p, mip_level_taps(p.width(level), p.height(level), level, uv, smp, filter));
 }
 
 }  // namespace kiln
