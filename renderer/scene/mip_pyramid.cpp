@@ -150,12 +150,13 @@ vec4 blend(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty)
 
 // The four channels at once, as glm::mix computes each: a·(1 - t) + b·t, rounded after each
 // operation (SSE2 has no fused multiply-add), so the sum is the scalar one bit for bit.
-inline __m128 mix4(__m128 a, __m128 b, float t) {
+[[gnu::always_inline]] inline __m128 mix4(__m128 a, __m128 b, float t) {
   return _mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(1.0f - t)), _mm_mul_ps(b, _mm_set1_ps(t)));
 }
 
 template <typename Read>
-vec4 blend4(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty) {
+[[gnu::always_inline]] inline vec4 blend4(const Read& read, int x0, int x1, int y0, int y1, float tx,
+                                          float ty) {
   const __m128 top = mix4(read(x0, y0), read(x1, y0), tx);
   const __m128 bottom = mix4(read(x0, y1), read(x1, y1), tx);
   vec4 out;
@@ -164,7 +165,7 @@ vec4 blend4(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty
 }
 
 // An 8-bit RGBA texel's four codes as floats (exact).
-inline __m128 codes4(const uint8_t* t) {
+[[gnu::always_inline]] inline __m128 codes4(const uint8_t* t) {
   int32_t word;
   std::memcpy(&word, t, sizeof word);
   const __m128i zero = _mm_setzero_si128();
@@ -172,7 +173,8 @@ inline __m128 codes4(const uint8_t* t) {
   return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero));
 }
 
-vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
+[[gnu::always_inline]] inline vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0,
+                                               int y1, float tx, float ty) {
   if (level > 0) {
     const mip_level& l = p.coarser[size_t(level - 1)];
     const vec4* texels = l.texels.data();
@@ -201,7 +203,8 @@ vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1
 
 #else
 
-vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
+[[gnu::always_inline]] inline vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0,
+                                               int y1, float tx, float ty) {
   if (level > 0) {
     const mip_level& l = p.coarser[size_t(level - 1)];
     const vec4* texels = l.texels.data();
@@ -306,6 +309,14 @@ level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampl
 vec4 read_level_taps(const mip_pyramid& p, const level_taps& t) {
   if (t.nearest) return p.texel(t.level, t.x0, t.y0);
   return blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);
+}
+
+void read_level_taps(const mip_pyramid& p, const level_taps* taps, int count, vec4* out) {
+  for (int i = 0; i < count; ++i) {
+    const level_taps& t = taps[i];
+    out[i] = t.nearest ? p.texel(t.level, t.x0, t.y0)
+                       : blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);
+  }
 }
 
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter) {

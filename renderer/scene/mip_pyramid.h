@@ -66,6 +66,10 @@ level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampl
 // same bits on every target: the SSE2 path does per channel the operations the scalar one does.
 vec4 read_level_taps(const mip_pyramid& p, const level_taps& t);
 
+// out[i] = read_level_taps(p, taps[i]) for each of `count` taps: one call for a whole lookup, the
+// storage format decided once.
+void read_level_taps(const mip_pyramid& p, const level_taps* taps, int count, vec4* out);
+
 // One level of p read at uv (glTF UVs) by the sampler's wrap modes: the nearest texel, or the
 // bilinear blend of the four around uv.
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter);

@@ -73,16 +73,12 @@ level_blend levels_for(const mip_pyramid& p, float width, const sampler& smp) {
 // Probe i's taps at uv: level b.level and, when b blends, the next coarser one.
 void probe_taps(const mip_pyramid& p, vec2 uv, const level_blend& b, const sampler& smp, int i,
                 lookup_taps& out) {
-  out.taps[2 * i] = mip_level_taps(p.width(b.level), p.height(b.level), b.level, uv, smp, smp.min_filter);
+  const int stride = out.two_levels ? 2 : 1;
+  out.taps[stride * i] =
+      mip_level_taps(p.width(b.level), p.height(b.level), b.level, uv, smp, smp.min_filter);
   if (out.two_levels)
     out.taps[2 * i + 1] =
         mip_level_taps(p.width(b.level + 1), p.height(b.level + 1), b.level + 1, uv, smp, smp.min_filter);
-}
-
-vec4 read_probe(const mip_pyramid& p, const lookup_taps& t, int i) {
-  const vec4 finer = read_level_taps(p, t.taps[2 * i]);
-  if (!t.two_levels) return finer;
-  return glm::mix(finer, read_level_taps(p, t.taps[2 * i + 1]), t.coarser);
 }
 
 }  // namespace
@@ -94,9 +90,16 @@ void level0_taps(int width, int height, vec2 uv, const sampler& smp, filter_mode
 }
 
 vec4 read_lookup(const mip_pyramid& p, const lookup_taps& t) {
-  if (t.probes == 1) return read_probe(p, t, 0);
+  const int stride = t.two_levels ? 2 : 1;
+  vec4 texels[2 * (2 * max_anisotropy - 1)];
+  read_level_taps(p, t.taps, t.probes * stride, texels);
+  auto probe = [&](int i) {
+    const vec4& finer = texels[stride * i];
+    return t.two_levels ? glm::mix(finer, texels[stride * i + 1], t.coarser) : finer;
+  };
+  if (t.probes == 1) return probe(0);
   vec4 sum(0.0f);
-  for (int i = 0; i < t.probes; ++i) sum += t.weight[i] * read_probe(p, t, i);
+  for (int i = 0; i < t.probes; ++i) sum += t.weight[i] * probe(i);
   return sum / t.weights;
 }
 

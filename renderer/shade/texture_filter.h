@@ -24,7 +24,7 @@ constexpr int max_anisotropy = 16;
 // colour, metallic-roughness, normal and emissive maps, often) plan once and read each image.
 struct lookup_taps {
   int probes = 1;           // 1: probe 0 alone; more: the weighted mean of probes 0 .. probes - 1
-  bool two_levels = false;  // probe i blends taps[2i] and, by `coarser`, taps[2i + 1]; else taps[2i]
+  bool two_levels = false;  // probe i blends taps[2i] and, by `coarser`, taps[2i + 1]; else taps[i]
   float coarser = 0.0f;
   float weights = 0.0f;  // the sum of weight[0 .. probes - 1], summed in that order
   // Left uninitialised: filled only as far as the probes go.
