@@ -23,6 +23,12 @@ texture_lookup lookup_of(const texture_ref& ref, const material_inputs& in, texe
   return l;
 }
 
+// Whether a and b map a point's UVs to the same texture coordinates.
+bool same_uv_mapping(const texture_ref& a, const texture_ref& b) {
+  return (a.texcoord == 1) == (b.texcoord == 1) && a.offset == b.offset && a.rotation == b.rotation &&
+         a.uv_scale == b.uv_scale;
+}
+
 }  // namespace
 
 vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in,
@@ -45,8 +51,18 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   texture_lookup lookups[5];
   vec4* targets[5];
   int count = 0;
+  const texture_ref* previous = nullptr;
   auto add = [&](const texture_ref& ref, texel_encoding encoding, vec4& target) {
-    lookups[count] = lookup_of(ref, in, encoding);
+    // Slots on the same UV set and transform (the usual case) share the transformed uv and
+    // footprint: the same arithmetic on the same inputs.
+    if (previous && same_uv_mapping(*previous, ref)) {
+      lookups[count] = lookups[count - 1];
+      lookups[count].texture = uint32_t(ref.texture);
+      lookups[count].encoding = encoding;
+    } else {
+      lookups[count] = lookup_of(ref, in, encoding);
+    }
+    previous = &ref;
     targets[count++] = &target;
   };
   if (m.base_color_texture.present()) add(m.base_color_texture, texel_encoding::srgb, t.base_color);

@@ -188,10 +188,6 @@ const lookup_plan& plan_for(const mip_pyramid& p, const uv_footprint& footprint,
 
 }  // namespace
 
-const mip_pyramid& texture_filter::pyramid(uint32_t texture_index, texel_encoding encoding) const {
-  return pyramids_[slot(scene_.textures[texture_index].image, encoding)];
-}
-
 void texture_filter::minified_taps(uint32_t texture_index, texel_encoding encoding, vec2 uv,
                                    const uv_footprint& footprint, lookup_taps& out) const {
   const sampler& smp = scene_.textures[texture_index].sampling;

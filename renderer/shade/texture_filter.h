@@ -60,11 +60,14 @@ class texture_filter {
 
   // The pyramid lookups of scene texture `texture_index` read (level 0 alone for textures no
   // mip-mapped sampler reads).
-  const mip_pyramid& pyramid(uint32_t texture_index, texel_encoding encoding) const;
+  const mip_pyramid& pyramid(uint32_t texture_index, texel_encoding encoding) const {
+    return pyramids_[size_t(scene_.textures[texture_index].image) * 2 +
+                     (encoding == texel_encoding::srgb ? 1 : 0)];
+  }
 
  private:
   const scene& scene_;
-  std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0)
+  std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0), as pyramid()
 };
 
 // The bytes the pyramids a texture_filter over s would build take (coarser levels only: level 0

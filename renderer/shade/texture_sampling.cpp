@@ -52,13 +52,12 @@ bool same_sampler(const sampler& a, const sampler& b) {
 // pyramid levels), equal samplers, uv and footprint.
 bool shares_plan(const scene& s, const texture_filter* filter, const texture_lookup& a,
                  const texture_lookup& b, lookup_route route) {
-  if (route == lookup_route::white) return false;
+  if (a.uv != b.uv || a.footprint.dx != b.footprint.dx || a.footprint.dy != b.footprint.dy) return false;
   const texture& ta = s.textures[a.texture];
   const texture& tb = s.textures[b.texture];
   const image& ia = s.images[ta.image];
   const image& ib = s.images[tb.image];
   if (ia.width != ib.width || ia.height != ib.height || !same_sampler(ta.sampling, tb.sampling)) return false;
-  if (a.uv != b.uv || a.footprint.dx != b.footprint.dx || a.footprint.dy != b.footprint.dy) return false;
   return route != lookup_route::minified ||
          filter->pyramid(a.texture, a.encoding).levels() == filter->pyramid(b.texture, b.encoding).levels();
 }
