@@ -306,6 +306,44 @@ level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampl
   return t;
 }
 
+void mip_level_pair_taps(int width, int height, int coarser_width, int coarser_height, int level, vec2 uv,
+                         const sampler& smp, filter_mode filter, level_taps& finer, level_taps& coarser) {
+#if defined(__SSE2__)
+  if (filter == filter_mode::linear && smp.wrap_s == wrap_mode::repeat && smp.wrap_t == wrap_mode::repeat) {
+    // Lanes (u, v, u, v) over sizes (width, height, coarser_width, coarser_height): reduced(),
+    // pair_along() and floor_to_int() lane by lane, the same operations in the same order.
+    const __m128 u = _mm_setr_ps(uv.x, uv.y, uv.x, uv.y);
+    const __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.0f), u);
+    if (_mm_movemask_ps(_mm_cmplt_ps(magnitude, _mm_set1_ps(8388608.0f))) == 0xF) {
+      auto floor4 = [](__m128 x) {
+        const __m128i i = _mm_cvttps_epi32(x);
+        return _mm_add_epi32(i, _mm_castps_si128(_mm_cmplt_ps(x, _mm_cvtepi32_ps(i))));  // - (x < i)
+      };
+      const __m128i sizes = _mm_setr_epi32(width, height, coarser_width, coarser_height);
+      const __m128 reduced4 = _mm_sub_ps(u, _mm_cvtepi32_ps(floor4(u)));
+      const __m128 x = _mm_sub_ps(_mm_mul_ps(reduced4, _mm_cvtepi32_ps(sizes)), _mm_set1_ps(0.5f));
+      const __m128i first = floor4(x);
+      const __m128i second = _mm_add_epi32(first, _mm_set1_epi32(1));
+      alignas(16) int i0[4], i1[4], n[4];
+      alignas(16) float t[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(i0), first);
+      _mm_store_si128(reinterpret_cast<__m128i*>(i1), second);
+      _mm_store_si128(reinterpret_cast<__m128i*>(n), sizes);
+      _mm_store_ps(t, _mm_sub_ps(x, _mm_cvtepi32_ps(first)));
+      for (int k = 0; k < 4; ++k) {
+        i0[k] = wrapped(i0[k], n[k], wrap_mode::repeat);
+        i1[k] = wrapped(i1[k], n[k], wrap_mode::repeat);
+      }
+      finer = {level, false, i0[0], i1[0], i0[1], i1[1], t[0], t[1]};
+      coarser = {level + 1, false, i0[2], i1[2], i0[3], i1[3], t[2], t[3]};
+      return;
+    }
+  }
+#endif
+  finer = mip_level_taps(width, height, level, uv, smp, filter);
+  coarser = mip_level_taps(coarser_width, coarser_height, level + 1, uv, smp, filter);
+}
+
 vec4 read_level_taps(const mip_pyramid& p, const level_taps& t) {
   if (t.nearest) return p.texel(t.level, t.x0, t.y0);
   return blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);

@@ -62,6 +62,12 @@ struct level_taps {
 // wrap modes and `filter`.
 level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampler& smp, filter_mode filter);
 
+// mip_level_taps for level `level` (width × height) and level + 1 (coarser_width × coarser_height)
+// at one uv, the same bits; both axes of both levels at once (SSE2, where the target has it) for
+// bilinear reads under repeat wrapping, the common case.
+void mip_level_pair_taps(int width, int height, int coarser_width, int coarser_height, int level, vec2 uv,
+                         const sampler& smp, filter_mode filter, level_taps& finer, level_taps& coarser);
+
 // The texels of p that t names, blended: linear RGBA (8-bit level 0 decoded by p's encoding). The
 // same bits on every target: the SSE2 path does per channel the operations the scalar one does.
 vec4 read_level_taps(const mip_pyramid& p, const level_taps& t);

@@ -4,6 +4,7 @@
 // sampler, uv and footprint, against the same lookups made one at a time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -76,6 +77,43 @@ TEST(level_read, matches_the_scalar_blend_bit_for_bit) {
         }
     }
   EXPECT_GT(compared, 10000);
+}
+
+bool same_taps(const level_taps& a, const level_taps& b) {
+  return a.level == b.level && a.nearest == b.nearest && a.x0 == b.x0 && a.x1 == b.x1 && a.y0 == b.y0 &&
+         a.y1 == b.y1 && std::memcmp(&a.tx, &b.tx, sizeof a.tx) == 0 &&
+         std::memcmp(&a.ty, &b.ty, sizeof a.ty) == 0;
+}
+
+TEST(level_taps, both_levels_at_once_equal_each_level_alone) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> coordinate(-4.0f, 4.0f);
+  std::uniform_int_distribution<int> size(1, 300);
+  // Edges, exact texel centres and borders, and coordinates past 2^23 (reduced by fmod).
+  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 1.0f - 1e-7f, -1e-7f, 3e7f, -3e7f, 8388608.0f};
+  int compared = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int w = size(rng), h = size(rng);
+    const int cw = std::max(1, w / 2), ch = std::max(1, h / 2);
+    vec2 uv(coordinate(rng), coordinate(rng));
+    if (i % 5 == 0) uv.x = special[size_t(i / 5) % 10];
+    if (i % 7 == 0) uv.y = special[size_t(i / 7) % 10];
+    if (i % 3 == 0) uv = vec2(float(size(rng) % (w + 1)) / float(w), float(size(rng) % (h + 1)) / float(h));
+    for (wrap_mode wrap : {wrap_mode::repeat, wrap_mode::clamp_to_edge, wrap_mode::mirrored_repeat})
+      for (filter_mode filter : {filter_mode::linear, filter_mode::nearest}) {
+        sampler smp;
+        smp.wrap_s = wrap;
+        smp.wrap_t = i % 2 ? wrap : wrap_mode::repeat;
+        level_taps finer, coarser;
+        mip_level_pair_taps(w, h, cw, ch, 2, uv, smp, filter, finer, coarser);
+        ASSERT_TRUE(same_taps(finer, mip_level_taps(w, h, 2, uv, smp, filter)))
+            << w << "x" << h << " " << uv.x;
+        ASSERT_TRUE(same_taps(coarser, mip_level_taps(cw, ch, 3, uv, smp, filter)))
+            << cw << "x" << ch << " " << uv.x;
+        ++compared;
+      }
+  }
+  EXPECT_EQ(compared, 120000);
 }
 
 // Two 64² images and one 32², read through two samplers; materials sample them over footprints

@@ -73,12 +73,11 @@ level_blend levels_for(const mip_pyramid& p, float width, const sampler& smp) {
 // Probe i's taps at uv: level b.level and, when b blends, the next coarser one.
 void probe_taps(const mip_pyramid& p, vec2 uv, const level_blend& b, const sampler& smp, int i,
                 lookup_taps& out) {
-  const int stride = out.two_levels ? 2 : 1;
-  out.taps[stride * i] =
-      mip_level_taps(p.width(b.level), p.height(b.level), b.level, uv, smp, smp.min_filter);
   if (out.two_levels)
-    out.taps[2 * i + 1] =
-        mip_level_taps(p.width(b.level + 1), p.height(b.level + 1), b.level + 1, uv, smp, smp.min_filter);
+    return mip_level_pair_taps(p.width(b.level), p.height(b.level), p.width(b.level + 1),
+                               p.height(b.level + 1), b.level, uv, smp, smp.min_filter, out.taps[2 * i],
+                               out.taps[2 * i + 1]);
+  out.taps[i] = mip_level_taps(p.width(b.level), p.height(b.level), b.level, uv, smp, smp.min_filter);
 }
 
 }  // namespace
