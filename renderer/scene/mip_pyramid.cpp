@@ -146,32 +146,51 @@ vec4 blend(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty)
   return glm::mix(top, bottom, ty);
 }
 
+// A texel's four channels as the blend holds them: one SSE2 register where the target has SSE2
+// (every x86-64), else a vec4. Either way each channel goes through the same operations, rounded
+// after each (SSE2 has no fused multiply-add), so both give the same bits.
 #if defined(__SSE2__)
+using lanes = __m128;
 
-// The four channels at once, as glm::mix computes each: a·(1 - t) + b·t, rounded after each
-// operation (SSE2 has no fused multiply-add), so the sum is the scalar one bit for bit.
-[[gnu::always_inline]] inline __m128 mix4(__m128 a, __m128 b, float t) {
+// glm::mix's a·(1 - t) + b·t, four channels at once.
+[[gnu::always_inline]] inline lanes mix_lanes(lanes a, lanes b, float t) {
   return _mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(1.0f - t)), _mm_mul_ps(b, _mm_set1_ps(t)));
 }
-
-template <typename Read>
-[[gnu::always_inline]] inline vec4 blend4(const Read& read, int x0, int x1, int y0, int y1, float tx,
-                                          float ty) {
-  const __m128 top = mix4(read(x0, y0), read(x1, y0), tx);
-  const __m128 bottom = mix4(read(x0, y1), read(x1, y1), tx);
-  vec4 out;
-  _mm_storeu_ps(&out.x, mix4(top, bottom, ty));
-  return out;
+[[gnu::always_inline]] inline lanes to_lanes(const vec4& v) { return _mm_loadu_ps(&v.x); }
+[[gnu::always_inline]] inline lanes to_lanes(float r, float g, float b, float a) {
+  return _mm_setr_ps(r, g, b, a);
 }
-
 // An 8-bit RGBA texel's four codes as floats (exact).
-[[gnu::always_inline]] inline __m128 codes4(const uint8_t* t) {
+[[gnu::always_inline]] inline lanes code_lanes(const uint8_t* t) {
   int32_t word;
   std::memcpy(&word, t, sizeof word);
   const __m128i zero = _mm_setzero_si128();
   const __m128i bytes = _mm_cvtsi32_si128(word);
   return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero));
 }
+[[gnu::always_inline]] inline vec4 to_vec4(lanes l) {
+  vec4 out;
+  _mm_storeu_ps(&out.x, l);
+  return out;
+}
+#else
+using lanes = vec4;
+
+inline lanes mix_lanes(const lanes& a, const lanes& b, float t) { return glm::mix(a, b, t); }
+inline lanes to_lanes(const vec4& v) { return v; }
+inline lanes to_lanes(float r, float g, float b, float a) { return vec4(r, g, b, a); }
+inline lanes code_lanes(const uint8_t* t) { return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3])); }
+inline vec4 to_vec4(const lanes& l) { return l; }
+#endif
+
+// blend() with the channels in lanes.
+template <typename Read>
+[[gnu::always_inline]] inline vec4 blend_lanes(const Read& read, int x0, int x1, int y0, int y1, float tx,
+                                               float ty) {
+  const lanes top = mix_lanes(read(x0, y0), read(x1, y0), tx);
+  const lanes bottom = mix_lanes(read(x0, y1), read(x1, y1), tx);
+  return to_vec4(mix_lanes(top, bottom, ty));
+}
 
 [[gnu::always_inline]] inline vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0,
                                                int y1, float tx, float ty) {
@@ -179,8 +198,8 @@ template <typename Read>
     const mip_level& l = p.coarser[size_t(level - 1)];
     const vec4* texels = l.texels.data();
     const size_t w = size_t(l.width);
-    return blend4([&](int x, int y) { return _mm_loadu_ps(&texels[size_t(y) * w + size_t(x)].x); }, x0, x1,
-                  y0, y1, tx, ty);
+    return blend_lanes([&](int x, int y) { return to_lanes(texels[size_t(y) * w + size_t(x)]); }, x0, x1, y0,
+                       y1, tx, ty);
   }
   const image& img = *p.level0;
   const size_t w = size_t(img.width);
@@ -188,53 +207,19 @@ template <typename Read>
     return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
   const uint8_t* texels = img.texels8.data();
   if (p.encoding == texel_encoding::srgb)
-    return blend4(
+    return blend_lanes(
         [&](int x, int y) {
           const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
-          return _mm_setr_ps(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
-                             float(t[3]) * (1.0f / 255.0f));
+          return to_lanes(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
+                          float(t[3]) * (1.0f / 255.0f));
         },
         x0, x1, y0, y1, tx, ty);
   // Linear 8-bit: blend the codes, scale once.
-  const vec4 codes = blend4([&](int x, int y) { return codes4(texels + (size_t(y) * w + size_t(x)) * 4); },
-                            x0, x1, y0, y1, tx, ty);
+  const vec4 codes =
+      blend_lanes([&](int x, int y) { return code_lanes(texels + (size_t(y) * w + size_t(x)) * 4); }, x0, x1,
+                  y0, y1, tx, ty);
   return codes * (1.0f / 255.0f);
 }
-
-#else
-
-[[gnu::always_inline]] inline vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0,
-                                               int y1, float tx, float ty) {
-  if (level > 0) {
-    const mip_level& l = p.coarser[size_t(level - 1)];
-    const vec4* texels = l.texels.data();
-    const size_t w = size_t(l.width);
-    return blend([&](int x, int y) { return texels[size_t(y) * w + size_t(x)]; }, x0, x1, y0, y1, tx, ty);
-  }
-  const image& img = *p.level0;
-  const size_t w = size_t(img.width);
-  if (img.texels8.empty())
-    return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
-  const uint8_t* texels = img.texels8.data();
-  if (p.encoding == texel_encoding::srgb)
-    return blend(
-        [&](int x, int y) {
-          const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
-          return vec4(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
-                      float(t[3]) * (1.0f / 255.0f));
-        },
-        x0, x1, y0, y1, tx, ty);
-  // Linear 8-bit: blend the codes, scale once.
-  return blend(
-             [&](int x, int y) {
-               const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
-               return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3]));
-             },
-             x0, x1, y0, y1, tx, ty) *
-         (1.0f / 255.0f);
-}
-
-#endif
 
 }  // namespace
 
