@@ -5,6 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace kiln {
 
@@ -141,12 +146,60 @@ vec4 blend(const Read& read, int x0, int x1, int y0, int y1, float tx, float ty)
   return glm::mix(top, bottom, ty);
 }
 
-vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1, float tx, float ty) {
+// A texel's four channels as the blend holds them: one SSE2 register where the target has SSE2
+// (every x86-64), else a vec4. Either way each channel goes through the same operations, rounded
+// after each (SSE2 has no fused multiply-add), so both give the same bits.
+#if defined(__SSE2__)
+using lanes = __m128;
+
+// glm::mix's a·(1 - t) + b·t, four channels at once.
+[[gnu::always_inline]] inline lanes mix_lanes(lanes a, lanes b, float t) {
+  return _mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(1.0f - t)), _mm_mul_ps(b, _mm_set1_ps(t)));
+}
+[[gnu::always_inline]] inline lanes to_lanes(const vec4& v) { return _mm_loadu_ps(&v.x); }
+[[gnu::always_inline]] inline lanes to_lanes(float r, float g, float b, float a) {
+  return _mm_setr_ps(r, g, b, a);
+}
+// An 8-bit RGBA texel's four codes as floats (exact).
+[[gnu::always_inline]] inline lanes code_lanes(const uint8_t* t) {
+  int32_t word;
+  std::memcpy(&word, t, sizeof word);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i bytes = _mm_cvtsi32_si128(word);
+  return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero));
+}
+[[gnu::always_inline]] inline vec4 to_vec4(lanes l) {
+  vec4 out;
+  _mm_storeu_ps(&out.x, l);
+  return out;
+}
+#else
+using lanes = vec4;
+
+inline lanes mix_lanes(const lanes& a, const lanes& b, float t) { return glm::mix(a, b, t); }
+inline lanes to_lanes(const vec4& v) { return v; }
+inline lanes to_lanes(float r, float g, float b, float a) { return vec4(r, g, b, a); }
+inline lanes code_lanes(const uint8_t* t) { return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3])); }
+inline vec4 to_vec4(const lanes& l) { return l; }
+#endif
+
+// blend() with the channels in lanes.
+template <typename Read>
+[[gnu::always_inline]] inline vec4 blend_lanes(const Read& read, int x0, int x1, int y0, int y1, float tx,
+                                               float ty) {
+  const lanes top = mix_lanes(read(x0, y0), read(x1, y0), tx);
+  const lanes bottom = mix_lanes(read(x0, y1), read(x1, y1), tx);
+  return to_vec4(mix_lanes(top, bottom, ty));
+}
+
+[[gnu::always_inline]] inline vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0,
+                                               int y1, float tx, float ty) {
   if (level > 0) {
     const mip_level& l = p.coarser[size_t(level - 1)];
     const vec4* texels = l.texels.data();
     const size_t w = size_t(l.width);
-    return blend([&](int x, int y) { return texels[size_t(y) * w + size_t(x)]; }, x0, x1, y0, y1, tx, ty);
+    return blend_lanes([&](int x, int y) { return to_lanes(texels[size_t(y) * w + size_t(x)]); }, x0, x1, y0,
+                       y1, tx, ty);
   }
   const image& img = *p.level0;
   const size_t w = size_t(img.width);
@@ -154,21 +207,18 @@ vec4 blend_level(const mip_pyramid& p, int level, int x0, int x1, int y0, int y1
     return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
   const uint8_t* texels = img.texels8.data();
   if (p.encoding == texel_encoding::srgb)
-    return blend(
+    return blend_lanes(
         [&](int x, int y) {
           const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
-          return vec4(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
-                      float(t[3]) * (1.0f / 255.0f));
+          return to_lanes(srgb8_to_linear[t[0]], srgb8_to_linear[t[1]], srgb8_to_linear[t[2]],
+                          float(t[3]) * (1.0f / 255.0f));
         },
         x0, x1, y0, y1, tx, ty);
   // Linear 8-bit: blend the codes, scale once.
-  return blend(
-             [&](int x, int y) {
-               const uint8_t* t = texels + (size_t(y) * w + size_t(x)) * 4;
-               return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3]));
-             },
-             x0, x1, y0, y1, tx, ty) *
-         (1.0f / 255.0f);
+  const vec4 codes =
+      blend_lanes([&](int x, int y) { return code_lanes(texels + (size_t(y) * w + size_t(x)) * 4); }, x0, x1,
+                  y0, y1, tx, ty);
+  return codes * (1.0f / 255.0f);
 }
 
 }  // namespace
@@ -221,12 +271,79 @@ int nearest_along(float u, int size, wrap_mode mode) {
 
 }  // namespace
 
+level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampler& smp, filter_mode filter) {
+  level_taps t;
+  t.level = level;
+  t.nearest = filter == filter_mode::nearest;
+  if (t.nearest) {
+    t.x0 = t.x1 = nearest_along(uv.x, width, smp.wrap_s);
+    t.y0 = t.y1 = nearest_along(uv.y, height, smp.wrap_t);
+    t.tx = t.ty = 0.0f;
+    return t;
+  }
+  const texel_pair x = pair_along(uv.x, width, smp.wrap_s), y = pair_along(uv.y, height, smp.wrap_t);
+  t.x0 = x.first;
+  t.x1 = x.second;
+  t.y0 = y.first;
+  t.y1 = y.second;
+  t.tx = x.t;
+  t.ty = y.t;
+  return t;
+}
+
+void mip_level_pair_taps(int width, int height, int coarser_width, int coarser_height, int level, vec2 uv,
+                         const sampler& smp, filter_mode filter, level_taps& finer, level_taps& coarser) {
+#if defined(__SSE2__)
+  if (filter == filter_mode::linear && smp.wrap_s == wrap_mode::repeat && smp.wrap_t == wrap_mode::repeat) {
+    // Lanes (u, v, u, v) over sizes (width, height, coarser_width, coarser_height): reduced(),
+    // pair_along() and floor_to_int() lane by lane, the same operations in the same order.
+    const __m128 u = _mm_setr_ps(uv.x, uv.y, uv.x, uv.y);
+    const __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.0f), u);
+    if (_mm_movemask_ps(_mm_cmplt_ps(magnitude, _mm_set1_ps(8388608.0f))) == 0xF) {
+      auto floor4 = [](__m128 x) {
+        const __m128i i = _mm_cvttps_epi32(x);
+        return _mm_add_epi32(i, _mm_castps_si128(_mm_cmplt_ps(x, _mm_cvtepi32_ps(i))));  // - (x < i)
+      };
+      const __m128i sizes = _mm_setr_epi32(width, height, coarser_width, coarser_height);
+      const __m128 reduced4 = _mm_sub_ps(u, _mm_cvtepi32_ps(floor4(u)));
+      const __m128 x = _mm_sub_ps(_mm_mul_ps(reduced4, _mm_cvtepi32_ps(sizes)), _mm_set1_ps(0.5f));
+      const __m128i first = floor4(x);
+      const __m128i second = _mm_add_epi32(first, _mm_set1_epi32(1));
+      alignas(16) int i0[4], i1[4], n[4];
+      alignas(16) float t[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(i0), first);
+      _mm_store_si128(reinterpret_cast<__m128i*>(i1), second);
+      _mm_store_si128(reinterpret_cast<__m128i*>(n), sizes);
+      _mm_store_ps(t, _mm_sub_ps(x, _mm_cvtepi32_ps(first)));
+      for (int k = 0; k < 4; ++k) {
+        i0[k] = wrapped(i0[k], n[k], wrap_mode::repeat);
+        i1[k] = wrapped(i1[k], n[k], wrap_mode::repeat);
+      }
+      finer = {level, false, i0[0], i1[0], i0[1], i1[1], t[0], t[1]};
+      coarser = {level + 1, false, i0[2], i1[2], i0[3], i1[3], t[2], t[3]};
+      return;
+    }
+  }
+#endif
+  finer = mip_level_taps(width, height, level, uv, smp, filter);
+  coarser = mip_level_taps(coarser_width, coarser_height, level + 1, uv, smp, filter);
+}
+
+vec4 read_level_taps(const mip_pyramid& p, const level_taps& t) {
+  if (t.nearest) return p.texel(t.level, t.x0, t.y0);
+  return blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);
+}
+
+void read_level_taps(const mip_pyramid& p, const level_taps* taps, int count, vec4* out) {
+  for (int i = 0; i < count; ++i) {
+    const level_taps& t = taps[i];
+    out[i] = t.nearest ? p.texel(t.level, t.x0, t.y0)
+                       : blend_level(p, t.level, t.x0, t.x1, t.y0, t.y1, t.tx, t.ty);
+  }
+}
+
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter) {
-  const int w = p.width(level), h = p.height(level);
-  if (filter == filter_mode::nearest)
-    return p.texel(level, nearest_along(uv.x, w, smp.wrap_s), nearest_along(uv.y, h, smp.wrap_t));
-  const texel_pair x = pair_along(uv.x, w, smp.wrap_s), y = pair_along(uv.y, h, smp.wrap_t);
-  return blend_level(p, level, x.first, x.second, y.first, y.second, x.t, y.t);
+  return read_level_taps(p, mip_level_taps(p.width(level), p.height(level), level, uv, smp, filter));
 }
 
 }  // namespace kiln

@@ -42,6 +42,40 @@ mip_pyramid build_mip_pyramid(const image& img, texel_encoding encoding, bool bu
 // The bytes of a pyramid's coarser levels over a width × height image (level 0 is the image).
 uint64_t mip_pyramid_bytes(int width, int height);
 
+// The texels one read of a level takes: the nearest texel (x0, y0), or the four around a point
+// blended bilinearly, tx and ty the weights of x1 and y1. Where they lie depends on the level's size,
+// the point and the sampler only, so reads of several images of one size at one point share them.
+// No default values: a lookup holds dozens of these and fills only those it uses (mip_level_taps
+// sets every field).
+struct level_taps {
+  int level;
+  bool nearest;
+  int x0;
+  int x1;
+  int y0;
+  int y1;
+  float tx;
+  float ty;
+};
+
+// The taps of a read at uv (glTF UVs) of level `level`, width × height texels, by the sampler's
+// wrap modes and `filter`.
+level_taps mip_level_taps(int width, int height, int level, vec2 uv, const sampler& smp, filter_mode filter);
+
+// mip_level_taps for level `level` (width × height) and level + 1 (coarser_width × coarser_height)
+// at one uv, the same bits; both axes of both levels at once (SSE2, where the target has it) for
+// bilinear reads under repeat wrapping, the common case.
+void mip_level_pair_taps(int width, int height, int coarser_width, int coarser_height, int level, vec2 uv,
+                         const sampler& smp, filter_mode filter, level_taps& finer, level_taps& coarser);
+
+// The texels of p that t names, blended: linear RGBA (8-bit level 0 decoded by p's encoding). The
+// same bits on every target: the SSE2 path does per channel the operations the scalar one does.
+vec4 read_level_taps(const mip_pyramid& p, const level_taps& t);
+
+// out[i] = read_level_taps(p, taps[i]) for each of `count` taps: one call for a whole lookup, the
+// storage format decided once.
+void read_level_taps(const mip_pyramid& p, const level_taps* taps, int count, vec4* out);
+
 // One level of p read at uv (glTF UVs) by the sampler's wrap modes: the nearest texel, or the
 // bilinear blend of the four around uv.
 vec4 sample_mip_level(const mip_pyramid& p, int level, vec2 uv, const sampler& smp, filter_mode filter);

@@ -7,24 +7,37 @@
 
 namespace kiln {
 
-vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in,
-                        texel_encoding encoding) {
-  // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
-  const int set = ref.texcoord == 1 ? 1 : 0;
-  const vec2 uv = transform_uv(ref, in.uv[set]);
-  const uv_footprint& f = in.footprint[set];
-  if (f.empty()) return sample_texture(s, s.textures[size_t(ref.texture)], uv, encoding);
-  const uv_footprint transformed{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
-  return sample_texture(s, in.filter, uint32_t(ref.texture), uv, transformed, encoding);
-}
-
 namespace {
 
-vec4 lookup(const scene& s, const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
-  return sample_texture_ref(s, ref, in, encoding);
+// The lookup sample_texture_ref makes for ref (present).
+texture_lookup lookup_of(const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+  // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
+  const int set = ref.texcoord == 1 ? 1 : 0;
+  texture_lookup l;
+  l.texture = uint32_t(ref.texture);
+  l.encoding = encoding;
+  l.uv = transform_uv(ref, in.uv[set]);
+  const uv_footprint& f = in.footprint[set];
+  // An empty footprint stays empty: the lookup reads level 0 by the magnification filter.
+  if (!f.empty()) l.footprint = uv_footprint{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
+  return l;
+}
+
+// Whether a and b map a point's UVs to the same texture coordinates.
+bool same_uv_mapping(const texture_ref& a, const texture_ref& b) {
+  return (a.texcoord == 1) == (b.texcoord == 1) && a.offset == b.offset && a.rotation == b.rotation &&
+         a.uv_scale == b.uv_scale;
 }
 
 }  // namespace
+
+vec4 sample_texture_ref(const scene& s, const texture_ref& ref, const material_inputs& in,
+                        texel_encoding encoding) {
+  const texture_lookup l = lookup_of(ref, in, encoding);
+  vec4 out;
+  sample_textures(s, in.filter, &l, 1, &out);
+  return out;
+}
 
 material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
   material_inputs in;
@@ -32,31 +45,67 @@ material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
   return evaluate_material(s, m, in);
 }
 
+material_texels sample_material_textures(const scene& s, const material& m, const material_inputs& in,
+                                         bool with_normal) {
+  material_texels t;
+  texture_lookup lookups[5];
+  vec4* targets[5];
+  int count = 0;
+  const texture_ref* previous = nullptr;
+  auto add = [&](const texture_ref& ref, texel_encoding encoding, vec4& target) {
+    // Slots on the same UV set and transform (the usual case) share the transformed uv and
+    // footprint: the same arithmetic on the same inputs.
+    if (previous && same_uv_mapping(*previous, ref)) {
+      lookups[count] = lookups[count - 1];
+      lookups[count].texture = uint32_t(ref.texture);
+      lookups[count].encoding = encoding;
+    } else {
+      lookups[count] = lookup_of(ref, in, encoding);
+    }
+    previous = &ref;
+    targets[count++] = &target;
+  };
+  if (m.base_color_texture.present()) add(m.base_color_texture, texel_encoding::srgb, t.base_color);
+  if (m.metallic_roughness_texture.present())
+    add(m.metallic_roughness_texture, texel_encoding::linear, t.metallic_roughness);
+  if (m.emissive_texture.present() && m.emissive_factor * m.emissive_strength != vec3(0.0f))
+    add(m.emissive_texture, texel_encoding::srgb, t.emissive);
+  if (m.transmission_texture.present() && m.transmission_factor > 0.0f)
+    add(m.transmission_texture, texel_encoding::linear, t.transmission);
+  if (with_normal && m.normal_texture.present()) add(m.normal_texture, texel_encoding::linear, t.normal);
+  vec4 texels[5];
+  sample_textures(s, in.filter, lookups, count, texels);
+  for (int i = 0; i < count; ++i) *targets[i] = texels[i];
+  return t;
+}
+
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in) {
+  return evaluate_material(m, in, sample_material_textures(s, m, in, false));
+}
+
+material_point evaluate_material(const material& m, const material_inputs& in, const material_texels& t) {
   material_point mp;
   vec4 base = m.base_color_factor * in.color0;
-  if (m.base_color_texture.present()) base *= lookup(s, m.base_color_texture, in, texel_encoding::srgb);
+  if (m.base_color_texture.present()) base *= t.base_color;
   mp.base_color = vec3(base);
   mp.alpha = base.a;
   mp.metallic = m.metallic_factor;
   mp.roughness = m.roughness_factor;
   if (m.metallic_roughness_texture.present()) {
-    vec4 mr = lookup(s, m.metallic_roughness_texture, in, texel_encoding::linear);
+    const vec4& mr = t.metallic_roughness;
     mp.roughness *= mr.g;
     mp.metallic *= mr.b;
   }
   mp.metallic = std::clamp(mp.metallic, 0.0f, 1.0f);
   mp.roughness = std::clamp(mp.roughness, 0.0f, 1.0f);
   vec3 emission = m.emissive_factor * m.emissive_strength;
-  if (m.emissive_texture.present() && emission != vec3(0.0f))
-    emission *= vec3(lookup(s, m.emissive_texture, in, texel_encoding::srgb));
+  if (m.emissive_texture.present() && emission != vec3(0.0f)) emission *= vec3(t.emissive);
   mp.emission = emission;
   mp.specular_weight = m.specular_factor;
   float r = (m.ior - 1.0f) / (m.ior + 1.0f);
   mp.dielectric_f0 = glm::min(vec3(r * r) * m.specular_color_factor, vec3(1.0f));
   mp.transmission = m.transmission_factor;
-  if (m.transmission_texture.present() && mp.transmission > 0.0f)
-    mp.transmission *= lookup(s, m.transmission_texture, in, texel_encoding::linear).r;
+  if (m.transmission_texture.present() && mp.transmission > 0.0f) mp.transmission *= t.transmission.r;
   mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
   mp.unlit = m.unlit;
   return mp;

@@ -37,6 +37,25 @@ struct material_inputs {
 
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
 
+// The texels of m's textures that shading at one point reads, white where m has no such texture
+// or shading skips it (emissive without emission, transmission with a zero factor, the normal map
+// unless asked for).
+struct material_texels {
+  vec4 base_color{1.0f};
+  vec4 metallic_roughness{1.0f};
+  vec4 emissive{1.0f};
+  vec4 transmission{1.0f};
+  vec4 normal{1.0f};
+};
+
+// Every texture lookup of m at `in` in one batch (sample_textures: slots on one UV set, transform
+// and sampler over images of one size plan their texels once), the normal map's when with_normal.
+material_texels sample_material_textures(const scene& s, const material& m, const material_inputs& in,
+                                         bool with_normal);
+
+// evaluate_material from texels sample_material_textures read at the same point.
+material_point evaluate_material(const material& m, const material_inputs& in, const material_texels& t);
+
 inline material_inputs material_inputs_at(const surface_point& sp) {
   material_inputs in;
   in.uv[0] = sp.uv0;

@@ -4,8 +4,16 @@
 
 namespace kiln {
 
+bool reads_normal_map(const material& m, const surface_point& sp) {
+  return m.normal_texture.present() && sp.tangent != vec4(0.0f);
+}
+
 void apply_normal_map(const scene& s, const material& m, const material_inputs& in, surface_point& sp) {
-  if (!m.normal_texture.present() || sp.tangent == vec4(0.0f)) return;
+  if (!reads_normal_map(m, sp)) return;
+  apply_normal_map(m, sample_texture_ref(s, m.normal_texture, in, texel_encoding::linear), sp);
+}
+
+void apply_normal_map(const material& m, const vec4& normal_texel, surface_point& sp) {
   // Work with glTF's front-side normal; make_surface_point flipped it toward back-face rays.
   const vec3 n = sp.front_face ? sp.shading_normal : -sp.shading_normal;
   vec3 t = vec3(sp.tangent);
@@ -14,7 +22,7 @@ void apply_normal_map(const scene& s, const material& m, const material_inputs& 
   if (!(t_length > 0.0f) || !std::isfinite(t_length)) return;
   t /= t_length;
   const vec3 b = glm::cross(n, t) * sp.tangent.w;
-  vec3 c = vec3(sample_texture_ref(s, m.normal_texture, in, texel_encoding::linear)) * 2.0f - 1.0f;
+  vec3 c = vec3(normal_texel) * 2.0f - 1.0f;
   c.x *= m.normal_texture.scale;  // glTF: scale applies to X and Y only
   c.y *= m.normal_texture.scale;
   vec3 mapped = t * c.x + b * c.y + n * c.z;

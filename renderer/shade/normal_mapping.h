@@ -13,4 +13,11 @@ namespace kiln {
 // mesh a tangent frame; the result stays on the incoming ray's side of the geometric surface.
 void apply_normal_map(const scene& s, const material& m, const material_inputs& in, surface_point& sp);
 
+// Whether apply_normal_map reads m's normal texture at sp (m has one and sp a tangent frame).
+bool reads_normal_map(const material& m, const surface_point& sp);
+
+// apply_normal_map with the normal texture's texel at sp already read (by
+// sample_material_textures); sp must be a point where reads_normal_map holds.
+void apply_normal_map(const material& m, const vec4& normal_texel, surface_point& sp);
+
 }  // namespace kiln

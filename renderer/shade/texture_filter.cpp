@@ -70,13 +70,37 @@ level_blend levels_for(const mip_pyramid& p, float width, const sampler& smp) {
   return b;
 }
 
-vec4 probe(const mip_pyramid& p, vec2 uv, const level_blend& b, const sampler& smp) {
-  const vec4 finer = sample_mip_level(p, b.level, uv, smp, smp.min_filter);
-  if (b.coarser <= 0.0f) return finer;
-  return glm::mix(finer, sample_mip_level(p, b.level + 1, uv, smp, smp.min_filter), b.coarser);
+// Probe i's taps at uv: level b.level and, when b blends, the next coarser one.
+void probe_taps(const mip_pyramid& p, vec2 uv, const level_blend& b, const sampler& smp, int i,
+                lookup_taps& out) {
+  if (out.two_levels)
+    return mip_level_pair_taps(p.width(b.level), p.height(b.level), p.width(b.level + 1),
+                               p.height(b.level + 1), b.level, uv, smp, smp.min_filter, out.taps[2 * i],
+                               out.taps[2 * i + 1]);
+  out.taps[i] = mip_level_taps(p.width(b.level), p.height(b.level), b.level, uv, smp, smp.min_filter);
 }
 
 }  // namespace
+
+void level0_taps(int width, int height, vec2 uv, const sampler& smp, filter_mode filter, lookup_taps& out) {
+  out.probes = 1;
+  out.two_levels = false;
+  out.taps[0] = mip_level_taps(width, height, 0, uv, smp, filter);
+}
+
+vec4 read_lookup(const mip_pyramid& p, const lookup_taps& t) {
+  const int stride = t.two_levels ? 2 : 1;
+  vec4 texels[2 * (2 * max_anisotropy - 1)];
+  read_level_taps(p, t.taps, t.probes * stride, texels);
+  auto probe = [&](int i) {
+    const vec4& finer = texels[stride * i];
+    return t.two_levels ? glm::mix(finer, texels[stride * i + 1], t.coarser) : finer;
+  };
+  if (t.probes == 1) return probe(0);
+  vec4 sum(0.0f);
+  for (int i = 0; i < t.probes; ++i) sum += t.weight[i] * probe(i);
+  return sum / t.weights;
+}
 
 texture_filter::texture_filter(const scene& s) : scene_(s), pyramids_(s.images.size() * 2) {
   const std::vector<bool> used = mip_mapped_uses(s);
@@ -163,26 +187,37 @@ const lookup_plan& plan_for(const mip_pyramid& p, const uv_footprint& footprint,
 
 }  // namespace
 
-vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
-                              const uv_footprint& footprint) const {
-  const texture& tex = scene_.textures[texture_index];
-  const mip_pyramid& p = pyramids_[slot(tex.image, encoding)];
-  if (p.width(0) <= 0 || p.height(0) <= 0) return vec4(1.0f);
-  const lookup_plan& plan = plan_for(p, footprint, tex.sampling);
-  if (plan.degenerate) return sample_mip_level(p, 0, uv, tex.sampling, tex.sampling.filter);
+void texture_filter::minified_taps(uint32_t texture_index, texel_encoding encoding, vec2 uv,
+                                   const uv_footprint& footprint, lookup_taps& out) const {
+  const sampler& smp = scene_.textures[texture_index].sampling;
+  const mip_pyramid& p = pyramid(texture_index, encoding);
+  const lookup_plan& plan = plan_for(p, footprint, smp);
+  if (plan.degenerate) return level0_taps(p.width(0), p.height(0), uv, smp, smp.filter, out);
   const int n = plan.n;
-  if (n == 1) return probe(p, uv, plan.blend, tex.sampling);
-  vec4 sum(0.0f);
+  out.probes = n;
+  out.two_levels = plan.blend.coarser > 0.0f;
+  out.coarser = plan.blend.coarser;
+  if (n == 1) return probe_taps(p, uv, plan.blend, smp, 0, out);
   float weights = 0.0f;
   for (int i = 0; i < n; ++i) {
     const float position = 2.0f * (float(i) + 0.5f) / float(n) - 1.0f;  // in (-1, 1)
     const float x = position * plan.major / (2.0f * plan.reach);
     // The centre probe of an odd n sits exactly at 0, where exp() would return exactly 1.
     const float w = n == 2 || x == 0.0f ? 1.0f : std::exp(-2.0f * x * x);
-    sum += w * probe(p, uv + plan.axis * position, plan.blend, tex.sampling);
+    out.weight[i] = w;
+    probe_taps(p, uv + plan.axis * position, plan.blend, smp, i, out);
     weights += w;
   }
-  return sum / weights;
+  out.weights = weights;
+}
+
+vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
+                              const uv_footprint& footprint) const {
+  const mip_pyramid& p = pyramid(texture_index, encoding);
+  if (p.width(0) <= 0 || p.height(0) <= 0) return vec4(1.0f);
+  lookup_taps taps;
+  minified_taps(texture_index, encoding, uv, footprint, taps);
+  return read_lookup(p, taps);
 }
 
 bool scene_needs_texture_filter(const scene& s) {

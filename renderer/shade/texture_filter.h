@@ -18,6 +18,26 @@ namespace kiln {
 // blurred across (their width grows to major/16), as GPUs' 16x anisotropic filtering does.
 constexpr int max_anisotropy = 16;
 
+// Everything a lookup decides before it reads a texel: the texels of each probe's level or two
+// levels and the probes' weights. A pure function of the image's size and levels, the sampler, uv
+// and the footprint, so lookups of several images of one size at one point (a material's base
+// colour, metallic-roughness, normal and emissive maps, often) plan once and read each image.
+struct lookup_taps {
+  int probes = 1;           // 1: probe 0 alone; more: the weighted mean of probes 0 .. probes - 1
+  bool two_levels = false;  // probe i blends taps[2i] and, by `coarser`, taps[2i + 1]; else taps[i]
+  float coarser = 0.0f;
+  float weights = 0.0f;  // the sum of weight[0 .. probes - 1], summed in that order
+  // Left uninitialised: filled only as far as the probes go.
+  float weight[2 * max_anisotropy - 1];
+  level_taps taps[2 * (2 * max_anisotropy - 1)];
+};
+
+// Level 0 read at uv by `filter` alone (a magnified lookup, or a sampler without mip-mapping).
+void level0_taps(int width, int height, vec2 uv, const sampler& smp, filter_mode filter, lookup_taps& out);
+
+// The lookup t planned, read from p (a pyramid of an image of the size t was planned for).
+vec4 read_lookup(const mip_pyramid& p, const lookup_taps& t);
+
 class texture_filter {
  public:
   // Builds the pyramids of every texture of s (which must outlive the filter) that a material
@@ -33,9 +53,21 @@ class texture_filter {
   vec4 minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
                 const uv_footprint& footprint) const;
 
+  // minified()'s plan, read through read_lookup(pyramid(texture_index, encoding), out); the
+  // texture's image must have texels.
+  void minified_taps(uint32_t texture_index, texel_encoding encoding, vec2 uv, const uv_footprint& footprint,
+                     lookup_taps& out) const;
+
+  // The pyramid lookups of scene texture `texture_index` read (level 0 alone for textures no
+  // mip-mapped sampler reads).
+  const mip_pyramid& pyramid(uint32_t texture_index, texel_encoding encoding) const {
+    return pyramids_[size_t(scene_.textures[texture_index].image) * 2 +
+                     (encoding == texel_encoding::srgb ? 1 : 0)];
+  }
+
  private:
   const scene& scene_;
-  std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0)
+  std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0), as pyramid()
 };
 
 // The bytes the pyramids a texture_filter over s would build take (coarser levels only: level 0

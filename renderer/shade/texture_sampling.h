@@ -26,4 +26,18 @@ class texture_filter;
 vec4 sample_texture(const scene& s, const texture_filter* filter, uint32_t texture_index, vec2 uv,
                     const uv_footprint& footprint, texel_encoding encoding);
 
+// One lookup of a batch: sample_texture's arguments.
+struct texture_lookup {
+  uint32_t texture = 0;
+  texel_encoding encoding = texel_encoding::linear;
+  vec2 uv{0.0f};
+  uv_footprint footprint;
+};
+
+// out[i] = sample_texture(s, filter, lookups[i]...) for each of `count` lookups, bit for bit.
+// Lookups of images of one size through equal samplers at an equal uv and footprint find their
+// texels and weights once and read each image through them.
+void sample_textures(const scene& s, const texture_filter* filter, const texture_lookup* lookups, int count,
+                     vec4* out);
+
 }  // namespace kiln

@@ -416,8 +416,11 @@ shading_point prepare_shading(const shading_context& ctx, const ray& r, const su
   const material& m = ctx.world.materials[unmapped.material];
   material_inputs inputs = material_inputs_at(unmapped);
   inputs.filter = ctx.textures;
-  shading_point p{unmapped, evaluate_material(ctx.world, m, inputs)};
-  apply_normal_map(ctx.world, m, inputs, p.sp);
+  // One batch for every texture the point reads, the normal map's included.
+  const bool mapped = reads_normal_map(m, unmapped);
+  const material_texels texels = sample_material_textures(ctx.world, m, inputs, mapped);
+  shading_point p{unmapped, evaluate_material(m, inputs, texels)};
+  if (mapped) apply_normal_map(m, texels.normal, p.sp);
   p.sp.shading_normal =
       bend_toward_viewer(p.sp.geometric_normal, -glm::normalize(r.direction), p.sp.shading_normal);
   return p;
