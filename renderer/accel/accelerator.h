@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "core/ray.h"
 
@@ -32,6 +34,16 @@ class accelerator {
   // Throws kiln::error (render) when the backend recorded a failure while answering queries; a
   // backend that reports errors through callbacks (Embree) cannot throw from inside a query.
   virtual void throw_if_failed() const {}
+
+  // The next frame of a sequence: the scene this backend was built over changed in place (the
+  // loader's gltf_sequence): every instance may have moved, and the meshes listed were built anew
+  // (deformed: new positions, maybe other triangles). Brings the structure up to date and returns
+  // true, or returns false when this backend cannot (or the instances no longer place the same
+  // shapes); the caller then builds a new one. The grids and brute force rebuild.
+  virtual bool update(const std::vector<uint32_t>& changed_meshes) {
+    (void)changed_meshes;
+    return false;
+  }
 };
 
 }  // namespace kiln

@@ -18,9 +18,11 @@
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
 #include "job/asset_file.h"
+#include "job/frame_range.h"
 #include "job/option_table.h"
 #include "job/output_guard.h"
 #include "job/render_fingerprint.h"
+#include "job/render_sequence.h"
 
 namespace kiln {
 
@@ -60,11 +62,12 @@ std::vector<std::string> expand_pattern(const std::string& pattern) {
 
 std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
-// The default output name: the asset's stem, then _<camera> when the job names one.
-std::string default_output(const batch_job_spec& spec) {
+// The default output name: the asset's stem, then _<camera> when the job names one, then a frame
+// placeholder for a sequence's frames (Nuke's and Blender's ####).
+std::string default_output(const batch_job_spec& spec, bool sequence) {
   std::string name = fs::path(spec.asset).stem().string();
   if (!spec.camera.empty()) name += "_" + spec.camera;
-  return name + ".exr";
+  return name + (sequence ? ".####.exr" : ".exr");
 }
 
 std::string shell_quoted(const std::string& s) {
@@ -168,6 +171,31 @@ void apply_render_arguments(render_options& options, const std::vector<std::stri
   }
 }
 
+// Adds a job whose options are complete: its command line, a unique output and name.
+void add_planned_job(batch_job job, const fs::path& out_dir, const std::string& where,
+                     std::vector<batch_job>& jobs, std::map<std::string, size_t>& writers,
+                     std::map<std::string, int>& names) {
+  job.options.command_line = render_command_line(job.options);
+  auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
+  if (!inserted)
+    throw input_error("", where,
+                      "writes " + job.options.output + ", as does " + jobs[it->second].where +
+                          " (give one of them another output)");
+  // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
+  const fs::path output(job.options.output);
+  fs::path relative = output.lexically_relative(out_dir);
+  job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
+                                                             : relative.replace_extension().string();
+  if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+  for (const std::string* text : {&job.options.input, &job.options.output})
+    if (const std::string why = unprintable(*text); !why.empty())
+      throw input_error(
+          "", where,
+          "the path " + nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) +
+              " " + why);
+  jobs.push_back(std::move(job));
+}
+
 std::vector<batch_job> plan_batch(const batch_options& options) {
   std::vector<batch_job_spec> specs;
   for (const std::string& argument : options.assets) {
@@ -205,31 +233,28 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     } catch (const CLI::ParseError& e) {
       job.error = std::string("bad render options: ") + e.what();
     }
-    const fs::path output = out_dir / (spec.output.empty() ? default_output(spec) : spec.output);
+    const bool sequence = !job.options.frames.empty() && job.error.empty();
+    const fs::path output = out_dir / (spec.output.empty() ? default_output(spec, sequence) : spec.output);
     job.options.output = output.lexically_normal().string();
     // --preview in a batch names the format only: each job's preview sits beside its EXR.
     if (!job.options.preview.empty())
       job.options.preview =
           fs::path(job.options.output).replace_extension(fs::path(job.options.preview).extension()).string();
-    job.options.command_line = render_command_line(job.options);
-    auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
-    if (!inserted)
+    if (!sequence) {
+      add_planned_job(std::move(job), out_dir, spec.where, jobs, writers, names);
+      continue;
+    }
+    // A sequence is one job per frame, each with its own output, resume state and farm task.
+    const std::vector<long long> frames = frame_numbers(parse_frame_range(job.options.frames));
+    if (frames.size() > 1 && !has_frame_placeholder(job.options.output))
       throw input_error("", spec.where,
-                        "writes " + job.options.output + ", as does " + jobs[it->second].where +
-                            " (give one of them another output)");
-    // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
-    fs::path relative = output.lexically_normal().lexically_relative(out_dir);
-    job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
-                                                               : relative.replace_extension().string();
-    if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
-    for (const std::string* text : {&job.options.input, &job.options.output})
-      if (const std::string why = unprintable(*text); !why.empty())
-        throw input_error(
-            "", spec.where,
-            "the path " +
-                nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) + " " +
-                why);
-    jobs.push_back(std::move(job));
+                        "output " + job.options.output +
+                            " has no frame placeholder for its frames (name it like shot.####.exr)");
+    for (long long frame : frames) {
+      batch_job one = job;
+      one.options = frame_options(job.options, frame);
+      add_planned_job(std::move(one), out_dir, spec.where, jobs, writers, names);
+    }
   }
   check_batch_outputs(jobs);
   return jobs;

@@ -16,7 +16,11 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const char* const job_fields = "asset, camera, resolution, spp, output, overrides";
+const char* const job_fields = "asset, camera, resolution, spp, frames, fps, animation, output, overrides";
+
+// The job fields that are render options of the same name (a sequence's time: --frames, --fps,
+// --animation), written as a string or a number.
+bool is_time_field(const std::string& key) { return key == "frames" || key == "fps" || key == "animation"; }
 
 // Larger manifests are refused: millions of jobs fit in far less.
 constexpr uint64_t max_manifest_bytes = uint64_t(512) << 20;
@@ -88,7 +92,7 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
   for (auto it = job.begin(); it != job.end(); ++it) {
     const std::string& key = it.key();
     if (key != "asset" && key != "camera" && key != "resolution" && key != "spp" && key != "output" &&
-        key != "overrides")
+        key != "overrides" && !is_time_field(key))
       throw input_error(file, where + "/" + key,
                         "unknown job field (expected " + std::string(job_fields) + ")");
   }
@@ -112,6 +116,16 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
     if (!spp.is_number_integer())
       throw input_error(file, where + "/spp", "expected an integer, got " + spp.dump());
     spec.arguments.insert(spec.arguments.end(), {"--spp", spp.dump()});
+  }
+  for (const char* key : {"frames", "fps", "animation"}) {
+    if (!job.contains(key)) continue;
+    const json& value = job[key];
+    if (!value.is_string() && !value.is_number())
+      throw input_error(file, where + "/" + key,
+                        std::string("expected a string or a number, got ") + value.dump());
+    spec.arguments.insert(
+        spec.arguments.end(),
+        {std::string("--") + key, value.is_string() ? value.get<std::string>() : value.dump()});
   }
   if (job.contains("output")) spec.output = string_field("output");
   if (job.contains("overrides")) {
@@ -209,7 +223,7 @@ batch_manifest read_csv_manifest(const std::string& path) {
       header = fields;
       for (const std::string& column : header)
         if (column != "asset" && column != "camera" && column != "resolution" && column != "spp" &&
-            column != "output" && column != "overrides")
+            column != "output" && column != "overrides" && !is_time_field(column))
           throw input_error(path, where, "unknown column '" + column + "' (expected " + job_fields + ")");
       if (std::find(header.begin(), header.end(), "asset") == header.end())
         throw input_error(path, where, "the header has no 'asset' column");
@@ -241,6 +255,8 @@ batch_manifest read_csv_manifest(const std::string& path) {
         if (!is_integer_text(value))
           throw input_error(path, where, "spp: expected an integer, got '" + value + "'");
         spec.arguments.insert(spec.arguments.end(), {"--spp", value});
+      } else if (is_time_field(column)) {
+        spec.arguments.insert(spec.arguments.end(), {"--" + column, value});
       } else if (column == "output") {
         spec.output = value;
       } else {

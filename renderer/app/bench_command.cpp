@@ -15,6 +15,7 @@
 #include "app/interrupt.h"
 #include "app/text_output.h"
 #include "io/exr/exr_writer.h"
+#include "job/render_sequence.h"
 #include "ray_replay/bench_run.h"
 
 namespace kiln {
@@ -191,10 +192,76 @@ void add_bench_options(CLI::App& app, bench_options& o) {
   app.add_option("--csv", o.csv,
                  "Write the measurements as CSV (one row per ray kind, plus the whole render)");
   app.add_option("--label", o.label, "Name of this case in the reports (default: the asset's file name)");
+  app.add_option(
+      "--frames", o.frames,
+      "Time a sequence instead (FIRST-LAST[:STEP]): each frame's posing, backend update and render, "
+      "and the per-frame overhead of posing and updating against the render");
 }
+
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// --frames: renders the sequence (nothing written) and reports, over the frames after the first
+// (those that update the backend rather than build it), the median posing, update and render
+// times and the overhead (posing + update) / render.
+void run_sequence_bench(const bench_options& o) {
+  render_job job;
+  job.options = o.view;
+  job.options.frames = o.frames;
+  job.options.output.clear();
+  job.cancel = &interrupt_requested();
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<double> pose, update, render, overhead;
+  double first_build = 0.0;
+  run_sequence(job, [&](const render_job_result& result, const render_options&, const frame_report& made) {
+    frames.push_back({{"frame", made.frame},
+                      {"pose_seconds", made.pose_seconds},
+                      {"backend_seconds", made.update_seconds},
+                      {"backend_updated", made.backend_updated},
+                      {"render_seconds", result.stats.seconds}});
+    if (frames.size() == 1) {
+      first_build = made.update_seconds;
+      return;
+    }
+    pose.push_back(made.pose_seconds);
+    update.push_back(made.update_seconds);
+    render.push_back(result.stats.seconds);
+    overhead.push_back((made.pose_seconds + made.update_seconds) / std::max(result.stats.seconds, 1e-9));
+  });
+  const std::string label =
+      o.label.empty() ? std::filesystem::path(o.view.input).filename().string() : o.label;
+  const nlohmann::json report = {{"label", label},
+                                 {"frames", frames},
+                                 {"threads", o.view.threads},
+                                 {"first_frame_backend_build_seconds", first_build},
+                                 {"median_pose_seconds", median(pose)},
+                                 {"median_backend_update_seconds", median(update)},
+                                 {"median_render_seconds", median(render)},
+                                 {"median_overhead", median(overhead)}};
+  if (!o.json.empty()) write_text_atomically(o.json, report.dump(2) + "\n");
+  if (!o.view.quiet)
+    std::printf(
+        "%s: %zu frames; after the first: pose %.2f ms, backend update %.2f ms (first frame's build %.2f "
+        "ms), "
+        "render %.2f ms (medians); overhead (pose + update) / render %.1f%%\n",
+        label.c_str(), frames.size(), 1e3 * median(pose), 1e3 * median(update), 1e3 * first_build,
+        1e3 * median(render), 100.0 * median(overhead));
+}
+
+}  // namespace
 
 void run_bench_command(const bench_options& o) {
   if (!o.json.empty()) check_output_writable(o.json);
+  if (!o.frames.empty()) {
+    if (!o.csv.empty()) throw input_error("", "--csv", "a --frames bench writes --json only");
+    return run_sequence_bench(o);
+  }
   if (!o.csv.empty()) check_output_writable(o.csv);
   // The process's own baseline (libraries, thread pools) before anything of the scene exists, so the
   // report can give the memory the scene, its BVH and the render added.

@@ -19,7 +19,8 @@ struct bench_options {
   int repeats = 3;
   std::string json;  // optional report files
   std::string csv;
-  std::string label;  // a name for this case in the reports (default: the asset's file name)
+  std::string label;   // a name for this case in the reports (default: the asset's file name)
+  std::string frames;  // --frames: time a sequence's per-frame posing and backend update instead
 };
 
 void add_bench_options(CLI::App& app, bench_options& options);

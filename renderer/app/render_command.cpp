@@ -9,6 +9,7 @@
 #include "app/output_lock.h"
 #include "app/progress_report.h"
 #include "core/error.h"
+#include "job/render_sequence.h"
 
 namespace kiln {
 
@@ -74,19 +75,50 @@ prepared_scene prepare_cli_scene(const render_options& options) {
   return prepare_scene(options, &interrupt_requested(), options.quiet ? nullptr : print_note);
 }
 
-void run_render(const render_options& options, const render_fingerprint* known) {
-  // A running batch owns its output folder; its own jobs (children) write there.
-  if (!options.batch_job) {
-    check_not_in_locked_folder(options.output);
-    if (!options.preview.empty()) check_not_in_locked_folder(options.preview);
-  }
+namespace {
+
+// A running batch owns its output folder; its own jobs (children) write there.
+void check_outputs_unlocked(const render_options& options) {
+  if (options.batch_job) return;
+  check_not_in_locked_folder(options.output);
+  if (!options.preview.empty()) check_not_in_locked_folder(options.preview);
+}
+
+// The job of the command line, reporting to stderr and to progress.
+render_job cli_job(const render_options& options, const render_fingerprint* known,
+                   render_progress& progress) {
   render_job job;
   job.options = options;
   job.cancel = &interrupt_requested();
   if (!options.quiet) job.warn = print_note;
   job.fingerprint = known;
-  render_progress progress;
   job.progress = &progress;
+  return job;
+}
+
+// --frames: every frame rendered and written in turn, one summary line each.
+void run_render_sequence(const render_options& options, const render_fingerprint* known) {
+  for (long long number : check_sequence(options)) check_outputs_unlocked(frame_options(options, number));
+  render_progress progress;
+  const render_job job = cli_job(options, known, progress);
+  const progress_report report(progress, !options.quiet, options.progress_interval);
+  run_sequence(
+      job, [&](const render_job_result& result, const render_options& frame, const frame_report& made) {
+        write_job_outputs(result, frame, &interrupt_requested());
+        if (options.quiet || !options.summary_line) return;
+        std::fprintf(stderr, "kiln: frame %lld: %s\n", made.frame,
+                     made.backend_updated ? "instances moved and deformed meshes refitted" : "backend built");
+        print_summary(result, frame);
+      });
+}
+
+}  // namespace
+
+void run_render(const render_options& options, const render_fingerprint* known) {
+  if (!options.frames.empty()) return run_render_sequence(options, known);
+  check_outputs_unlocked(options);
+  render_progress progress;
+  const render_job job = cli_job(options, known, progress);
   render_job_result result;
   {
     const progress_report report(progress, !options.quiet, options.progress_interval);

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/exr/preview_codes.h"
 #include "job/exr_storage_options.h"
+#include "job/frame_range.h"
 #include "job/option_values.h"
 #include "render/adaptive_sampling.h"
 
@@ -590,6 +591,20 @@ void add_image_options(std::vector<option_spec>& t) {
   add(flag_option(
       "multipart", [](render_options & o) -> auto& { return o.exr.multipart; },
       "One EXR part per layer (" + exr_part_list() + "), each with the full header"));
+  // A sequence is many renders; each frame's own --frame reaches its settings hash.
+  add(custom_option(
+          "frames",
+          [](render_options& o, const std::string& text) {
+            parse_frame_range(text);
+            o.frames = text;
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.frames.empty() ? std::nullopt : std::optional<std::string>(o.frames);
+          },
+          "1-48:2",
+          "Render frames FIRST-LAST[:STEP] in one process, each to -o with its #### (or %04d) replaced "
+          "by the frame number; the asset loads once and only what moves is updated"))
+      .effect = option_effect::none;
   option_spec& preview = add(custom_option(
       "preview",
       [](render_options& o, const std::string& text) {

@@ -78,12 +78,16 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
     add_file(bytes, options.environment, max_environment_file_bytes, cancel, "--environment");
     inputs.add(bytes.hex());
   }
+  return fingerprint_with_settings(inputs.hex(), options);
+}
+
+render_fingerprint fingerprint_with_settings(const std::string& input_hash, const render_options& options) {
   fnv1a settings, frame;
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::include))
     settings.add(argument);
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::omit))
     frame.add(argument);
-  return {inputs.hex(), settings.hex(), frame.hex()};
+  return {input_hash, settings.hex(), frame.hex()};
 }
 
 }  // namespace kiln

@@ -29,4 +29,8 @@ std::string file_hash_hex(const std::string& path);
 // (absolute, outside the folder, a FIFO or a device) is refused here first, in the loader's words.
 render_fingerprint make_fingerprint(const render_options& options, const std::atomic<bool>* cancel = nullptr);
 
+// The fingerprint of options whose inputs hash to input_hash (known already): the settings hashes
+// only, which read no file. The frames of a sequence share their inputs.
+render_fingerprint fingerprint_with_settings(const std::string& input_hash, const render_options& options);
+
 }  // namespace kiln

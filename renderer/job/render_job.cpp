@@ -23,6 +23,7 @@
 #include "job/option_values.h"
 #include "job/output_guard.h"
 #include "job/render_fingerprint.h"
+#include "job/render_job_steps.h"
 #include "render/frame_bands.h"
 #include "render/light_groups.h"
 #include "render/render_space.h"
@@ -153,7 +154,8 @@ std::string sampling_description(const render_settings& s, bool adaptive) {
   return out.str();
 }
 
-// The region of the frame the job renders: its --crop or --band, checked against the image.
+}  // namespace
+
 pixel_rect job_region(const render_options& options, const view_camera& cam) {
   if (options.crop) {
     const pixel_rect& c = *options.crop;
@@ -224,8 +226,6 @@ void throw_if_cancelled(const std::atomic<bool>* cancel, const std::string& outp
     throw error(error_kind::interrupted, output, "", "render interrupted, nothing written");
 }
 
-}  // namespace
-
 double scene_time(const render_options& options) {
   if (options.time && options.frame)
     throw input_error("", "--time", "--time and --frame both choose the time; give one of them");
@@ -236,30 +236,30 @@ double scene_time(const render_options& options) {
   return double(*options.frame - options.frame_start.value_or(1)) / options.fps.value_or(24.0);
 }
 
-prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel,
-                             const std::function<void(const std::string&)>& warn) {
-  check_asset_file(options.input);
-  prepared_scene p;
-  p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
-  const auto load_start = std::chrono::steady_clock::now();
+gltf_load_options job_load_options(const render_options& options, const std::atomic<bool>* cancel,
+                                   memory_budget* memory) {
   gltf_load_options load_options;
   load_options.scene_index = options.scene_index;
   load_options.allow_files_outside_folder = options.allow_outside_files;
   load_options.limits = options.limits;
   load_options.cancel = cancel;            // a signal stops the reading of large files
   load_options.threads = options.threads;  // images decode on the render's threads
-  load_options.memory = p.memory.get();
+  load_options.memory = memory;
   load_options.time = scene_time(options);
   load_options.animation = options.animation.value_or("");
-  p.world = load_gltf(options.input, load_options);
+  return load_options;
+}
+
+void finish_loaded_scene(const render_options& options, prepared_scene& p,
+                         const std::function<void(const std::string&)>& warn, image* environment_map) {
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
-    p.world.images.push_back(read_environment_image(options.environment));
+    p.world.images.push_back(environment_map ? std::move(*environment_map)
+                                             : read_environment_image(options.environment));
     p.world.env.map_image = int32_t(p.world.images.size() - 1);
     p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
     p.world.env.intensity = options.environment_intensity;
   }
-  p.load_seconds = seconds_since(load_start);
   if (warn) {
     for (const std::string& warning : p.world.stats.warnings) warn("warning: " + warning);
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
@@ -277,10 +277,22 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
     check_view_range(p.world, p.cam, p.world.source, "camera " + quoted(p.camera_description));
   if (p.world.lights.empty()) {
     add_default_light(p.world, p.cam);
-    if (warn) warn("the file has no lights; using a headlight at the camera");
+    if (warn && !p.headlight_noted) warn("the file has no lights; using a headlight at the camera");
+    p.headlight_noted = true;
   }
   // Every client traces in camera-relative render space (render/render_space.h).
   move_to_render_space(p.world, p.cam);
+}
+
+prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel,
+                             const std::function<void(const std::string&)>& warn) {
+  check_asset_file(options.input);
+  prepared_scene p;
+  p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
+  const auto load_start = std::chrono::steady_clock::now();
+  p.world = load_gltf(options.input, job_load_options(options, cancel, p.memory.get()));
+  p.load_seconds = seconds_since(load_start);
+  finish_loaded_scene(options, p, warn);
   return p;
 }
 
@@ -315,6 +327,10 @@ std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const rend
 }
 
 void check_job(const render_options& options) {
+  if (!options.frames.empty())
+    throw input_error("", "--frames",
+                      "a job renders one frame; a sequence runs through run_sequence (kiln render --frames, "
+                      "kiln.render_sequence)");
   check_asset_file(options.input);  // before the fingerprint reads it
   scene_time(options);
   if (options.crop && options.band_count > 0)
@@ -333,15 +349,6 @@ uint64_t job_memory_limit(const render_options& options) {
   return options.max_memory ? options.max_memory : default_memory_budget();
 }
 
-namespace {
-
-// Where a job is, for the message of an allocation that fails there.
-struct job_stage {
-  const char* name = "checking the inputs";
-};
-
-// The film, the mip pyramids and the backend, charged before any is made: the scene is loaded,
-// so each is known; the largest failure is the one reported first.
 void charge_render_memory(const prepared_scene& prepared, const render_settings& settings) {
   memory_budget& memory = *prepared.memory;
   const std::string& file = prepared.world.source;
@@ -353,14 +360,17 @@ void charge_render_memory(const prepared_scene& prepared, const render_settings&
                 "the film and AOV buffers");
 }
 
-render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop, job_stage& stage) {
+namespace {
+
+render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop,
+                                    const char*& stage) {
   const render_options& options = job.options;
   render_job_result result;
   result.storage = resolve_exr_settings(options);
   // Hashed before loading: an asset edited during the render then reads as stale next time.
-  stage.name = "hashing the inputs";
+  stage = "hashing the inputs";
   const render_fingerprint fingerprint = job.fingerprint ? *job.fingerprint : make_fingerprint(options, stop);
-  stage.name = "loading the scene";
+  stage = "loading the scene";
   const prepared_scene prepared = prepare_scene(options, stop, job.warn);
   result.width = prepared.cam.width;
   result.height = prepared.cam.height;
@@ -371,12 +381,12 @@ render_job_result run_stoppable_job(const render_job& job, const std::atomic<boo
   settings.crop = job_region(options, prepared.cam);
   charge_render_memory(prepared, settings);
 
-  stage.name = "building the acceleration structure";
+  stage = "building the acceleration structure";
   const auto build_start = std::chrono::steady_clock::now();
   std::unique_ptr<accelerator> accel = make_job_accelerator(prepared.world, options);
   result.build_seconds = seconds_since(build_start);
 
-  stage.name = "rendering";
+  stage = "rendering";
   const cryptomatte_layer objects = cryptomatte_objects(prepared.world);
   const cryptomatte_layer materials = cryptomatte_materials(prepared.world);
   settings.mattes = {objects.id_by_key, materials.id_by_key};
@@ -393,24 +403,10 @@ render_job_result run_stoppable_job(const render_job& job, const std::atomic<boo
 }  // namespace
 
 render_job_result run_job(const render_job& job) {
-  const render_options& options = job.options;
-  check_job(options);
-  const job_stop stop(job.cancel, options.time_limit_seconds);
-  job_stage stage;
-  try {
-    return run_stoppable_job(job, stop.flag(), stage);
-  } catch (const std::bad_alloc&) {
-    throw out_of_memory(options, stage.name);
-  } catch (const error& e) {
-    // Wherever the time limit found the job (hashing, loading, rendering), it ends in one message;
-    // an interrupt names the file it was reading, or the output when it stopped the render.
-    if (e.kind() != error_kind::interrupted) throw;
-    if (stop.timed_out())
-      throw error(error_kind::time_limit, options.output, "",
-                  "time limit of " + exact_text(options.time_limit_seconds) + " s reached, nothing written");
-    if (!e.file().empty()) throw;
-    throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
-  }
+  check_job(job.options);
+  return run_stoppable(job, job.options, [&job](const std::atomic<bool>* stop, const char*& stage) {
+    return run_stoppable_job(job, stop, stage);
+  });
 }
 
 void write_job_outputs(const render_job_result& result, const render_options& options,

@@ -45,6 +45,7 @@ struct prepared_scene {
   // The job's memory budget (--max-memory), holding what the scene's meshes and images were
   // estimated to take; the render stage charges its own allocations to it.
   std::shared_ptr<memory_budget> memory;
+  bool headlight_noted = false;  // the headlight's note was given (once per sequence)
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

@@ -47,8 +47,11 @@ struct render_options {
   std::optional<double> fps;             // --fps F (default 24)
   std::optional<long long> frame_start;  // --frame-start N: the frame at time 0 (default 1)
   std::optional<std::string> animation;  // --animation NAME|INDEX|all (default all)
-  bool full_float = false;               // --float: every colour-like layer float
-  std::string channel_formats;           // --channel-format AOV=half|float,... (checked when parsed)
+  // --frames FIRST-LAST[:STEP]: a sequence (job/render_sequence.h), each frame its own --frame
+  // and output; empty: one image.
+  std::string frames;
+  bool full_float = false;      // --float: every colour-like layer float
+  std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
   // --compression, --compression-level, --multipart; the formats come from resolve_exr_settings.
   exr_settings exr;
   bool exr_tiled = false;  // --tiled

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <exception>
+#include <functional>
 #include <future>
 #include <string>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "job/option_table.h"
 #include "job/render_job.h"
+#include "job/render_sequence.h"
 
 namespace py = pybind11;
 
@@ -135,18 +137,19 @@ void fill_arrays(python_result& out) {
   }
 }
 
-// Runs the job on a thread of its own while this one, holding the GIL only between waits, checks
-// for Ctrl-C and reports progress.
-render_job_result run_watched(render_job& job, const py::object& progress) {
+// Runs body (the job's render) on a thread of its own while this one, holding the GIL only
+// between waits, checks for Ctrl-C and reports progress.
+template <typename Result>
+Result run_watched(render_job& job, const py::object& progress, const std::function<Result()>& body) {
   std::atomic<bool> cancel{false};
   render_progress counts;
   job.cancel = &cancel;
   job.progress = &counts;
-  std::promise<render_job_result> promise;
-  std::future<render_job_result> done = promise.get_future();
-  std::thread worker([&job, &promise] {
+  std::promise<Result> promise;
+  std::future<Result> done = promise.get_future();
+  std::thread worker([&body, &promise] {
     try {
-      promise.set_value(run_job(job));
+      promise.set_value(body());
     } catch (...) {
       promise.set_exception(std::current_exception());
     }
@@ -185,14 +188,57 @@ render_job_result run_watched(render_job& job, const py::object& progress) {
   return done.get();
 }
 
-python_result render(const std::string& asset, const py::object& output, const py::object& progress,
-                     const py::kwargs& kwargs) {
+render_job_result run_watched(render_job& job, const py::object& progress) {
+  return run_watched<render_job_result>(job, progress, [&job] { return run_job(job); });
+}
+
+// The arrays, metadata and statistics of a finished render.
+python_result finished(render_job_result result, const render_options& options) {
+  python_result out;
+  out.result = std::move(result);
+  out.options = options;
+  fill_arrays(out);
+  out.metadata = metadata_dict(out.result.metadata);
+  out.stats = statistics_dict(out.result);
+  return out;
+}
+
+// The job of a call: the asset, output= and every keyword as its render option.
+render_job python_job(const std::string& asset, const py::object& output, const py::kwargs& kwargs) {
   render_job job;
   job.options.input = asset;
   job.options.quiet = true;
   job.options.command_line = python_call(asset, kwargs);
   if (!output.is_none()) job.options.output = output.cast<std::string>();
   for (const auto& [key, value] : kwargs) apply_option(job.options, key.cast<std::string>(), value);
+  return job;
+}
+
+// kiln.render_sequence: every frame of frames=, each written (when output= names a pattern) as
+// soon as it is rendered, all returned in order.
+py::list render_sequence(const std::string& asset, const py::object& output, const py::object& progress,
+                         const py::kwargs& kwargs) {
+  render_job job = python_job(asset, output, kwargs);
+  if (job.options.frames.empty())
+    throw input_error("", "frames", "render_sequence needs frames= (e.g. frames=\"1-24\")");
+  using frames = std::vector<std::pair<render_job_result, render_options>>;
+  frames rendered = run_watched<frames>(job, progress, [&job] {
+    frames out;
+    run_sequence(job,
+                 [&out](const render_job_result& result, const render_options& frame, const frame_report&) {
+                   if (!frame.output.empty()) write_job_outputs(result, frame);
+                   out.emplace_back(result, frame);
+                 });
+    return out;
+  });
+  py::list list;
+  for (auto& [result, frame] : rendered) list.append(finished(std::move(result), frame));
+  return list;
+}
+
+python_result render(const std::string& asset, const py::object& output, const py::object& progress,
+                     const py::kwargs& kwargs) {
+  render_job job = python_job(asset, output, kwargs);
   python_result out;
   out.result = run_watched(job, progress);
   out.options = job.options;
@@ -291,5 +337,11 @@ PYBIND11_MODULE(kiln, m) {
         "Renders asset with the options of `kiln render` (width=, height=, spp=, camera=, aovs=[...],\n"
         "look_from=(x, y, z), ...; kiln.options() lists them). output= also writes the EXR; progress\n"
         "is called as progress(pixels_done, pixels_total). Raises kiln.InputError for bad input.");
+  m.def("render_sequence", &render_sequence, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
+        py::arg("progress") = py::none(),
+        "render_sequence(asset, *, frames, output=None, progress=None, **options) -> list[Result]\n\n"
+        "Renders the frames of frames=\"FIRST-LAST[:STEP]\" as kiln render --frames does: the asset loads\n"
+        "once, each frame is posed and the backend updated in place. output= (with #### or %04d) writes\n"
+        "each frame as it finishes. Returns one Result per frame, in order.");
   m.def("options", &option_list, "Every render option: name, option, type, help, choices, default");
 }

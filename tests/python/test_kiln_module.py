@@ -216,3 +216,19 @@ def test_time_keywords_pose_the_scene_as_the_cli_does(tmp_path):
     assert np.array_equal(read_channels(out)["R"], walk.aovs["beauty"][:, :, 0])
     with pytest.raises(kiln.InputError, match="no animation 'walk'"):
         kiln.render(CESIUM_MAN, animation="walk", **view)
+
+
+def test_render_sequence_returns_and_writes_each_frame_as_the_cli_does(tmp_path):
+    view = dict(width=24, height=24, quiet=True)
+    pattern = str(tmp_path / "walk.####.exr")
+    frames = kiln.render_sequence(CESIUM_MAN, frames="1-13:6", output=pattern, **view)
+    assert [f.metadata["kiln/frame"] for f in frames] == ["1", "7", "13"]
+    # Frame 13 of the sequence is kiln.render(frame=13), and the file it wrote holds it.
+    alone = kiln.render(CESIUM_MAN, frame=13, **view)
+    assert np.array_equal(frames[2].aovs["beauty"], alone.aovs["beauty"])
+    assert not np.array_equal(frames[0].aovs["beauty"], frames[2].aovs["beauty"])
+    assert np.array_equal(read_channels(str(tmp_path / "walk.0013.exr"))["R"], alone.aovs["beauty"][:, :, 0])
+    with pytest.raises(kiln.InputError, match="frames"):
+        kiln.render(CESIUM_MAN, frames="1-3", **view)
+    with pytest.raises(kiln.InputError, match="no frame placeholder"):
+        kiln.render_sequence(CESIUM_MAN, frames="1-3", output=str(tmp_path / "plain.exr"), **view)

@@ -24,6 +24,12 @@ struct embree_accelerator::state {
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::vector<RTCScene> mesh_scenes;
+  std::vector<bool> refittable;  // per mesh: its BVH was built to be refitted (a moving mesh)
+  std::vector<std::pair<size_t, size_t>> mesh_sizes;  // per refittable mesh: its vertex and index counts
+  // Per instance, what it placed when built, and whether the top level holds it (its shape has a
+  // scene: an empty mesh has none).
+  std::vector<std::pair<shape_kind, uint32_t>> placed;
+  std::vector<bool> attached;
   std::vector<RTCScene> quadric_scenes;         // one user-geometry scene per used quadric definition
   std::vector<prepared_quadric> quadric_forms;  // their callbacks' data; sized once, never moved
   embree_error_log errors;                      // this accelerator's build errors
@@ -77,12 +83,18 @@ void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
 // Builds the BVH of one mesh in its own object space. Positions are copied into an Embree-owned
 // buffer because Embree reads vertices as 16-byte loads and needs padding past the last one.
 // With alpha_filter the mask rule of the instances' materials is applied to every candidate hit.
+// A moving mesh (refit) gets a scene that refits its BVH when its vertices change: Embree honours
+// the geometry's RTC_BUILD_QUALITY_REFIT only in a scene of low build quality.
 RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_filter,
-                          const embree_options& options) {
+                          const embree_options& options, bool refit = false) {
   RTCScene mesh_scene = rtcNewScene(device);
   apply_build_options(mesh_scene, options);
+  if (refit) {
+    rtcSetSceneBuildQuality(mesh_scene, RTC_BUILD_QUALITY_LOW);
+    rtcSetSceneFlags(mesh_scene, RTC_SCENE_FLAG_DYNAMIC);
+  }
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetGeometryBuildQuality(geometry, embree_quality(options.quality));
+  rtcSetGeometryBuildQuality(geometry, refit ? RTC_BUILD_QUALITY_REFIT : embree_quality(options.quality));
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(float) * 3, m.positions.size()));
   if (vertices) std::memcpy(vertices, m.positions.data(), m.positions.size() * sizeof(vec3));
@@ -172,6 +184,8 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
 
   // Unique meshes first, built once, however many instances place them.
   state_->mesh_scenes.assign(s.meshes.size(), nullptr);
+  state_->refittable.assign(s.meshes.size(), false);
+  state_->mesh_sizes.assign(s.meshes.size(), {0, 0});
   std::vector<bool> used(s.meshes.size(), false);
   std::vector<bool> used_quadric(s.quadrics.size(), false);
   for (const instance& inst : s.instances)
@@ -195,8 +209,11 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
 
   state_->top = rtcNewScene(state_->device);
   apply_build_options(state_->top, options_);
+  state_->placed.reserve(s.instances.size());
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const instance& inst = s.instances[i];
+    state_->placed.emplace_back(inst.kind, inst.shape);
+    state_->attached.push_back(false);
     RTCScene shape = inst.kind == shape_kind::quadric ? state_->quadric_scenes[inst.shape]
                                                       : state_->mesh_scenes[inst.shape];
     if (!shape) continue;
@@ -206,6 +223,7 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
     rtcCommitGeometry(geometry);
     // The geometry id is the instance index, so a hit names its instance directly.
     rtcAttachGeometryByID(state_->top, geometry, unsigned(i));
+    state_->attached.back() = true;
     rtcReleaseGeometry(geometry);
   }
   rtcCommitScene(state_->top);
@@ -215,6 +233,50 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
 }
 
 embree_accelerator::~embree_accelerator() = default;
+
+bool embree_accelerator::update(const std::vector<uint32_t>& changed_meshes) {
+  const scene& s = scene_;
+  state& st = *state_;
+  if (s.meshes.size() != st.mesh_scenes.size() || s.instances.size() != st.placed.size()) return false;
+  for (size_t i = 0; i < s.instances.size(); ++i)
+    if (st.placed[i] != std::make_pair(s.instances[i].kind, s.instances[i].shape)) return false;
+  embree_error_scope scope(st.errors);
+  const std::vector<bool> masked = meshes_needing_alpha_filter(s);
+  std::vector<bool> rebuilt(s.meshes.size(), false);
+  for (uint32_t m : changed_meshes) {
+    if (m >= s.meshes.size() || st.mesh_scenes[m] == nullptr) continue;  // placed by no instance
+    const mesh& src = s.meshes[m];
+    if (st.refittable[m] && st.mesh_sizes[m] == std::make_pair(src.positions.size(), src.indices.size()) &&
+        std::memcmp(rtcGetGeometryBufferData(rtcGetGeometry(st.mesh_scenes[m], 0), RTC_BUFFER_TYPE_INDEX, 0),
+                    src.indices.data(), src.indices.size() * sizeof(uint32_t)) == 0) {
+      RTCGeometry geometry = rtcGetGeometry(st.mesh_scenes[m], 0);
+      std::memcpy(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0), src.positions.data(),
+                  src.positions.size() * sizeof(vec3));
+      rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+      rtcCommitGeometry(geometry);
+      rtcCommitScene(st.mesh_scenes[m]);
+      continue;
+    }
+    rtcReleaseScene(st.mesh_scenes[m]);
+    st.mesh_scenes[m] = build_mesh_scene(st.device, src, masked[m] ? &s : nullptr, options_, true);
+    st.mesh_sizes[m] = {src.positions.size(), src.indices.size()};
+    st.refittable[m] = true;
+    rebuilt[m] = true;
+  }
+  st.throw_if_failed("refitting the moving meshes' BVHs");
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const instance& inst = s.instances[i];
+    if (!st.attached[i]) continue;  // its shape has no triangles
+    RTCGeometry geometry = rtcGetGeometry(st.top, unsigned(i));
+    if (inst.kind == shape_kind::mesh && rebuilt[inst.shape])
+      rtcSetGeometryInstancedScene(geometry, st.mesh_scenes[inst.shape]);
+    set_instance_transform(geometry, inst.world_from_object);
+    rtcCommitGeometry(geometry);
+  }
+  rtcCommitScene(st.top);
+  st.throw_if_failed("moving the instances");
+  return true;
+}
 
 void embree_accelerator::throw_if_failed() const {
   state_->throw_if_failed("tracing rays");

@@ -48,6 +48,11 @@ class embree_accelerator final : public accelerator {
   // would miss every quadric.
   bool streams_supported() const;
   void throw_if_failed() const override;
+  // Moves every instance (rtcSetGeometryTransform, then one commit of the top level) and refits the
+  // changed meshes' BVHs to their new vertices (RTC_BUILD_QUALITY_REFIT); a mesh whose triangles
+  // changed, or that moves for the first time, gets a BVH built for refitting instead. Throws
+  // kiln::error (render) when Embree reports an error.
+  bool update(const std::vector<uint32_t>& changed_meshes) override;
 
  private:
   struct state;

@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <utility>
@@ -43,7 +45,7 @@ struct build_context {
   scene& out;
   std::map<std::pair<int, int>, int32_t> mesh_cache;  // (glTF mesh, primitive) -> scene mesh or -1
   std::vector<int> instance_gltf_material;            // per scene instance; -1: default material
-  std::set<std::string> warned;                       // each distinct warning is reported once
+  std::set<std::string>& warned;                      // each distinct warning is reported once
   // Primitives built from the same accessors into the same attributes share one scene mesh.
   std::map<std::vector<int>, int32_t> geometry_cache;
   memory_budget* memory = nullptr;  // gltf_load_options::memory
@@ -53,6 +55,12 @@ struct build_context {
   std::map<int, std::vector<dmat4>> skin_joints;       // skin -> world(joint) * inverseBindMatrix
   std::map<std::pair<int, int>, int32_t> posed_cache;  // (node, primitive) -> its posed scene mesh
   std::set<std::pair<int, int>> posed_primitives;      // (mesh, primitive) built posed
+  std::vector<uint32_t> posed_meshes;                  // the scene meshes built posed
+  uint64_t posed_bytes = 0;                            // what they were charged to the budget
+  // A frame of a sequence: the previous frame's scene and its geometry cache, whose rigid meshes
+  // this frame takes over instead of building them again (null for a single load).
+  scene* reuse = nullptr;
+  const std::map<std::vector<int>, int32_t>* reuse_geometry = nullptr;
 };
 
 // How a node deforms its mesh: morph weights (empty: none) and the joint matrices of its skin
@@ -347,6 +355,7 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const def
   // Posing holds double copies of positions, normals and tangents, a delta and the skin sets.
   if (posed) bytes += ctx.model.accessors[static_cast<size_t>(prim.attributes.at("POSITION"))].count * 160;
   charge_memory(ctx.memory, bytes, ctx.file, "meshes");
+  if (posed && ctx.memory) ctx.posed_bytes += bytes;
 
   mesh m;
   m.name = src.name.empty() ? "mesh " + std::to_string(mesh_index) : src.name;
@@ -466,6 +475,7 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const def
   }
 
   ctx.out.meshes.push_back(std::move(m));
+  if (posed) ctx.posed_meshes.push_back(static_cast<uint32_t>(ctx.out.meshes.size() - 1));
   return static_cast<int32_t>(ctx.out.meshes.size() - 1);
 }
 
@@ -492,6 +502,21 @@ std::vector<int> geometry_key(const build_context& ctx, const tinygltf::Primitiv
   return key;
 }
 
+// A rigid mesh of a sequence's frame: the previous frame's, moved over (no animation changes it),
+// or built when this is the first frame.
+int32_t reused_or_built_mesh(build_context& ctx, int mesh_index, int prim_index,
+                             const std::vector<int>& geometry) {
+  if (ctx.reuse_geometry) {
+    auto previous = ctx.reuse_geometry->find(geometry);
+    if (previous != ctx.reuse_geometry->end()) {
+      if (previous->second < 0) return -1;
+      ctx.out.meshes.push_back(std::move(ctx.reuse->meshes[static_cast<size_t>(previous->second)]));
+      return static_cast<int32_t>(ctx.out.meshes.size() - 1);
+    }
+  }
+  return build_mesh(ctx, mesh_index, prim_index);
+}
+
 int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
   const auto key = std::make_pair(mesh_index, prim_index);
   auto cached = ctx.mesh_cache.find(key);
@@ -500,8 +525,9 @@ int32_t mesh_for(build_context& ctx, int mesh_index, int prim_index) {
       ctx.model.meshes[static_cast<size_t>(mesh_index)].primitives[static_cast<size_t>(prim_index)];
   const std::vector<int> geometry = geometry_key(ctx, prim);
   auto shared = ctx.geometry_cache.find(geometry);
-  const int32_t built =
-      shared != ctx.geometry_cache.end() ? shared->second : build_mesh(ctx, mesh_index, prim_index);
+  const int32_t built = shared != ctx.geometry_cache.end()
+                            ? shared->second
+                            : reused_or_built_mesh(ctx, mesh_index, prim_index, geometry);
   ctx.geometry_cache.emplace(geometry, built);
   ctx.mesh_cache.emplace(key, built);
   return built;
@@ -784,13 +810,20 @@ void place_nodes(build_context& ctx, const std::vector<int>& roots) {
   }
 }
 
+// The scene material of each glTF material the instances use (-1: the default material).
+using material_map = std::map<int, uint32_t>;
+
+std::set<int> used_materials(const build_context& ctx) {
+  return std::set<int>(ctx.instance_gltf_material.begin(), ctx.instance_gltf_material.end());
+}
+
 // Converts the materials instances use, in glTF order, then the default material last if needed.
-void convert_used_materials(build_context& ctx) {
-  std::set<int> used(ctx.instance_gltf_material.begin(), ctx.instance_gltf_material.end());
+material_map convert_used_materials(build_context& ctx) {
+  const std::set<int> used = used_materials(ctx);
   texture_remap remap = make_texture_remap(ctx.model);
   remap.max_texels = ctx.max_texels;
   remap.memory = ctx.memory;
-  std::map<int, uint32_t> scene_index;
+  material_map scene_index;
   try {
     for (int gltf_material : used) {
       if (gltf_material < 0) continue;
@@ -810,6 +843,10 @@ void convert_used_materials(build_context& ctx) {
     ctx.out.materials.back().source_index = static_cast<int32_t>(ctx.model.materials.size());
     scene_index[-1] = static_cast<uint32_t>(ctx.out.materials.size() - 1);
   }
+  return scene_index;
+}
+
+void assign_materials(build_context& ctx, const material_map& scene_index) {
   for (size_t i = 0; i < ctx.out.instances.size(); ++i)
     ctx.out.instances[i].material = scene_index.at(ctx.instance_gltf_material[i]);
 }
@@ -847,25 +884,65 @@ int chosen_scene(const tinygltf::Model& model, const gltf_load_options& options,
 
 }  // namespace
 
-scene load_gltf(const std::string& path, const gltf_load_options& options) {
-  memory_charge model_memory(options.memory);  // released once the model is gone
-  const tinygltf::Model model = parse_gltf_file(path, options, &model_memory);
-  validate_model(model, path);
+// What a sequence keeps between frames: the parsed file, and what its last frame was built from.
+struct gltf_sequence::state {
+  std::string path;
+  gltf_load_options options;
+  memory_charge model_memory;  // released once the model is gone
+  tinygltf::Model model;
+  bool quantized = false;
+  std::vector<int> animations;  // the chosen ones; empty: the file is posed without animations
+  bool animated = false;
+  std::set<std::string> warned;  // across frames: each distinct warning once per sequence
+  // The last frame's:
+  bool posed_once = false;
+  std::map<std::vector<int>, int32_t> geometry_cache;
+  std::set<int> used;
+  material_map materials;
+  size_t image_count = 0;  // images the loader made (a client may append its own)
+  uint64_t posed_bytes = 0;
 
+  state(const std::string& p, const gltf_load_options& o) : path(p), options(o), model_memory(o.memory) {}
+};
+
+gltf_sequence::gltf_sequence(const std::string& path, const gltf_load_options& options)
+    : state_(std::make_unique<state>(path, options)) {
+  state& st = *state_;
+  st.model = parse_gltf_file(path, options, &st.model_memory);
+  validate_model(st.model, path);
+  st.quantized = uses_extension(st.model, quantization_extension);
+  // A still asset (no animation) skips this: its scene is what it always was.
+  st.animated = !st.model.animations.empty() ||
+                !(options.animation.empty() || options.animation == "all" || options.animation == "none");
+  if (st.animated) st.animations = chosen_animations(st.model, options.animation, path);
+}
+
+gltf_sequence::~gltf_sequence() = default;
+
+bool gltf_sequence::animated() const { return state_->animated && !state_->animations.empty(); }
+
+scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* posed_meshes) {
+  state& st = *state_;
+  const tinygltf::Model& model = st.model;
+  const std::string& path = st.path;
+  const bool reuse = previous != nullptr && st.posed_once;
   scene out;
   out.source = path;
-  const bool quantized = uses_extension(model, quantization_extension);
   build_context ctx{model,
                     path,
-                    options.limits.max_instances,
-                    options.limits.max_texels,
-                    options.threads,
-                    quantized,
+                    st.options.limits.max_instances,
+                    st.options.limits.max_texels,
+                    st.options.threads,
+                    st.quantized,
                     out,
                     {},
                     {},
-                    {}};
-  ctx.memory = options.memory;
+                    st.warned};
+  ctx.memory = st.options.memory;
+  if (reuse) {
+    ctx.reuse = previous;
+    ctx.reuse_geometry = &st.geometry_cache;
+  }
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
   // were refused while parsing).
@@ -881,27 +958,51 @@ scene load_gltf(const std::string& path, const gltf_load_options& options) {
     for (size_t i = 1; i < unsupported.size(); ++i) names += ", " + unsupported[i];
     warn_once(ctx, "extensions " + names + " are not supported; they are ignored");
   }
-  if (!std::isfinite(options.time))
-    throw input_error(path, "--time", "the time must be a finite number of seconds");
-  // A still asset (no animation) skips this: its scene is what it always was.
-  if (!model.animations.empty() ||
-      !(options.animation.empty() || options.animation == "all" || options.animation == "none")) {
-    ctx.pose =
-        evaluate_animations(model, chosen_animations(model, options.animation, path), options.time, path);
+  if (!std::isfinite(time)) throw input_error(path, "--time", "the time must be a finite number of seconds");
+  if (st.animated) {
+    ctx.pose = evaluate_animations(model, st.animations, time, path);
     for (const std::string& warning : ctx.pose.warnings) warn_once(ctx, warning);
   }
 
   out.quadrics = read_quadric_definitions(model, path);
   out.node_names.reserve(model.nodes.size());
   for (const tinygltf::Node& node : model.nodes) out.node_names.push_back(node.name);
-  const int scene_index = chosen_scene(model, options, path);
+  const int scene_index = chosen_scene(model, st.options, path);
   if (scene_index < 0)
     warn_once(ctx, "the file has no scenes; nothing is placed");
   else
     place_nodes(ctx, model.scenes[static_cast<size_t>(scene_index)].nodes);
-  check_unplaced_indices(ctx);
-  convert_used_materials(ctx);
+  if (!reuse) check_unplaced_indices(ctx);  // the file does not change between frames
+
+  // Materials do not animate: a frame that uses the same ones as the last takes them over, with
+  // their textures and decoded images.
+  const std::set<int> used = used_materials(ctx);
+  if (reuse && used == st.used) {
+    out.materials = std::move(previous->materials);
+    out.textures = std::move(previous->textures);
+    const size_t images = std::min(st.image_count, previous->images.size());
+    out.images.assign(
+        std::make_move_iterator(previous->images.begin()),
+        std::make_move_iterator(previous->images.begin() + static_cast<std::ptrdiff_t>(images)));
+  } else {
+    st.materials = convert_used_materials(ctx);
+    st.used = used;
+  }
+  assign_materials(ctx, st.materials);
+  st.image_count = out.images.size();
+
+  // The last frame's posed meshes are the caller's to drop now; this frame's are charged instead.
+  if (ctx.memory) ctx.memory->release(st.posed_bytes);
+  st.posed_bytes = ctx.posed_bytes;
+  st.geometry_cache = std::move(ctx.geometry_cache);
+  st.posed_once = true;
+  if (posed_meshes) *posed_meshes = std::move(ctx.posed_meshes);
   return out;
+}
+
+scene load_gltf(const std::string& path, const gltf_load_options& options) {
+  gltf_sequence sequence(path, options);
+  return sequence.pose(options.time);
 }
 
 }  // namespace kiln

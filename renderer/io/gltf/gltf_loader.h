@@ -5,7 +5,10 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.h"  // callers catch the kiln::error this throws
 #include "core/memory_budget.h"
@@ -52,5 +55,32 @@ struct gltf_load_options {
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.
 scene load_gltf(const std::string& path, const gltf_load_options& options = {});
+
+// One asset posed at many times (the frames of a shot): the file is read, parsed and validated
+// once, and each frame builds only what can change with time. load_gltf is one pose of one.
+class gltf_sequence {
+ public:
+  // Reads and validates the file (options.time is unused; pose takes the time). Throws kiln::error.
+  gltf_sequence(const std::string& path, const gltf_load_options& options);
+  ~gltf_sequence();
+  gltf_sequence(const gltf_sequence&) = delete;
+  gltf_sequence& operator=(const gltf_sequence&) = delete;
+
+  // The scene posed at `time` seconds, equal to load_gltf at that time. `previous`, the scene the
+  // last call returned, gives up what no animation changes, moved instead of built again: every
+  // mesh no node deforms, and the materials, textures and decoded images (the loader's own; images
+  // a client appended stay behind). Drop `previous` afterwards. Mesh indices and instance order
+  // are the same in every frame unless a transform turns singular at some time. `posed_meshes`
+  // receives the meshes built for this time (the skinned and morphed ones): a backend refits
+  // those and moves every instance. Throws kiln::error (input) for bad input at this time.
+  scene pose(double time, scene* previous = nullptr, std::vector<uint32_t>* posed_meshes = nullptr);
+
+  // Whether animations drive the file's nodes, so frames differ.
+  bool animated() const;
+
+ private:
+  struct state;
+  std::unique_ptr<state> state_;
+};
 
 }  // namespace kiln

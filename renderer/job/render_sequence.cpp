@@ -1,0 +1,154 @@
+#include "job/render_sequence.h"
+
+#include <chrono>
+#include <memory>
+#include <new>
+#include <optional>
+
+#include "accel/make_accelerator.h"
+#include "io/exr/environment_reader.h"
+#include "job/exr_storage_options.h"
+#include "job/frame_range.h"
+#include "job/job_stop.h"
+#include "job/option_values.h"
+#include "job/render_job_steps.h"
+
+namespace kiln {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The environment map a frame hands back for the next: the last image of its scene.
+std::optional<image> take_environment(scene& world) {
+  if (world.env.map_image < 0 || size_t(world.env.map_image) >= world.images.size()) return std::nullopt;
+  return std::move(world.images[size_t(world.env.map_image)]);
+}
+
+// One frame after the asset is loaded: pose, view, backend (updated when it can be), render.
+struct sequence_state {
+  prepared_scene prepared;
+  std::unique_ptr<gltf_sequence> asset;
+  std::unique_ptr<accelerator> accel;
+  std::optional<image> environment;
+  std::string input_hash;
+  bool charged = false;
+};
+
+render_job_result render_frame(const render_job& job, const render_options& options, sequence_state& st,
+                               const std::atomic<bool>* stop, frame_report& report, const char*& stage) {
+  render_job_result result;
+  result.storage = resolve_exr_settings(options);
+  const auto pose_start = std::chrono::steady_clock::now();
+  stage = "posing the scene";
+  std::vector<uint32_t> posed;
+  scene previous = std::move(st.prepared.world);
+  if (!st.environment) st.environment = take_environment(previous);
+  st.prepared.world = st.asset->pose(scene_time(options), &previous, &posed);
+  previous = scene();  // the last frame's deformed meshes go now
+  finish_loaded_scene(options, st.prepared, job.warn, st.environment ? &*st.environment : nullptr);
+  st.environment.reset();
+  report.pose_seconds += seconds_since(pose_start);
+
+  const prepared_scene& p = st.prepared;
+  result.width = p.cam.width;
+  result.height = p.cam.height;
+  result.camera_description = p.camera_description;
+  result.load_seconds = report.pose_seconds;
+  render_settings settings = make_render_settings(options);
+  settings.crop = job_region(options, p.cam);
+  // The film, pyramids and backend of one frame; the next frame's replace them.
+  if (!st.charged) charge_render_memory(p, settings);
+  st.charged = true;
+
+  stage = "building the acceleration structure";
+  const auto build_start = std::chrono::steady_clock::now();
+  report.backend_updated = st.accel && st.accel->update(posed);
+  if (!report.backend_updated) {
+    st.accel.reset();
+    st.accel = make_job_accelerator(p.world, options);
+  }
+  report.update_seconds = result.build_seconds = seconds_since(build_start);
+
+  stage = "rendering";
+  const cryptomatte_layer objects = cryptomatte_objects(p.world);
+  const cryptomatte_layer materials = cryptomatte_materials(p.world);
+  settings.mattes = {objects.id_by_key, materials.id_by_key};
+  settings.cancel = stop;
+  settings.progress = job.progress;
+  result.image = render_image(p.world, *st.accel, p.cam, settings, &result.stats);
+  st.accel->throw_if_failed();
+  throw_if_cancelled(stop, options.output);
+  result.metadata = job_metadata(options, p, settings, result.stats,
+                                 fingerprint_with_settings(st.input_hash, options), objects, materials);
+  return result;
+}
+
+}  // namespace
+
+render_options frame_options(const render_options& sequence, long long frame) {
+  render_options o = sequence;
+  o.frames.clear();
+  o.frame = frame;
+  o.output = frame_path(sequence.output, frame);
+  if (!sequence.preview.empty()) o.preview = frame_path(sequence.preview, frame);
+  return o;
+}
+
+std::vector<long long> check_sequence(const render_options& options) {
+  const std::vector<long long> frames = frame_numbers(parse_frame_range(options.frames));
+  if (options.time)
+    throw input_error("", "--time", "--time and --frames both choose the time; give one of them");
+  if (options.frame)
+    throw input_error("", "--frame", "--frame and --frames both choose the frame; give one of them");
+  if (frames.size() > 1 && !options.output.empty()) {  // no output: a benchmark's frames
+    if (!has_frame_placeholder(options.output))
+      throw input_error("", "-o",
+                        "'" + options.output +
+                            "' has no frame placeholder: with several --frames, name the output like "
+                            "shot.####.exr or shot.%04d.exr");
+    if (!options.preview.empty() && !has_frame_placeholder(options.preview))
+      throw input_error("", "--preview",
+                        "'" + options.preview + "' has no frame placeholder (e.g. shot.####.png)");
+  }
+  for (long long frame : frames) check_job(frame_options(options, frame));
+  return frames;
+}
+
+void run_sequence(const render_job& job,
+                  const std::function<void(const render_job_result&, const render_options&,
+                                           const frame_report&)>& on_frame) {
+  const std::vector<long long> frames = check_sequence(job.options);
+  sequence_state st;
+  frame_report first;
+  // Loaded once, under the first frame's options (the stop flag of a load ends with it).
+  const render_options first_options = frame_options(job.options, frames.front());
+  run_stoppable(job, first_options, [&](const std::atomic<bool>* stop, const char*& stage) {
+    stage = "hashing the inputs";
+    st.input_hash =
+        job.fingerprint ? job.fingerprint->input_hash : make_fingerprint(first_options, stop).input_hash;
+    stage = "loading the scene";
+    const auto load_start = std::chrono::steady_clock::now();
+    st.prepared.memory = std::make_shared<memory_budget>(job_memory_limit(first_options));
+    st.asset = std::make_unique<gltf_sequence>(
+        first_options.input, job_load_options(first_options, stop, st.prepared.memory.get()));
+    if (!first_options.environment.empty())
+      st.environment = read_environment_image(first_options.environment);
+    first.pose_seconds = seconds_since(load_start);
+    return 0;
+  });
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const render_options options = frame_options(job.options, frames[i]);
+    frame_report report = i == 0 ? first : frame_report{};
+    report.frame = frames[i];
+    const render_job_result result =
+        run_stoppable(job, options, [&](const std::atomic<bool>* stop, const char*& stage) {
+          return render_frame(job, options, st, stop, report, stage);
+        });
+    on_frame(result, options, report);
+  }
+}
+
+}  // namespace kiln

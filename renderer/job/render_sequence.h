@@ -1,0 +1,41 @@
+// The frames of a shot in one process (--frames): the asset is read and parsed once, each frame
+// poses it again (gltf_sequence: only the deformed meshes are built anew) and the backend is
+// updated in place (Embree moves its instances and refits the deformed meshes) instead of being
+// built again. Each frame is the render `kiln render --frame N -o FRAME_OUTPUT` would make, pixel
+// for pixel, with its own EXR header and settings hash.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "job/render_job.h"
+
+namespace kiln {
+
+// The options of one frame of a sequence: --frame N, the outputs with the frame placeholder
+// filled in, and no --frames.
+render_options frame_options(const render_options& sequence, long long frame);
+
+// The frames options.frames names, after checking the sequence's options: no --time or --frame
+// beside --frames, a frame placeholder in -o (and --preview) when there is more than one frame,
+// and every frame's own checks (check_job). Throws kiln::error (input or io).
+std::vector<long long> check_sequence(const render_options& options);
+
+// How a sequence's frame was made: rendered with a backend built for it, or with the last frame's
+// updated in place.
+struct frame_report {
+  long long frame = 0;
+  bool backend_updated = false;
+  double pose_seconds = 0.0;    // posing the scene (and for the first frame, loading it)
+  double update_seconds = 0.0;  // building or updating the backend
+};
+
+// Renders every frame of job.options.frames in order and hands each to on_frame (which writes
+// it) before the next starts; an error stops the sequence there (earlier frames stay written).
+// Throws like run_job; --time-limit applies to each frame.
+void run_sequence(const render_job& job,
+                  const std::function<void(const render_job_result&, const render_options&,
+                                           const frame_report&)>& on_frame);
+
+}  // namespace kiln
