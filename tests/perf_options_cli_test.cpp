@@ -7,7 +7,9 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -99,6 +101,15 @@ stored_image read(const std::string& path) {
   return out;
 }
 
+std::vector<float> read_floats(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> values(size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data());
+  return values;
+}
+
 TEST(perf_options_cli, defaults_are_recorded_in_the_header) {
   const stored_image a = read(render(scratch_folder("perf_default"), "a.exr", {}));
   EXPECT_EQ(a.spec.get_string_attribute("kiln/bvh_quality"), "medium");
@@ -122,7 +133,19 @@ TEST(perf_options_cli, every_build_setting_and_packets_leave_the_pixels_unchange
         EXPECT_EQ(img.spec.get_string_attribute("kiln/bvh_compact"), compact ? "on" : "off");
         EXPECT_EQ(img.spec.get_string_attribute("kiln/packets"), packets);
         ASSERT_EQ(img.bytes.size(), reference.bytes.size());
-        EXPECT_EQ(std::memcmp(img.bytes.data(), reference.bytes.data(), img.bytes.size()), 0);
+        if (!compact) {  // the build quality and packets change only the tree and the traversal
+          EXPECT_EQ(std::memcmp(img.bytes.data(), reference.bytes.data(), img.bytes.size()), 0);
+          continue;
+        }
+        // The compact layout computes triangle edges at query time: on CPUs whose Embree kernels
+        // differ there (AVX2), hits move by float rounding; every channel stays within it.
+        const std::vector<float> a = read_floats(dir + "/" + std::to_string(n - 1) + ".exr");
+        const std::vector<float> b = read_floats(dir + "/reference.exr");
+        ASSERT_EQ(a.size(), b.size());
+        float worst = 0.0f;
+        for (size_t i = 0; i < a.size(); ++i)
+          worst = std::max(worst, std::abs(a[i] - b[i]) / std::max(1.0f, std::abs(b[i])));
+        EXPECT_LE(worst, 2e-3f);  // a half's ulp near 1 is 1e-3
       }
 }
 

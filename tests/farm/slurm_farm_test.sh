@@ -170,6 +170,24 @@ for j in r["jobs"]:
 PY
   compare_to_reference "my shot 'v2'" "$scratch/out 3/my shot 'v2'.exr" "$scratch/work3/plan.json"
   echo "farm: --manifest through kiln batch --plan-only verified, names with spaces, quotes and non-ASCII included"
+  # A sequence: the manifest job's frames become one job (and one array task) per frame, each the
+  # pixels of `kiln render --frame N`.
+  python3 "$source_dir/bench/sequence/make_sequence_scenes.py" "$scratch/anim" >/dev/null
+  printf 'asset,frames,fps,resolution,spp\n%s,1-4,8,48x32,1\n' "$scratch/anim/rigid_boxes.gltf" \
+    >"$scratch/shot.csv"
+  python3 "$farm/kiln_farm.py" submit --manifest "$scratch/shot.csv" --out-dir "$scratch/out4" \
+    --kiln "$kiln" --work-dir "$scratch/work4" --tiles 1 --mem 256M --time 5:00 --wait ||
+    fail "the frames farm run did not complete: $(cat "$scratch"/work4/logs/*.log)"
+  python3 - "$scratch/work4/verify.json" <<'PY' || fail "the frames run's verify.json is not ok"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["ok"], r
+assert [j["name"] for j in r["jobs"]] == ["rigid_boxes.%04d" % f for f in range(1, 5)], r["jobs"]
+PY
+  for frame in 0001 0004; do
+    compare_to_reference "rigid_boxes.$frame" "$scratch/out4/rigid_boxes.$frame.exr" "$scratch/work4/plan.json"
+  done
+  echo "farm: a manifest job with frames is one verified array task per frame"
 else
   echo "farm: --manifest not exercised: this kiln's batch command has no --plan-only"
 fi
