@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
+#include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
 #include "job/frame_range.h"
 #include "job/option_table.h"
@@ -171,6 +173,48 @@ void apply_render_arguments(render_options& options, const std::vector<std::stri
   }
 }
 
+// A variant's name as part of a file name: letters, digits, '.', '-' and '_' kept, the rest '_'.
+std::string file_safe(const std::string& name) {
+  std::string out = name.empty() ? "variant" : name;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+  return out;
+}
+
+// The output of one variant: {variant} in the name replaced, else _<variant> before the extension.
+std::string variant_output(const std::string& output, const std::string& variant) {
+  const std::string safe = file_safe(variant);
+  const size_t token = output.rfind("{variant}");
+  if (token != std::string::npos) return output.substr(0, token) + safe + output.substr(token + 9);
+  fs::path path(output);
+  return (path.parent_path() / (path.stem().string() + "_" + safe + path.extension().string())).string();
+}
+
+// The jobs of a manifest job's "variants": one per KHR_materials_variants variant, each with
+// --variant and its own output; the job itself when it names none. "all" reads the asset's list;
+// an asset that cannot be read fails its job alone, as it would when rendering.
+std::vector<batch_job> variant_jobs(batch_job job, const batch_job_spec& spec) {
+  std::vector<std::string> variants = spec.variants;
+  if (spec.all_variants && job.error.empty()) {
+    try {
+      variants = gltf_material_variants(job.options.input);
+      if (variants.empty())
+        job.error = "\"variants\": \"all\": the asset has no KHR_materials_variants variants";
+    } catch (const error& e) {
+      job.error = e.what();
+    }
+  }
+  if (variants.empty() || !job.error.empty()) return {std::move(job)};
+  std::vector<batch_job> out;
+  for (const std::string& variant : variants) {
+    batch_job one = job;
+    one.options.variant = variant;
+    one.options.output = variant_output(job.options.output, variant);
+    out.push_back(std::move(one));
+  }
+  return out;
+}
+
 // Adds a job whose options are complete: its command line, a unique output and name.
 void add_planned_job(batch_job job, const fs::path& out_dir, const std::string& where,
                      std::vector<batch_job>& jobs, std::map<std::string, size_t>& writers,
@@ -236,24 +280,27 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     const bool sequence = !job.options.frames.empty() && job.error.empty();
     const fs::path output = out_dir / (spec.output.empty() ? default_output(spec, sequence) : spec.output);
     job.options.output = output.lexically_normal().string();
-    // --preview in a batch names the format only: each job's preview sits beside its EXR.
-    if (!job.options.preview.empty())
-      job.options.preview =
-          fs::path(job.options.output).replace_extension(fs::path(job.options.preview).extension()).string();
-    if (!sequence) {
-      add_planned_job(std::move(job), out_dir, spec.where, jobs, writers, names);
-      continue;
-    }
-    // A sequence is one job per frame, each with its own output, resume state and farm task.
-    const std::vector<long long> frames = frame_numbers(parse_frame_range(job.options.frames));
-    if (frames.size() > 1 && !has_frame_placeholder(job.options.output))
-      throw input_error("", spec.where,
-                        "output " + job.options.output +
-                            " has no frame placeholder for its frames (name it like shot.####.exr)");
-    for (long long frame : frames) {
-      batch_job one = job;
-      one.options = frame_options(job.options, frame);
-      add_planned_job(std::move(one), out_dir, spec.where, jobs, writers, names);
+    for (batch_job& one : variant_jobs(std::move(job), spec)) {
+      // --preview in a batch names the format only: each job's preview sits beside its EXR.
+      if (!one.options.preview.empty())
+        one.options.preview = fs::path(one.options.output)
+                                  .replace_extension(fs::path(one.options.preview).extension())
+                                  .string();
+      if (!sequence) {
+        add_planned_job(std::move(one), out_dir, spec.where, jobs, writers, names);
+        continue;
+      }
+      // A sequence is one job per frame, each with its own output, resume state and farm task.
+      const std::vector<long long> frames = frame_numbers(parse_frame_range(one.options.frames));
+      if (frames.size() > 1 && !has_frame_placeholder(one.options.output))
+        throw input_error("", spec.where,
+                          "output " + one.options.output +
+                              " has no frame placeholder for its frames (name it like shot.####.exr)");
+      for (long long frame : frames) {
+        batch_job framed = one;
+        framed.options = frame_options(one.options, frame);
+        add_planned_job(std::move(framed), out_dir, spec.where, jobs, writers, names);
+      }
     }
   }
   check_batch_outputs(jobs);

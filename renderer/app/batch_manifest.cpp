@@ -16,7 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const char* const job_fields = "asset, camera, resolution, spp, frames, fps, animation, output, overrides";
+const char* const job_fields =
+    "asset, camera, resolution, spp, frames, fps, animation, variants, output, overrides";
 
 // The job fields that are render options of the same name (a sequence's time: --frames, --fps,
 // --animation), written as a string or a number.
@@ -92,7 +93,7 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
   for (auto it = job.begin(); it != job.end(); ++it) {
     const std::string& key = it.key();
     if (key != "asset" && key != "camera" && key != "resolution" && key != "spp" && key != "output" &&
-        key != "overrides" && !is_time_field(key))
+        key != "overrides" && key != "variants" && !is_time_field(key))
       throw input_error(file, where + "/" + key,
                         "unknown job field (expected " + std::string(job_fields) + ")");
   }
@@ -126,6 +127,23 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
     spec.arguments.insert(
         spec.arguments.end(),
         {std::string("--") + key, value.is_string() ? value.get<std::string>() : value.dump()});
+  }
+  if (job.contains("variants")) {
+    const json& variants = job["variants"];
+    if (variants == "all") {
+      spec.all_variants = true;
+    } else if (variants.is_array() && !variants.empty()) {
+      for (size_t i = 0; i < variants.size(); ++i) {
+        if (!variants[i].is_string() && !variants[i].is_number_unsigned())
+          throw input_error(file, where + "/variants/" + std::to_string(i),
+                            "expected a variant name or index");
+        spec.variants.push_back(variants[i].is_string() ? variants[i].get<std::string>()
+                                                        : variants[i].dump());
+      }
+    } else {
+      throw input_error(file, where + "/variants",
+                        "expected \"all\" or an array of variant names, got " + variants.dump());
+    }
   }
   if (job.contains("output")) spec.output = string_field("output");
   if (job.contains("overrides")) {
@@ -223,7 +241,7 @@ batch_manifest read_csv_manifest(const std::string& path) {
       header = fields;
       for (const std::string& column : header)
         if (column != "asset" && column != "camera" && column != "resolution" && column != "spp" &&
-            column != "output" && column != "overrides" && !is_time_field(column))
+            column != "output" && column != "overrides" && column != "variants" && !is_time_field(column))
           throw input_error(path, where, "unknown column '" + column + "' (expected " + job_fields + ")");
       if (std::find(header.begin(), header.end(), "asset") == header.end())
         throw input_error(path, where, "the header has no 'asset' column");
@@ -255,6 +273,11 @@ batch_manifest read_csv_manifest(const std::string& path) {
         if (!is_integer_text(value))
           throw input_error(path, where, "spp: expected an integer, got '" + value + "'");
         spec.arguments.insert(spec.arguments.end(), {"--spp", value});
+      } else if (column == "variants") {
+        if (value == "all")
+          spec.all_variants = true;
+        else
+          spec.variants = split_arguments(value);  // names as a shell splits them
       } else if (is_time_field(column)) {
         spec.arguments.insert(spec.arguments.end(), {"--" + column, value});
       } else if (column == "output") {

@@ -14,7 +14,10 @@ struct batch_job_spec {
   std::string output;                  // as written; empty: the default name
   std::string camera;                  // the job's camera field, for the default output name
   std::vector<std::string> arguments;  // `kiln render` options from the job's fields and overrides
-  std::string where;                   // "FILE: /jobs/3" or "FILE: line 4": where the job came from
+  // "variants": KHR_materials_variants to render one job each (names or indices), or all_variants.
+  std::vector<std::string> variants;
+  bool all_variants = false;
+  std::string where;  // "FILE: /jobs/3" or "FILE: line 4": where the job came from
 };
 
 struct batch_manifest {

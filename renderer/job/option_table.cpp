@@ -351,6 +351,11 @@ void add_view_options(std::vector<option_spec>& t) {
           "glTF animations to play: all, or one by name or index (default all)"))
       .recorded_as = "kiln/animation";
   add(custom_option(
+          "variant", [](render_options& o, const std::string& text) { o.variant = text; },
+          [](const render_options& o) -> std::optional<std::string> { return o.variant; }, "beach",
+          "KHR_materials_variants: render the variant NAME (or its index) of a file with material variants"))
+      .recorded_as = "kiln/variant";
+  add(custom_option(
           "background",
           [](render_options& o, const std::string& text) {
             dvec3 c = parse_triple(text, "--background");

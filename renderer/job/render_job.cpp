@@ -247,6 +247,7 @@ gltf_load_options job_load_options(const render_options& options, const std::ato
   load_options.memory = memory;
   load_options.time = scene_time(options);
   load_options.animation = options.animation.value_or("");
+  load_options.variant = options.variant.value_or("");
   return load_options;
 }
 

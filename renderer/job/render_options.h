@@ -47,6 +47,7 @@ struct render_options {
   std::optional<double> fps;             // --fps F (default 24)
   std::optional<long long> frame_start;  // --frame-start N: the frame at time 0 (default 1)
   std::optional<std::string> animation;  // --animation NAME|INDEX|all (default all)
+  std::optional<std::string> variant;    // --variant NAME|INDEX: a KHR_materials_variants variant
   // --frames FIRST-LAST[:STEP]: a sequence (job/render_sequence.h), each frame its own --frame
   // and output; empty: one image.
   std::string frames;

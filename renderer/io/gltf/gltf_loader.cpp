@@ -26,6 +26,7 @@
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
+#include "io/gltf/gltf_variants.h"
 #include "io/gltf/mesh_tangents.h"
 #include "scene/coordinate_range.h"
 
@@ -910,6 +911,7 @@ gltf_sequence::gltf_sequence(const std::string& path, const gltf_load_options& o
   state& st = *state_;
   st.model = parse_gltf_file(path, options, &st.model_memory);
   validate_model(st.model, path);
+  apply_material_variant(st.model, options.variant, path);
   st.quantized = uses_extension(st.model, quantization_extension);
   // A still asset (no animation) skips this: its scene is what it always was.
   st.animated = !st.model.animations.empty() ||
@@ -998,6 +1000,12 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   st.posed_once = true;
   if (posed_meshes) *posed_meshes = std::move(ctx.posed_meshes);
   return out;
+}
+
+std::vector<std::string> gltf_material_variants(const std::string& path, const gltf_load_options& options) {
+  memory_charge held(options.memory);
+  const tinygltf::Model model = parse_gltf_file(path, options, &held);
+  return material_variant_names(model, path);
 }
 
 scene load_gltf(const std::string& path, const gltf_load_options& options) {

@@ -51,10 +51,18 @@ struct gltf_load_options {
   // animations ignores the time; "none" is the rest pose; morph weights and skins pose the meshes either way.
   double time = 0.0;
   std::string animation;
+  // KHR_materials_variants: the variant whose materials the mapped primitives take (its name or
+  // index); "": every primitive keeps its own material.
+  std::string variant;
 };
 
 // Throws kiln::error (kind input) on any invalid or unsupported input.
 scene load_gltf(const std::string& path, const gltf_load_options& options = {});
+
+// The KHR_materials_variants variants of the file, in order (empty when it has none). Reads and
+// parses the file as load_gltf does; throws kiln::error (input) when that fails.
+std::vector<std::string> gltf_material_variants(const std::string& path,
+                                                const gltf_load_options& options = {});
 
 // One asset posed at many times (the frames of a shot): the file is read, parsed and validated
 // once, and each frame builds only what can change with time. load_gltf is one pose of one.

@@ -235,17 +235,13 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {"KHR_lights_punctual",
-                                                 "KHR_materials_emissive_strength",
-                                                 "KHR_materials_ior",
-                                                 "KHR_materials_specular",
-                                                 "KHR_materials_transmission",
-                                                 "KHR_materials_volume",
-                                                 "KHR_texture_transform",
-                                                 "KHR_materials_unlit",
-                                                 "KHR_mesh_quantization",
-                                                 "EXT_mesh_gpu_instancing",
-                                                 "KILN_quadric"};
+  static const std::vector<std::string> names = {
+      "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+      "KHR_materials_ior",          "KHR_materials_specular",
+      "KHR_materials_transmission", "KHR_materials_volume",
+      "KHR_texture_transform",      "KHR_materials_unlit",
+      "KHR_materials_variants",     "KHR_mesh_quantization",
+      "EXT_mesh_gpu_instancing",    "KILN_quadric"};
   return names;
 }
 
