@@ -14,7 +14,7 @@
 #include <set>
 
 #include "render/film.h"
-#include "support/float_exr.h"
+#include "support/channel_exr.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
@@ -30,30 +30,14 @@ const char* const rgb[3] = {".R", ".G", ".B"};
 const char* const xyz[3] = {".X", ".Y", ".Z"};
 constexpr float base = 0.8f;  // the plane's base colour (grey)
 
-struct image : testing::float_exr {
-  float at(size_t pixel, const std::string& channel) const {
-    const int c = spec.channelindex(channel);
-    EXPECT_GE(c, 0) << channel;
-    return c < 0 ? NAN : pixels[pixel * size_t(spec.nchannels) + size_t(c)];
-  }
-  bool has(const std::string& channel) const { return spec.channelindex(channel) >= 0; }
-  size_t count() const { return spec.image_pixels(); }
-};
+using image = testing::channel_exr;
 
 size_t pixel(int x, int y) { return size_t(y) * size + size_t(x); }
 
 // Renders scene to dir/name at 40x40, 32-bit float, with the given options.
 image render(const std::string& scene, const std::string& dir, const std::string& name,
-             std::vector<std::string> extra) {
-  std::vector<std::string> args = {"render",   scene,
-                                   "-o",       dir + "/" + name,
-                                   "--width",  std::to_string(size),
-                                   "--height", std::to_string(size),
-                                   "-q",       "--float"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  const auto result = run_kiln(args);
-  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
-  return image{testing::read_float_exr(dir + "/" + name)};
+             const std::vector<std::string>& extra) {
+  return image{testing::render_float_exr(scene, dir + "/" + name, size, size, extra)};
 }
 
 // A quad in the plane z, spanning [x0, x1] × [y0, y1], facing +z (or -z when facing_back).
@@ -237,7 +221,8 @@ TEST(passes_cli, albedo_of_metal_and_glass) {
   EXPECT_EQ(im.at(pixel(size - 5, size / 2), "N_filtered.Z"), 1.0f);
 }
 
-// Asking for the passes changes no beauty byte, they do not depend on threads, each light gets its
+// Asking for the passes changes no beauty byte, they do not depend on threads or bands (a band is a
+// crop of the frame, whose filter reach is traced and dropped), each light gets its
 // own matte named after its light group, and --multipart writes each as a part of its own.
 TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
   const std::string dir = scratch_folder("passes_bytes");
@@ -249,15 +234,20 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
       "--aovs", "beauty,direct,lightgroups,albedo_filtered,N_filtered,diffuse,specular,shadow"};
   const image one = render(scene, dir, "one.exr", with(with(passes, base_args), {"--threads", "1"}));
   const image two = render(scene, dir, "two.exr", with(with(passes, base_args), {"--threads", "2"}));
+  const image band = render(scene, dir, "band.exr", with(with(passes, base_args), {"--band", "1/2"}));
   EXPECT_TRUE(one.has("shadow_ceiling_light.A") && one.has("shadow_fill_light.A"));
-  size_t differing = 0, thread_differing = 0;
+  size_t differing = 0, thread_differing = 0, band_differing = 0;
   float worst_sum = 0.0f;
   for (size_t p = 0; p < plain.count(); ++p) {
     for (const char* c : {"R", "G", "B", "A", "direct.R", "lightgroup_fill_light.G"})
       differing += plain.at(p, c) != one.at(p, c);
     for (const char* c : {"albedo_filtered.R", "N_filtered.Y", "diffuse.G", "specular.B",
-                          "shadow_ceiling_light.A", "shadow_fill_light.A"})
+                          "shadow_ceiling_light.A", "shadow_fill_light.A"}) {
       thread_differing += one.at(p, c) != two.at(p, c);
+      const int y = int(p / size_t(size));
+      if (y >= band.spec.y && y < band.spec.y + band.spec.height)
+        band_differing += one.at(p, c) != band.at(p - size_t(band.spec.y) * size, c);
+    }
     for (const char* s : {"ceiling_light", "fill_light"}) {
       const float matte = one.at(p, std::string("shadow_") + s + ".A");
       EXPECT_TRUE(matte >= 0.0f && matte <= 1.0f) << matte;
@@ -272,6 +262,7 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
   }
   EXPECT_EQ(differing, 0u);
   EXPECT_EQ(thread_differing, 0u);
+  EXPECT_EQ(band_differing, 0u);
   EXPECT_LE(worst_sum, 1e-5f);
 
   const auto multipart =

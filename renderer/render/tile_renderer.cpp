@@ -69,28 +69,19 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.normal_filtered, out.normal_filtered);
   copy(from.diffuse, out.diffuse);
   copy(from.specular, out.specular);
-  const size_t lights = size_t(from.light_count());
-  if (!from.shadow.empty())
-    for (int y = to.y0; y < to.y1; ++y)
-      for (int x = to.x0; x < to.x1; ++x)
-        std::copy_n(from.shadow.begin() + from.index(x - from.x0, y - from.y0) * lights, lights,
-                    out.shadow.begin() + out.index(x - to.x0, y - to.y0) * lights);
-  const size_t groups = size_t(from.light_group_count());
-  if (!from.light_groups.empty())
-    for (int y = to.y0; y < to.y1; ++y)
-      for (int x = to.x0; x < to.x1; ++x)
-        std::copy_n(from.light_groups.begin() + from.index(x - from.x0, y - from.y0) * groups, groups,
-                    out.light_groups.begin() + out.index(x - to.x0, y - to.y0) * groups);
-  const size_t depth = size_t(from.aovs.crypto_depth);
-  auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
+  // Buffers of `per_pixel` values a pixel.
+  auto copy_runs = [&](const auto& src, auto& dst, size_t per_pixel) {
     if (src.empty()) return;
     for (int y = to.y0; y < to.y1; ++y)
       for (int x = to.x0; x < to.x1; ++x)
-        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * depth, depth,
-                    dst.begin() + out.index(x - to.x0, y - to.y0) * depth);
+        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * per_pixel, per_pixel,
+                    dst.begin() + out.index(x - to.x0, y - to.y0) * per_pixel);
   };
-  copy_ranks(from.crypto_object, out.crypto_object);
-  copy_ranks(from.crypto_material, out.crypto_material);
+  copy_runs(from.shadow, out.shadow, size_t(from.light_count()));
+  copy_runs(from.light_groups, out.light_groups, size_t(from.light_group_count()));
+  const size_t depth = size_t(from.aovs.crypto_depth);
+  copy_runs(from.crypto_object, out.crypto_object, depth);
+  copy_runs(from.crypto_material, out.crypto_material, depth);
   return out;
 }
 
