@@ -51,7 +51,7 @@ int add_quad(gltf_builder& b, float x0, float x1, float y0, float y1, float z, i
 }
 
 // The plane z = 0 over [-plane_x, 1.5] × [-1.5, 1.5] (grey, rough dielectric: a Lambert and a GGX
-// lobe), an orthographic camera on +z seeing [-1, 1]², a directional light shining down -z, and an
+// lobe), an orthographic camera on +z seeing [-1, 1]², a directional light "sun" shining down -z, and an
 // occluder at z = 1 over x < 0 facing the plane: the camera culls its back face, the light's shadow
 // rays do not, so the left half of the plane is in shadow with its edge at x = 0 (between columns
 // 19 and 20). With plane_x < 1 the plane's left edge lies in view, over the background.
@@ -67,6 +67,10 @@ std::string shadowed_plane(const std::string& dir, float plane_x) {
   b.add_node({{"camera", 0}, {"translation", {0, 0, 4}}});
   const int sun = b.add_light({{"type", "directional"}, {"name", "sun"}, {"intensity", 2.0}});
   b.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+  // A second light shining up from below: it never reaches the plane's lit side, so it adds
+  // nothing and its matte is 0 everywhere (not 1: nothing of it is blocked).
+  const int under = b.add_light({{"type", "directional"}, {"name", "under"}, {"intensity", 5.0}});
+  b.add_node({{"rotation", {1, 0, 0, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", under}}}}}});
   const std::string path = dir + "/plane_" + std::to_string(int(plane_x * 100)) + ".gltf";
   b.write(path);
   return path;
@@ -96,7 +100,9 @@ TEST(passes_cli, closed_forms_on_a_half_shadowed_plane) {
   for (const auto& sampling : samplings) {
     const image im = render(scene, dir, "plane.exr", with(all_passes, sampling));
     const std::string what = sampling[0] + " " + sampling[1];
-    ASSERT_TRUE(im.has("shadow_sun.A") && im.has("albedo_filtered.R") && im.has("N_filtered.Z")) << what;
+    ASSERT_TRUE(im.has("shadow_sun.A") && im.has("shadow_under.A") && im.has("albedo_filtered.R") &&
+                im.has("N_filtered.Z"))
+        << what;
     float worst_sum = 0.0f;
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
@@ -111,6 +117,7 @@ TEST(passes_cli, closed_forms_on_a_half_shadowed_plane) {
               im.at(p, std::string("diffuse") + rgb[c]) + im.at(p, std::string("specular") + rgb[c]);
           worst_sum = std::max(worst_sum, std::abs(lobes - direct) / std::max(1e-3f, std::abs(direct)));
         }
+        EXPECT_EQ(im.at(p, "shadow_under.A"), 0.0f) << what;
         if (x >= 17 && x <= 22) continue;  // the shadow's edge, within the widest filter's reach
         const bool umbra = x < size / 2;
         EXPECT_NEAR(im.at(p, "shadow_sun.A"), umbra ? 1.0f : 0.0f, tol) << what << " " << x << "," << y;
