@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "render/film.h"
@@ -55,11 +56,14 @@ int add_quad(gltf_builder& b, float x0, float x1, float y0, float y1, float z, i
 // occluder at z = 1 over x < 0 facing the plane: the camera culls its back face, the light's shadow
 // rays do not, so the left half of the plane is in shadow with its edge at x = 0 (between columns
 // 19 and 20). With plane_x < 1 the plane's left edge lies in view, over the background.
-std::string shadowed_plane(const std::string& dir, float plane_x) {
+std::string shadowed_plane(const std::string& dir, float plane_x, float opacity = 1.0f) {
   gltf_builder b;
-  const int grey = b.add_material(
-      {{"pbrMetallicRoughness",
-        {{"baseColorFactor", {base, base, base, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
+  nlohmann::json grey_material = {{"pbrMetallicRoughness",
+                                   {{"baseColorFactor", {base, base, base, opacity}},
+                                    {"metallicFactor", 0.0},
+                                    {"roughnessFactor", 1.0}}}};
+  if (opacity < 1.0f) grey_material["alphaMode"] = "BLEND";
+  const int grey = b.add_material(grey_material);
   add_quad(b, -plane_x, 1.5f, -1.5f, 1.5f, 0.0f, grey, false);
   add_quad(b, -3.0f, 0.0f, -3.0f, 3.0f, 1.0f, grey, true);
   b.add_camera({{"type", "orthographic"},
@@ -71,7 +75,8 @@ std::string shadowed_plane(const std::string& dir, float plane_x) {
   // nothing and its matte is 0 everywhere (not 1: nothing of it is blocked).
   const int under = b.add_light({{"type", "directional"}, {"name", "under"}, {"intensity", 5.0}});
   b.add_node({{"rotation", {1, 0, 0, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", under}}}}}});
-  const std::string path = dir + "/plane_" + std::to_string(int(plane_x * 100)) + ".gltf";
+  const std::string path = dir + "/plane_" + std::to_string(int(plane_x * 100)) + "_" +
+                           std::to_string(int(opacity * 100)) + ".gltf";
   b.write(path);
   return path;
 }
@@ -172,28 +177,31 @@ TEST(passes_cli, shadow_matte_follows_the_beauty_weights_at_the_edge) {
 
 // Over the background a sample's albedo and normal count by its coverage, as its alpha does: at the
 // plane's edge albedo_filtered = base × A and N_filtered.Z = A for each filter and adaptive sampling,
-// while the unfiltered albedo keeps the nearest sample's value.
+// while the unfiltered albedo keeps the nearest sample's value; a BLEND plane of opacity 0.5 over
+// nothing covers half of each sample, so there too albedo_filtered = base × A (A = 0.5 inside).
 TEST(passes_cli, albedo_and_normal_carry_the_coverage_at_an_object_edge) {
   const std::string dir = scratch_folder("passes_coverage");
-  const std::string scene = shadowed_plane(dir, 0.52f);  // the left edge inside column 9
-  for (const auto& sampling : samplings) {
-    const image im = render(scene, dir, "cover.exr",
-                            with({"--aovs", "beauty,albedo,albedo_filtered,N_filtered"}, sampling));
-    const std::string what = sampling[0] + " " + sampling[1];
-    float worst = 0.0f;
-    int partial = 0;
-    for (size_t p = 0; p < im.count(); ++p) {
-      const float alpha = im.at(p, "A");
-      worst = std::max(worst, std::abs(im.at(p, "albedo_filtered.G") - base * alpha));
-      worst = std::max(worst, std::abs(im.at(p, "N_filtered.Z") - alpha));
-      if (alpha > 0.05f && alpha < 0.95f) {
-        ++partial;
-        EXPECT_TRUE(im.at(p, "albedo.G") == base || im.at(p, "albedo.G") == 0.0f) << what;
+  for (const float opacity : {1.0f, 0.5f})
+    for (const auto& sampling : samplings) {
+      const std::string scene = shadowed_plane(dir, 0.52f, opacity);  // the left edge inside column 9
+      const image im = render(scene, dir, "cover.exr",
+                              with({"--aovs", "beauty,albedo,albedo_filtered,N_filtered"}, sampling));
+      const std::string what = sampling[0] + " " + sampling[1] + " opacity " + std::to_string(opacity);
+      float worst = 0.0f;
+      int partial = 0;
+      for (size_t p = 0; p < im.count(); ++p) {
+        const float alpha = im.at(p, "A");
+        worst = std::max(worst, std::abs(im.at(p, "albedo_filtered.G") - base * alpha));
+        worst = std::max(worst, std::abs(im.at(p, "N_filtered.Z") - alpha));
+        if (alpha > 0.05f && alpha < 0.95f && opacity == 1.0f) {
+          ++partial;
+          EXPECT_TRUE(im.at(p, "albedo.G") == base || im.at(p, "albedo.G") == 0.0f) << what;
+        }
       }
+      EXPECT_TRUE(partial > 0 || opacity < 1.0f) << what;
+      EXPECT_NEAR(im.at(pixel(size - 3, size / 2), "A"), opacity, 1e-6f) << what;
+      EXPECT_LE(worst, 2e-6f) << what;
     }
-    EXPECT_GT(partial, 0) << what;
-    EXPECT_LE(worst, 2e-6f) << what;
-  }
 }
 
 // The documented albedo: a metal's base colour (its reflectance at normal incidence), 1 for glass
