@@ -242,13 +242,7 @@ TEST(light_groups_cli, beauty_bytes_stay_and_groups_are_deterministic) {
   const auto multipart = run_kiln({"render", scene, "-o", dir + "/parts.exr", "--width", "16", "--height",
                                    "12", "-q", "--aovs", "beauty,lightgroups", "--multipart"});
   ASSERT_EQ(multipart.exit_code, 0) << multipart.stderr_text;
-  std::set<std::string> parts;
-  for (int part = 0;; ++part) {
-    auto in = OIIO::ImageInput::open(dir + "/parts.exr");
-    ASSERT_TRUE(in);
-    if (!in->seek_subimage(part, 0)) break;
-    parts.insert(in->spec().get_string_attribute("name"));
-  }
+  const std::set<std::string> parts = testing::exr_part_names_in(dir + "/parts.exr");
   EXPECT_TRUE(parts.count("lightgroup_ceiling_light") && parts.count("lightgroup_environment"))
       << parts.size();
 }

@@ -284,13 +284,7 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
       run_kiln({"render", scene, "-o", dir + "/parts.exr", "--width", "16", "--height", "12", "-q", "--aovs",
                 "beauty,albedo_filtered,N_filtered,diffuse,specular,shadow", "--multipart"});
   ASSERT_EQ(multipart.exit_code, 0) << multipart.stderr_text;
-  std::set<std::string> parts;
-  for (int part = 0;; ++part) {
-    auto in = OIIO::ImageInput::open(dir + "/parts.exr");
-    ASSERT_TRUE(in);
-    if (!in->seek_subimage(part, 0)) break;
-    parts.insert(in->spec().get_string_attribute("name"));
-  }
+  const std::set<std::string> parts = testing::exr_part_names_in(dir + "/parts.exr");
   EXPECT_EQ(parts, (std::set<std::string>{"rgba", "albedo_filtered", "N_filtered", "diffuse", "specular",
                                           "shadow_ceiling_light", "shadow_fill_light"}));
 }

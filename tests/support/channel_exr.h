@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,16 @@ inline channel_exr render_float_exr(const std::string& scene, const std::string&
   const auto result = run_kiln(args);
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
   return channel_exr{read_float_exr(path)};
+}
+
+// The part names of a (multi-part) EXR; a test failure, and none, when it cannot be opened.
+inline std::set<std::string> exr_part_names_in(const std::string& path) {
+  std::set<std::string> parts;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path;
+  for (int part = 0; in && in->seek_subimage(part, 0); ++part)
+    parts.insert(in->spec().get_string_attribute("name"));
+  return parts;
 }
 
 }  // namespace kiln::testing
