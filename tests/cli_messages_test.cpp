@@ -105,9 +105,22 @@ TEST(cli_messages, every_integer_option_says_an_integer_is_expected) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-const std::vector<std::string> all_parts = {
-    "rgba", "depth",  "N",          "P",          "albedo",       "uv",
-    "id",   "direct", "reflection", "refraction", "CryptoObject", "CryptoMaterial"};
+const std::vector<std::string> all_parts = {"rgba",
+                                            "depth",
+                                            "N",
+                                            "P",
+                                            "albedo",
+                                            "uv",
+                                            "id",
+                                            "direct",
+                                            "reflection",
+                                            "refraction",
+                                            "albedo_filtered",
+                                            "N_filtered",
+                                            "diffuse",
+                                            "specular",
+                                            "CryptoObject",
+                                            "CryptoMaterial"};
 
 std::vector<std::string> part_names(const std::string& path) {
   std::vector<std::string> names;
@@ -128,9 +141,10 @@ TEST(cli_messages, multipart_help_lists_every_part_the_writer_makes) {
   EXPECT_NE(entry.find("(" + listed + ")"), std::string::npos) << entry;
   // And those are the parts a render with every AOV writes, in that order.
   const std::string out = scratch_folder("every_part") + "/parts.exr";
-  const auto result =
-      run_kiln({"render", demo_scene, "-o", out, "--width", "8", "--height", "6", "-q", "--multipart",
-                "--aovs", "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte"});
+  const auto result = run_kiln(
+      {"render", demo_scene, "-o", out, "--width", "8", "--height", "6", "-q", "--multipart", "--aovs",
+       "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,albedo_filtered,N_filtered,"
+       "diffuse,specular"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_EQ(part_names(out), all_parts);
 }

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "support/float_exr.h"
+#include "support/channel_exr.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
@@ -29,14 +29,7 @@ using testing::scratch_folder;
 constexpr int size = 40;
 const char* const rgb[3] = {".R", ".G", ".B"};
 
-struct image : testing::float_exr {
-  float at(size_t pixel, const std::string& channel) const {
-    const int c = spec.channelindex(channel);
-    EXPECT_GE(c, 0) << channel;
-    return c < 0 ? NAN : pixels[pixel * size_t(spec.nchannels) + size_t(c)];
-  }
-  bool has(const std::string& channel) const { return spec.channelindex(channel) >= 0; }
-  size_t count() const { return spec.image_pixels(); }
+struct image : testing::channel_exr {
   // The layers whose name starts with lightgroup_, from their .R channels.
   std::set<std::string> groups() const {
     std::set<std::string> out;
@@ -49,16 +42,8 @@ struct image : testing::float_exr {
 
 // Renders scene to dir/name at 40x40, 32-bit float colour, with the given options.
 image render(const std::string& scene, const std::string& dir, const std::string& name,
-             std::vector<std::string> extra) {
-  std::vector<std::string> args = {"render",   scene,
-                                   "-o",       dir + "/" + name,
-                                   "--width",  std::to_string(size),
-                                   "--height", std::to_string(size),
-                                   "-q",       "--float"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  const auto result = run_kiln(args);
-  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
-  return image{testing::read_float_exr(dir + "/" + name)};
+             const std::vector<std::string>& extra) {
+  return image{testing::render_float_exr(scene, dir + "/" + name, size, size, extra)};
 }
 
 std::string demo_scene(const std::string& name) { return std::string(KILN_SOURCE_DIR) + "/scenes/" + name; }
@@ -114,8 +99,9 @@ TEST(light_groups_cli, groups_sum_to_the_beauty) {
       EXPECT_LE(worst, 1e-5f) << what;
       // Neither scene has emissive surfaces, and the Cornell box is closed: no ray leaves it.
       for (const std::string& g : expected)
-        if (g != "lightgroup_emission" && !(g == "lightgroup_environment" && name == closed_room))
+        if (g != "lightgroup_emission" && !(g == "lightgroup_environment" && name == closed_room)) {
           EXPECT_GT(layer_total(im, g), 0.0) << what << " " << g;
+        }
       EXPECT_TRUE(im.has("direct.R") && im.has("reflection.R")) << what;
       std::printf("%s: max relative |sum of light groups - beauty| %.3g\n", what.c_str(), worst);
     }
@@ -256,13 +242,7 @@ TEST(light_groups_cli, beauty_bytes_stay_and_groups_are_deterministic) {
   const auto multipart = run_kiln({"render", scene, "-o", dir + "/parts.exr", "--width", "16", "--height",
                                    "12", "-q", "--aovs", "beauty,lightgroups", "--multipart"});
   ASSERT_EQ(multipart.exit_code, 0) << multipart.stderr_text;
-  std::set<std::string> parts;
-  for (int part = 0;; ++part) {
-    auto in = OIIO::ImageInput::open(dir + "/parts.exr");
-    ASSERT_TRUE(in);
-    if (!in->seek_subimage(part, 0)) break;
-    parts.insert(in->spec().get_string_attribute("name"));
-  }
+  const std::set<std::string> parts = testing::exr_part_names_in(dir + "/parts.exr");
   EXPECT_TRUE(parts.count("lightgroup_ceiling_light") && parts.count("lightgroup_environment"))
       << parts.size();
 }

@@ -22,6 +22,11 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
   if (aov == "reflection") return &formats.reflection;
   if (aov == "refraction") return &formats.refraction;
   if (aov == "lightgroups") return &formats.light_groups;
+  if (aov == "albedo_filtered") return &formats.albedo_filtered;
+  if (aov == "N_filtered") return &formats.normal_filtered;
+  if (aov == "diffuse") return &formats.diffuse;
+  if (aov == "specular") return &formats.specular;
+  if (aov == "shadow") return &formats.shadow;
   if (aov == "Z" || aov == "P" || aov == "id") {
     if (format == "float") return nullptr;  // what it is anyway
     throw input_error("", "--channel-format",
@@ -35,7 +40,10 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
 }  // namespace
 
 const std::string& selectable_format_aovs() {
-  static const std::string list = "beauty, N, albedo, uv, direct, reflection, refraction, lightgroups";
+  static const std::string list =
+      "beauty, N, albedo, uv, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, "
+      "diffuse, "
+      "specular, shadow";
   return list;
 }
 
@@ -63,7 +71,10 @@ exr_settings resolve_exr_settings(const render_options& options) {
   if (options.exr_tiled || options.exr_tile_size > 0)
     settings.tile_size = options.exr_tile_size > 0 ? options.exr_tile_size : default_exr_tile;
   const sample_format all = options.full_float ? sample_format::float32 : sample_format::half;
-  settings.formats = {all, all, all, sample_format::float32, all, all, all, all};  // uv: float either way
+  settings.formats = {all, all, all, sample_format::float32,
+                      all, all, all, all,  // uv: float either way
+                      all, all, all, all,
+                      all};
   apply_channel_formats(options.channel_formats, settings.formats);
   const std::string& codec = settings.compression;
   if (settings.compression_level > 0) {

@@ -200,7 +200,8 @@ void parse_aovs(render_options& o, const std::string& text) {
     throw input_error("", "--aovs",
                       "unknown or repeated output " + bad +
                           " (choose from beauty, Z, N, P, albedo, uv, id, crypto_object, crypto_material, "
-                          "cryptomatte, direct, reflection, refraction, lightgroups)");
+                          "cryptomatte, direct, reflection, refraction, lightgroups, albedo_filtered, "
+                          "N_filtered, diffuse, specular, shadow)");
   // --cryptomatte-depth and --depth-mode fill in fields of the same set, whichever comes first.
   aovs->crypto_depth = o.aovs.crypto_depth;
   aovs->depth_kind = o.aovs.depth_kind;
@@ -546,8 +547,8 @@ void add_image_options(std::vector<option_spec>& t) {
   };
   add(flag_option(
       "float", [](render_options & o) -> auto& { return o.full_float; },
-      "Write RGBA, N, albedo, the light split (direct, reflection, refraction) and the light groups as "
-      "32-bit float "
+      "Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the "
+      "passes (albedo_filtered, N_filtered, diffuse, specular, shadow) as 32-bit float "
       "instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are "
       "always float)"));
   add(custom_option(
@@ -634,7 +635,9 @@ void add_image_options(std::vector<option_spec>& t) {
           "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
           "and material names; cryptomatte for both), direct, reflection and refraction (the beauty split by "
           "first event), lightgroups (the beauty split by light: one layer per light, emission and "
-          "environment) (default beauty,Z,N)"))
+          "environment), albedo_filtered and N_filtered (albedo and normal filtered like the beauty, for a "
+          "denoiser), diffuse and specular (the direct light by BRDF lobe), shadow (one shadow matte per "
+          "light) (default beauty,Z,N)"))
       .recorded_as = "kiln/aovs";
   add(integer_option<int>(
       "cryptomatte-depth", [](render_options & o) -> auto& { return o.aovs.crypto_depth; }, 1,

@@ -67,6 +67,7 @@ struct pixel_refiner {
         corner.split[1] = s->split.reflection;
         corner.split[2] = s->split.refraction;
         corner.groups = s->groups;
+        corner.passes = s->passes;
         if (s->finite) {
           std::copy(s->layers, s->layers + s->layer_count, corner.layers);
           corner.layer_count = s->layer_count;

@@ -16,7 +16,8 @@ namespace kiln {
 struct adaptive_options {
   float threshold = 0.0f;  // split where a channel (R, G, B, A) spans more than this; 0 = off
   int max_depth = 2;       // splits per pixel at most: 2 means squares down to 1/4 pixel a side
-  // Fill adaptive_pixel::corners (for Cryptomatte, the light split and the light groups).
+  // Fill adaptive_pixel::corners (for Cryptomatte, the light split, the light groups and the
+  // camera passes).
   bool collect_corners = false;
 };
 
@@ -36,6 +37,7 @@ struct weighted_corner {
   // Its colour by first event: direct, reflection, refraction.
   vec3 split[3] = {};
   std::vector<vec3> groups;  // its colour by light group (empty unless the samples carry them)
+  camera_passes passes;      // its denoiser and relighting passes (zero unless the samples carry them)
   // The instances it covers (none for a miss or a sample with non-finite radiance).
   path_layer layers[max_path_layers];
   int layer_count = 0;

@@ -26,6 +26,11 @@ constexpr aov_name aov_names[] = {
     {"reflection", &aov_set::reflection},
     {"refraction", &aov_set::refraction},
     {"lightgroups", &aov_set::light_groups},
+    {"albedo_filtered", &aov_set::albedo_filtered},
+    {"N_filtered", &aov_set::normal_filtered},
+    {"diffuse", &aov_set::diffuse},
+    {"specular", &aov_set::specular},
+    {"shadow", &aov_set::shadow},
 };
 
 // Shorthand for both Cryptomatte layers.

@@ -2,6 +2,7 @@
 // Depends on core only.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -36,6 +37,18 @@ struct aov_set {
   // lightgroup_environment.RGB: the beauty by the source its light came from, through every
   // reflection and refraction, filtered like it; they sum to R G B (render/light_groups.h).
   bool light_groups = false;
+  // Passes for a denoiser, folded with the beauty's own filter weights like the light split (see
+  // shade/whitted.h's camera_passes): albedo_filtered.RGB (the denoising albedo of the surfaces the
+  // camera sees, times their coverage) and N_filtered.XYZ (their shading normals, the same way).
+  bool albedo_filtered = false;
+  bool normal_filtered = false;
+  // diffuse.RGB and specular.RGB: the punctual lights' direct light at the surfaces the camera sees
+  // by BRDF lobe (Lambert, GGX); with emission and the background seen directly they make direct.
+  bool diffuse = false;
+  bool specular = false;
+  // shadow_<light>.A per punctual light: the share of that light's unshadowed direct light at the
+  // surfaces the camera sees that shadow rays find blocked (luminance), times coverage.
+  bool shadow = false;
   // Cryptomatte ranks (id, coverage pairs) kept per pixel.
   int crypto_depth = default_cryptomatte_depth;
   // What Z holds.
@@ -43,17 +56,29 @@ struct aov_set {
 };
 
 // Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, crypto_object,
-// crypto_material, and cryptomatte for both, direct, reflection, refraction, lightgroups; case-sensitive,
+// crypto_material, and cryptomatte for both, direct, reflection, refraction, lightgroups,
+// albedo_filtered, N_filtered, diffuse, specular, shadow; case-sensitive,
 // each at most once, at least one). Returns empty and sets *bad to the offending item otherwise.
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad);
 
 // True when some output needs the light split.
 inline bool wants_light_split(const aov_set& a) { return a.direct || a.reflection || a.refraction; }
 
-// The colour parts filtered beside the beauty, per sample: the light split's three (direct,
-// reflection, refraction) when some output needs it, then one per light group when asked for.
+// True when some output needs the camera path's passes (whitted.h's camera_passes).
+inline bool wants_camera_passes(const aov_set& a) {
+  return a.albedo_filtered || a.normal_filtered || a.diffuse || a.specular || a.shadow;
+}
+
+// The vec3 parts filtered beside the beauty with its weights, per sample, in this order: the light
+// split's three (direct, reflection, refraction) when some output needs it, one per light group
+// when asked for, then albedo_filtered, N_filtered, diffuse and specular (each when asked for), and
+// the shadow mattes packed three lights to a part. light_groups counts the groups: the lights plus
+// emission and environment.
+inline int shadow_part_count(int light_groups) { return (std::max(light_groups - 2, 0) + 2) / 3; }
 inline int beauty_part_count(const aov_set& a, int light_groups) {
-  return (wants_light_split(a) ? 3 : 0) + (a.light_groups ? light_groups : 0);
+  return (wants_light_split(a) ? 3 : 0) + (a.light_groups ? light_groups : 0) + int(a.albedo_filtered) +
+         int(a.normal_filtered) + int(a.diffuse) + int(a.specular) +
+         (a.shadow ? shadow_part_count(light_groups) : 0);
 }
 
 // The canonical comma-separated list, in channel order: "beauty,Z,N" for the default (the

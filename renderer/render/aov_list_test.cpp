@@ -56,6 +56,24 @@ TEST(aov_list, light_split_names) {
   EXPECT_FALSE(wants_light_split(aov_set{}));
 }
 
+// The passes come after the light groups in channel order, and each adds its parts to the fold:
+// one vec3 each, the shadow mattes three lights to a part.
+TEST(aov_list, pass_names_and_part_counts) {
+  std::optional<aov_set> aovs =
+      parse_aov_list("shadow,specular,N_filtered,beauty,albedo_filtered,diffuse", nullptr);
+  ASSERT_TRUE(aovs);
+  EXPECT_TRUE(wants_camera_passes(*aovs));
+  EXPECT_EQ(aov_list_name(*aovs), "beauty,albedo_filtered,N_filtered,diffuse,specular,shadow");
+  // 4 lights + emission + environment: two shadow parts (lights 0-2, 3).
+  EXPECT_EQ(beauty_part_count(*aovs, 6), 4 + 2);
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 5), 1);  // 3 lights
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow,direct,lightgroups", nullptr), 3), 1 + 3 + 3);
+  EXPECT_FALSE(wants_camera_passes(*parse_aov_list("beauty,lightgroups,albedo", nullptr)));
+  std::string bad;
+  EXPECT_FALSE(parse_aov_list("N_Filtered", &bad));
+  EXPECT_EQ(bad, "'N_Filtered'");
+}
+
 TEST(aov_list, depth_modes) {
   EXPECT_EQ(parse_depth_mode("distance"), depth_mode::distance);
   EXPECT_EQ(parse_depth_mode("planar"), depth_mode::planar);

@@ -16,6 +16,8 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   s.rgba = vec4(0.0f);
   s.split = light_split{};
   std::fill(s.groups.begin(), s.groups.end(), vec3(0.0f));
+  s.passes.albedo = s.passes.normal = s.passes.diffuse = s.passes.specular = vec3(0.0f);
+  std::fill(s.passes.shadow.begin(), s.passes.shadow.end(), 0.0f);
   s.layer_count = 0;
   s.finite = false;
   return s;
@@ -23,12 +25,22 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 
 }  // namespace
 
+sample_outputs sample_outputs_for(const aov_set& aovs) {
+  sample_outputs o;
+  o.albedo = aovs.albedo;
+  o.split = wants_light_split(aovs);
+  o.groups = aovs.light_groups;
+  o.passes = wants_camera_passes(aovs);
+  o.shadow = aovs.shadow;
+  return o;
+}
+
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo, bool with_split, bool with_groups) {
+                                  const sample_outputs& outputs) {
   const ray start = generate_camera_ray(cam, px, py);
   return shade_camera_hit(ctx, cam, show_background, start, ctx.accel.intersect(start), cone, counts,
-                          with_albedo, with_split, with_groups);
+                          outputs);
 }
 
 namespace {
@@ -62,8 +74,8 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
 // the ray's cone there). The sample's ray tree gets its own budget.
 void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p,
-                       const ray_cone& at_hit, bool show_background, bool with_split, camera_sample& s,
-                       ray_counts& counts) {
+                       const ray_cone& at_hit, bool show_background, const sample_outputs& outputs,
+                       camera_sample& s, ray_counts& counts) {
   camera_path path;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
@@ -72,8 +84,9 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
   state.cone = at_hit;
   state.budget = &budget;
   state.camera = &path;
-  state.split = with_split ? &s.split : nullptr;
+  state.split = outputs.split ? &s.split : nullptr;
   state.groups = s.groups.empty() ? nullptr : s.groups.data();
+  state.passes = outputs.passes ? &s.passes : nullptr;
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
@@ -90,20 +103,21 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
 
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
-                               ray_counts& counts, bool with_albedo, bool with_split, bool with_groups) {
+                               ray_counts& counts, const sample_outputs& outputs) {
   camera_sample s;
-  if (with_groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
+  if (outputs.groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
+  if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size(), 0.0f);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
   // Orthographic rays run along the view axis from the window plane: their distance is planar.
   if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
   ++counts.camera;
   const std::optional<hit> h = find_visible_hit_from(ctx, r, first, counts);
-  if (!h) return missed(ctx, s, r, show_background, with_split, counts);
+  if (!h) return missed(ctx, s, r, show_background, outputs.split, counts);
   const float distance = distance_to_hit(start, r, *h);
   const ray_cone at_hit = cone_at(cone, distance);
   const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
-  record_hit(ctx, *h, p, distance, with_albedo, s);
-  shade_camera_path(ctx, r, p, at_hit, show_background, with_split, s, counts);
+  record_hit(ctx, *h, p, distance, outputs.albedo, s);
+  shade_camera_path(ctx, r, p, at_hit, show_background, outputs, s, counts);
   return s;
 }
 

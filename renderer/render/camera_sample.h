@@ -29,32 +29,43 @@ struct camera_sample {
   vec2 uv{0.0f};          // TEXCOORD_0; 0 on a miss
   int32_t node = -1;      // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
-  // With with_split: rgba's colour by first event.
+  // With outputs.split: rgba's colour by first event.
   light_split split;
-  // With with_groups: rgba's colour by light group (render/light_groups.h); else empty.
+  // With outputs.groups: rgba's colour by light group (render/light_groups.h); else empty.
   std::vector<vec3> groups;
+  // With outputs.passes: what the camera path collects for the denoiser and relighting passes
+  // (shade/whitted.h), its shadow mattes (one per light) only with outputs.shadow.
+  camera_passes passes;
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
   int layer_count = 0;
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
+// What a camera sample records beside its colour and geometry AOVs.
+struct sample_outputs {
+  bool albedo = false;  // evaluates the material once more for the albedo AOV
+  bool split = false;   // fills split
+  bool groups = false;  // fills groups
+  bool passes = false;  // fills passes (albedo, normal, diffuse, specular)
+  bool shadow = false;  // fills passes.shadow too (with passes)
+};
+
+// The sample outputs a film with aovs needs.
+sample_outputs sample_outputs_for(const aov_set& aovs);
+
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
 // cone is the ray's footprint at the camera (for texture filtering along the whole path).
-// with_albedo evaluates the material once more for the albedo AOV; with_split fills split,
-// with_groups groups.
 camera_sample trace_camera_sample(const shading_context& ctx, const view_camera& cam, bool show_background,
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
-                                  bool with_albedo = false, bool with_split = false,
-                                  bool with_groups = false);
+                                  const sample_outputs& outputs = {});
 
 // trace_camera_sample for the camera ray `start` whose closest hit `first` is already known (the
 // camera-ray stage of render/camera_rays.h traced it).
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
-                               ray_counts& counts, bool with_albedo = false, bool with_split = false,
-                               bool with_groups = false);
+                               ray_counts& counts, const sample_outputs& outputs = {});
 
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.

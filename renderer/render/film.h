@@ -3,6 +3,7 @@
 // buffers; the others stay empty. Colour always has one: the renderer resolves into it.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -50,15 +51,23 @@ struct film {
   std::vector<vec3> refraction;
   // Light groups (render/light_groups.h): their EXR layer names, and per pixel one premultiplied
   // colour per group, filtered like the beauty; empty unless asked for.
+  // Kept when light groups or shadow mattes are asked for (the mattes are named after the lights).
   std::vector<std::string> light_group_layers;
   std::vector<vec3> light_groups;
+  // The camera path's passes (shade/whitted.h's camera_passes), filtered like the beauty; empty
+  // unless asked for. shadow holds light_count() mattes per pixel.
+  std::vector<vec3> albedo_filtered;
+  std::vector<vec3> normal_filtered;
+  std::vector<vec3> diffuse;
+  std::vector<vec3> specular;
+  std::vector<float> shadow;
   // Cryptomatte: aovs.crypto_depth ranks a pixel, coverage descending; empty unless asked for.
   std::vector<id_coverage> crypto_object;
   std::vector<id_coverage> crypto_material;
   aov_set aovs;  // what the file should hold
 
   film() = default;
-  // group_layers: the light groups' layers (kept only when a.light_groups).
+  // group_layers: the light groups' layers (kept when a.light_groups or a.shadow).
   film(int w, int h, const aov_set& a = aov_set{}, const std::vector<std::string>& group_layers = {})
       : width(w), height(h), full_width(w), full_height(h), aovs(a) {
     const size_t n = size_t(w) * h;
@@ -72,25 +81,38 @@ struct film {
     if (a.direct) direct.assign(n, vec3(0.0f));
     if (a.reflection) reflection.assign(n, vec3(0.0f));
     if (a.refraction) refraction.assign(n, vec3(0.0f));
-    if (a.light_groups) {
-      light_group_layers = group_layers;
-      light_groups.assign(n * group_layers.size(), vec3(0.0f));
-    }
+    if (a.light_groups || a.shadow) light_group_layers = group_layers;
+    if (a.light_groups) light_groups.assign(n * group_layers.size(), vec3(0.0f));
+    if (a.albedo_filtered) albedo_filtered.assign(n, vec3(0.0f));
+    if (a.normal_filtered) normal_filtered.assign(n, vec3(0.0f));
+    if (a.diffuse) diffuse.assign(n, vec3(0.0f));
+    if (a.specular) specular.assign(n, vec3(0.0f));
+    if (a.shadow) shadow.assign(n * size_t(light_count()), 0.0f);
     if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
     if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
   int light_group_count() const { return int(light_group_layers.size()); }
+  // The punctual lights: every group but emission and environment.
+  int light_count() const { return std::max(light_group_count() - 2, 0); }
+  // The shadow matte layer of light i: "shadow_" + its group's name ("lightgroup_<name>").
+  std::string shadow_layer(int i) const {
+    const std::string& group = light_group_layers[size_t(i)];
+    const size_t prefix = group.find('_');
+    return "shadow" + (prefix == std::string::npos ? "_" + group : group.substr(prefix));
+  }
 };
 
 // The bytes a w × h film with aovs (and light_groups groups) holds: its constructor's buffers.
 inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0) {
   uint64_t per_pixel = sizeof(vec4);
   per_pixel += a.depth ? sizeof(float) : 0;
-  for (bool three : {a.normal, a.position, a.albedo, a.direct, a.reflection, a.refraction})
+  for (bool three : {a.normal, a.position, a.albedo, a.direct, a.reflection, a.refraction, a.albedo_filtered,
+                     a.normal_filtered, a.diffuse, a.specular})
     per_pixel += three ? sizeof(vec3) : 0;
   per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
+  per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 2, 0)) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;
   per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
   for (bool crypto : {a.crypto_object, a.crypto_material})

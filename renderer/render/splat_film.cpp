@@ -182,8 +182,6 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
   }
 }
 
-namespace {}  // namespace
-
 void store_beauty_parts(film& out, size_t p, const vec3* parts) {
   if (wants_light_split(out.aovs)) {
     std::vector<vec3>* split[3] = {&out.direct, &out.reflection, &out.refraction};
@@ -191,8 +189,20 @@ void store_beauty_parts(film& out, size_t p, const vec3* parts) {
       if (!split[c]->empty()) (*split[c])[p] = parts[c];
     parts += 3;
   }
-  const size_t groups = size_t(out.light_group_count());
-  if (!out.light_groups.empty()) std::copy(parts, parts + groups, out.light_groups.begin() + p * groups);
+  if (out.aovs.light_groups) {
+    const size_t groups = size_t(out.light_group_count());
+    std::copy(parts, parts + groups, out.light_groups.begin() + p * groups);
+    parts += groups;
+  }
+  // A mean of values in [0, 1] can round just past 1 (Σ w·a in double over Σ w in float): the
+  // albedo (a denoiser wants [0, 1]) and the mattes are clamped back.
+  if (!out.albedo_filtered.empty()) out.albedo_filtered[p] = glm::clamp(*parts++, 0.0f, 1.0f);
+  for (std::vector<vec3>* pass : {&out.normal_filtered, &out.diffuse, &out.specular})
+    if (!pass->empty()) (*pass)[p] = *parts++;
+  const size_t lights = size_t(out.light_count());
+  if (out.aovs.shadow)
+    for (size_t i = 0; i < lights; ++i)
+      out.shadow[p * lights + i] = std::clamp(parts[i / 3][int(i % 3)], 0.0f, 1.0f);
 }
 
 namespace {

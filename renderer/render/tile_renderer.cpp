@@ -65,22 +65,23 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.direct, out.direct);
   copy(from.reflection, out.reflection);
   copy(from.refraction, out.refraction);
-  const size_t groups = size_t(from.light_group_count());
-  if (!from.light_groups.empty())
-    for (int y = to.y0; y < to.y1; ++y)
-      for (int x = to.x0; x < to.x1; ++x)
-        std::copy_n(from.light_groups.begin() + from.index(x - from.x0, y - from.y0) * groups, groups,
-                    out.light_groups.begin() + out.index(x - to.x0, y - to.y0) * groups);
-  const size_t depth = size_t(from.aovs.crypto_depth);
-  auto copy_ranks = [&](const std::vector<id_coverage>& src, std::vector<id_coverage>& dst) {
+  copy(from.albedo_filtered, out.albedo_filtered);
+  copy(from.normal_filtered, out.normal_filtered);
+  copy(from.diffuse, out.diffuse);
+  copy(from.specular, out.specular);
+  // Buffers of `per_pixel` values a pixel.
+  auto copy_runs = [&](const auto& src, auto& dst, size_t per_pixel) {
     if (src.empty()) return;
     for (int y = to.y0; y < to.y1; ++y)
       for (int x = to.x0; x < to.x1; ++x)
-        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * depth, depth,
-                    dst.begin() + out.index(x - to.x0, y - to.y0) * depth);
+        std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * per_pixel, per_pixel,
+                    dst.begin() + out.index(x - to.x0, y - to.y0) * per_pixel);
   };
-  copy_ranks(from.crypto_object, out.crypto_object);
-  copy_ranks(from.crypto_material, out.crypto_material);
+  copy_runs(from.shadow, out.shadow, size_t(from.light_count()));
+  copy_runs(from.light_groups, out.light_groups, size_t(from.light_group_count()));
+  const size_t depth = size_t(from.aovs.crypto_depth);
+  copy_runs(from.crypto_object, out.crypto_object, depth);
+  copy_runs(from.crypto_material, out.crypto_material, depth);
   return out;
 }
 
@@ -106,15 +107,28 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
   return out;
 }
 
-// The beauty's parts of one sample (the light split, then the light groups), as the film keeps them.
-void gather_beauty_parts(const aov_set& aovs, const vec3 (&split)[3], const std::vector<vec3>& groups,
-                         std::vector<vec3>& parts) {
+// The beauty's parts of one sample, as the film keeps them (render/aov_list.h's beauty_part_count):
+// the light split, the light groups, then the camera passes, the shadow mattes three to a part.
+void gather_beauty_parts(const aov_set& aovs, const light_split& split, const std::vector<vec3>& groups,
+                         const camera_passes& passes, std::vector<vec3>& parts) {
   parts.clear();
-  if (wants_light_split(aovs)) parts.insert(parts.end(), split, split + 3);
+  if (wants_light_split(aovs)) parts.insert(parts.end(), {split.direct, split.reflection, split.refraction});
   if (aovs.light_groups) parts.insert(parts.end(), groups.begin(), groups.end());
+  if (aovs.albedo_filtered) parts.push_back(passes.albedo);
+  if (aovs.normal_filtered) parts.push_back(passes.normal);
+  if (aovs.diffuse) parts.push_back(passes.diffuse);
+  if (aovs.specular) parts.push_back(passes.specular);
+  if (!aovs.shadow) return;
+  for (size_t i = 0; i < passes.shadow.size(); i += 3) {
+    vec3 three(0.0f);
+    for (size_t c = 0; c < 3 && i + c < passes.shadow.size(); ++c) three[int(c)] = passes.shadow[i + c];
+    parts.push_back(three);
+  }
 }
 
-bool wants_beauty_parts(const aov_set& aovs) { return wants_light_split(aovs) || aovs.light_groups; }
+bool wants_beauty_parts(const aov_set& aovs) {
+  return wants_light_split(aovs) || aovs.light_groups || wants_camera_passes(aovs);
+}
 
 // Shades every stratified sample of one pixel from its camera ray and closest hit (made and traced
 // by the camera-ray stage, rays) and splats it through the filter. The nearest sample decides depth,
@@ -130,14 +144,12 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
-    camera_sample cs =
-        shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
-                         settings.aovs.albedo, wants_light_split(settings.aovs), settings.aovs.light_groups);
+    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
+                                        source.cone, counts, sample_outputs_for(settings.aovs));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
-    const vec3 split[3] = {cs.split.direct, cs.split.reflection, cs.split.refraction};
-    gather_beauty_parts(settings.aovs, split, cs.groups, parts);
+    gather_beauty_parts(settings.aovs, cs.split, cs.groups, cs.passes, parts);
     if (cs.finite) {
       const bool hit = cs.layer_count > 0;
       sample_mattes mattes;
@@ -202,12 +214,13 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
   }
 }
 
-// The light split and light groups of an adaptive pixel: the weighted mean of its final squares'
-// corners.
+// The light split, light groups and camera passes of an adaptive pixel: the weighted mean of its
+// final squares' corners (the weights sum to exactly 1), as the beauty is.
 void store_adaptive_parts(film& out, const adaptive_pixel& p, size_t i) {
   std::vector<vec3> mean, parts;
   for (const weighted_corner& corner : p.corners) {
-    gather_beauty_parts(out.aovs, corner.split, corner.groups, parts);
+    const light_split split{corner.split[0], corner.split[1], corner.split[2]};
+    gather_beauty_parts(out.aovs, split, corner.groups, corner.passes, parts);
     mean.resize(parts.size(), vec3(0.0f));
     for (size_t c = 0; c < parts.size(); ++c) mean[c] += corner.weight * parts[c];
   }
@@ -222,8 +235,7 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
     return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
-                               sample_cone(job.cam, 1), counts, job.settings.aovs.albedo,
-                               wants_light_split(job.settings.aovs), job.settings.aovs.light_groups);
+                               sample_cone(job.cam, 1), counts, sample_outputs_for(job.settings.aovs));
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
@@ -269,8 +281,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   // The film, the splat accumulator and the texture pyramids are set up side by side on the
   // render's threads: zeroing the buffers and building the pyramids come before the first pixel,
   // and done on one thread they held two-thread renders well under twice the speed of one.
-  const std::vector<std::string> group_layers =
-      settings.aovs.light_groups ? light_group_layers(world) : std::vector<std::string>{};
+  const std::vector<std::string> group_layers = settings.aovs.light_groups || settings.aovs.shadow
+                                                    ? light_group_layers(world)
+                                                    : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
   std::unique_ptr<texture_filter> textures;
@@ -319,8 +332,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
           corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
-              ctx, cam, settings.show_background, x, y, pixel, counts, settings.aovs.albedo,
-              wants_light_split(settings.aovs), settings.aovs.light_groups);
+              ctx, cam, settings.show_background, x, y, pixel, counts, sample_outputs_for(settings.aovs));
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

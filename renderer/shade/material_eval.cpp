@@ -127,11 +127,23 @@ float highlight_footprint_alpha(float spread, float width, float light_distance,
   return 0.25f * spread + 0.25f * light_angle + 0.5f * curvature * width;
 }
 
-vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                   float footprint_alpha) {
+namespace {
+
+// The BRDF's three terms: the dielectric's diffuse and specular parts and the metal's specular
+// (unweighted by metallic).
+struct brdf_terms {
+  vec3 dielectric_diffuse{0.0f};
+  vec3 dielectric_specular{0.0f};
+  vec3 metal{0.0f};
+  bool zero = true;  // below the horizon
+};
+
+brdf_terms brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                         float footprint_alpha) {
+  brdf_terms out;
   float n_dot_l = glm::dot(n, l);
   float n_dot_v = glm::dot(n, v);
-  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return vec3(0.0f);
+  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return out;
   vec3 h = glm::normalize(v + l);
   float n_dot_h = std::max(glm::dot(n, h), 0.0f);
   float v_dot_h = std::max(glm::dot(v, h), 0.0f);
@@ -165,10 +177,34 @@ vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const
   vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
   // Transmitted light is traced as refraction, so it leaves the diffuse lobe (glTF's mix).
   vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) / pi);
-  vec3 dielectric =
-      (vec3(1.0f) - dielectric_fresnel) * diffuse + dielectric_fresnel * (distribution * visibility);
-  vec3 metal = metal_fresnel * (distribution * visibility);
-  return glm::mix(dielectric, metal, mp.metallic);
+  out.dielectric_diffuse = (vec3(1.0f) - dielectric_fresnel) * diffuse;
+  out.dielectric_specular = dielectric_fresnel * (distribution * visibility);
+  out.metal = metal_fresnel * (distribution * visibility);
+  out.zero = false;
+  return out;
+}
+
+}  // namespace
+
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                   float footprint_alpha) {
+  const brdf_terms t = brdf_terms_at(mp, n, v, l, footprint_alpha);
+  if (t.zero) return vec3(0.0f);
+  return glm::mix(t.dielectric_diffuse + t.dielectric_specular, t.metal, mp.metallic);
+}
+
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               float footprint_alpha) {
+  const brdf_terms t = brdf_terms_at(mp, n, v, l, footprint_alpha);
+  if (t.zero) return {};
+  return {t.dielectric_diffuse * (1.0f - mp.metallic),
+          t.dielectric_specular * (1.0f - mp.metallic) + t.metal * mp.metallic};
+}
+
+vec3 denoising_albedo(const material_point& mp) {
+  if (mp.unlit) return glm::clamp(mp.base_color, 0.0f, 1.0f);
+  const float see_through = see_through_weight(mp);
+  return glm::clamp(mp.base_color * (1.0f - see_through) + vec3(see_through), 0.0f, 1.0f);
 }
 
 }  // namespace kiln

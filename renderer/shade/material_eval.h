@@ -84,6 +84,22 @@ vec3 fresnel_schlick(const vec3& f0, float cos_theta);
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                    float footprint_alpha = 0.0f);
 
+// evaluate_brdf by lobe: the Lambert term and the GGX terms (dielectric and metal); diffuse +
+// specular equals evaluate_brdf to float rounding.
+struct brdf_lobes {
+  vec3 diffuse{0.0f};
+  vec3 specular{0.0f};
+};
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               float footprint_alpha = 0.0f);
+
+// The albedo a denoiser divides out (Open Image Denoise's auxiliary albedo: the surface's
+// reflectance independent of light and view, within [0, 1]): the base colour for the diffuse
+// dielectric part and for metal (its reflectance at normal incidence), 1 for the transmissive part
+// (OIDN's choice for glass), mixed by metallic and transmission; the base colour for unlit
+// surfaces. Clamped to [0, 1].
+vec3 denoising_albedo(const material_point& mp);
+
 // The GGX alpha a punctual light's highlight needs so that it covers at least the footprint it is
 // seen through, instead of a sub-pixel spike of up to ~1e4 that no sample count resolves (a delta
 // light on a near-delta surface). Over the footprint the half vector turns by half the view's

@@ -49,8 +49,25 @@ vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts
   return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
 }
 
+// Rec.709 luminance, for the shadow mattes.
+float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// Files one light's direct light at a camera-path surface into the passes (s.passes is set): its
+// lobes, shadowed by visibility, and the share of its unshadowed luminance that is blocked.
+void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes,
+                      const vec3& unshadowed_light, const vec3& visibility) {
+  camera_passes& p = *s.passes;
+  p.diffuse += s.share * (lobes.diffuse * unshadowed_light * visibility);
+  p.specular += s.share * (lobes.specular * unshadowed_light * visibility);
+  if (p.shadow.empty()) return;
+  const float unshadowed = luminance((lobes.diffuse + lobes.specular) * unshadowed_light);
+  if (!(unshadowed > 0.0f)) return;
+  const float lit = luminance((lobes.diffuse + lobes.specular) * unshadowed_light * visibility);
+  p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
+}
+
 // Direct light from every punctual light; with light groups, each light's share is filed in its
-// group (times the ray's tint).
+// group (times the ray's tint); on the camera's path with passes, by lobe and as shadow mattes.
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                   const vec3& to_viewer, const path_state& s, ray_counts& counts) {
   const ray_cone& cone = s.cone;
@@ -75,9 +92,14 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
         highlight_footprint_alpha(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
     vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha);
     if (f == vec3(0.0f)) continue;
+    // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
+    const brdf_lobes lobes =
+        s.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
+                 : brdf_lobes{};
 
     if (!l.casts_shadows) {
       add(i, f * ls.irradiance * cos_theta);
+      if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
       continue;
     }
     ray shadow;
@@ -91,6 +113,7 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
                       ? inf
                       : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
     vec3 visibility = shadow_visibility(ctx, shadow, counts);
+    if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
     if (visibility == vec3(0.0f)) continue;
     add(i, f * ls.irradiance * cos_theta * visibility);
   }
@@ -196,6 +219,7 @@ path_state secondary(const path_state& s, float throughput, const medium_stack& 
   next.cone = cone;
   next.camera = nullptr;
   next.split = nullptr;
+  next.passes = nullptr;
   return next;
 }
 
@@ -321,7 +345,13 @@ vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surfa
   if (!s.camera) return shade_covered(ctx, r, sp, mp, s, counts);
   const float escaped_before = s.camera->transparency;
   const vec3 radiance = shade_covered(ctx, r, sp, mp, s, counts);
-  if (s.record_layers) s.camera->cover(sp.instance, s.share - (s.camera->transparency - escaped_before));
+  const float covered = s.share - (s.camera->transparency - escaped_before);
+  if (s.record_layers) s.camera->cover(sp.instance, covered);
+  // The denoiser's albedo and normal go by the surface's coverage, like its matte.
+  if (s.passes && s.record_layers && covered > 0.0f) {
+    s.passes->albedo += covered * denoising_albedo(mp);
+    if (is_finite(sp.shading_normal)) s.passes->normal += covered * sp.shading_normal;
+  }
   return radiance;
 }
 
@@ -388,6 +418,7 @@ vec3 trace_in_volume(const shading_context& ctx, const ray& r, const std::option
     next.throughput = at_hit.throughput * max_component(absorption);
     next.share = at_hit.share * mean_component(absorption);
     next.split = nullptr;
+    next.passes = nullptr;
     next.tint = at_hit.tint * absorption;
     arriving = shade_hit(ctx, r, *h, next, counts);
   }

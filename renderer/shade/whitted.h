@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "accel/accelerator.h"
 #include "scene/scene.h"
@@ -97,6 +98,25 @@ struct light_split {
   vec3 refraction{0.0f};
 };
 
+// What the camera's own path collects for a denoiser and for relighting, at the surfaces it covers
+// (the first visible surface, and those behind BLEND surfaces), each times the share of the sample
+// the surface covers, so a pixel's filtered value is premultiplied by coverage like R G B:
+// - albedo: the surface's denoising albedo (material_eval.h's denoising_albedo), normal: the shading
+//   normal the N AOV holds (normal map applied, bent toward the viewer);
+// - diffuse, specular: the punctual lights' direct light there by lobe of the BRDF (Lambert, and
+//   GGX for dielectric and metal), shadowed as the beauty is; their sum plus the emission and the
+//   background the path sees is the light split's direct;
+// - shadow (one per light, empty unless kept): the luminance share of that light's unshadowed
+//   direct light that its shadow ray finds blocked, 1 − Y(shadowed)/Y(unshadowed), 0 where the light
+//   adds nothing (behind the surface, zero BRDF, or a light that casts no shadows).
+struct camera_passes {
+  vec3 albedo{0.0f};
+  vec3 normal{0.0f};
+  vec3 diffuse{0.0f};
+  vec3 specular{0.0f};
+  std::vector<float> shadow;
+};
+
 // A surface a camera sample covers, and how much of the sample it covers.
 struct path_layer {
   uint32_t instance = 0;
@@ -142,6 +162,9 @@ struct path_state {
   // weights, BLEND alpha and absorption along the way).
   vec3* groups = nullptr;
   vec3 tint{1.0f};
+  // Where the camera path files its passes (null: not kept, or off the camera's path; nulled with
+  // split, so diffuse and specular are always the direct light of the split's direct).
+  camera_passes* passes = nullptr;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.

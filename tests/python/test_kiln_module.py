@@ -56,9 +56,11 @@ def assert_arrays_match_exr(result, path):
 
 OPTIONS = {"width": 40, "height": 30, "spp": 2, "threads": 2,
            "aovs": ["beauty", "Z", "N", "P", "albedo", "uv", "id", "direct", "reflection", "refraction",
-                    "cryptomatte", "lightgroups"]}
+                    "cryptomatte", "lightgroups", "albedo_filtered", "N_filtered", "diffuse", "specular",
+                    "shadow"]}
 ARGUMENTS = ["--width", "40", "--height", "30", "--spp", "2", "--threads", "2", "--aovs",
-             "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,lightgroups"]
+             "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,lightgroups,"
+             "albedo_filtered,N_filtered,diffuse,specular,shadow"]
 
 
 @pytest.mark.parametrize("extra,arguments", [({}, []), ({"float": True}, ["--float"]),
@@ -100,6 +102,29 @@ def test_render_layers_from_python_match_the_cli(tmp_path):
     assert np.count_nonzero(alpha == 0) > 50 and np.count_nonzero(alpha == 1) > 50  # floor held out, walls kept
     with pytest.raises(kiln.InputError, match="--holdout"):
         kiln.render(CORNELL, width=8, height=6, holdout="no_such_node")
+
+
+def test_denoiser_and_relighting_passes_are_arrays():
+    result = kiln.render(CORNELL, width=32, height=24, spp=2, float=True, filter="blackman-harris",
+                         aovs="beauty,direct,albedo_filtered,N_filtered,diffuse,specular,shadow")
+    for name in ("albedo_filtered", "N_filtered", "diffuse", "specular"):
+        assert result.aovs[name].shape == (24, 32, 3), name
+    assert result.channels["N_filtered"] == ["N_filtered.X", "N_filtered.Y", "N_filtered.Z"]
+    mattes = sorted(name for name in result.aovs if name.startswith("shadow_"))
+    assert mattes == ["shadow_ceiling_light", "shadow_fill_light"]
+    for name in mattes:
+        matte = result.aovs[name]
+        assert matte.shape == (24, 32, 1) and result.channels[name] == [name + ".A"]
+        assert matte.min() >= 0.0 and matte.max() <= 1.0
+    # The box's walls shadow parts of the room from the fill light, never all of it.
+    assert 0.0 < result.aovs["shadow_fill_light"].mean() < 1.0
+    albedo = result.aovs["albedo_filtered"]
+    assert albedo.min() >= 0.0 and albedo.max() <= 1.0 and albedo.max() > 0.5
+    # The room is closed and nothing in it glows: the direct term is the two lobes.
+    lobes = result.aovs["diffuse"] + result.aovs["specular"]
+    direct = result.aovs["direct"]
+    assert direct.max() > 0.1
+    assert np.abs(lobes - direct).max() <= 1e-5 * max(1.0, direct.max())
 
 
 def test_output_writes_the_exr_the_cli_writes(tmp_path):

@@ -17,6 +17,10 @@ const std::vector<std::string>& exr_part_names() {
                                                  "direct",
                                                  "reflection",
                                                  "refraction",
+                                                 "albedo_filtered",
+                                                 "N_filtered",
+                                                 "diffuse",
+                                                 "specular",
                                                  crypto_object_layer_name,
                                                  crypto_material_layer_name};
   return names;

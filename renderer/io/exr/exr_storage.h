@@ -15,14 +15,19 @@ enum class sample_format { half, float32 };
 // float by default: half resolves 1/2048 at u = 1 and 1/1024 past it, too coarse for an STMap of a
 // 2K plate or for UDIM tiles (u up to 10).
 struct layer_formats {
-  sample_format beauty = sample_format::half;        // R G B A
-  sample_format normal = sample_format::half;        // N.X N.Y N.Z
-  sample_format albedo = sample_format::half;        // albedo.R albedo.G albedo.B
-  sample_format uv = sample_format::float32;         // uv.U uv.V
-  sample_format direct = sample_format::half;        // direct.R direct.G direct.B
-  sample_format reflection = sample_format::half;    // reflection.R ...
-  sample_format refraction = sample_format::half;    // refraction.R ...
-  sample_format light_groups = sample_format::half;  // lightgroup_<name>.R ... (every group)
+  sample_format beauty = sample_format::half;           // R G B A
+  sample_format normal = sample_format::half;           // N.X N.Y N.Z
+  sample_format albedo = sample_format::half;           // albedo.R albedo.G albedo.B
+  sample_format uv = sample_format::float32;            // uv.U uv.V
+  sample_format direct = sample_format::half;           // direct.R direct.G direct.B
+  sample_format reflection = sample_format::half;       // reflection.R ...
+  sample_format refraction = sample_format::half;       // refraction.R ...
+  sample_format light_groups = sample_format::half;     // lightgroup_<name>.R ... (every group)
+  sample_format albedo_filtered = sample_format::half;  // albedo_filtered.R ...
+  sample_format normal_filtered = sample_format::half;  // N_filtered.X ...
+  sample_format diffuse = sample_format::half;          // diffuse.R ...
+  sample_format specular = sample_format::half;         // specular.R ...
+  sample_format shadow = sample_format::half;           // shadow_<light>.A (every light)
 };
 
 // The layers kiln writes, in the order of kiln/aovs, by the name of the part each gets with
@@ -39,6 +44,10 @@ enum class exr_part {
   direct,
   reflection,
   refraction,
+  albedo_filtered,
+  normal_filtered,
+  diffuse,
+  specular,
   crypto_object,
   crypto_material
 };

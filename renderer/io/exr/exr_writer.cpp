@@ -171,6 +171,41 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
       out.push_back(std::move(l));
     }
   }
+  // The camera passes: albedo and normal like their unfiltered layers, diffuse and specular like R G B.
+  struct pass_part {
+    bool wanted;
+    const std::vector<vec3>* buffer;
+    exr_part part;
+    sample_format format;
+    const char* const* suffixes;
+  };
+  const pass_part passes[4] = {
+      {a.albedo_filtered, &f.albedo_filtered, exr_part::albedo_filtered, formats.albedo_filtered, rgb},
+      {a.normal_filtered, &f.normal_filtered, exr_part::normal_filtered, formats.normal_filtered, xyz},
+      {a.diffuse, &f.diffuse, exr_part::diffuse, formats.diffuse, rgb},
+      {a.specular, &f.specular, exr_part::specular, formats.specular, rgb}};
+  for (const pass_part& p : passes) {
+    if (!p.wanted) continue;
+    const std::string& name = exr_part_name(p.part);
+    layer l{name, type_of(p.format), false, {}};
+    const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
+    for (int c = 0; c < 3; ++c)
+      l.channels.push_back({name + p.suffixes[c], [buffer = p.buffer, c, limit](size_t i) {
+                              return std::clamp((*buffer)[i][c], -limit, limit);
+                            }});
+    out.push_back(std::move(l));
+  }
+  // Shadow mattes: one single-channel layer (and with --multipart one part) per light, named
+  // after its light group.
+  if (a.shadow) {
+    const size_t lights = size_t(f.light_count());
+    for (size_t g = 0; g < lights; ++g) {
+      const std::string name = f.shadow_layer(int(g));
+      layer l{name, type_of(formats.shadow), false, {}};
+      l.channels.push_back({name + ".A", [&f, lights, g](size_t i) { return f.shadow[i * lights + g]; }});
+      out.push_back(std::move(l));
+    }
+  }
   if (a.crypto_object)
     out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
   if (a.crypto_material)
