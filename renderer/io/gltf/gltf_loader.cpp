@@ -18,9 +18,11 @@
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_animation.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_draco.h"
 #include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
 #include "io/gltf/gltf_memory.h"
+#include "io/gltf/gltf_meshopt.h"
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
@@ -849,7 +851,11 @@ int chosen_scene(const tinygltf::Model& model, const gltf_load_options& options,
 
 scene load_gltf(const std::string& path, const gltf_load_options& options) {
   memory_charge model_memory(options.memory);  // released once the model is gone
-  const tinygltf::Model model = parse_gltf_file(path, options, &model_memory);
+  tinygltf::Model model = parse_gltf_file(path, options, &model_memory);
+  // Compressed data is decoded into buffers of its own first, so that validation checks it like
+  // any stored data: meshopt bufferViews (which a Draco stream could sit in), then Draco.
+  decode_meshopt_views(model, path, &model_memory);
+  decode_draco_primitives(model, path, &model_memory);
   validate_model(model, path);
 
   scene out;
