@@ -187,7 +187,7 @@ bool fill_meshopt_fallback_buffers(json& doc) {
                           : nullptr;
     if (!ext || !ext->is_object() || ext->value("fallback", false) != true) continue;
     buffer["uri"] = placeholder_uri;
-    buffer["byteLength"] = 4;
+    buffer["byteLength"] = uint64_t{4};
     changed = true;
   }
   return changed;
