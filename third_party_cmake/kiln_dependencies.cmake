@@ -62,7 +62,7 @@ add_library(kiln::tinygltf ALIAS kiln_tinygltf)
 # TinyGLTF differ from Debian's headers (a crash on every load). Without those members only the
 # decoder objects kiln calls are linked (no library added to process start), and a decoder
 # object that ever needed a glTF member would fail the link instead of mixing two tinygltfs.
-# tests/link_check_test.sh checks that kiln defines no tinygltf or stb function of its own.
+# tests/link_check_test.cpp checks that kiln defines no tinygltf or stb function of its own.
 get_target_property(_draco_archive draco::draco_static IMPORTED_LOCATION_NONE)
 set(_draco_work "${CMAKE_BINARY_DIR}/third_party/draco_decoder")
 set(KILN_DRACO_ARCHIVE "${_draco_work}/libdraco_decoder.a")

@@ -5,8 +5,8 @@
 
 namespace kiln::gltf_internal {
 
-bool add_compression_placeholders(nlohmann::json& doc) {
-  const bool draco = lend_draco_index_views(doc);
+bool add_compression_placeholders(nlohmann::json& doc, const std::string& file) {
+  const bool draco = lend_draco_index_views(doc, file);
   const bool meshopt = fill_meshopt_fallback_buffers(doc);
   return draco || meshopt;
 }

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace kiln::gltf_internal {
 
-// Adds every placeholder the document needs; true when it changed.
-bool add_compression_placeholders(nlohmann::json& doc);
+// Adds every placeholder the document needs; true when it changed. Throws kiln::error (input),
+// naming `file` and the JSON pointer, for a compressed primitive that names no data.
+bool add_compression_placeholders(nlohmann::json& doc, const std::string& file);
 
 }  // namespace kiln::gltf_internal

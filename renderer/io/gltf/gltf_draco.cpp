@@ -165,28 +165,41 @@ void decode_primitive(tinygltf::Model& model, tinygltf::Primitive& prim, const d
 
 }  // namespace
 
-bool lend_draco_index_views(json& doc) {
+bool lend_draco_index_views(json& doc, const std::string& file) {
   auto meshes = doc.find("meshes");
   auto accessors = doc.find("accessors");
   if (meshes == doc.end() || !meshes->is_array() || accessors == doc.end() || !accessors->is_array())
     return false;
+  auto views = doc.find("bufferViews");
+  const size_t view_count = views != doc.end() && views->is_array() ? views->size() : 0;
   bool changed = false;
-  for (json& mesh : *meshes) {
+  for (size_t m = 0; m < meshes->size(); ++m) {
+    json& mesh = (*meshes)[m];
     if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-    for (json& prim : mesh["primitives"]) {
+    for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+      json& prim = mesh["primitives"][p];
       if (!prim.is_object() || !prim.contains("indices") || !prim["indices"].is_number_unsigned()) continue;
-      const json* ext = prim.contains("extensions") && prim["extensions"].is_object() &&
-                                prim["extensions"].contains(draco_extension)
-                            ? &prim["extensions"][draco_extension]
-                            : nullptr;
-      if (!ext || !ext->is_object() || !ext->contains("bufferView") ||
-          !(*ext)["bufferView"].is_number_unsigned())
+      if (!prim.contains("extensions") || !prim["extensions"].is_object() ||
+          !prim["extensions"].contains(draco_extension))
         continue;
       const size_t index = prim["indices"].get<size_t>();
       if (index >= accessors->size() || !(*accessors)[index].is_object() ||
           (*accessors)[index].contains("bufferView"))
         continue;
-      (*accessors)[index]["bufferView"] = (*ext)["bufferView"];
+      const json& ext = prim["extensions"][draco_extension];
+      const json* view = ext.is_object() && ext.contains("bufferView") ? &ext["bufferView"] : nullptr;
+      if (!view || !view->is_number_unsigned() || view->get<uint64_t>() >= view_count)
+        throw input_error(
+            file,
+            pointer_join(
+                pointer_join(
+                    pointer_join(
+                        pointer_join(pointer_join(pointer("meshes", int64_t(m)), "primitives"), int64_t(p)),
+                        "extensions"),
+                    draco_extension),
+                "bufferView"),
+            "needs the index of an existing bufferView (file has " + std::to_string(view_count) + ")");
+      (*accessors)[index]["bufferView"] = *view;
       changed = true;
     }
   }

@@ -19,8 +19,9 @@ constexpr const char* draco_extension = "KHR_draco_mesh_compression";
 
 // Before tinygltf parses the JSON: tinygltf refuses an index accessor without a bufferView,
 // which a Draco primitive's may lack; such an accessor borrows the Draco stream's bufferView
-// until decode_draco_primitives replaces it. True when `doc` changed.
-bool lend_draco_index_views(nlohmann::json& doc);
+// until decode_draco_primitives replaces it. True when `doc` changed. Throws kiln::error (input)
+// when that extension names no existing bufferView.
+bool lend_draco_index_views(nlohmann::json& doc, const std::string& file);
 
 // Decodes every Draco primitive. A corrupt stream, a missing attribute id or a count that
 // disagrees with the accessor throws kiln::error (input) naming the extension's JSON pointer.

@@ -139,13 +139,21 @@ void check_version(const tinygltf::Model& model, const std::string& path) {
                       "glTF version " + quoted(version) + " is not supported (kiln reads glTF 2.x)");
 }
 
+// Why a known extension cannot be read, for the refusal; "" for the rest.
+std::string why_unsupported(const std::string& name) {
+  if (name == "KHR_texture_basisu")
+    return ": no KTX2/Basis Universal decoder is available to kiln (Debian packages none); convert the "
+           "textures to PNG, JPEG or WebP, or keep a PNG/JPEG source and leave the extension optional";
+  return "";
+}
+
 void check_required_extensions(const std::vector<std::string>& required, const std::string& path) {
   const auto& supported = supported_extensions();
   for (size_t i = 0; i < required.size(); ++i) {
     const std::string& name = required[i];
     if (std::find(supported.begin(), supported.end(), name) == supported.end())
       throw input_error(path, pointer_join("/extensionsRequired", static_cast<int64_t>(i)),
-                        "required extension " + shown(name) + " is not supported");
+                        "required extension " + shown(name) + " is not supported" + why_unsupported(name));
   }
 }
 
@@ -226,7 +234,7 @@ std::string check_json_before_parsing(const uint8_t* text, size_t size, const st
   // An unsupported required extension explains what follows from it (Draco's accessors have no
   // bufferViews), so it is reported first.
   check_required_extensions_in_json(doc, path);
-  const bool placeholders = add_compression_placeholders(doc);
+  const bool placeholders = add_compression_placeholders(doc, path);
   check_what_tinygltf_refuses(doc, path, sources);
   check_integer_properties(doc, path);
   check_camera_numbers(doc, path);
