@@ -12,6 +12,8 @@
 
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
+#include "support/gltf_builder.h"
+#include "support/run_kiln.h"
 
 namespace kiln {
 namespace {
@@ -131,6 +133,34 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<asset_pair>& info) {
       return fs::path(info.param.draco).stem().string();
     });
+
+// A corrupt Draco stream is bad input: one line naming the file and the extension's pointer, exit 2.
+TEST(draco_cli, corrupt_stream_exits_2_with_one_line) {
+  testing::gltf_builder b;
+  const std::vector<uint8_t> garbage(96, 0x5a);
+  const int view = b.add_view(garbage.data(), garbage.size());
+  const int pos = b.add_accessor(-1, 5126, 3, "VEC3");
+  b.doc["accessors"][size_t(pos)]["min"] = {0.0, 0.0, 0.0};
+  b.doc["accessors"][size_t(pos)]["max"] = {1.0, 1.0, 0.0};
+  const nlohmann::json ext = {{"bufferView", view}, {"attributes", {{"POSITION", 0}}}};
+  const int mesh = b.add_mesh(
+      {{"attributes", {{"POSITION", pos}}}, {"extensions", {{"KHR_draco_mesh_compression", ext}}}});
+  b.set_scene({b.add_node({{"mesh", mesh}})});
+  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  const std::string folder = testing::scratch_folder("draco_cli");
+  const std::string path = b.write(folder + "/corrupt.gltf");
+  const testing::command_result r = testing::run_kiln({"render", path, "-o", folder + "/out.exr"});
+  EXPECT_EQ(r.exit_code, 2);
+  const std::vector<std::string> lines = testing::lines(r.stderr_text);
+  ASSERT_EQ(lines.size(), 1u) << r.stderr_text;
+  EXPECT_NE(
+      lines[0].find(path +
+                    ": /meshes/0/primitives/0/extensions/KHR_draco_mesh_compression: corrupt Draco stream"),
+      std::string::npos)
+      << lines[0];
+  EXPECT_FALSE(fs::exists(folder + "/out.exr"));
+}
 
 }  // namespace
 }  // namespace kiln

@@ -23,13 +23,14 @@ struct draco_attribute_want {
 // tightly packed, little-endian, quantisation already undone by the decoder.
 struct draco_geometry {
   uint32_t point_count = 0;
-  bool is_mesh = false;           // a triangle mesh (false: a point cloud)
+  bool is_mesh = false;           // always a triangle mesh: point clouds are refused
   std::vector<uint32_t> indices;  // three per triangle, each below point_count
   std::vector<std::vector<uint8_t>> attributes;
 };
 
-// Decodes `size` bytes. A corrupt or truncated stream, a missing attribute id, or an attribute
-// whose component count differs from the want returns nothing and says why in `problem`.
+// Decodes `size` bytes. A corrupt or truncated stream, a point cloud (kiln renders triangles
+// only), a missing attribute id, or an attribute whose component count differs from the want
+// returns nothing and says why in `problem`.
 std::optional<draco_geometry> decode_draco_stream(const uint8_t* data, size_t size,
                                                   const std::vector<draco_attribute_want>& wants,
                                                   std::string& problem);
