@@ -1,6 +1,8 @@
 #include "io/gltf/gltf_draco.h"
 
+#include <cstring>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
