@@ -59,11 +59,19 @@ TEST_P(asset_suite, renders_or_refuses_clearly) {
   fs::path root(KILN_SHARED_ASSETS);
   if (!fs::is_directory(root)) GTEST_SKIP() << "../shared/assets is absent";
   fs::path file = root / GetParam();
-  const std::set<std::string> supported = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
-                                           "KHR_materials_ior",          "KHR_materials_specular",
-                                           "KHR_materials_transmission", "KHR_materials_volume",
-                                           "KHR_texture_transform",      "KHR_materials_unlit",
-                                           "KHR_mesh_quantization",      "EXT_mesh_gpu_instancing"};
+  const std::set<std::string> supported = {"KHR_lights_punctual",
+                                           "KHR_materials_emissive_strength",
+                                           "KHR_materials_ior",
+                                           "KHR_materials_specular",
+                                           "KHR_materials_transmission",
+                                           "KHR_materials_volume",
+                                           "KHR_texture_transform",
+                                           "KHR_materials_unlit",
+                                           "KHR_mesh_quantization",
+                                           "EXT_mesh_gpu_instancing",
+                                           "KHR_draco_mesh_compression",
+                                           "EXT_meshopt_compression",
+                                           "EXT_texture_webp"};
   std::string unsupported;
   for (const std::string& e : required_extensions(file))
     if (!supported.count(e)) unsupported = e;

@@ -18,6 +18,8 @@ kiln_require(TinyGLTF libtinygltf-dev CONFIG)
 kiln_require(glm libglm-dev CONFIG)
 kiln_require(CLI11 libcli11-dev CONFIG)
 kiln_require(nlohmann_json nlohmann-json3-dev CONFIG)
+kiln_require(draco libdraco-dev CONFIG)
+kiln_require(meshoptimizer libmeshoptimizer-dev CONFIG)
 
 # Debian's OpenImageIO target lists include folders of optional dependencies (OpenCV) that
 # are not installed; CMake refuses targets naming folders that do not exist, so keep only real ones.
@@ -52,6 +54,46 @@ add_library(kiln::openexr ALIAS kiln_openexr)
 add_library(kiln_tinygltf INTERFACE)
 target_link_libraries(kiln_tinygltf INTERFACE TinyGLTF::TinyGLTF nlohmann_json::nlohmann_json)
 add_library(kiln::tinygltf ALIAS kiln_tinygltf)
+
+# Draco links statically, from a copy of Debian's libdraco.a without its glTF members. The
+# archive also holds draco's own build of tinygltf and stb_image (tiny_gltf_utils.cc.o), and GNU ld
+# extracts that member for a symbol Debian's libtinygltf.so leaves undefined (stbi_image_free)
+# whatever the order of the link line: kiln would then call draco's tinygltf, whose Model and
+# TinyGLTF differ from Debian's headers (a crash on every load). Without those members only the
+# decoder objects kiln calls are linked (no library added to process start), and a decoder
+# object that ever needed a glTF member would fail the link instead of mixing two tinygltfs.
+# tests/link_check_test.cpp checks that kiln defines no tinygltf or stb function of its own.
+get_target_property(_draco_archive draco::draco_static IMPORTED_LOCATION_NONE)
+set(_draco_work "${CMAKE_BINARY_DIR}/third_party/draco_decoder")
+set(KILN_DRACO_ARCHIVE "${_draco_work}/libdraco_decoder.a")
+if(NOT EXISTS "${KILN_DRACO_ARCHIVE}" OR "${_draco_archive}" IS_NEWER_THAN "${KILN_DRACO_ARCHIVE}")
+  file(REMOVE_RECURSE "${_draco_work}")
+  file(MAKE_DIRECTORY "${_draco_work}/objects")
+  execute_process(COMMAND ${CMAKE_AR} x "${_draco_archive}" WORKING_DIRECTORY "${_draco_work}/objects"
+                  RESULT_VARIABLE _draco_rc)
+  file(GLOB _draco_gltf_members "${_draco_work}/objects/*gltf*.o" "${_draco_work}/objects/mesh_io.cc.o"
+       "${_draco_work}/objects/scene_io.cc.o")
+  if(NOT _draco_rc EQUAL 0 OR NOT _draco_gltf_members)
+    message(FATAL_ERROR "kiln: could not take libdraco.a apart (${_draco_archive})")
+  endif()
+  file(REMOVE ${_draco_gltf_members})
+  file(GLOB _draco_members "${_draco_work}/objects/*.o")
+  execute_process(COMMAND ${CMAKE_AR} qcs "${KILN_DRACO_ARCHIVE}" ${_draco_members} RESULT_VARIABLE _draco_rc)
+  if(NOT _draco_rc EQUAL 0)
+    message(FATAL_ERROR "kiln: could not write ${KILN_DRACO_ARCHIVE}")
+  endif()
+  file(REMOVE_RECURSE "${_draco_work}/objects")
+endif()
+add_library(kiln_draco_decoder STATIC IMPORTED)
+set_target_properties(kiln_draco_decoder PROPERTIES IMPORTED_LOCATION "${KILN_DRACO_ARCHIVE}"
+                                                    INTERFACE_INCLUDE_DIRECTORIES "/usr/include")
+add_library(kiln_draco INTERFACE)
+target_link_libraries(kiln_draco INTERFACE kiln_draco_decoder)
+add_library(kiln::draco ALIAS kiln_draco)
+
+add_library(kiln_meshoptimizer INTERFACE)
+target_link_libraries(kiln_meshoptimizer INTERFACE meshoptimizer::meshoptimizer)
+add_library(kiln::meshoptimizer ALIAS kiln_meshoptimizer)
 
 add_library(kiln_glm INTERFACE)
 target_link_libraries(kiln_glm INTERFACE glm::glm)

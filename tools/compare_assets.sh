@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs `kiln compare` (grid and adaptive grid against Embree) on every scene in scenes/ and every
 # model in ../shared/assets, one summary line each; exits non-zero when any comparison disagrees
-# or fails. Only an asset refused for an unsupported required extension (e.g. Draco) is skipped;
+# or fails. Only an asset refused for an unsupported required extension (e.g. KHR_materials_clearcoat) is skipped;
 # any other exit 1 or 2 (a loader regression, a usage error in the extra options) is a failure.
 # Usage: tools/compare_assets.sh [extra kiln compare options, e.g. --width 256 --height 256]
 set -uo pipefail

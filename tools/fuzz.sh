@@ -3,7 +3,8 @@
 #   tools/fuzz.sh [TARGET] [SECONDS]
 #     TARGET  gltf_loader (whole .gltf/.glb files), quadric (the KILN_quadric extension),
 #             image_header (encoded image headers), transforms (extreme transforms, cameras and
-#             coordinates through the whole render job) or all (default: every one in sequence);
+#             coordinates through the whole render job), draco_stream (KHR_draco_mesh_compression
+#             streams through the decoder wrapper) or all (default: every one in sequence);
 #             SECONDS per target, default 300
 # Each run's last lines (libFuzzer's final stats) give executions and coverage; the full log is
 # fuzz/findings/TARGET.log. Seeds for gltf_loader: scenes/, tests/data/bad_gltf/,
@@ -17,12 +18,12 @@ target=all
 seconds=300
 for arg in "$@"; do
   case "$arg" in
-    gltf_loader | quadric | image_header | transforms | all) target="$arg" ;;
-    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|transforms|all] [SECONDS]" >&2 && exit 2 ;;
+    gltf_loader | quadric | image_header | transforms | draco_stream | all) target="$arg" ;;
+    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|transforms|draco_stream|all] [SECONDS]" >&2 && exit 2 ;;
     *) seconds="$arg" ;;
   esac
 done
-targets=(gltf_loader quadric image_header transforms)
+targets=(gltf_loader quadric image_header transforms draco_stream)
 [[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
@@ -68,13 +69,22 @@ seed_transforms() {
   for flags in 0 1 2 3 4 6 12 15; do printf "\\x$(printf %02x $flags)" >"$1/flags_$flags"; done
 }
 
+# Seeds for fuzz_draco_stream: the sample assets' Draco buffers (Box.bin is one whole stream), each
+# behind a first byte (36) asking for attributes 0 and 1 as three floats each.
+seed_draco_stream() {
+  [[ -d ../shared/assets ]] || return 0
+  find ../shared/assets -path '*glTF-Draco*' -name '*.bin' -size -1024k | while read -r f; do
+    { printf '\x24'; cat "$f"; } >"$1/$(basename "$(dirname "$(dirname "$f")")")_$(basename "$f")"
+  done
+}
+
 for t in "${targets[@]}"; do
   corpus="fuzz/corpus/$t"
   mkdir -p "$corpus"
   "seed_$t" "$corpus"
   dict=(-dict=fuzz/gltf.dict)
   [[ "$t" == quadric ]] && dict=(-dict=fuzz/quadric.dict)
-  [[ "$t" == image_header || "$t" == transforms ]] && dict=()
+  [[ "$t" == image_header || "$t" == transforms || "$t" == draco_stream ]] && dict=()
   echo "kiln: fuzzing $t for $seconds s" >&2
   set +e
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \

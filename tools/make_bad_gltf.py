@@ -101,8 +101,8 @@ def main():
     write(folder, "missing_bin.gltf", dumps(triangle_doc("missing.bin")))
 
     doc = triangle_doc(data_uri(triangle_buffer()))
-    doc["extensionsUsed"] = ["KHR_draco_mesh_compression"]
-    doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    doc["extensionsUsed"] = ["KHR_texture_basisu"]
+    doc["extensionsRequired"] = ["KHR_texture_basisu"]
     write(folder, "unsupported_required_extension.gltf", dumps(doc))
 
     doc = triangle_doc(data_uri(triangle_buffer()))

@@ -6,6 +6,7 @@
 #include "core/float_bits.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "geometry/watertight_triangle.h"
 
 namespace kiln {
 
@@ -60,13 +61,26 @@ float hit_t_tolerance(const scene& s, const ray& r, const hit& h) {
   return 4.0f * (world_dt + object_dt);
 }
 
+bool within_watertight_t_bound(const scene& s, const ray& r, const hit& h) {
+  const instance& inst = s.instances[h.instance_id];
+  if (inst.kind != shape_kind::mesh) return false;
+  // The ray in object space as the grid moves it (instance_shapes.cpp), then the test's own bound.
+  const vec3 origin = vec3(transform_point(inst.object_from_world, dvec3(r.origin)));
+  const vec3 direction = vec3(transform_vector(inst.object_from_world, dvec3(r.direction)));
+  auto v = triangle_vertices(s.meshes[inst.shape], h.primitive_id);
+  const sheared_triangle st = shear_triangle(shear_ray(origin, direction), v[0], v[1], v[2]);
+  const float det = st.e0 + st.e1 + st.e2;
+  if (det == 0.0f) return false;
+  return h.t - r.tmin <= watertight_t_bound(st, 1.0f / det);
+}
+
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h) {
   // Triangle edges; a quadric's (u, v) are its parametric coordinates and mark no edge.
   const float b0 = 1.0f - h.u - h.v;
   if (s.instances[h.instance_id].kind == shape_kind::mesh && std::min({h.u, h.v, b0}) <= edge_margin)
     return true;
   const float tolerance = hit_t_tolerance(s, r, h);
-  return h.t - r.tmin <= tolerance || r.tmax - h.t <= tolerance;
+  return h.t - r.tmin <= tolerance || r.tmax - h.t <= tolerance || within_watertight_t_bound(s, r, h);
 }
 
 hit_verdict compare_hits(const scene& s, const ray& r, const std::optional<hit>& a,

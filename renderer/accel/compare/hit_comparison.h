@@ -24,7 +24,15 @@ enum class hit_verdict {
 // and the surface (a grazing ray turns a small offset into a long stretch of t).
 float hit_t_tolerance(const scene& s, const ray& r, const hit& h);
 
-// True when the hit lies within rounding of its triangle's boundary or of the ray's tmin/tmax.
+// True when a triangle hit lies at a t the watertight test (the grid's) refuses as within its own
+// rounding error of the origin: Embree has no such rejection and reports the hit, the grid goes
+// on to the next surface. Seen on BrainStem's Draco variant: a ray starting 2e-4 from a sliver
+// (edges 0.48, 0.48, 0.008; double precision puts the hit at t = 1.989e-4, barycentrics 0.27,
+// 0.60, 0.13) whose bound is wider than that t.
+bool within_watertight_t_bound(const scene& s, const ray& r, const hit& h);
+
+// True when the hit lies within rounding of its triangle's boundary or of the ray's tmin/tmax
+// (including within_watertight_t_bound).
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h);
 
 // Classifies two closest-hit answers for ray r.

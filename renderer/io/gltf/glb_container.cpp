@@ -86,4 +86,32 @@ glb_layout check_glb_container(const std::vector<uint8_t>& bytes, const std::str
   return layout;
 }
 
+namespace {
+void append_u32_le(std::vector<uint8_t>& out, uint32_t v) {
+  for (int k = 0; k < 4; ++k) out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+}
+}  // namespace
+
+std::vector<uint8_t> glb_with_json(const std::vector<uint8_t>& bytes, const glb_layout& layout,
+                                   const std::string& json) {
+  std::string text = json;
+  while (text.size() % 4 != 0) text += ' ';
+  std::vector<uint8_t> out;
+  append_u32_le(out, magic_gltf);
+  append_u32_le(out, 2);
+  append_u32_le(out, 0);  // total length, set below
+  append_u32_le(out, static_cast<uint32_t>(text.size()));
+  append_u32_le(out, chunk_json);
+  out.insert(out.end(), text.begin(), text.end());
+  if (layout.has_bin) {
+    append_u32_le(out, static_cast<uint32_t>(layout.bin_length));
+    append_u32_le(out, chunk_bin);
+    out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(layout.bin_offset),
+               bytes.begin() + static_cast<std::ptrdiff_t>(layout.bin_offset + layout.bin_length));
+  }
+  const uint32_t total = static_cast<uint32_t>(out.size());
+  for (int k = 0; k < 4; ++k) out[8 + k] = static_cast<uint8_t>(total >> (8 * k));
+  return out;
+}
+
 }  // namespace kiln::gltf_internal

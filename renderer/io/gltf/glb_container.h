@@ -25,6 +25,11 @@ struct glb_layout {
 // Throws kiln::error (input) naming `file` on any violation.
 glb_layout check_glb_container(const std::vector<uint8_t>& bytes, const std::string& file);
 
+// The same container with its JSON chunk's text replaced by `json` (padded with spaces to a
+// multiple of 4 bytes, as the spec asks) and its BIN chunk, if any, kept as it was.
+std::vector<uint8_t> glb_with_json(const std::vector<uint8_t>& bytes, const glb_layout& layout,
+                                   const std::string& json);
+
 // True when the bytes start with the GLB magic "glTF".
 bool has_glb_magic(const std::vector<uint8_t>& bytes);
 

@@ -78,8 +78,17 @@ std::vector<bool> images_used_by_materials(const json& doc) {
   for (int64_t t : texture_indices) {
     if (t < 0 || static_cast<size_t>(t) >= textures->size()) continue;
     const json& texture = (*textures)[static_cast<size_t>(t)];
-    if (!texture.is_object() || !texture.contains("source")) continue;
-    const int64_t source = index_of(texture["source"]);
+    if (!texture.is_object()) continue;
+    // The image the loader will decode (gltf_materials.cpp): EXT_texture_webp's source where the
+    // texture has one, else "source" (a KHR_texture_basisu texture falls back to it too).
+    const json* webp = texture.contains("extensions") && texture["extensions"].is_object() &&
+                               texture["extensions"].contains("EXT_texture_webp") &&
+                               texture["extensions"]["EXT_texture_webp"].is_object() &&
+                               texture["extensions"]["EXT_texture_webp"].contains("source")
+                           ? &texture["extensions"]["EXT_texture_webp"]["source"]
+                           : nullptr;
+    if (!webp && !texture.contains("source")) continue;
+    const int64_t source = index_of(webp ? *webp : texture["source"]);
     if (source >= 0 && static_cast<size_t>(source) < used.size()) used[static_cast<size_t>(source)] = true;
   }
   return used;

@@ -128,5 +128,69 @@ TEST(GltfImageUse, UsedMissingImageFileFails) {
   }
 }
 
+// A 4x4 lossy WebP of pure green (made with oiiotool --pattern constant:color=0,1,0 4x4 3).
+const std::vector<uint8_t> green_webp = {
+    82,  73,  70,  70,  68,  0,   0,   0,   87,  69,  66,  80,  86, 80,  56,  32,  56,  0,   0,
+    0,   80,  2,   0,   157, 1,   42,  4,   0,   4,   0,   0,   0,  0,   37,  160, 2,   116, 186,
+    1,   248, 1,   250, 1,   252, 0,   7,   144, 0,   254, 251, 15, 139, 255, 238, 148, 37,  201,
+    154, 110, 127, 251, 165, 15,  255, 233, 234, 147, 103, 201, 49, 151, 255, 167, 113, 0,   0};
+
+// tinygltf 2.7 takes no image/webp data URI, so the WebP is a file beside the asset (as
+// glTF-Transform writes it) or in a GLB bufferView.
+json webp_image(const temp_folder& dir) {
+  write_bytes(dir.file("green.webp"), green_webp);
+  return json{{"uri", "green.webp"}};
+}
+json png_image() { return json{{"uri", std::string("data:image/png;base64,") + png_2x2_base64}}; }
+
+void expect_green_4x4(const scene& s) {
+  ASSERT_EQ(s.images.size(), 1u);
+  ASSERT_EQ(s.images[0].width, 4);
+  ASSERT_EQ(s.images[0].texels8.size(), 64u);
+  EXPECT_LE(s.images[0].texels8[0], 8);  // lossy VP8: within a few levels of (0, 255, 0)
+  EXPECT_GE(s.images[0].texels8[1], 247);
+  EXPECT_LE(s.images[0].texels8[2], 8);
+}
+
+TEST(GltfImageUse, WebpSourceIsPreferredOverThePngFallback) {
+  temp_folder dir;
+  gltf_builder b = triangle_with_images(json::array({png_image(), webp_image(dir)}));
+  b.doc["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 1}}}};
+  b.doc["extensionsUsed"] = {"EXT_texture_webp"};
+  expect_green_4x4(load_gltf(b.write(dir.file("webp.gltf"))));
+}
+
+TEST(GltfImageUse, RequiredWebpWithoutFallbackLoads) {
+  temp_folder dir;
+  gltf_builder b = triangle_with_images(json::array({webp_image(dir), png_image()}));
+  b.doc["textures"][0] = {{"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}};
+  b.doc["extensionsUsed"] = {"EXT_texture_webp"};
+  b.doc["extensionsRequired"] = {"EXT_texture_webp"};
+  expect_green_4x4(load_gltf(b.write(dir.file("webp.gltf"))));
+}
+
+TEST(GltfImageUse, WebpSourceOutOfRangeIsRefused) {
+  temp_folder dir;
+  gltf_builder b = triangle_with_images(json::array({png_image(), webp_image(dir)}));
+  b.doc["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 5}}}};
+  const std::string message = error_of([&] { load_gltf(b.write(dir.file("webp.gltf"))); });
+  EXPECT_NE(
+      message.find("/textures/0/extensions/EXT_texture_webp/source: needs the index of an existing image"),
+      std::string::npos)
+      << message;
+}
+
+TEST(GltfImageUse, OptionalBasisuFallsBackToThePngSource) {
+  temp_folder dir;
+  // Image 1 stands for the KTX2 file: never decoded, so its bytes need not be a KTX2.
+  write_bytes(dir.file("stand_in.ktx2"), {0, 0, 0, 0});
+  gltf_builder b = triangle_with_images(json::array({png_image(), json{{"uri", "stand_in.ktx2"}}}));
+  b.doc["textures"][0]["extensions"] = {{"KHR_texture_basisu", {{"source", 1}}}};
+  b.doc["extensionsUsed"] = {"KHR_texture_basisu"};
+  const scene s = load_gltf(b.write(dir.file("basisu.gltf")));
+  ASSERT_EQ(s.images.size(), 1u);
+  EXPECT_EQ(s.images[0].width, 2);  // the 2x2 PNG
+}
+
 }  // namespace
 }  // namespace kiln

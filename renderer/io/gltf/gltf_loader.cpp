@@ -20,9 +20,11 @@
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_animation.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_draco.h"
 #include "io/gltf/gltf_instancing.h"
 #include "io/gltf/gltf_materials.h"
 #include "io/gltf/gltf_memory.h"
+#include "io/gltf/gltf_meshopt.h"
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_quadrics.h"
 #include "io/gltf/gltf_validate.h"
@@ -910,6 +912,10 @@ gltf_sequence::gltf_sequence(const std::string& path, const gltf_load_options& o
     : state_(std::make_unique<state>(path, options)) {
   state& st = *state_;
   st.model = parse_gltf_file(path, options, &st.model_memory);
+  // Compressed data is decoded into buffers of its own first, so that validation checks it like
+  // any stored data: meshopt bufferViews (which a Draco stream could sit in), then Draco.
+  decode_meshopt_views(st.model, path, &st.model_memory);
+  decode_draco_primitives(st.model, path, &st.model_memory);
   validate_model(st.model, path);
   apply_material_variant(st.model, options.variant, path);
   st.quantized = uses_extension(st.model, quantization_extension);

@@ -298,10 +298,18 @@ TEST(GltfLoaderErrors, SparseValuesPastEndOfBufferView) {
 
 TEST(GltfLoaderErrors, UnsupportedRequiredExtensionIsNamed) {
   gltf_builder b = single_triangle();
-  b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_draco_mesh_compression"};
-  b.doc["extensionsRequired"] = {"KHR_lights_punctual", "KHR_draco_mesh_compression"};
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_clearcoat"};
+  b.doc["extensionsRequired"] = {"KHR_lights_punctual", "KHR_materials_clearcoat"};
+  expect_error(b, {"/extensionsRequired/1", "required extension KHR_materials_clearcoat is not supported"});
+}
+
+TEST(GltfLoaderErrors, RequiredBasisuTexturesAreRefusedWithTheReason) {
+  gltf_builder b = single_triangle();
+  b.doc["extensionsUsed"] = {"KHR_texture_basisu"};
+  b.doc["extensionsRequired"] = {"KHR_texture_basisu"};
   expect_error(b,
-               {"/extensionsRequired/1", "required extension KHR_draco_mesh_compression is not supported"});
+               {"/extensionsRequired/0",
+                "required extension KHR_texture_basisu is not supported: no KTX2/Basis Universal decoder"});
 }
 
 TEST(GltfLoaderErrors, BadCameras) {
@@ -429,7 +437,7 @@ TEST(GltfLoaderErrors, BadGltfFixturesAreRefused) {
       {"out_of_range_index.gltf", "/meshes/0/primitives/0/indices: index 7"},
       {"accessor_past_buffer_end.gltf", "/accessors/0: accessor reads past the end of bufferView 0"},
       {"missing_bin.gltf", "missing.bin"},
-      {"unsupported_required_extension.gltf", "KHR_draco_mesh_compression"},
+      {"unsupported_required_extension.gltf", "KHR_texture_basisu is not supported: no KTX2/Basis"},
       {"nan_matrix.gltf", "invalid glTF"},
       {"not_json.gltf", "invalid glTF"},
       {"truncated_png.gltf", "/images/0: cannot decode image"},

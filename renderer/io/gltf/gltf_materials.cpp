@@ -113,15 +113,36 @@ int32_t resolve_image(const tinygltf::Model& model, int gltf_image, texture_rema
   return slot;
 }
 
+// The image a texture decodes from: EXT_texture_webp's source where it has one (WebP decodes
+// through the image codecs like PNG), else "source", which is also the PNG/JPEG fallback of a
+// texture whose preferred source is KHR_texture_basisu. -1 when there is none.
+int texture_source(const tinygltf::Model& model, const tinygltf::Texture& tex, int gltf_texture,
+                   const std::string& file) {
+  auto webp = tex.extensions.find("EXT_texture_webp");
+  if (webp == tex.extensions.end() || !webp->second.IsObject() || !webp->second.Has("source"))
+    return tex.source;
+  const tinygltf::Value& v = webp->second.Get("source");
+  const double index = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
+  if (!(index >= 0 && index < double(model.images.size())) || index != double(int(index)))
+    throw input_error(
+        file,
+        pointer_join(
+            pointer_join(pointer_join(pointer("textures", gltf_texture), "extensions"), "EXT_texture_webp"),
+            "source"),
+        "needs the index of an existing image (file has " + std::to_string(model.images.size()) + ")");
+  return int(index);
+}
+
 int32_t resolve_texture(const tinygltf::Model& model, int gltf_texture, texture_remap& remap, scene& out,
                         const std::string& file) {
   if (gltf_texture < 0) return -1;
   const size_t t = static_cast<size_t>(gltf_texture);
   if (remap.textures[t] >= 0) return remap.textures[t];
   const tinygltf::Texture& tex = model.textures[t];
-  if (tex.source < 0) {
-    // Only an extension source (KHR_texture_basisu, EXT_texture_webp...) or none: when such an
-    // extension is required, parsing already refused the file; here the texture is simply absent.
+  const int source = texture_source(model, tex, gltf_texture, file);
+  if (source < 0) {
+    // Only a source kiln cannot decode (KHR_texture_basisu) or none: when such an extension is
+    // required, parsing already refused the file; here the texture is simply absent.
     if (!remap.missing_source_warned[t]) {
       out.stats.warnings.push_back(pointer("textures", gltf_texture) +
                                    ": texture has no source image kiln can read; it is ignored");
@@ -130,7 +151,7 @@ int32_t resolve_texture(const tinygltf::Model& model, int gltf_texture, texture_
     return -1;
   }
   texture result;
-  result.image = static_cast<uint32_t>(resolve_image(model, tex.source, remap, out, file));
+  result.image = static_cast<uint32_t>(resolve_image(model, source, remap, out, file));
   if (tex.sampler >= 0) {
     const tinygltf::Sampler& s = model.samplers[static_cast<size_t>(tex.sampler)];
     result.sampling.wrap_s = to_wrap(s.wrapS);

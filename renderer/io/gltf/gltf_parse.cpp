@@ -13,6 +13,7 @@
 #include "io/file/input_file.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_compressed_json.h"
 #include "io/gltf/gltf_image_use.h"
 #include "io/gltf/gltf_memory.h"
 #include "io/gltf/gltf_precheck.h"
@@ -138,13 +139,21 @@ void check_version(const tinygltf::Model& model, const std::string& path) {
                       "glTF version " + quoted(version) + " is not supported (kiln reads glTF 2.x)");
 }
 
+// Why a known extension cannot be read, for the refusal; "" for the rest.
+std::string why_unsupported(const std::string& name) {
+  if (name == "KHR_texture_basisu")
+    return ": no KTX2/Basis Universal decoder is available to kiln (Debian packages none); convert the "
+           "textures to PNG, JPEG or WebP, or keep a PNG/JPEG source and leave the extension optional";
+  return "";
+}
+
 void check_required_extensions(const std::vector<std::string>& required, const std::string& path) {
   const auto& supported = supported_extensions();
   for (size_t i = 0; i < required.size(); ++i) {
     const std::string& name = required[i];
     if (std::find(supported.begin(), supported.end(), name) == supported.end())
       throw input_error(path, pointer_join("/extensionsRequired", static_cast<int64_t>(i)),
-                        "required extension " + shown(name) + " is not supported");
+                        "required extension " + shown(name) + " is not supported" + why_unsupported(name));
   }
 }
 
@@ -194,9 +203,11 @@ size_t json_nesting_depth(const uint8_t* text, size_t size, size_t limit) {
 // within its limit, and every buffer and image URI inside the asset's folder. glTF URIs are
 // relative references: an absolute path or a file: URI is never followed; ".." that leaves the
 // folder only with the allow option. Each refusal names the JSON pointer. Records in context
-// which images materials sample.
-void check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path, fs_context& context,
-                               const gltf_limits& limits, const buffer_sources& sources) {
+// which images materials sample. Returns the JSON text tinygltf should parse instead when
+// compressed geometry needed placeholders (gltf_compressed_json.h), or "" when the text is fine.
+std::string check_json_before_parsing(const uint8_t* text, size_t size, const std::string& path,
+                                      fs_context& context, const gltf_limits& limits,
+                                      const buffer_sources& sources) {
   if (size > limits.max_json_bytes)
     throw input_error(path, "",
                       "JSON is " + std::to_string(size) + " bytes, over the limit of " +
@@ -206,7 +217,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
         path, "",
         "JSON nests deeper than " + std::to_string(limits.max_json_depth) + " levels (--max-json-depth)");
   if (context.memory) context.memory->add(json_parse_bytes(text, size), path, "the JSON text and its parse");
-  const nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
+  nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded()) check_json_syntax(text, size, path);
   if (!doc.is_object())
     throw input_error(
@@ -223,6 +234,7 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   // An unsupported required extension explains what follows from it (Draco's accessors have no
   // bufferViews), so it is reported first.
   check_required_extensions_in_json(doc, path);
+  const bool placeholders = add_compression_placeholders(doc, path);
   check_what_tinygltf_refuses(doc, path, sources);
   check_integer_properties(doc, path);
   check_camera_numbers(doc, path);
@@ -230,18 +242,27 @@ void check_json_before_parsing(const uint8_t* text, size_t size, const std::stri
   context.image_used = images_used_by_materials(doc);
   context.unused_image_files = unused_image_files(doc, context.image_used, context.rules.folder_prefix);
   refuse_missing_image_files(doc, context.rules.folder_prefix, path);
+  return placeholders ? doc.dump() : std::string();
 }
 
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {
-      "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-      "KHR_materials_ior",          "KHR_materials_specular",
-      "KHR_materials_transmission", "KHR_materials_volume",
-      "KHR_texture_transform",      "KHR_materials_unlit",
-      "KHR_materials_variants",     "KHR_mesh_quantization",
-      "EXT_mesh_gpu_instancing",    "KILN_quadric"};
+  static const std::vector<std::string> names = {"KHR_lights_punctual",
+                                                 "KHR_materials_emissive_strength",
+                                                 "KHR_materials_ior",
+                                                 "KHR_materials_specular",
+                                                 "KHR_materials_transmission",
+                                                 "KHR_materials_volume",
+                                                 "KHR_texture_transform",
+                                                 "KHR_materials_unlit",
+                                                 "KHR_materials_variants",
+                                                 "KHR_mesh_quantization",
+                                                 "KHR_draco_mesh_compression",
+                                                 "EXT_meshopt_compression",
+                                                 "EXT_texture_webp",
+                                                 "EXT_mesh_gpu_instancing",
+                                                 "KILN_quadric"};
   return names;
 }
 
@@ -282,19 +303,25 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       json_offset = layout.json_offset;
       json_length = layout.json_length;
       buffer_sources sources{context.rules.folder_prefix, true, layout.has_bin, layout.bin_length};
-      check_json_before_parsing(bytes.data() + json_offset, json_length, path, context, options.limits,
-                                sources);
+      const std::string replaced = check_json_before_parsing(bytes.data() + json_offset, json_length, path,
+                                                             context, options.limits, sources);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
         throw input_error(path, "", "GLB JSON chunk starts with a byte order mark, which glTF forbids");
-      ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                       static_cast<unsigned int>(bytes.size()), folder.string());
+      const std::vector<uint8_t> rebuilt =
+          replaced.empty() ? std::vector<uint8_t>() : glb_with_json(bytes, layout, replaced);
+      const std::vector<uint8_t>& glb = replaced.empty() ? bytes : rebuilt;
+      ok = parser.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), static_cast<unsigned int>(glb.size()),
+                                       folder.string());
     } else {
       if (has_utf8_bom(bytes.data(), bytes.size()))
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
-      check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits,
-                                buffer_sources{context.rules.folder_prefix, false, false, 0});
-      ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                      static_cast<unsigned int>(bytes.size()), folder.string());
+      const std::string replaced =
+          check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits,
+                                    buffer_sources{context.rules.folder_prefix, false, false, 0});
+      const char* text = replaced.empty() ? reinterpret_cast<const char*>(bytes.data()) : replaced.data();
+      const size_t text_size = replaced.empty() ? bytes.size() : replaced.size();
+      ok = parser.LoadASCIIFromString(&model, &err, &warn, text, static_cast<unsigned int>(text_size),
+                                      folder.string());
     }
   } catch (const kiln::error&) {
     throw;
