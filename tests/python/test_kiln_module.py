@@ -257,3 +257,21 @@ def test_render_sequence_returns_and_writes_each_frame_as_the_cli_does(tmp_path)
         kiln.render(CESIUM_MAN, frames="1-3", **view)
     with pytest.raises(kiln.InputError, match="no frame placeholder"):
         kiln.render_sequence(CESIUM_MAN, frames="1-3", output=str(tmp_path / "plain.exr"), **view)
+
+
+SHOE = os.path.join(SOURCE, "..", "shared", "assets", "MaterialsVariantsShoe", "glTF", "MaterialsVariantsShoe.gltf")
+
+
+@pytest.mark.skipif(not os.path.exists(SHOE), reason="no shared sample assets")
+def test_variant_keyword_recolours_as_the_cli_does(tmp_path):
+    view = dict(width=24, height=24, quiet=True)
+    beach = kiln.render(SHOE, variant="beach", **view)
+    street = kiln.render(SHOE, variant=2, **view)
+    assert beach.metadata["kiln/variant"] == "beach"
+    assert np.array_equal(beach.aovs["beauty"][:, :, 3], street.aovs["beauty"][:, :, 3])  # one shape
+    assert not np.array_equal(beach.aovs["beauty"], street.aovs["beauty"])  # two colourways
+    out = str(tmp_path / "beach.exr")
+    assert cli(["render", SHOE, "-o", out, "--variant", "beach", "--width", "24", "--height", "24", "-q"]).returncode == 0
+    assert np.array_equal(read_channels(out)["R"], beach.aovs["beauty"][:, :, 0])
+    with pytest.raises(kiln.InputError, match="no variant 'forest'"):
+        kiln.render(SHOE, variant="forest", **view)
