@@ -28,11 +28,18 @@ struct draco_geometry {
   std::vector<std::vector<uint8_t>> attributes;
 };
 
+// What the stream's accessors hold: a stream whose header declares more faces or vertices is
+// refused before libdraco allocates by those counts (draco_header.h).
+struct draco_stream_limits {
+  uint64_t max_faces = UINT64_MAX;
+  uint64_t max_points = UINT64_MAX;
+};
+
 // Decodes `size` bytes. A corrupt or truncated stream, a point cloud (kiln renders triangles
-// only), a missing attribute id, or an attribute whose component count differs from the want
-// returns nothing and says why in `problem`.
+// only), a header declaring more than `limits`, a missing attribute id, or an attribute whose
+// component count differs from the want returns nothing and says why in `problem`.
 std::optional<draco_geometry> decode_draco_stream(const uint8_t* data, size_t size,
                                                   const std::vector<draco_attribute_want>& wants,
-                                                  std::string& problem);
+                                                  const draco_stream_limits& limits, std::string& problem);
 
 }  // namespace kiln::gltf_internal

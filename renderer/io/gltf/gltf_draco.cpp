@@ -1,5 +1,6 @@
 #include "io/gltf/gltf_draco.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -127,8 +128,15 @@ void decode_primitive(tinygltf::Model& model, tinygltf::Primitive& prim, const d
   std::vector<draco_attribute_want> wants;
   for (const auto& a : d.accessors) wants.push_back(a.second);
   const auto [bytes, size] = stream_bytes(model, d, file);
+  // The accessors say what the stream decodes to; a header declaring more is refused unread.
+  draco_stream_limits limits;
+  limits.max_points = 0;
+  for (const auto& a : d.accessors)
+    limits.max_points =
+        std::max<uint64_t>(limits.max_points, model.accessors[static_cast<size_t>(a.first)].count);
+  if (prim.indices >= 0) limits.max_faces = model.accessors[static_cast<size_t>(prim.indices)].count / 3;
   std::string problem;
-  std::optional<draco_geometry> g = decode_draco_stream(bytes, size, wants, problem);
+  std::optional<draco_geometry> g = decode_draco_stream(bytes, size, wants, limits, problem);
   if (!g) throw input_error(file, d.where, "corrupt Draco stream: " + shown(problem));
   for (size_t i = 0; i < d.accessors.size(); ++i) {
     const int index = d.accessors[i].first;

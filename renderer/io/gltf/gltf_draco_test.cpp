@@ -6,6 +6,8 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
+#include "io/gltf/draco_header.h"
+#include "io/gltf/draco_stream.h"
 #include "io/gltf/gltf_loader.h"
 #include "io/gltf/gltf_test_util.h"
 
@@ -144,14 +146,66 @@ TEST(draco, missing_attribute_id_and_wrong_counts_are_refused) {
                          std::to_string(points) + " points"),
             std::string::npos)
       << message;
-  message = load_error(draco_document(stream, points, g.corners.size() - 3), dir);
+  // More indices than the stream decodes: found after decoding. Fewer: the header already
+  // declares more faces than the accessor holds, refused before decoding.
+  message = load_error(draco_document(stream, points, g.corners.size() + 3), dir);
   EXPECT_NE(message.find(std::string(ext_pointer) + "/indices: the Draco stream decodes"), std::string::npos)
       << message;
+  message = load_error(draco_document(stream, points, g.corners.size() - 3), dir);
+  EXPECT_NE(message.find("the stream declares 72 faces"), std::string::npos) << message;
 
   gltf_builder no_view = draco_document(stream, points, g.corners.size());
   no_view.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 9;
   message = load_error(no_view, dir);
   EXPECT_NE(message.find(std::string(ext_pointer) + "/bufferView"), std::string::npos) << message;
+}
+
+// The header's counts, read without libdraco, are what the encoder wrote: 72 faces, and no more
+// vertices than the decoded points, for edgebreaker and sequential streams alike.
+TEST(draco, header_counts_are_read_without_decoding) {
+  const grid_mesh g = make_grid();
+  const std::vector<uint8_t> edgebreaker = encode(g);
+  const auto counts = gltf_internal::read_draco_declared_counts(edgebreaker.data(), edgebreaker.size());
+  ASSERT_TRUE(counts);
+  EXPECT_EQ(counts->faces, 72u);
+  EXPECT_LE(counts->vertices, point_count(edgebreaker));
+  EXPECT_GT(counts->vertices, 0u);
+  // A sequential stream: "DRACO", 2.2, mesh, method 0, no flags, then the varints 72 and 49.
+  const std::vector<uint8_t> sequential = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0, 72, 49};
+  const auto seq = gltf_internal::read_draco_declared_counts(sequential.data(), sequential.size());
+  ASSERT_TRUE(seq);
+  EXPECT_EQ(seq->faces, 72u);
+  EXPECT_EQ(seq->vertices, 49u);
+  EXPECT_FALSE(gltf_internal::read_draco_declared_counts(sequential.data(), 9));  // too short
+}
+
+// A header with the metadata flag (fuzz_draco_stream: behind it, 4.4 GB was asked for) is refused.
+TEST(draco, a_stream_with_metadata_is_refused) {
+  std::vector<uint8_t> stream = {'D', 'R', 'A', 'C', 'O', 1, 0x30, 1, 1, 0x00, 0xaa, 0, 0, 0, 0, 0x1a};
+  stream.resize(100, 0x42);
+  std::string problem;
+  EXPECT_FALSE(gltf_internal::decode_draco_stream(stream.data(), stream.size(), {{0, 5126, 3}}, {}, problem));
+  EXPECT_EQ(problem, "the stream carries Draco metadata, which kiln does not read");
+}
+
+// fuzz_draco_stream's out-of-memory input: an edgebreaker header of version 1.49 declaring
+// 1,212,696,648 faces made libdraco reserve 4.85 GB. It is refused before the decoder runs.
+TEST(draco, a_header_declaring_more_than_the_accessors_is_refused_unread) {
+  std::vector<uint8_t> stream = {'D', 'R', 'A', 'C', 'O', 1, 0x31, 1, 1, 0, 0, 0, 0x08, 0x0c, 0x01, 0x0b};
+  stream.resize(128, 0x48);
+  std::string problem;
+  const auto g =
+      gltf_internal::decode_draco_stream(stream.data(), stream.size(), {{0, 5126, 3}}, {1000, 1000}, problem);
+  EXPECT_FALSE(g);
+  EXPECT_NE(problem.find("declares 1212696648 faces"), std::string::npos) << problem;
+  // Through the loader: accessors for 10 triangles refuse the grid's 72 before decoding it.
+  temp_folder dir;
+  const std::vector<uint8_t> grid = encode(make_grid());
+  const std::string message =
+      error_of([&] { load_gltf(draco_document(grid, point_count(grid), 30).write(dir.file("few.gltf"))); });
+  EXPECT_NE(message.find(std::string(ext_pointer) + ": corrupt Draco stream: the stream declares 72 faces"),
+            std::string::npos)
+      << message;
 }
 
 }  // namespace
