@@ -112,6 +112,8 @@ const std::vector<std::string> all_parts = {"rgba",
                                             "albedo",
                                             "uv",
                                             "id",
+                                            "forward",
+                                            "backward",
                                             "direct",
                                             "reflection",
                                             "refraction",
@@ -143,7 +145,7 @@ TEST(cli_messages, multipart_help_lists_every_part_the_writer_makes) {
   const std::string out = scratch_folder("every_part") + "/parts.exr";
   const auto result = run_kiln(
       {"render", demo_scene, "-o", out, "--width", "8", "--height", "6", "-q", "--multipart", "--aovs",
-       "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,albedo_filtered,N_filtered,"
+       "beauty,Z,N,P,albedo,uv,id,motion,direct,reflection,refraction,cryptomatte,albedo_filtered,N_filtered,"
        "diffuse,specular"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_EQ(part_names(out), all_parts);

@@ -27,11 +27,12 @@ sample_format* format_slot(layer_formats& formats, const std::string& aov, const
   if (aov == "diffuse") return &formats.diffuse;
   if (aov == "specular") return &formats.specular;
   if (aov == "shadow") return &formats.shadow;
-  if (aov == "Z" || aov == "P" || aov == "id") {
+  if (aov == "Z" || aov == "P" || aov == "id" || aov == "motion") {
     if (format == "float") return nullptr;  // what it is anyway
-    throw input_error("", "--channel-format",
-                      aov + " is always 32-bit float (depth, positions and ids need the precision); only " +
-                          selectable_format_aovs() + " can be half");
+    throw input_error(
+        "", "--channel-format",
+        aov + " is always 32-bit float (depth, positions, motion and ids need the precision); only " +
+            selectable_format_aovs() + " can be half");
   }
   throw input_error("", "--channel-format",
                     "unknown AOV '" + aov + "' (choose from " + selectable_format_aovs() + ")");

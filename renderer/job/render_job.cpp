@@ -15,6 +15,7 @@
 #include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
 #include "job/exr_storage_options.h"
+#include "job/frame_motion.h"
 #include "job/holdouts.h"
 #include "job/job_stop.h"
 #include "job/memory_estimates.h"
@@ -95,7 +96,9 @@ void resolve_image_size(const render_options& options, float camera_aspect, int&
   check_pixel_count(width, height, options.max_pixels);
 }
 
-view_camera choose_view(const render_options& options, const scene& world, std::string& description) {
+}  // namespace
+
+view_camera job_view(const render_options& options, const scene& world, std::string& description) {
   if (options.look_from || options.look_at) {
     if (!options.look_from || !options.look_at)
       throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
@@ -129,6 +132,8 @@ view_camera choose_view(const render_options& options, const scene& world, std::
     throw input_error(world.source, e.location(), e.reason());
   }
 }
+
+namespace {
 
 // When a file has no light, a point light at the camera (a headlight) keeps assets visible: its
 // intensity is chosen so a white surface facing it at the scene centre reflects radiance ≈ 1.
@@ -269,7 +274,7 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
   }
 
   apply_holdouts(p.world, options.holdout, options.only, options.holdout_invisible);
-  p.cam = choose_view(options, p.world, p.camera_description);
+  p.cam = job_view(options, p.world, p.camera_description);
   // Before any accelerator is built, for every backend and every client (render, batch, compare,
   // bench): no coordinate a ray can reach may pass Embree's limit.
   if (options.look_from)
@@ -281,6 +286,11 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
     if (warn && !p.headlight_noted) warn("the file has no lights; using a headlight at the camera");
     p.headlight_noted = true;
   }
+  // The frame's own pose for motion vectors, in world space like its neighbours'.
+  if (p.motion) {
+    p.motion->current = current_pose(p.world, p.cam);
+    if (p.motion->previous.present.empty()) p.motion->previous = p.motion->next = p.motion->current;
+  }
   // Every client traces in camera-relative render space (render/render_space.h).
   move_to_render_space(p.world, p.cam);
 }
@@ -291,7 +301,8 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   prepared_scene p;
   p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
   const auto load_start = std::chrono::steady_clock::now();
-  p.world = load_gltf(options.input, job_load_options(options, cancel, p.memory.get()));
+  gltf_sequence asset(options.input, job_load_options(options, cancel, p.memory.get()));
+  pose_job_frame(asset, options, nullptr, nullptr, p);
   p.load_seconds = seconds_since(load_start);
   finish_loaded_scene(options, p, warn);
   return p;
@@ -380,6 +391,7 @@ render_job_result run_stoppable_job(const render_job& job, const std::atomic<boo
 
   render_settings settings = make_render_settings(options);
   settings.crop = job_region(options, prepared.cam);
+  settings.motion = prepared.motion.get();
   charge_render_memory(prepared, settings);
 
   stage = "building the acceleration structure";

@@ -46,6 +46,8 @@ struct prepared_scene {
   // estimated to take; the render stage charges its own allocations to it.
   std::shared_ptr<memory_budget> memory;
   bool headlight_noted = false;  // the headlight's note was given (once per sequence)
+  // With the motion AOV: the scene at the neighbouring frames (job/frame_motion.h); else null.
+  std::shared_ptr<scene_motion> motion;
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

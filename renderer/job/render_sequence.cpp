@@ -8,6 +8,7 @@
 #include "accel/make_accelerator.h"
 #include "io/exr/environment_reader.h"
 #include "job/exr_storage_options.h"
+#include "job/frame_motion.h"
 #include "job/frame_range.h"
 #include "job/job_stop.h"
 #include "job/option_values.h"
@@ -46,7 +47,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   std::vector<uint32_t> posed;
   scene previous = std::move(st.prepared.world);
   if (!st.environment) st.environment = take_environment(previous);
-  st.prepared.world = st.asset->pose(scene_time(options), &previous, &posed);
+  pose_job_frame(*st.asset, options, &previous, &posed, st.prepared);
   previous = scene();  // the last frame's deformed meshes go now
   finish_loaded_scene(options, st.prepared, job.warn, st.environment ? &*st.environment : nullptr);
   st.environment.reset();
@@ -59,6 +60,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   result.load_seconds = report.pose_seconds;
   render_settings settings = make_render_settings(options);
   settings.crop = job_region(options, p.cam);
+  settings.motion = p.motion.get();
   // The film, pyramids and backend of one frame; the next frame's replace them.
   if (!st.charged) charge_render_memory(p, settings);
   st.charged = true;

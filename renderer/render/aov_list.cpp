@@ -20,6 +20,7 @@ constexpr aov_name aov_names[] = {
     {"albedo", &aov_set::albedo},
     {"uv", &aov_set::uv},
     {"id", &aov_set::ids},
+    {"motion", &aov_set::motion},
     {"crypto_object", &aov_set::crypto_object},
     {"crypto_material", &aov_set::crypto_material},
     {"direct", &aov_set::direct},

@@ -25,6 +25,10 @@ struct aov_set {
   bool albedo = false;    // albedo.R albedo.G albedo.B: base colour after textures and vertex colours
   bool uv = false;        // uv.U uv.V: TEXCOORD_0 of the nearest sample's hit
   bool ids = false;       // id.object id.material id.instance: glTF node, material, scene instance
+  // forward.u forward.v backward.u backward.v: the screen-space motion of the nearest sample's
+  // surface point to the next frame and to the previous one, in pixels, u right and v up (Nuke's
+  // motion layers; render/motion_vectors.h). Never filtered; 0 for background.
+  bool motion = false;
   // CryptoObject00.. and CryptoMaterial00..: Cryptomatte ranks of the glTF node and material names.
   bool crypto_object = false;
   bool crypto_material = false;
@@ -55,7 +59,7 @@ struct aov_set {
   depth_mode depth_kind = depth_mode::distance;
 };
 
-// Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, crypto_object,
+// Parses a comma-separated list of names (beauty, Z, N, P, albedo, uv, id, motion, crypto_object,
 // crypto_material, and cryptomatte for both, direct, reflection, refraction, lightgroups,
 // albedo_filtered, N_filtered, diffuse, specular, shadow; case-sensitive,
 // each at most once, at least one). Returns empty and sets *bad to the offending item otherwise.

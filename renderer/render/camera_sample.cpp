@@ -25,8 +25,9 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
 
 }  // namespace
 
-sample_outputs sample_outputs_for(const aov_set& aovs) {
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion) {
   sample_outputs o;
+  o.motion = aovs.motion ? motion : nullptr;
   o.albedo = aovs.albedo;
   o.split = wants_light_split(aovs);
   o.groups = aovs.light_groups;
@@ -59,7 +60,7 @@ camera_sample missed(const shading_context& ctx, camera_sample s, const ray& r, 
 // They keep the hit even when its radiance has to be discarded. N is the normal the shading used:
 // after the normal map and the bend toward the viewer.
 void record_hit(const shading_context& ctx, const hit& h, const shading_point& p, float distance,
-                bool with_albedo, camera_sample& s) {
+                const sample_outputs& outputs, camera_sample& s) {
   const surface_point& sp = p.sp;
   s.depth = distance;
   if (is_finite(sp.shading_normal)) s.normal = sp.shading_normal;
@@ -68,7 +69,8 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
   s.uv = sp.uv0;
   s.node = int32_t(ctx.world.instances[h.instance_id].node);
   s.material = ctx.world.materials[sp.material].source_index;
-  if (with_albedo) s.albedo = p.mp.base_color;
+  if (outputs.albedo) s.albedo = p.mp.base_color;
+  if (outputs.motion) s.motion = hit_motion(*outputs.motion, ctx.world, h, dvec3(sp.position));
 }
 
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
@@ -116,7 +118,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   const float distance = distance_to_hit(start, r, *h);
   const ray_cone at_hit = cone_at(cone, distance);
   const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
-  record_hit(ctx, *h, p, distance, outputs.albedo, s);
+  record_hit(ctx, *h, p, distance, outputs, s);
   shade_camera_path(ctx, r, p, at_hit, show_background, outputs, s, counts);
   return s;
 }
@@ -130,6 +132,7 @@ void store_nearest_sample(const camera_sample& s, film& out, size_t i) {
   if (!out.uv.empty()) out.uv[i] = s.uv;
   if (!out.ids.empty())
     out.ids[i] = glm::ivec3(s.node, s.material, s.instance == no_instance ? -1 : int32_t(s.instance));
+  if (!out.motion.empty()) out.motion[i] = s.motion;
 }
 
 }  // namespace kiln

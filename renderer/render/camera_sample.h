@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "render/film.h"
+#include "render/motion_vectors.h"
 #include "render/view_camera.h"
 #include "shade/ray_cone.h"
 #include "shade/whitted.h"
@@ -29,6 +30,7 @@ struct camera_sample {
   vec2 uv{0.0f};          // TEXCOORD_0; 0 on a miss
   int32_t node = -1;      // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
+  vec4 motion{0.0f};      // with outputs.motion: forward and backward motion in pixels; 0 on a miss
   // With outputs.split: rgba's colour by first event.
   light_split split;
   // With outputs.groups: rgba's colour by light group (render/light_groups.h); else empty.
@@ -44,15 +46,16 @@ struct camera_sample {
 
 // What a camera sample records beside its colour and geometry AOVs.
 struct sample_outputs {
-  bool albedo = false;  // evaluates the material once more for the albedo AOV
-  bool split = false;   // fills split
-  bool groups = false;  // fills groups
-  bool passes = false;  // fills passes (albedo, normal, diffuse, specular)
-  bool shadow = false;  // fills passes.shadow too (with passes)
+  bool albedo = false;                   // evaluates the material once more for the albedo AOV
+  bool split = false;                    // fills split
+  bool groups = false;                   // fills groups
+  bool passes = false;                   // fills passes (albedo, normal, diffuse, specular)
+  bool shadow = false;                   // fills passes.shadow too (with passes)
+  const scene_motion* motion = nullptr;  // fills motion
 };
 
 // The sample outputs a film with aovs needs.
-sample_outputs sample_outputs_for(const aov_set& aovs);
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion = nullptr);
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.

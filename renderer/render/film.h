@@ -44,6 +44,9 @@ struct film {
   std::vector<vec2> uv;
   // The nearest sample's glTF node, material and scene instance as exact integers; -1 for background.
   std::vector<glm::ivec3> ids;
+  // The nearest sample's motion in pixels (u right, v up): (forward.u, forward.v) to the next
+  // frame, (backward.u, backward.v) to the previous one; 0 for background.
+  std::vector<vec4> motion;
   // The premultiplied colour split by first event (direct, reflection, refraction), filtered like
   // it; empty unless asked for.
   std::vector<vec3> direct;
@@ -78,6 +81,7 @@ struct film {
     if (a.albedo) albedo.assign(n, vec3(0.0f));
     if (a.uv) uv.assign(n, vec2(0.0f));
     if (a.ids) ids.assign(n, glm::ivec3(-1));
+    if (a.motion) motion.assign(n, vec4(0.0f));
     if (a.direct) direct.assign(n, vec3(0.0f));
     if (a.reflection) reflection.assign(n, vec3(0.0f));
     if (a.refraction) refraction.assign(n, vec3(0.0f));
@@ -115,6 +119,7 @@ inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0)
   per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 2, 0)) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;
   per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
+  per_pixel += a.motion ? sizeof(vec4) : 0;
   for (bool crypto : {a.crypto_object, a.crypto_material})
     per_pixel += crypto ? sizeof(id_coverage) * uint64_t(a.crypto_depth) : 0;
   return per_pixel * uint64_t(w) * uint64_t(h);

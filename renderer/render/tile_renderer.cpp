@@ -62,6 +62,7 @@ film crop_film(const film& from, const pixel_rect& to) {
   copy(from.albedo, out.albedo);
   copy(from.uv, out.uv);
   copy(from.ids, out.ids);
+  copy(from.motion, out.motion);
   copy(from.direct, out.direct);
   copy(from.reflection, out.reflection);
   copy(from.refraction, out.refraction);
@@ -144,8 +145,9 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
-    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
-                                        source.cone, counts, sample_outputs_for(settings.aovs));
+    camera_sample cs =
+        shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
+                         sample_outputs_for(settings.aovs, settings.motion));
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
@@ -235,7 +237,8 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
   const size_t row = size_t(job.out.width) + 1;
   sample_tracer trace = [&](double px, double py) {
     return trace_camera_sample(job.ctx, job.cam, job.settings.show_background, px, py,
-                               sample_cone(job.cam, 1), counts, sample_outputs_for(job.settings.aovs));
+                               sample_cone(job.cam, 1), counts,
+                               sample_outputs_for(job.settings.aovs, job.settings.motion));
   };
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
@@ -331,8 +334,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
         const scoped_flush_denormals ftz;
         ray_counts counts;
         for (int x = region.x0; x <= region.x1 && !cancelled(); ++x)
-          corners[(y - region.y0) * row + (x - region.x0)] = trace_camera_sample(
-              ctx, cam, settings.show_background, x, y, pixel, counts, sample_outputs_for(settings.aovs));
+          corners[(y - region.y0) * row + (x - region.x0)] =
+              trace_camera_sample(ctx, cam, settings.show_background, x, y, pixel, counts,
+                                  sample_outputs_for(settings.aovs, settings.motion));
         std::lock_guard<std::mutex> lock(merge_mutex);
         total_counts += counts;
       });

@@ -11,6 +11,7 @@
 #include "render/adaptive_sampling.h"
 #include "render/film.h"
 #include "render/id_coverage.h"
+#include "render/motion_vectors.h"
 #include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
 #include "shade/whitted.h"
@@ -38,6 +39,8 @@ struct render_settings {
   // image is the same either way. Adaptive sampling traces its samples one at a time.
   bool packets = false;
   aov_set aovs;  // which outputs the film keeps beside the colour
+  // The scene at the neighbouring frames (with the motion AOV; null: no motion, all 0).
+  const scene_motion* motion = nullptr;
   // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).
   matte_ids mattes;
   // Renders and keeps only this region of the frame (empty: the whole frame). Its pixels are

@@ -275,3 +275,18 @@ def test_variant_keyword_recolours_as_the_cli_does(tmp_path):
     assert np.array_equal(read_channels(out)["R"], beach.aovs["beauty"][:, :, 0])
     with pytest.raises(kiln.InputError, match="no variant 'forest'"):
         kiln.render(SHOE, variant="forest", **view)
+
+
+@pytest.mark.skipif(not os.path.exists(CESIUM_MAN), reason="no shared sample assets")
+def test_motion_vectors_arrive_as_forward_and_backward_arrays_equal_to_the_exr(tmp_path):
+    view = dict(width=32, height=32, quiet=True, frame=10, aovs=["beauty", "motion"])
+    walk = kiln.render(CESIUM_MAN, **view)
+    assert walk.channels["forward"] == ["forward.u", "forward.v"]
+    assert walk.channels["backward"] == ["backward.u", "backward.v"]
+    out = str(tmp_path / "walk.exr")
+    assert cli(["render", CESIUM_MAN, "-o", out, "--frame", "10", "--aovs", "beauty,motion",
+                "--width", "32", "--height", "32", "-q"]).returncode == 0
+    assert_arrays_match_exr(walk, out)
+    moving = walk.aovs["beauty"][:, :, 3] > 0
+    assert np.abs(walk.aovs["forward"][moving]).max() > 0.1  # the figure walks
+    assert not walk.aovs["forward"][~moving].any()  # background is 0

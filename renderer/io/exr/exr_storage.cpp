@@ -14,6 +14,8 @@ const std::vector<std::string>& exr_part_names() {
                                                  "albedo",
                                                  "uv",
                                                  "id",
+                                                 "forward",
+                                                 "backward",
                                                  "direct",
                                                  "reflection",
                                                  "refraction",

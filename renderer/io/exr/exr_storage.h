@@ -41,6 +41,8 @@ enum class exr_part {
   albedo,
   uv,
   id,
+  forward,
+  backward,
   direct,
   reflection,
   refraction,

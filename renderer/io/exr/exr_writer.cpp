@@ -135,6 +135,18 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
       l.channels.push_back({id_names[c], [&f, c](size_t i) { return float(f.ids[i][c]); }});
     out.push_back(std::move(l));
   }
+  // Motion vectors: Nuke's forward and backward layers (u, v), data like P (float, never lossy).
+  if (a.motion) {
+    const exr_part parts[2] = {exr_part::forward, exr_part::backward};
+    for (int p = 0; p < 2; ++p) {
+      const std::string& name = exr_part_name(parts[p]);
+      layer l{name, full, true, {}};
+      for (int c = 0; c < 2; ++c)
+        l.channels.push_back({name + (c == 0 ? ".u" : ".v"),
+                              [&f, index = 2 * p + c](size_t i) { return f.motion[i][index]; }});
+      out.push_back(std::move(l));
+    }
+  }
   // The light split: colour like R G B, each in its own format and saturating like the beauty.
   struct split_part {
     bool wanted;

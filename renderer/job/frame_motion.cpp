@@ -1,0 +1,36 @@
+#include "job/frame_motion.h"
+
+#include "job/render_job_steps.h"
+
+namespace kiln {
+
+double motion_frame_seconds(const render_options& options) { return 1.0 / options.fps.value_or(24.0); }
+
+void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
+                    std::vector<uint32_t>* posed, prepared_scene& p) {
+  const double time = scene_time(options);
+  p.motion.reset();
+  if (!options.aovs.motion) {
+    p.world = asset.pose(time, previous, posed);
+    return;
+  }
+  auto motion = std::make_shared<scene_motion>();
+  if (!asset.animated()) {
+    p.world = asset.pose(time, previous, posed);
+    p.motion = motion;  // finish_loaded_scene copies the frame's own pose to both sides
+    return;
+  }
+  // Each pose takes over what the last one built and no animation changes (rigid meshes,
+  // materials, images); the neighbours keep their transforms, cameras and deformed meshes.
+  const double step = motion_frame_seconds(options);
+  std::vector<uint32_t> deformed_before, deformed_after;
+  scene before = asset.pose(time - step, previous, &deformed_before);
+  scene after = asset.pose(time + step, &before, &deformed_after);
+  p.world = asset.pose(time, &after, posed);
+  std::string description;
+  motion->previous = neighbour_pose(p.world, before, job_view(options, before, description), deformed_before);
+  motion->next = neighbour_pose(p.world, after, job_view(options, after, description), deformed_after);
+  p.motion = motion;
+}
+
+}  // namespace kiln

@@ -1,0 +1,201 @@
+// The motion AOV end to end (`kiln render --aovs motion`): Nuke's forward.u/v and backward.u/v in
+// pixels, u right and v up, against closed forms under an orthographic camera that maps one world
+// unit to 8 pixels: a sliding quad, a quad whose edge a morph target moves, a spinning quad, and a
+// sliding camera over a still quad. Background is 0, a still file has no motion, and a frame of a
+// sequence carries the motion of the same frame rendered alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "support/channel_exr.h"
+#include "support/gltf_builder.h"
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+using testing::channel_exr;
+using testing::gltf_builder;
+using testing::render_float_exr;
+using testing::scratch_folder;
+
+constexpr int side = 16;
+constexpr double pixels_per_unit = side / 2.0;  // xmag = ymag = 1
+constexpr int fps = 5;                          // a frame is 0.2 s
+constexpr double frame_seconds = 1.0 / fps;
+// Frame 3 (t = 0.4 s): its neighbours at 0.2 s and 0.6 s lie inside every animation's keys (0..1 s).
+const std::vector<std::string> frame_three = {"--fps", std::to_string(fps), "--frame", "3"};
+constexpr float tolerance = 1e-3f;  // pixels: float positions, double projection
+
+// An orthographic camera at z = 5 looking down -z sees x and y in -1..1; its node is returned.
+int add_camera(gltf_builder& b) {
+  const int camera =
+      b.add_camera({{"type", "orthographic"},
+                    {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 100}}}});
+  return b.add_node({{"camera", camera}, {"translation", {0, 0, 5}}});
+}
+
+// A LINEAR animation of node's `path` from `from` (t = 0) to `to` (t = 1 s).
+void animate(gltf_builder& b, int node, const std::string& path, const std::vector<float>& from,
+             const std::vector<float>& to) {
+  const int times = b.add_data(std::vector<float>{0, 1}, 5126, "SCALAR", 1);
+  std::vector<float> values = from;
+  values.insert(values.end(), to.begin(), to.end());
+  const std::string type = from.size() == 1 ? "SCALAR" : from.size() == 3 ? "VEC3" : "VEC4";
+  const int keys = b.add_data(values, 5126, type, from.size());
+  b.doc["animations"].push_back(
+      {{"samplers", {{{"input", times}, {"output", keys}}}},
+       {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}}}}});
+}
+
+// Top half: a quad over x -1..0 sliding +1 in x a second. Bottom half: a quad over x -1..-0.5
+// whose right edge a morph target moves +1.5 as its weight goes 0 -> 1 in a second.
+std::string sliding_and_morphing(const std::string& folder) {
+  gltf_builder b;
+  const int slide = b.add_mesh({{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3});
+  animate(b, b.add_node({{"mesh", slide}}), "translation", {0, 0, 0}, {1, 0, 0});
+  const int morph = b.add_mesh({{-1, -1, 0}, {-0.5f, -1, 0}, {-0.5f, 0, 0}, {-1, 0, 0}}, {0, 1, 2, 0, 2, 3});
+  const int target =
+      b.add_data(std::vector<float>{0, 0, 0, 1.5f, 0, 0, 1.5f, 0, 0, 0, 0, 0}, 5126, "VEC3", 3);
+  b.doc["meshes"][morph]["primitives"][0]["targets"] = {{{"POSITION", target}}};
+  b.doc["meshes"][morph]["weights"] = {0.0};
+  animate(b, b.add_node({{"mesh", morph}}), "weights", {0}, {1});
+  add_camera(b);
+  return b.write(folder + "/slide_morph.gltf");
+}
+
+TEST(motion_vectors_cli, a_sliding_and_a_morphing_quad_move_as_the_closed_form_says) {
+  const std::string dir = scratch_folder("motion_slide_morph");
+  std::vector<std::string> extra = frame_three;
+  extra.insert(extra.end(), {"--aovs", "beauty,P,motion"});
+  const channel_exr image = render_float_exr(sliding_and_morphing(dir), dir + "/out.exr", side, side, extra);
+  ASSERT_EQ(image.count(), size_t(side * side));
+  const double t = 0.4;
+  int slid = 0, morphed = 0, background = 0;
+  for (size_t i = 0; i < image.count(); ++i) {
+    SCOPED_TRACE(i);
+    const float forward_u = image.at(i, "forward.u"), backward_u = image.at(i, "backward.u");
+    EXPECT_EQ(image.at(i, "forward.v"), 0.0f);
+    EXPECT_EQ(image.at(i, "backward.v"), 0.0f);
+    if (image.at(i, "A") == 0.0f) {
+      EXPECT_EQ(forward_u, 0.0f);
+      EXPECT_EQ(backward_u, 0.0f);
+      ++background;
+      continue;
+    }
+    if (image.at(i, "P.Y") > 0.0f) {  // the slider: 1 unit a second, both ways alike
+      EXPECT_NEAR(forward_u, pixels_per_unit * frame_seconds, tolerance);
+      EXPECT_NEAR(backward_u, -pixels_per_unit * frame_seconds, tolerance);
+      ++slid;
+    } else {  // the morph: a point a share s of the way across moves 1.5·s a unit of weight
+      const double s = (image.at(i, "P.X") + 1.0) / (0.5 + 1.5 * t);
+      EXPECT_NEAR(forward_u, pixels_per_unit * 1.5 * s * frame_seconds, tolerance);
+      EXPECT_NEAR(backward_u, -pixels_per_unit * 1.5 * s * frame_seconds, tolerance);
+      ++morphed;
+    }
+  }
+  EXPECT_GT(slid, 20);
+  EXPECT_GT(morphed, 20);
+  EXPECT_GT(background, 20);
+}
+
+// A unit square about the origin spinning a quarter turn about the view axis in a second (LINEAR
+// rotation: slerp, so a constant angular speed).
+std::string spinning(const std::string& folder) {
+  gltf_builder b;
+  const int quad = b.add_mesh({{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}},
+                              {0, 1, 2, 0, 2, 3});
+  const float half_turn = float(std::sqrt(0.5));
+  animate(b, b.add_node({{"mesh", quad}}), "rotation", {0, 0, 0, 1}, {0, 0, half_turn, half_turn});
+  add_camera(b);
+  return b.write(folder + "/spin.gltf");
+}
+
+TEST(motion_vectors_cli, a_spinning_quad_moves_each_point_along_its_circle) {
+  const std::string dir = scratch_folder("motion_spin");
+  std::vector<std::string> extra = frame_three;
+  extra.insert(extra.end(), {"--aovs", "beauty,P,motion"});
+  const channel_exr image = render_float_exr(spinning(dir), dir + "/out.exr", side, side, extra);
+  const double turn = 0.5 * 3.14159265358979323846 * frame_seconds;  // a frame's angle
+  int covered = 0;
+  for (size_t i = 0; i < image.count(); ++i) {
+    if (image.at(i, "A") == 0.0f) continue;
+    SCOPED_TRACE(i);
+    const double x = image.at(i, "P.X"), y = image.at(i, "P.Y");
+    for (const auto& [layer, angle] :
+         {std::pair<std::string, double>{"forward", turn}, {"backward", -turn}}) {
+      const double moved_x = x * std::cos(angle) - y * std::sin(angle);
+      const double moved_y = x * std::sin(angle) + y * std::cos(angle);
+      // World y is up on this camera, as v is.
+      EXPECT_NEAR(image.at(i, layer + ".u"), pixels_per_unit * (moved_x - x), tolerance) << layer;
+      EXPECT_NEAR(image.at(i, layer + ".v"), pixels_per_unit * (moved_y - y), tolerance) << layer;
+    }
+    ++covered;
+  }
+  EXPECT_GT(covered, 40);
+}
+
+// A still quad over the whole view, and the camera sliding +1 in x a second: the picture moves the
+// other way.
+std::string sliding_camera(const std::string& folder) {
+  gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {0, 1, 2, 0, 2, 3})}});
+  animate(b, add_camera(b), "translation", {0, 0, 5}, {1, 0, 5});
+  return b.write(folder + "/camera.gltf");
+}
+
+TEST(motion_vectors_cli, a_sliding_camera_moves_the_still_scene_the_other_way) {
+  const std::string dir = scratch_folder("motion_camera");
+  std::vector<std::string> extra = frame_three;
+  extra.insert(extra.end(), {"--aovs", "beauty,motion"});
+  const channel_exr image = render_float_exr(sliding_camera(dir), dir + "/out.exr", side, side, extra);
+  for (size_t i = 0; i < image.count(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_NEAR(image.at(i, "forward.u"), -pixels_per_unit * frame_seconds, tolerance);
+    EXPECT_NEAR(image.at(i, "backward.u"), pixels_per_unit * frame_seconds, tolerance);
+    EXPECT_NEAR(image.at(i, "forward.v"), 0.0f, tolerance);
+  }
+}
+
+TEST(motion_vectors_cli, a_still_file_has_no_motion) {
+  const std::string dir = scratch_folder("motion_still");
+  gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}}, {0, 1, 2})}});
+  add_camera(b);
+  const channel_exr image = render_float_exr(b.write(dir + "/still.gltf"), dir + "/out.exr", side, side,
+                                             {"--aovs", "beauty,motion"});
+  int covered = 0;
+  for (size_t i = 0; i < image.count(); ++i) {
+    covered += image.at(i, "A") > 0.0f;
+    for (const char* channel : {"forward.u", "forward.v", "backward.u", "backward.v"})
+      EXPECT_EQ(image.at(i, channel), 0.0f) << i << " " << channel;
+  }
+  EXPECT_GT(covered, 10);
+}
+
+TEST(motion_vectors_cli, a_sequence_frame_carries_the_motion_of_the_frame_rendered_alone) {
+  const std::string dir = scratch_folder("motion_sequence");
+  const std::string scene = sliding_and_morphing(dir);
+  const channel_exr alone =
+      render_float_exr(scene, dir + "/alone.exr", side, side,
+                       {"--fps", std::to_string(fps), "--frame", "3", "--aovs", "motion"});
+  const auto sequence =
+      testing::run_kiln({"render", scene, "-o", dir + "/shot.####.exr", "--width", std::to_string(side),
+                         "--height", std::to_string(side), "-q", "--float", "--fps", std::to_string(fps),
+                         "--frames", "2-4", "--aovs", "motion"});
+  ASSERT_EQ(sequence.exit_code, 0) << sequence.stderr_text;
+  const channel_exr in_sequence{testing::read_float_exr(dir + "/shot.0003.exr")};
+  ASSERT_EQ(in_sequence.count(), alone.count());
+  float largest = 0.0f;
+  for (size_t i = 0; i < alone.count(); ++i)
+    for (const char* channel : {"forward.u", "forward.v", "backward.u", "backward.v"}) {
+      EXPECT_EQ(in_sequence.at(i, channel), alone.at(i, channel)) << i << " " << channel;
+      largest = std::max(largest, std::abs(alone.at(i, channel)));
+    }
+  EXPECT_GT(largest, 1.0f);  // it moves
+}
+
+}  // namespace
+}  // namespace kiln
