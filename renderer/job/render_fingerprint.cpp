@@ -42,15 +42,14 @@ void add_file(fnv1a& hash, const std::string& path, uint64_t max_bytes, const st
 
 }  // namespace
 
-std::string file_hash_hex(const std::string& path) {
-  fnv1a hash;
-  add_file(hash, path, max_gltf_file_bytes, nullptr);
-  return hash.hex();
-}
-
 render_fingerprint make_fingerprint(const render_options& options, const std::atomic<bool>* cancel) {
-  fnv1a inputs;
-  add_file(inputs, options.input, max_gltf_file_bytes, cancel);
+  fnv1a inputs, scene;  // the asset's bytes go into both: read once
+  if (!input_file_missing(options.input))
+    read_input_file(options.input, {max_gltf_file_bytes, cancel, "", ""},
+                    [&](const char* bytes, size_t count) {
+                      inputs.add(bytes, count);
+                      scene.add(bytes, count);
+                    });
   // Each referenced file by its name and bytes, so renaming a buffer counts as a change too. The
   // list comes through the loader's URI rule: nothing outside the folder, no FIFO, no device.
   // A missing asset names nothing; the loader reports it.
@@ -78,16 +77,20 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
     add_file(bytes, options.environment, max_environment_file_bytes, cancel, "--environment");
     inputs.add(bytes.hex());
   }
-  return fingerprint_with_settings(inputs.hex(), options);
+  render_fingerprint hashed;
+  hashed.input_hash = inputs.hex();
+  hashed.scene_hash = scene.hex();
+  return fingerprint_with_settings(hashed, options);
 }
 
-render_fingerprint fingerprint_with_settings(const std::string& input_hash, const render_options& options) {
+render_fingerprint fingerprint_with_settings(const render_fingerprint& inputs,
+                                             const render_options& options) {
   fnv1a settings, frame;
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::include))
     settings.add(argument);
   for (const std::string& argument : canonical_render_arguments(options, region_arguments::omit))
     frame.add(argument);
-  return {input_hash, settings.hex(), frame.hex()};
+  return {inputs.input_hash, settings.hex(), frame.hex(), inputs.scene_hash};
 }
 
 }  // namespace kiln

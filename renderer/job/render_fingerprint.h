@@ -17,20 +17,16 @@ struct render_fingerprint {
   // The same without --crop/--tile: equal for every region of one frame, and the settings hash of
   // the frame they stitch into.
   std::string frame_settings_hash;
+  std::string scene_hash;  // the asset file's own bytes (kiln/scene_hash)
 };
-
-// FNV-1a (64 bit) in 16 hex digits of the file's bytes; of nothing when it does not exist. Throws
-// kiln::error (input) for a FIFO, a device, a folder or a file over kiln's size limit, before
-// reading it, and (interrupted) when SIGINT/SIGTERM arrive while it reads.
-std::string file_hash_hex(const std::string& path);
 
 // Hashes the inputs and settings of options (reads every input file once). The files the asset
 // names are checked by the loader's own URI rule before any is read, so a URI the loader refuses
 // (absolute, outside the folder, a FIFO or a device) is refused here first, in the loader's words.
 render_fingerprint make_fingerprint(const render_options& options, const std::atomic<bool>* cancel = nullptr);
 
-// The fingerprint of options whose inputs hash to input_hash (known already): the settings hashes
-// only, which read no file. The frames of a sequence share their inputs.
-render_fingerprint fingerprint_with_settings(const std::string& input_hash, const render_options& options);
+// The fingerprint of options whose inputs `inputs` hashed already (its input and scene hashes):
+// the settings hashes only, which read no file. The frames of a sequence share their inputs.
+render_fingerprint fingerprint_with_settings(const render_fingerprint& inputs, const render_options& options);
 
 }  // namespace kiln

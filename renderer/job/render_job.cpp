@@ -199,7 +199,7 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
       {"kiln/render_seconds", std::to_string(stats.seconds)},
       {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
-      {"kiln/scene_hash", file_hash_hex(options.input)},
+      {"kiln/scene_hash", fingerprint.scene_hash},
       {"kiln/input_hash", fingerprint.input_hash},
       {"kiln/settings_hash", fingerprint.settings_hash},
       {"kiln/frame_settings_hash", fingerprint.frame_settings_hash},

@@ -34,7 +34,7 @@ struct sequence_state {
   std::unique_ptr<gltf_sequence> asset;
   std::unique_ptr<accelerator> accel;
   std::optional<image> environment;
-  std::string input_hash;
+  render_fingerprint inputs;  // hashed once for every frame
   bool charged = false;
 };
 
@@ -84,7 +84,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   st.accel->throw_if_failed();
   throw_if_cancelled(stop, options.output);
   result.metadata = job_metadata(options, p, settings, result.stats,
-                                 fingerprint_with_settings(st.input_hash, options), objects, materials);
+                                 fingerprint_with_settings(st.inputs, options), objects, materials);
   return result;
 }
 
@@ -129,8 +129,7 @@ void run_sequence(const render_job& job,
   const render_options first_options = frame_options(job.options, frames.front());
   run_stoppable(job, first_options, [&](const std::atomic<bool>* stop, const char*& stage) {
     stage = "hashing the inputs";
-    st.input_hash =
-        job.fingerprint ? job.fingerprint->input_hash : make_fingerprint(first_options, stop).input_hash;
+    st.inputs = job.fingerprint ? *job.fingerprint : make_fingerprint(first_options, stop);
     stage = "loading the scene";
     const auto load_start = std::chrono::steady_clock::now();
     st.prepared.memory = std::make_shared<memory_budget>(job_memory_limit(first_options));
