@@ -70,7 +70,10 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
   s.node = int32_t(ctx.world.instances[h.instance_id].node);
   s.material = ctx.world.materials[sp.material].source_index;
   if (outputs.albedo) s.albedo = p.mp.base_color;
-  if (outputs.motion) s.motion = hit_motion(*outputs.motion, ctx.world, h, dvec3(sp.position));
+  if (outputs.motion) {
+    s.surface_hit = h;
+    s.render_point = dvec3(sp.position);
+  }
 }
 
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
@@ -121,6 +124,11 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   record_hit(ctx, *h, p, distance, outputs, s);
   shade_camera_path(ctx, r, p, at_hit, show_background, outputs, s, counts);
   return s;
+}
+
+void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion) {
+  if (motion && s.instance != no_instance)
+    s.motion = hit_motion(*motion, world, s.surface_hit, s.render_point);
 }
 
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {

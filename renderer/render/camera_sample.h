@@ -30,7 +30,11 @@ struct camera_sample {
   vec2 uv{0.0f};          // TEXCOORD_0; 0 on a miss
   int32_t node = -1;      // glTF node of the instance hit; -1 on a miss
   int32_t material = -1;  // glTF material index (material::source_index); -1 on a miss
-  vec4 motion{0.0f};      // with outputs.motion: forward and backward motion in pixels; 0 on a miss
+  // With outputs.motion: the hit and its render-space point, from which the pixel's nearest sample
+  // gets its motion (motion_of_nearest); motion stays 0 until then, and on a miss.
+  hit surface_hit;
+  dvec3 render_point{0.0};
+  vec4 motion{0.0f};
   // With outputs.split: rgba's colour by first event.
   light_split split;
   // With outputs.groups: rgba's colour by light group (render/light_groups.h); else empty.
@@ -51,7 +55,7 @@ struct sample_outputs {
   bool groups = false;                   // fills groups
   bool passes = false;                   // fills passes (albedo, normal, diffuse, specular)
   bool shadow = false;                   // fills passes.shadow too (with passes)
-  const scene_motion* motion = nullptr;  // fills motion
+  const scene_motion* motion = nullptr;  // fills surface_hit and render_point
 };
 
 // The sample outputs a film with aovs needs.
@@ -69,6 +73,10 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
                                ray_counts& counts, const sample_outputs& outputs = {});
+
+// Fills s.motion (forward and backward, in pixels) when s hit something and motion is set: once a
+// pixel, for the sample that decides it, not for every sample.
+void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion);
 
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.

@@ -163,6 +163,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
   splats.add(x - out.x0, y - out.y0, splat, sums);
+  motion_of_nearest(nearest, ctx.world, settings.aovs.motion ? settings.motion : nullptr);
   store_nearest_sample(nearest, out, out.index(x - out.x0, y - out.y0));
 }
 
@@ -248,6 +249,7 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
       adaptive_pixel p = refine_pixel(x, y, corners, options, trace, scratch);
       size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
+      motion_of_nearest(p.nearest, job.ctx.world, job.settings.aovs.motion ? job.settings.motion : nullptr);
       store_nearest_sample(p.nearest, job.out, i);
       if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
       if (wants_beauty_parts(job.settings.aovs)) store_adaptive_parts(job.out, p, i);
