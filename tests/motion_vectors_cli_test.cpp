@@ -3,9 +3,12 @@
 // unit to 8 pixels: a sliding quad, a quad whose edge a morph target moves, a spinning quad, and a
 // sliding camera over a still quad. Background is 0, a still file has no motion, and a frame of a
 // sequence carries the motion of the same frame rendered alone.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -157,6 +160,50 @@ TEST(motion_vectors_cli, a_sliding_camera_moves_the_still_scene_the_other_way) {
     EXPECT_NEAR(image.at(i, "backward.u"), pixels_per_unit * frame_seconds, tolerance);
     EXPECT_NEAR(image.at(i, "forward.v"), 0.0f, tolerance);
   }
+}
+
+// The pixel position of world point p through an EXR's worldToNDC (row vectors, as OpenEXR stores it).
+std::array<double, 2> raster_through(const channel_exr& image, double x, double y, double z) {
+  float m[16] = {};
+  const OIIO::ParamValue* attribute = image.spec.find_attribute("worldToNDC", OIIO::TypeMatrix44);
+  EXPECT_TRUE(attribute);
+  if (attribute) std::memcpy(m, attribute->data(), sizeof m);
+  const double p[4] = {x, y, z, 1.0};
+  double out[4] = {};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c] += p[r] * m[r * 4 + c];
+  return {out[0] / out[3] * image.spec.full_width, out[1] / out[3] * image.spec.full_height};
+}
+
+// No camera in the file: the default camera frames each frame's bounds, so it moves as the slider
+// does, and the still quad's vectors are that move. They must match frame 4's own view of the point.
+TEST(motion_vectors_cli, with_the_default_camera_a_still_point_moves_as_the_next_frame_sees_it) {
+  const std::string dir = scratch_folder("motion_default_camera");
+  gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{-2, -1, 0}, {-1, -1, 0}, {-1, 1, 0}, {-2, 1, 0}}, {0, 1, 2, 0, 2, 3})}});
+  const int slide = b.add_mesh({{1, -1, 0}, {2, -1, 0}, {2, 1, 0}, {1, 1, 0}}, {0, 1, 2, 0, 2, 3});
+  animate(b, b.add_node({{"mesh", slide}}), "translation", {0, 0, 0}, {2, 0, 0});
+  const std::string scene = b.write(dir + "/no_camera.gltf");
+  std::vector<std::string> extra = frame_three;
+  extra.insert(extra.end(), {"--aovs", "beauty,P,motion"});
+  const channel_exr now = render_float_exr(scene, dir + "/frame3.exr", side, side, extra);
+  const channel_exr next =
+      render_float_exr(scene, dir + "/frame4.exr", side, side,
+                       {"--fps", std::to_string(fps), "--frame", "4", "--aovs", "beauty"});
+  int still = 0;
+  float largest = 0.0f;
+  for (size_t i = 0; i < now.count(); ++i) {
+    if (now.at(i, "A") == 0.0f || now.at(i, "P.X") > -0.5f) continue;  // the still quad only
+    SCOPED_TRACE(i);
+    const double x = now.at(i, "P.X"), y = now.at(i, "P.Y"), z = now.at(i, "P.Z");
+    const auto from = raster_through(now, x, y, z), to = raster_through(next, x, y, z);
+    EXPECT_NEAR(now.at(i, "forward.u"), to[0] - from[0], 2e-3);
+    EXPECT_NEAR(now.at(i, "forward.v"), from[1] - to[1], 2e-3);
+    largest = std::max(largest, std::abs(now.at(i, "forward.u")));
+    ++still;
+  }
+  EXPECT_GT(still, 4);
+  EXPECT_GT(largest, 0.05f);  // the camera does move
 }
 
 TEST(motion_vectors_cli, a_still_file_has_no_motion) {

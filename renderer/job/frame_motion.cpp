@@ -21,15 +21,18 @@ void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* 
     return;
   }
   // Each pose takes over what the last one built and no animation changes (rigid meshes,
-  // materials, images); the neighbours keep their transforms, cameras and deformed meshes.
+  // materials, images); the neighbours keep their transforms, cameras and deformed meshes. A
+  // neighbour's view is chosen before the next pose takes its meshes (a default camera frames them).
   const double step = motion_frame_seconds(options);
+  std::string description;
   std::vector<uint32_t> deformed_before, deformed_after;
   scene before = asset.pose(time - step, previous, &deformed_before);
+  const view_camera view_before = job_view(options, before, description);
   scene after = asset.pose(time + step, &before, &deformed_after);
+  const view_camera view_after = job_view(options, after, description);
   p.world = asset.pose(time, &after, posed);
-  std::string description;
-  motion->previous = neighbour_pose(p.world, before, job_view(options, before, description), deformed_before);
-  motion->next = neighbour_pose(p.world, after, job_view(options, after, description), deformed_after);
+  motion->previous = neighbour_pose(p.world, before, view_before, deformed_before);
+  motion->next = neighbour_pose(p.world, after, view_after, deformed_after);
   p.motion = motion;
 }
 
