@@ -4,12 +4,23 @@
 
 namespace kiln {
 
+namespace {
+
+uint64_t pose_bytes(const frame_pose& pose) {
+  uint64_t bytes = pose.world_from_object.size() * (sizeof(dmat4) + sizeof(uint8_t));
+  for (const std::vector<vec3>& positions : pose.deformed_positions) bytes += positions.size() * sizeof(vec3);
+  return bytes;
+}
+
+}  // namespace
+
 double motion_frame_seconds(const render_options& options) { return 1.0 / options.fps.value_or(24.0); }
 
 void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
                     std::vector<uint32_t>* posed, prepared_scene& p) {
   const double time = scene_time(options);
   p.motion.reset();
+  p.motion_memory.reset();  // the last frame's neighbours go now
   if (!options.aovs.motion) {
     p.world = asset.pose(time, previous, posed);
     return;
@@ -33,6 +44,11 @@ void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* 
   p.world = asset.pose(time, &after, posed);
   motion->previous = neighbour_pose(p.world, before, view_before, deformed_before);
   motion->next = neighbour_pose(p.world, after, view_after, deformed_after);
+  // The neighbours' own posed meshes were released as each next pose charged its own; what is
+  // kept of them for the render is charged here.
+  p.motion_memory = std::make_shared<memory_charge>(p.memory.get());
+  p.motion_memory->add(pose_bytes(motion->previous) + pose_bytes(motion->next), options.input,
+                       "the neighbouring frames' poses (motion vectors)");
   p.motion = motion;
 }
 

@@ -6,7 +6,7 @@
 // Conventions (README, "What the EXR holds"): Nuke's forward and backward layers. forward = where the point
 // is at the next frame minus where it is now, backward = at the previous frame minus now, u to the
 // right and v up (Nuke's and Blender's y-up pixel space; the EXR's rows run down). Blender's
-// Vector pass is (−backward.u, −backward.v, forward.u, forward.v).
+// Vector pass points back in time in both pairs: (backward.u, backward.v, −forward.u, −forward.v).
 #pragma once
 
 #include <cstdint>
