@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/animated_gltf.h"
 #include "support/channel_exr.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
@@ -19,10 +20,14 @@
 namespace kiln {
 namespace {
 
+using testing::add_camera;
+using testing::animate;
 using testing::channel_exr;
 using testing::gltf_builder;
 using testing::render_float_exr;
 using testing::scratch_folder;
+using testing::sliding_and_morphing;
+using testing::spinning;
 
 constexpr int side = 16;
 constexpr double pixels_per_unit = side / 2.0;  // xmag = ymag = 1
@@ -31,43 +36,6 @@ constexpr double frame_seconds = 1.0 / fps;
 // Frame 3 (t = 0.4 s): its neighbours at 0.2 s and 0.6 s lie inside every animation's keys (0..1 s).
 const std::vector<std::string> frame_three = {"--fps", std::to_string(fps), "--frame", "3"};
 constexpr float tolerance = 1e-3f;  // pixels: float positions, double projection
-
-// An orthographic camera at z = 5 looking down -z sees x and y in -1..1; its node is returned.
-int add_camera(gltf_builder& b) {
-  const int camera =
-      b.add_camera({{"type", "orthographic"},
-                    {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 100}}}});
-  return b.add_node({{"camera", camera}, {"translation", {0, 0, 5}}});
-}
-
-// A LINEAR animation of node's `path` from `from` (t = 0) to `to` (t = 1 s).
-void animate(gltf_builder& b, int node, const std::string& path, const std::vector<float>& from,
-             const std::vector<float>& to) {
-  const int times = b.add_data(std::vector<float>{0, 1}, 5126, "SCALAR", 1);
-  std::vector<float> values = from;
-  values.insert(values.end(), to.begin(), to.end());
-  const std::string type = from.size() == 1 ? "SCALAR" : from.size() == 3 ? "VEC3" : "VEC4";
-  const int keys = b.add_data(values, 5126, type, from.size());
-  b.doc["animations"].push_back(
-      {{"samplers", {{{"input", times}, {"output", keys}}}},
-       {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}}}}});
-}
-
-// Top half: a quad over x -1..0 sliding +1 in x a second. Bottom half: a quad over x -1..-0.5
-// whose right edge a morph target moves +1.5 as its weight goes 0 -> 1 in a second.
-std::string sliding_and_morphing(const std::string& folder) {
-  gltf_builder b;
-  const int slide = b.add_mesh({{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3});
-  animate(b, b.add_node({{"mesh", slide}}), "translation", {0, 0, 0}, {1, 0, 0});
-  const int morph = b.add_mesh({{-1, -1, 0}, {-0.5f, -1, 0}, {-0.5f, 0, 0}, {-1, 0, 0}}, {0, 1, 2, 0, 2, 3});
-  const int target =
-      b.add_data(std::vector<float>{0, 0, 0, 1.5f, 0, 0, 1.5f, 0, 0, 0, 0, 0}, 5126, "VEC3", 3);
-  b.doc["meshes"][morph]["primitives"][0]["targets"] = {{{"POSITION", target}}};
-  b.doc["meshes"][morph]["weights"] = {0.0};
-  animate(b, b.add_node({{"mesh", morph}}), "weights", {0}, {1});
-  add_camera(b);
-  return b.write(folder + "/slide_morph.gltf");
-}
 
 TEST(motion_vectors_cli, a_sliding_and_a_morphing_quad_move_as_the_closed_form_says) {
   const std::string dir = scratch_folder("motion_slide_morph");
@@ -102,18 +70,6 @@ TEST(motion_vectors_cli, a_sliding_and_a_morphing_quad_move_as_the_closed_form_s
   EXPECT_GT(slid, 20);
   EXPECT_GT(morphed, 20);
   EXPECT_GT(background, 20);
-}
-
-// A unit square about the origin spinning a quarter turn about the view axis in a second (LINEAR
-// rotation: slerp, so a constant angular speed).
-std::string spinning(const std::string& folder) {
-  gltf_builder b;
-  const int quad = b.add_mesh({{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}},
-                              {0, 1, 2, 0, 2, 3});
-  const float half_turn = float(std::sqrt(0.5));
-  animate(b, b.add_node({{"mesh", quad}}), "rotation", {0, 0, 0, 1}, {0, 0, half_turn, half_turn});
-  add_camera(b);
-  return b.write(folder + "/spin.gltf");
 }
 
 TEST(motion_vectors_cli, a_spinning_quad_moves_each_point_along_its_circle) {

@@ -2,6 +2,7 @@
 
 #include "accel/embree/embree_accelerator.h"
 #include "accel/grid/grid_accelerator.h"
+#include "core/error.h"
 
 namespace kiln {
 
@@ -32,6 +33,11 @@ grid_options grid_options_for(accel_kind kind, const grid_options& grid) {
 std::unique_ptr<accelerator> make_accelerator(const scene& s, accel_kind kind, const grid_options& grid,
                                               const embree_options& embree) {
   if (kind == accel_kind::embree) return std::make_unique<embree_accelerator>(s, embree);
+  // The grids hold one placement per instance; time steps are Embree's (motion blur).
+  if (s.shutter.any())
+    throw input_error("", "--accel",
+                      std::string("motion blur (--shutter) of a moving scene needs --accel embree: the ") +
+                          accel_kind_name(kind) + " backend traces the scene at one time");
   return std::make_unique<grid_accelerator>(s, grid_options_for(kind, grid));
 }
 

@@ -20,6 +20,9 @@ struct ray {
   float tmin = 0.0f;
   float tmax = inf;
   ray_kind kind = ray_kind::other;
+  // When in the shutter the ray is traced (motion blur): 0 at its opening, 1 at its closing. Every
+  // ray of a camera sample's path keeps the camera ray's time; 0 in a scene that does not move.
+  float time = 0.0f;
 };
 
 // The largest origin or direction component a traversal backend takes: Embree 3.13's FLT_LARGE

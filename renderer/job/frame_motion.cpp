@@ -1,6 +1,7 @@
 #include "job/frame_motion.h"
 
 #include "job/render_job_steps.h"
+#include "job/shutter_poses.h"
 
 namespace kiln {
 
@@ -16,11 +17,11 @@ uint64_t pose_bytes(const frame_pose& pose) {
 
 double motion_frame_seconds(const render_options& options) { return 1.0 / options.fps.value_or(24.0); }
 
-void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
-                    std::vector<uint32_t>* posed, prepared_scene& p) {
-  const double time = scene_time(options);
-  p.motion.reset();
-  p.motion_memory.reset();  // the last frame's neighbours go now
+namespace {
+
+// The frame at `time` into p.world, with its neighbours in p.motion when the motion AOV asks.
+void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& options, double time,
+                               scene* previous, std::vector<uint32_t>* posed, prepared_scene& p) {
   if (!options.aovs.motion) {
     p.world = asset.pose(time, previous, posed);
     return;
@@ -50,6 +51,25 @@ void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* 
   p.motion_memory->add(pose_bytes(motion->previous) + pose_bytes(motion->next), options.input,
                        "the neighbouring frames' poses (motion vectors)");
   p.motion = motion;
+}
+
+}  // namespace
+
+void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
+                    std::vector<uint32_t>* posed, prepared_scene& p) {
+  const double time = scene_time(options);
+  p.motion.reset();
+  p.motion_memory.reset();  // the last frame's neighbours and shutter steps go now
+  p.shutter_memory.reset();
+  // The shutter's steps first: each pose takes from the one before, and the frame's own comes last.
+  scene last_step;
+  const std::vector<shutter_step> steps = pose_shutter_steps(asset, options, time, previous, last_step);
+  pose_frame_and_neighbours(asset, options, time, previous, posed, p);
+  attach_shutter_motion(p.world, steps);
+  if (p.world.shutter.any()) {
+    p.shutter_memory = std::make_shared<memory_charge>(p.memory.get());
+    p.shutter_memory->add(shutter_motion_bytes(p.world.shutter), options.input, "the shutter's motion steps");
+  }
 }
 
 }  // namespace kiln

@@ -358,6 +358,27 @@ void add_view_options(std::vector<option_spec>& t) {
           "KHR_materials_variants: render the variant NAME (or its index) of a file with material variants"))
       .recorded_as = "kiln/variant";
   add(custom_option(
+          "shutter", [](render_options& o, const std::string& text) { o.shutter = parse_shutter(text); },
+          [](const render_options& o) -> std::optional<std::string> {
+            if (!o.shutter) return std::nullopt;
+            return exact_text(o.shutter->first) + "," + exact_text(o.shutter->second);
+          },
+          "-0.25,0.25",
+          "Motion blur: the shutter is open from OPEN to CLOSE, in frames relative to the frame (default: no "
+          "blur)"))
+      .recorded_as = "kiln/shutter";
+  add(custom_option(
+          "motion-steps",
+          [](render_options& o, const std::string& text) {
+            o.motion_steps = int(parse_integer(text, "--motion-steps", 2, max_motion_steps));
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.motion_steps ? std::optional<std::string>(std::to_string(o.motion_steps)) : std::nullopt;
+          },
+          "5", "Time steps of --shutter's motion blur (default: as many as the motion needs, up to 33)"))
+      .recorded_as = "kiln/motion_steps";
+  t.back().type = option_type::integer;
+  add(custom_option(
           "background",
           [](render_options& o, const std::string& text) {
             dvec3 c = parse_triple(text, "--background");

@@ -114,6 +114,20 @@ dvec3 parse_triple(const std::string& text, const std::string& option) {
   return value;
 }
 
+std::pair<double, double> parse_shutter(const std::string& text) {
+  std::pair<double, double> shutter;
+  std::istringstream in(text);
+  char comma = 0;
+  if (!(in >> shutter.first >> comma >> shutter.second) || comma != ',' || !(in >> std::ws).eof() ||
+      !std::isfinite(shutter.first) || !std::isfinite(shutter.second))
+    refuse("--shutter", "expects two finite frame offsets OPEN,CLOSE (e.g. -0.25,0.25), got " + quoted(text));
+  if (std::abs(shutter.first) > 1e6 || std::abs(shutter.second) > 1e6)
+    refuse("--shutter", "frame offsets must lie within -1e6 and 1e6, got " + quoted(text));
+  if (!(shutter.first < shutter.second))
+    refuse("--shutter", "the shutter must open before it closes, got " + quoted(text));
+  return shutter;
+}
+
 std::string exact_text(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.17g", value);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -28,6 +29,11 @@ void check_choice(const std::string& text, const std::string& option,
                   const std::vector<std::string>& choices);
 // "X,Y,Z": three finite numbers.
 dvec3 parse_triple(const std::string& text, const std::string& option);
+
+// --shutter's "OPEN,CLOSE": two finite frame offsets within ±1e6, OPEN before CLOSE.
+std::pair<double, double> parse_shutter(const std::string& text);
+// The most time steps Embree interpolates between (RTC_MAX_TIME_STEP_COUNT).
+constexpr int max_motion_steps = 129;
 
 std::string exact_text(double value);  // %.17g
 std::string exact_text(float value);   // %.9g

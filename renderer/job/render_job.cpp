@@ -322,6 +322,11 @@ render_settings make_render_settings(const render_options& options) {
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
     throw input_error("", "--adaptive-threshold",
                       "adaptive supersampling averages over the pixel; drop --filter");
+  if (options.shutter && options.adaptive_threshold > 0.0f)
+    throw input_error(
+        "", "--shutter",
+        "motion blur needs --spp sampling: adaptive supersampling traces its corners at one time");
+  settings.motion_blur = options.shutter.has_value();
   settings.threads = options.threads;
   settings.tile_size = options.tile_size;
   settings.show_background = options.show_background;

@@ -48,7 +48,8 @@ struct prepared_scene {
   bool headlight_noted = false;  // the headlight's note was given (once per sequence)
   // With the motion AOV: the scene at the neighbouring frames (job/frame_motion.h); else null.
   std::shared_ptr<scene_motion> motion;
-  std::shared_ptr<memory_charge> motion_memory;  // what motion holds, charged to memory
+  std::shared_ptr<memory_charge> motion_memory;   // what motion holds, charged to memory
+  std::shared_ptr<memory_charge> shutter_memory;  // what world.shutter holds (motion blur)
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "accel/embree/embree_options.h"
 #include "accel/grid/grid.h"
@@ -48,6 +49,10 @@ struct render_options {
   std::optional<long long> frame_start;  // --frame-start N: the frame at time 0 (default 1)
   std::optional<std::string> animation;  // --animation NAME|INDEX|all (default all)
   std::optional<std::string> variant;    // --variant NAME|INDEX: a KHR_materials_variants variant
+  // --shutter OPEN,CLOSE: motion blur over that interval, in frames relative to the frame
+  // (job/shutter_poses.h); empty: none. --motion-steps N: its time steps (0: chosen by the motion).
+  std::optional<std::pair<double, double>> shutter;
+  int motion_steps = 0;
   // --frames FIRST-LAST[:STEP]: a sequence (job/render_sequence.h), each frame its own --frame
   // and output; empty: one image.
   std::string frames;

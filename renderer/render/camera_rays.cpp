@@ -51,7 +51,11 @@ void make_camera_rays(camera_ray_batch& b, const sample_run& run, const view_cam
     src.offset = pixel_sample_offset(settings.random_samples, uint32_t(src.x), uint32_t(src.y), src.sample,
                                      uint32_t(spp));
     src.cone = cone;
-    b.rays.push_back(generate_camera_ray(cam, src.x + double(src.offset.x), src.y + double(src.offset.y)));
+    ray r = generate_camera_ray(cam, src.x + double(src.offset.x), src.y + double(src.offset.y));
+    if (settings.motion_blur)
+      r.time =
+          sample_time(settings.random_samples, uint32_t(src.x), uint32_t(src.y), src.sample, uint32_t(spp));
+    b.rays.push_back(r);
     b.sources.push_back(src);
   }
 }

@@ -73,6 +73,7 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
   if (outputs.motion) {
     s.surface_hit = h;
     s.render_point = dvec3(sp.position);
+    s.time = sp.time;
   }
 }
 
@@ -128,7 +129,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
 
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion) {
   if (motion && s.instance != no_instance)
-    s.motion = hit_motion(*motion, world, s.surface_hit, s.render_point);
+    s.motion = hit_motion(*motion, world, s.surface_hit, s.render_point, s.time);
 }
 
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {

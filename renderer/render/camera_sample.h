@@ -34,6 +34,7 @@ struct camera_sample {
   // gets its motion (motion_of_nearest); motion stays 0 until then, and on a miss.
   hit surface_hit;
   dvec3 render_point{0.0};
+  float time = 0.0f;  // when in the shutter the camera ray was traced (motion blur)
   vec4 motion{0.0f};
   // With outputs.split: rgba's colour by first event.
   light_split split;

@@ -4,6 +4,8 @@
 #include <optional>
 #include <tuple>
 
+#include "scene/shutter_motion.h"
+
 namespace kiln {
 
 namespace {
@@ -15,26 +17,13 @@ dmat4 raster_from_world(const view_camera& cam) {
   return to_pixels * world_to_ndc(cam);
 }
 
-// An instance's identity across times: its node, what it places, and its place among the
-// instances of that node and shape (EXT_mesh_gpu_instancing places many).
-using instance_key = std::tuple<uint32_t, int, uint32_t, uint32_t>;
-
-std::vector<instance_key> instance_keys(const scene& s) {
-  std::map<std::tuple<uint32_t, int, uint32_t>, uint32_t> seen;
-  std::vector<instance_key> keys;
-  keys.reserve(s.instances.size());
-  for (const instance& inst : s.instances) {
-    uint32_t& order = seen[{inst.node, int(inst.kind), inst.shape}];
-    keys.emplace_back(inst.node, int(inst.kind), inst.shape, order++);
-  }
-  return keys;
-}
-
 // Where the hit lies in its shape's object space at a pose: by barycentrics on the triangle (through
 // that pose's deformed positions), or the render-space point taken back for a quadric.
-dvec3 object_point(const frame_pose& pose, const scene& world, const hit& h, const dvec3& render_position) {
+dvec3 object_point(const frame_pose& pose, const scene& world, const hit& h, const dvec3& render_position,
+                   float time) {
   const instance& inst = world.instances[h.instance_id];
-  if (inst.kind != shape_kind::mesh) return dvec3(inst.object_from_world * dvec4(render_position, 1.0));
+  if (inst.kind != shape_kind::mesh)  // taken back where the instance was when the ray met it
+    return dvec3(instance_at(world, h.instance_id, time).object_from_world * dvec4(render_position, 1.0));
   const mesh& m = world.meshes[inst.shape];
   const bool deformed =
       inst.shape < pose.deformed_positions.size() && !pose.deformed_positions[inst.shape].empty();
@@ -47,16 +36,27 @@ dvec3 object_point(const frame_pose& pose, const scene& world, const hit& h, con
 
 // The pixel position of the hit at a pose, if it is in front of that camera.
 std::optional<glm::dvec2> raster_at(const frame_pose& pose, const scene& world, const hit& h,
-                                    const dvec3& render_position) {
+                                    const dvec3& render_position, float time) {
   if (h.instance_id >= pose.present.size() || !pose.present[h.instance_id]) return std::nullopt;
   const dvec4 world_point =
-      pose.world_from_object[h.instance_id] * dvec4(object_point(pose, world, h, render_position), 1.0);
+      pose.world_from_object[h.instance_id] * dvec4(object_point(pose, world, h, render_position, time), 1.0);
   const dvec4 clip = pose.world_to_raster * world_point;
   if (!(clip.w > 0.0)) return std::nullopt;
   return glm::dvec2(clip.x / clip.w, clip.y / clip.w);
 }
 
 }  // namespace
+
+std::vector<instance_key> instance_keys(const scene& s) {
+  std::map<std::tuple<uint32_t, int, uint32_t>, uint32_t> seen;
+  std::vector<instance_key> keys;
+  keys.reserve(s.instances.size());
+  for (const instance& inst : s.instances) {
+    uint32_t& order = seen[{inst.node, int(inst.kind), inst.shape}];
+    keys.emplace_back(inst.node, int(inst.kind), inst.shape, order++);
+  }
+  return keys;
+}
 
 frame_pose current_pose(const scene& s, const view_camera& cam) {
   frame_pose pose;
@@ -99,12 +99,13 @@ frame_pose neighbour_pose(const scene& current, const scene& neighbour, const vi
   return pose;
 }
 
-vec4 hit_motion(const scene_motion& m, const scene& world, const hit& h, const dvec3& render_position) {
-  const std::optional<glm::dvec2> now = raster_at(m.current, world, h, render_position);
+vec4 hit_motion(const scene_motion& m, const scene& world, const hit& h, const dvec3& render_position,
+                float time) {
+  const std::optional<glm::dvec2> now = raster_at(m.current, world, h, render_position, time);
   if (!now) return vec4(0.0f);
   // Pixels run down the image; motion vectors' v runs up.
   auto toward = [&](const frame_pose& pose) {
-    const std::optional<glm::dvec2> there = raster_at(pose, world, h, render_position);
+    const std::optional<glm::dvec2> there = raster_at(pose, world, h, render_position, time);
     return there ? vec2(float(there->x - now->x), float(now->y - there->y)) : vec2(0.0f);
   };
   const vec2 forward = toward(m.next), backward = toward(m.previous);

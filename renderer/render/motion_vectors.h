@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "core/math.h"
@@ -33,6 +34,11 @@ struct scene_motion {
   frame_pose previous, current, next;
 };
 
+// An instance's identity across times: its node, what it places, and its place among the
+// instances of that node and shape (EXT_mesh_gpu_instancing places many).
+using instance_key = std::tuple<uint32_t, int, uint32_t, uint32_t>;
+std::vector<instance_key> instance_keys(const scene& s);
+
 // The pose of `s` itself as camera `cam` sees it. Both in world space (before render space).
 frame_pose current_pose(const scene& s, const view_camera& cam);
 
@@ -44,8 +50,9 @@ frame_pose neighbour_pose(const scene& current, const scene& neighbour, const vi
                           const std::vector<uint32_t>& deformed);
 
 // (forward.u, forward.v, backward.u, backward.v) of hit h of `world` (the rendered frame, in render
-// space; render_position is the hit point there). A side whose point is unknown at that time (no
-// matching instance, behind that camera) is 0.
-vec4 hit_motion(const scene_motion& m, const scene& world, const hit& h, const dvec3& render_position);
+// space; render_position is the hit point there, found at `time` in the shutter). A side whose
+// point is unknown at that time (no matching instance, behind that camera) is 0.
+vec4 hit_motion(const scene_motion& m, const scene& world, const hit& h, const dvec3& render_position,
+                float time = 0.0f);
 
 }  // namespace kiln

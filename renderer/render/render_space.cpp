@@ -10,6 +10,8 @@ void move_to_render_space(scene& s, view_camera& cam) {
     inst.world_from_object[3] -= dvec4(shift, 0.0);
     finish_instance_transform(inst);
   }
+  for (std::vector<dmat4>& steps : s.shutter.instance_steps)
+    for (dmat4& step : steps) step[3] -= dvec4(shift, 0.0);
   for (light& l : s.lights) l.position -= shift;
   for (camera& c : s.cameras) c.world_from_camera[3] -= dvec4(shift, 0.0);
   cam.eye -= shift;

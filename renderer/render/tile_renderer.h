@@ -39,6 +39,9 @@ struct render_settings {
   // image is the same either way. Adaptive sampling traces its samples one at a time.
   bool packets = false;
   aov_set aovs;  // which outputs the film keeps beside the colour
+  // Motion blur: each camera sample gets its time in the shutter (render/sample_pattern.h), which
+  // every ray of its path keeps. Off: every ray is at time 0 (the frame, or the shutter's opening).
+  bool motion_blur = false;
   // The scene at the neighbouring frames (with the motion AOV; null: no motion, all 0).
   const scene_motion* motion = nullptr;
   // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).

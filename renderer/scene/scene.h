@@ -215,6 +215,22 @@ struct load_statistics {
   std::vector<std::string> warnings;
 };
 
+// Motion blur (--shutter): what moves while the shutter is open, at `steps` evenly spaced times
+// from its opening (time 0) to its closing (time 1). Between steps transforms and vertices are
+// interpolated linearly, as Embree interpolates them (scene/shutter_motion.h). Empty (steps 0):
+// nothing moves, and every ray sees the frame's own pose.
+struct shutter_motion {
+  uint32_t steps = 0;
+  // Per instance: its world_from_object at each step, or empty when it holds still.
+  std::vector<std::vector<dmat4>> instance_steps;
+  // Per mesh: its object-space positions (and normals, when it has them) at each step, or empty
+  // when it does not deform during the shutter.
+  std::vector<std::vector<std::vector<vec3>>> mesh_positions;
+  std::vector<std::vector<std::vector<vec3>>> mesh_normals;
+
+  bool any() const { return steps >= 2; }
+};
+
 struct scene {
   std::string source;  // file it came from
   std::vector<mesh> meshes;
@@ -233,6 +249,7 @@ struct scene {
   // stored in: zero as loaded (world space); the camera's eye once the scene is moved into
   // camera-relative render space (render/render_space.h). Positions given to the user add it.
   dvec3 render_origin{0.0};
+  shutter_motion shutter;  // what moves during the shutter; empty without --shutter
 };
 
 // World-space bounds of every instance.

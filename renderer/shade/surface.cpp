@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "scene/shutter_motion.h"
 
 namespace kiln {
 
@@ -147,17 +149,13 @@ dvec3 smooth_surface_lift(const mesh& m, const uint32_t* idx, float u, float v, 
   return lift;
 }
 
-}  // namespace
-
-surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width) {
-  const instance& inst = s.instances[h.instance_id];
-  if (inst.kind == shape_kind::quadric) return make_quadric_surface_point(s, inst, h, r, cone_width);
-  const mesh& m = s.meshes[inst.shape];
-  const uint32_t* idx = &m.indices[size_t(h.primitive_id) * 3];
-
+// The shading point of hit h on triangle `primitive` (corners idx) of mesh m placed by inst.
+surface_point make_triangle_surface_point(const scene& s, const instance& inst, const mesh& m,
+                                          uint32_t primitive, const hit& h, const ray& r, float cone_width) {
+  const uint32_t* idx = &m.indices[size_t(primitive) * 3];
   surface_point sp;
   sp.instance = h.instance_id;
-  surface_position pos = triangle_hit_position(inst, m, h.primitive_id, h.u, h.v);
+  surface_position pos = triangle_hit_position(inst, m, primitive, h.u, h.v);
   sp.position = pos.point;
   sp.position_error = pos.error;
   sp.material = inst.material;
@@ -220,6 +218,61 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
                           : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
     }
   }
+  return sp;
+}
+
+// Triangle `primitive` of a deforming mesh at `time`, as a mesh of its own three corners (held per
+// thread, valid until the next call), so that the code for still meshes shades it unchanged.
+// Tangents keep the frame's own: the shutter steps do not carry them.
+const mesh& triangle_at_time(const scene& s, uint32_t mesh_index, uint32_t primitive, float time) {
+  thread_local mesh corners;
+  const mesh& m = s.meshes[mesh_index];
+  const uint32_t* idx = &m.indices[size_t(primitive) * 3];
+  const std::array<vec3, 3> p = triangle_positions_at(s, mesh_index, idx, time);
+  corners.positions.assign(p.begin(), p.end());
+  corners.indices = {0, 1, 2};
+  auto pick = [idx](const auto& from, auto& to) {
+    to.clear();
+    if (!from.empty()) to = {from[idx[0]], from[idx[1]], from[idx[2]]};
+  };
+  corners.normals.clear();
+  if (!m.normals.empty()) {
+    const std::array<vec3, 3> n = triangle_normals_at(s, mesh_index, idx, time);
+    corners.normals.assign(n.begin(), n.end());
+  }
+  pick(m.texcoords0, corners.texcoords0);
+  pick(m.texcoords1, corners.texcoords1);
+  pick(m.colors0, corners.colors0);
+  pick(m.tangents, corners.tangents);
+  return corners;
+}
+
+// Embree interpolates a moving surface in float; the point rebuilt here may differ from the one
+// it intersected by a few ulps of the coordinates that went into it.
+vec3 interpolation_error(const surface_point& sp, const instance& inst) {
+  const vec3 t = glm::abs(vec3(dvec3(inst.world_from_object[3])));
+  const vec3 reach = glm::abs(sp.position) + vec3(std::max({t.x, t.y, t.z}));
+  return 8.0f * machine_epsilon * reach;
+}
+
+}  // namespace
+
+surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width) {
+  // A moving instance or deforming mesh is shaded where it is at the ray's time.
+  std::optional<instance> moved;
+  if (instance_moves(s, h.instance_id)) moved = instance_at(s, h.instance_id, r.time);
+  const instance& inst = moved ? *moved : s.instances[h.instance_id];
+  const bool deforms = inst.kind == shape_kind::mesh && mesh_deforms(s, inst.shape);
+  surface_point sp;
+  if (inst.kind == shape_kind::quadric)
+    sp = make_quadric_surface_point(s, inst, h, r, cone_width);
+  else if (deforms)
+    sp = make_triangle_surface_point(s, inst, triangle_at_time(s, inst.shape, h.primitive_id, r.time), 0, h,
+                                     r, cone_width);
+  else
+    sp = make_triangle_surface_point(s, inst, s.meshes[inst.shape], h.primitive_id, h, r, cone_width);
+  if (moved || deforms) sp.position_error += interpolation_error(sp, inst);
+  sp.time = r.time;
   return sp;
 }
 

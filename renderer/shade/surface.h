@@ -34,6 +34,7 @@ struct surface_point {
   uv_footprint footprint1;
   uint32_t material = 0;
   uint32_t instance = 0;   // the scene instance hit
+  float time = 0.0f;       // the ray's time in the shutter: the rays leaving this point keep it
   bool front_face = true;  // the ray arrived on glTF's front side
 };
 

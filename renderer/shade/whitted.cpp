@@ -109,6 +109,7 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
         offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
     shadow.direction = ls.direction;
     shadow.kind = ray_kind::shadow;
+    shadow.time = sp.time;
     shadow.tmax = std::isinf(ls.distance)
                       ? inf
                       : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
@@ -260,6 +261,7 @@ vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const 
   refracted.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
   refracted.direction = direction;
   refracted.kind = ray_kind::refraction;
+  refracted.time = sp.time;
   ++counts.refraction;
   const ray_cone bent = crossing.bends
                             ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
@@ -306,6 +308,7 @@ vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec
   reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
   reflected.direction = glm::normalize(direction);
   reflected.kind = ray_kind::reflection;
+  reflected.time = sp.time;
   ++counts.reflection;
   // A reflected ray stays in the medium it came from.
   path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone));
@@ -373,6 +376,7 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   ray through;
   through.direction = glm::normalize(r.direction);
   through.kind = r.kind;  // the same ray, continued behind a partly transparent surface
+  through.time = r.time;
   through.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
   ++counts.transparency;
   // The continued ray starts where this cone ends: its width so far carries on. It is still the

@@ -290,3 +290,18 @@ def test_motion_vectors_arrive_as_forward_and_backward_arrays_equal_to_the_exr(t
     moving = walk.aovs["beauty"][:, :, 3] > 0
     assert np.abs(walk.aovs["forward"][moving]).max() > 0.1  # the figure walks
     assert not walk.aovs["forward"][~moving].any()  # background is 0
+
+
+@pytest.mark.skipif(not os.path.exists(CESIUM_MAN), reason="no shared sample assets")
+def test_motion_blur_takes_the_shutter_and_equals_the_cli(tmp_path):
+    view = dict(width=32, height=32, quiet=True, frame=10, spp=4)
+    sharp = kiln.render(CESIUM_MAN, **view)
+    blurred = kiln.render(CESIUM_MAN, shutter="-0.5,0.5", **view)
+    out = str(tmp_path / "blurred.exr")
+    assert cli(["render", CESIUM_MAN, "-o", out, "--frame", "10", "--spp", "4", "--shutter", "-0.5,0.5",
+                "--width", "32", "--height", "32", "-q"]).returncode == 0
+    assert_arrays_match_exr(blurred, out)
+    # The walking figure blurs.
+    assert not np.array_equal(sharp.aovs["beauty"], blurred.aovs["beauty"])
+    with pytest.raises(kiln.InputError, match="must open before it closes"):
+        kiln.render(CESIUM_MAN, shutter="0.5,-0.5", **view)

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "geometry/quadric.h"
 #include "scene/alpha_coverage.h"
+#include "scene/shutter_motion.h"
 
 namespace kiln {
 
@@ -37,6 +38,7 @@ struct embree_accelerator::state {
   int64_t built_bytes = 0;                      // what its build added to Embree's memory
   int64_t peak_bytes = 0;                       // and the most the build held above its start
   bool has_quadrics = false;  // rtcIntersect1M cannot carry the world ray quadric callbacks read
+  bool moving = false;        // built with motion blur: every frame is built anew
 
   void throw_if_failed(const std::string& during) const { errors.throw_if_any(during); }
 
@@ -85,8 +87,11 @@ void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
 // With alpha_filter the mask rule of the instances' materials is applied to every candidate hit.
 // A moving mesh (refit) gets a scene that refits its BVH when its vertices change: Embree honours
 // the geometry's RTC_BUILD_QUALITY_REFIT only in a scene of low build quality.
+// With `steps` (motion blur) the mesh gets one vertex buffer per shutter step, which Embree
+// interpolates linearly by the ray's time.
 RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_filter,
-                          const embree_options& options, bool refit = false) {
+                          const embree_options& options, bool refit = false,
+                          const std::vector<std::vector<vec3>>* steps = nullptr) {
   RTCScene mesh_scene = rtcNewScene(device);
   apply_build_options(mesh_scene, options);
   if (refit) {
@@ -95,9 +100,15 @@ RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_fi
   }
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(geometry, refit ? RTC_BUILD_QUALITY_REFIT : embree_quality(options.quality));
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(float) * 3, m.positions.size()));
-  if (vertices) std::memcpy(vertices, m.positions.data(), m.positions.size() * sizeof(vec3));
+  const size_t step_count = steps ? steps->size() : 1;
+  if (steps) rtcSetGeometryTimeStepCount(geometry, unsigned(step_count));
+  for (size_t k = 0; k < step_count; ++k) {
+    const std::vector<vec3>& positions = steps ? (*steps)[k] : m.positions;
+    auto* vertices =
+        static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, unsigned(k),
+                                                    RTC_FORMAT_FLOAT3, sizeof(float) * 3, positions.size()));
+    if (vertices) std::memcpy(vertices, positions.data(), positions.size() * sizeof(vec3));
+  }
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(uint32_t) * 3, m.triangle_count()));
   if (indices) std::memcpy(indices, m.indices.data(), m.indices.size() * sizeof(uint32_t));
@@ -113,11 +124,18 @@ RTCScene build_mesh_scene(RTCDevice device, const mesh& m, const scene* alpha_fi
   return mesh_scene;
 }
 
-void set_instance_transform(RTCGeometry geometry, const dmat4& world_from_object) {
+void set_instance_transform(RTCGeometry geometry, const dmat4& world_from_object, unsigned step = 0) {
   float columns[12];
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 3; ++r) columns[c * 3 + r] = float(world_from_object[c][r]);
-  rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns);
+  rtcSetGeometryTransform(geometry, step, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, columns);
+}
+
+// A moving instance's transform at every shutter step; Embree interpolates the matrices linearly
+// by the ray's time (scene/shutter_motion.h does the same for shading).
+void set_instance_motion(RTCGeometry geometry, const std::vector<dmat4>& steps) {
+  rtcSetGeometryTimeStepCount(geometry, unsigned(steps.size()));
+  for (size_t k = 0; k < steps.size(); ++k) set_instance_transform(geometry, steps[k], unsigned(k));
 }
 
 RTCRay to_embree(const ray& r) {
@@ -132,7 +150,7 @@ RTCRay to_embree(const ray& r) {
   out.tfar = r.tmax;
   out.mask = ~0u;
   out.flags = 0;
-  out.time = 0.0f;
+  out.time = r.time;
   return out;
 }
 
@@ -154,7 +172,10 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
   h.primitive_id = query.hit.primID;
   h.u = query.hit.u;
   h.v = query.hit.v;
-  const instance& inst = world.instances[h.instance_id];
+  // A moving instance's normal is the one of its transform at the ray's time.
+  std::optional<instance> moved;
+  if (instance_moves(world, h.instance_id)) moved = instance_at(world, h.instance_id, r.time);
+  const instance& inst = moved ? *moved : world.instances[h.instance_id];
   if (inst.kind == shape_kind::quadric) {
     // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
     vec2 uv;
@@ -191,10 +212,12 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
   for (const instance& inst : s.instances)
     (inst.kind == shape_kind::quadric ? used_quadric : used)[inst.shape] = true;
   const std::vector<bool> masked = meshes_needing_alpha_filter(s);
-  for (size_t i = 0; i < s.meshes.size(); ++i)
+  state_->moving = s.shutter.any();
+  for (uint32_t i = 0; i < s.meshes.size(); ++i)
     if (used[i] && s.meshes[i].triangle_count() > 0)
       state_->mesh_scenes[i] =
-          build_mesh_scene(state_->device, s.meshes[i], masked[i] ? &s : nullptr, options_);
+          build_mesh_scene(state_->device, s.meshes[i], masked[i] ? &s : nullptr, options_, false,
+                           mesh_deforms(s, i) ? &s.shutter.mesh_positions[i] : nullptr);
   state_->throw_if_failed("building mesh BVHs");
   // Each quadric definition is one user-geometry scene, however many nodes place it.
   state_->quadric_scenes.assign(s.quadrics.size(), nullptr);
@@ -219,7 +242,10 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
     if (!shape) continue;
     RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geometry, shape);
-    set_instance_transform(geometry, inst.world_from_object);
+    if (instance_moves(s, uint32_t(i)))
+      set_instance_motion(geometry, s.shutter.instance_steps[i]);
+    else
+      set_instance_transform(geometry, inst.world_from_object);
     rtcCommitGeometry(geometry);
     // The geometry id is the instance index, so a hit names its instance directly.
     rtcAttachGeometryByID(state_->top, geometry, unsigned(i));
@@ -237,6 +263,8 @@ embree_accelerator::~embree_accelerator() = default;
 bool embree_accelerator::update(const std::vector<uint32_t>& changed_meshes) {
   const scene& s = scene_;
   state& st = *state_;
+  // Motion blur's time steps are built in, not refitted: a moving scene is built anew each frame.
+  if (st.moving || s.shutter.any()) return false;
   if (s.meshes.size() != st.mesh_scenes.size() || s.instances.size() != st.placed.size()) return false;
   for (size_t i = 0; i < s.instances.size(); ++i)
     if (st.placed[i] != std::make_pair(s.instances[i].kind, s.instances[i].shape)) return false;

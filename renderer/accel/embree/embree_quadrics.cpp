@@ -4,6 +4,7 @@
 
 #include "core/float_bits.h"
 #include "geometry/quadric.h"
+#include "scene/shutter_motion.h"
 
 namespace kiln {
 
@@ -23,12 +24,17 @@ void quadric_bounds_callback(const RTCBoundsFunctionArguments* args) {
 
 // The quadric hit of the world ray within [tnear, tfar] of the instance Embree is visiting: the
 // closest, or with any_hit (occlusion) whichever is found first.
+// A moving instance is taken back to object space by its transform at the ray's time.
 std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const void* user, float tnear,
                                      float tfar, bool any_hit) {
   const auto* context = reinterpret_cast<const kiln_intersect_context*>(embree_context);
-  const instance& inst = context->world->instances[embree_context->instID[0]];
-  const dvec3 o = transform_point(inst.object_from_world, dvec3(context->world_ray->origin));
-  const dvec3 d = transform_vector(inst.object_from_world, dvec3(context->world_ray->direction));
+  const scene& world = *context->world;
+  const uint32_t id = embree_context->instID[0];
+  const dmat4 object_from_world = instance_moves(world, id)
+                                      ? instance_at(world, id, context->world_ray->time).object_from_world
+                                      : world.instances[id].object_from_world;
+  const dvec3 o = transform_point(object_from_world, dvec3(context->world_ray->origin));
+  const dvec3 d = transform_vector(object_from_world, dvec3(context->world_ray->direction));
   return intersect_quadric(*static_cast<const prepared_quadric*>(user), o, d, tnear, tfar, any_hit);
 }
 

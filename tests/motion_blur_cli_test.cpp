@@ -1,0 +1,182 @@
+// Motion blur end to end (`kiln render --shutter OPEN,CLOSE`): the alpha of a moving edge against
+// its closed-form coverage under an orthographic camera that maps one world unit to 32 pixels
+// (a sliding quad, a morph target's moving edge), a spinning square whose blurred area stays its
+// own (and shrinks when two steps interpolate a rotation linearly), a still scene unchanged by a
+// shutter, the same bytes for any thread count and tiling, and the refusals.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "support/animated_gltf.h"
+#include "support/channel_exr.h"
+#include "support/run_kiln.h"
+
+namespace kiln {
+namespace {
+
+using testing::channel_exr;
+using testing::render_float_exr;
+using testing::run_kiln;
+using testing::scratch_folder;
+using testing::sliding_and_morphing;
+using testing::spinning;
+
+constexpr int side = 64;
+constexpr double pixels_per_unit = side / 2.0;  // xmag = ymag = 1
+// Frame 3 at 5 fps is t = 0.4 s; the shutter -0.5,0.5 is open over 0.3..0.5 s.
+const std::vector<std::string> blurred_frame = {"--fps",     "5",        "--frame", "3",
+                                                "--shutter", "-0.5,0.5", "--spp",   "256"};
+constexpr double shutter_open = 0.3, shutter_close = 0.5;
+
+// The closed form: the share of pixel column px (world x over [a, a + w]) that the span
+// [left(t), right(t)] covers, averaged over the open shutter (midpoint rule, 20000 times).
+double column_coverage(int px, const std::function<double(double)>& left,
+                       const std::function<double(double)>& right) {
+  const double w = 1.0 / pixels_per_unit, a = -1.0 + px * w;
+  const int n = 20000;
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double t = shutter_open + (k + 0.5) / n * (shutter_close - shutter_open);
+    sum += std::clamp(std::min(a + w, right(t)) - std::max(a, left(t)), 0.0, w) / w;
+  }
+  return sum / n;
+}
+
+// Checks rows [y0, y1) of the alpha channel against the closed form, column by column: each pixel
+// within per_pixel (256 samples of an edge), each column's mean within per_column.
+void expect_profile(const channel_exr& image, int y0, int y1, const std::function<double(double)>& left,
+                    const std::function<double(double)>& right, int& partial) {
+  const double per_pixel = 0.15, per_column = 0.025;
+  for (int x = 0; x < side; ++x) {
+    SCOPED_TRACE("column " + std::to_string(x));
+    const double expected = column_coverage(x, left, right);
+    double mean = 0.0;
+    for (int y = y0; y < y1; ++y) {
+      const float alpha = image.at(size_t(y) * side + size_t(x), "A");
+      EXPECT_NEAR(alpha, expected, per_pixel) << "row " << y;
+      mean += alpha;
+    }
+    mean /= (y1 - y0);
+    EXPECT_NEAR(mean, expected, per_column);
+    // Fully covered or empty columns are exact: every sample agrees.
+    if (expected == 0.0 || expected == 1.0) EXPECT_EQ(mean, expected);
+    partial += expected > 0.05 && expected < 0.95;
+  }
+}
+
+TEST(motion_blur_cli, a_sliding_and_a_morphing_edge_blur_as_the_closed_form_says) {
+  const std::string dir = scratch_folder("blur_slide_morph");
+  const channel_exr image =
+      render_float_exr(sliding_and_morphing(dir), dir + "/out.exr", side, side, blurred_frame);
+  ASSERT_EQ(image.count(), size_t(side * side));
+  int partial = 0;
+  {
+    SCOPED_TRACE("slider");  // rows 0..31: x from t - 1 to t
+    expect_profile(
+        image, 0, side / 2, [](double t) { return t - 1.0; }, [](double t) { return t; }, partial);
+  }
+  {
+    SCOPED_TRACE("morph");  // rows 32..63: x from -1 to -0.5 + 1.5 t (the weight is t)
+    expect_profile(
+        image, side / 2, side, [](double) { return -1.0; }, [](double t) { return -0.5 + 1.5 * t; }, partial);
+  }
+  // Each moving edge spreads over several columns (6.4 and 9.6 pixels of motion).
+  EXPECT_GE(partial, 18);
+}
+
+double alpha_sum(const channel_exr& image) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.count(); ++i) sum += image.at(i, "A");
+  return sum;
+}
+
+TEST(motion_blur_cli, a_spinning_square_keeps_its_area_and_blurs_only_where_it_turns) {
+  const std::string dir = scratch_folder("blur_spin");
+  const std::string scene = spinning(dir);
+  const channel_exr image = render_float_exr(scene, dir + "/out.exr", side, side, blurred_frame);
+  ASSERT_EQ(image.count(), size_t(side * side));
+  // A rotation keeps the area at every time: 1 unit² = 1024 pixels of alpha. The samples' noise on
+  // the blurred rim is about 1 pixel; the default steps' linear interpolation loses about 1 more.
+  const double area = pixels_per_unit * pixels_per_unit;
+  EXPECT_NEAR(alpha_sum(image), area, 4.0);
+  // Inside the inscribed circle every time covers the pixel, outside the circumscribed one none.
+  int inside = 0, outside = 0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const double r = std::hypot(x + 0.5 - side / 2.0, y + 0.5 - side / 2.0) / pixels_per_unit;
+      const float alpha = image.at(size_t(y) * side + size_t(x), "A");
+      if (r < 0.5 - 0.75 / pixels_per_unit) {
+        EXPECT_EQ(alpha, 1.0f) << x << "," << y;
+        ++inside;
+      } else if (r > std::sqrt(0.5) + 0.75 / pixels_per_unit) {
+        EXPECT_EQ(alpha, 0.0f) << x << "," << y;
+        ++outside;
+      }
+    }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 1500);
+  // Two steps interpolate the 18° turn as matrices: halfway, the square shrinks by cos 9°, and the
+  // area by 2/3 + cos(18°)/3 on average over the shutter (1.6%, 17 pixels).
+  std::vector<std::string> two_steps = blurred_frame;
+  two_steps.insert(two_steps.end(), {"--motion-steps", "2"});
+  const channel_exr coarse = render_float_exr(scene, dir + "/two.exr", side, side, two_steps);
+  EXPECT_NEAR(alpha_sum(coarse), area * (2.0 / 3.0 + std::cos(18.0 * M_PI / 180.0) / 3.0), 4.0);
+}
+
+TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_and_tiling) {
+  const std::string dir = scratch_folder("blur_threads");
+  const std::string scene = sliding_and_morphing(dir);
+  std::vector<std::string> one = blurred_frame, two = blurred_frame;
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2", "--tile-size", "7"});
+  const channel_exr a = render_float_exr(scene, dir + "/one.exr", side, side, one);
+  const channel_exr b = render_float_exr(scene, dir + "/two.exr", side, side, two);
+  ASSERT_FALSE(a.pixels.empty());
+  EXPECT_EQ(a.pixels, b.pixels);
+}
+
+TEST(motion_blur_cli, a_still_scene_renders_the_same_with_a_shutter) {
+  const std::string dir = scratch_folder("blur_still");
+  const std::string scene = testing::copy_scene(dir);
+  const channel_exr still = render_float_exr(scene, dir + "/still.exr", 48, 48, {"--spp", "4"});
+  const channel_exr open =
+      render_float_exr(scene, dir + "/open.exr", 48, 48, {"--spp", "4", "--shutter", "-1,1"});
+  ASSERT_FALSE(still.pixels.empty());
+  EXPECT_EQ(still.pixels, open.pixels);
+}
+
+TEST(motion_blur_cli, what_cannot_blur_is_refused_with_one_line) {
+  const std::string dir = scratch_folder("blur_refused");
+  const std::string scene = sliding_and_morphing(dir);
+  const std::string out = dir + "/out.exr";
+  struct refusal {
+    std::vector<std::string> extra;
+    std::string says;
+  };
+  const std::vector<refusal> refusals = {
+      {{"--shutter", "0.5,-0.5"}, "--shutter: the shutter must open before it closes"},
+      {{"--shutter", "0,nan"}, "--shutter: expects two finite frame offsets"},
+      {{"--shutter", "-1,1", "--motion-steps", "1"}, "--motion-steps"},
+      {{"--shutter", "-1,1", "--adaptive-threshold", "0.1"},
+       "adaptive supersampling traces its corners at one time"},
+      {{"--shutter", "-1,1", "--accel", "grid"}, "needs --accel embree"},
+  };
+  for (const refusal& r : refusals) {
+    SCOPED_TRACE(r.says);
+    std::vector<std::string> args = {"render", scene, "-o", out, "--fps", "5", "--frame", "3", "-q"};
+    args.insert(args.end(), r.extra.begin(), r.extra.end());
+    const auto result = run_kiln(args);
+    EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+    EXPECT_NE(result.stderr_text.find(r.says), std::string::npos) << result.stderr_text;
+    EXPECT_EQ(testing::lines(result.stderr_text).size(), 1u) << result.stderr_text;
+    EXPECT_FALSE(std::ifstream(out).good());
+  }
+}
+
+}  // namespace
+}  // namespace kiln
