@@ -1,8 +1,9 @@
 // Motion blur end to end (`kiln render --shutter OPEN,CLOSE`): the alpha of a moving edge against
 // its closed-form coverage under an orthographic camera that maps one world unit to 32 pixels
 // (a sliding quad, a morph target's moving edge), a spinning square whose blurred area stays its
-// own (and shrinks when two steps interpolate a rotation linearly), a still scene unchanged by a
-// shutter, the same bytes for any thread count and tiling, and the refusals.
+// own (and shrinks when two steps interpolate a rotation linearly), a sliding glTF camera over a
+// still edge, a still scene unchanged by a shutter, the same bytes for any thread count and tiling, and the
+// refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +20,10 @@
 namespace kiln {
 namespace {
 
+using testing::add_camera;
+using testing::animate;
 using testing::channel_exr;
+using testing::gltf_builder;
 using testing::render_float_exr;
 using testing::run_kiln;
 using testing::scratch_folder;
@@ -104,6 +108,9 @@ TEST(motion_blur_cli, a_spinning_square_keeps_its_area_and_blurs_only_where_it_t
   // the blurred rim is about 1 pixel; the default steps' linear interpolation loses about 1 more.
   const double area = pixels_per_unit * pixels_per_unit;
   EXPECT_NEAR(alpha_sum(image), area, 4.0);
+  // An 18° turn takes 5 steps (4.5° apart) to stay within 0.1%; the shutter is open 0.2 s.
+  EXPECT_EQ(image.spec.get_string_attribute("kiln/shutter_steps"), "5");
+  EXPECT_FLOAT_EQ(image.spec.get_float_attribute("ExposureTime"), 0.2f);  // OpenImageIO reads expTime so
   // Inside the inscribed circle every time covers the pixel, outside the circumscribed one none.
   int inside = 0, outside = 0;
   for (int y = 0; y < side; ++y)
@@ -126,6 +133,29 @@ TEST(motion_blur_cli, a_spinning_square_keeps_its_area_and_blurs_only_where_it_t
   two_steps.insert(two_steps.end(), {"--motion-steps", "2"});
   const channel_exr coarse = render_float_exr(scene, dir + "/two.exr", side, side, two_steps);
   EXPECT_NEAR(alpha_sum(coarse), area * (2.0 / 3.0 + std::cos(18.0 * M_PI / 180.0) / 3.0), 4.0);
+  EXPECT_EQ(coarse.spec.get_string_attribute("kiln/shutter_steps"), "2");
+}
+
+// The top-half quad of sliding_and_morphing held still, seen by a glTF camera sliding +1 in x a
+// second: the edge blurs as if the quad slid the other way.
+std::string still_quad_sliding_camera(const std::string& folder) {
+  gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3})}});
+  animate(b, add_camera(b), "translation", {0, 0, 5}, {1, 0, 5});
+  return b.write(folder + "/camera.gltf");
+}
+
+TEST(motion_blur_cli, a_sliding_camera_blurs_a_still_edge_the_other_way) {
+  const std::string dir = scratch_folder("blur_camera");
+  const channel_exr image =
+      render_float_exr(still_quad_sliding_camera(dir), dir + "/out.exr", side, side, blurred_frame);
+  ASSERT_EQ(image.count(), size_t(side * side));
+  int partial = 0;
+  // In the view the quad spans x from -1 - t to -t.
+  expect_profile(
+      image, 0, side / 2, [](double t) { return -1.0 - t; }, [](double t) { return -t; }, partial);
+  EXPECT_GE(partial, 5);
+  for (size_t i = size_t(side / 2) * side; i < image.count(); ++i) EXPECT_EQ(image.at(i, "A"), 0.0f) << i;
 }
 
 TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_and_tiling) {

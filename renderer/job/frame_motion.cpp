@@ -66,6 +66,7 @@ void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* 
   const std::vector<shutter_step> steps = pose_shutter_steps(asset, options, time, previous, last_step);
   pose_frame_and_neighbours(asset, options, time, previous, posed, p);
   attach_shutter_motion(p.world, steps);
+  p.camera_steps = shutter_camera_steps(options, p.world, steps);
   if (p.world.shutter.any()) {
     p.shutter_memory = std::make_shared<memory_charge>(p.memory.get());
     p.shutter_memory->add(shutter_motion_bytes(p.world.shutter), options.input, "the shutter's motion steps");

@@ -213,6 +213,13 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
       for (auto& attribute : cryptomatte_attributes(*layer))
         metadata.attributes.push_back(std::move(attribute));
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
+  if (options.shutter) {
+    // ImfStandardAttributes' expTime: how long the shutter is open, in seconds.
+    const double open_frames = options.shutter->second - options.shutter->first;
+    metadata.float_attributes.emplace_back("expTime", float(open_frames * motion_frame_seconds(options)));
+    const size_t steps = std::max<size_t>(prepared.world.shutter.steps, prepared.camera_steps.size());
+    metadata.attributes.emplace_back("kiln/shutter_steps", std::to_string(steps));
+  }
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
   return metadata;
 }
@@ -293,6 +300,7 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
   }
   // Every client traces in camera-relative render space (render/render_space.h).
   move_to_render_space(p.world, p.cam);
+  for (view_camera& step : p.camera_steps) step.eye -= p.world.render_origin;
 }
 
 prepared_scene prepare_scene(const render_options& options, const std::atomic<bool>* cancel,
@@ -397,6 +405,7 @@ render_job_result run_stoppable_job(const render_job& job, const std::atomic<boo
   render_settings settings = make_render_settings(options);
   settings.crop = job_region(options, prepared.cam);
   settings.motion = prepared.motion.get();
+  if (!prepared.camera_steps.empty()) settings.camera_steps = &prepared.camera_steps;
   charge_render_memory(prepared, settings);
 
   stage = "building the acceleration structure";

@@ -50,6 +50,8 @@ struct prepared_scene {
   std::shared_ptr<scene_motion> motion;
   std::shared_ptr<memory_charge> motion_memory;   // what motion holds, charged to memory
   std::shared_ptr<memory_charge> shutter_memory;  // what world.shutter holds (motion blur)
+  // A glTF camera moving during the shutter: the view at each step, in render space; else empty.
+  std::vector<view_camera> camera_steps;
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

@@ -61,6 +61,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   render_settings settings = make_render_settings(options);
   settings.crop = job_region(options, p.cam);
   settings.motion = p.motion.get();
+  if (!p.camera_steps.empty()) settings.camera_steps = &p.camera_steps;
   // The film, pyramids and backend of one frame; the next frame's replace them.
   if (!st.charged) charge_render_memory(p, settings);
   st.charged = true;

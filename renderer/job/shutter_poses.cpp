@@ -4,6 +4,7 @@
 #include <map>
 
 #include "job/frame_motion.h"
+#include "job/render_job_steps.h"
 
 namespace kiln {
 
@@ -13,8 +14,11 @@ namespace {
 // fraction of the moving shape's size.
 constexpr double interpolation_tolerance = 1e-3;
 
-shutter_step record_step(const scene& posed, const std::vector<uint32_t>& deformed) {
+shutter_step record_step(const render_options& options, const scene& posed,
+                         const std::vector<uint32_t>& deformed) {
   shutter_step step;
+  std::string description;
+  step.view = job_view(options, posed, description);
   step.keys = instance_keys(posed);
   for (const instance& inst : posed.instances) {
     step.world_from_object.push_back(inst.world_from_object);
@@ -80,7 +84,7 @@ std::vector<shutter_step> pose_shutter_steps(gltf_sequence& asset, const render_
   auto pose_at = [&](double u) {
     std::vector<uint32_t> deformed;
     scene posed = asset.pose(open + u * (close - open), chain, &deformed);
-    shutter_step step = record_step(posed, deformed);
+    shutter_step step = record_step(options, posed, deformed);
     last = std::move(posed);  // what chain pointed to has given up its parts
     chain = &last;
     return step;
@@ -159,6 +163,22 @@ void attach_shutter_motion(scene& world, const std::vector<shutter_step>& steps)
     moves = true;
   }
   if (moves) world.shutter = std::move(motion);
+}
+
+std::vector<view_camera> shutter_camera_steps(const render_options& options, const scene& world,
+                                              const std::vector<shutter_step>& steps) {
+  // Only a glTF camera follows the animation; the default camera frames each pose anew, which is
+  // not a camera moving.
+  if (options.look_from || (options.camera.empty() && world.cameras.empty()) || steps.size() < 2) return {};
+  std::vector<view_camera> views;
+  for (const shutter_step& step : steps) views.push_back(step.view);
+  const auto same = [&](const view_camera& v) {
+    return v.eye == views[0].eye && v.view == views[0].view && v.up == views[0].up &&
+           v.left == views[0].left && v.right_edge == views[0].right_edge && v.bottom == views[0].bottom &&
+           v.top == views[0].top && v.distance == views[0].distance;
+  };
+  if (std::all_of(views.begin(), views.end(), same)) return {};
+  return views;
 }
 
 uint64_t shutter_motion_bytes(const shutter_motion& motion) {

@@ -19,6 +19,7 @@ struct shutter_step {
   std::vector<bounds3> shape_bounds;     // per instance: its shape's object-space bounds
   // Per mesh: its positions and normals when the step deformed it (a skin or morph), else empty.
   std::vector<std::vector<vec3>> positions, normals;
+  view_camera view;  // the job's view of the step (world space)
 };
 
 // The fewest steps the default tries, and the most: 2, 3, 5, ..., 33.
@@ -35,6 +36,11 @@ std::vector<shutter_step> pose_shutter_steps(gltf_sequence& asset, const render_
 // Keeps in world.shutter what moves among the steps, matched to world's instances by instance_key
 // (one a step lacks holds still there); leaves it empty when nothing moves.
 void attach_shutter_motion(scene& world, const std::vector<shutter_step>& steps);
+
+// The job's view at each step when it is a glTF camera that moves during the shutter (camera
+// blur), in world space; empty otherwise. A look-at or default camera holds still.
+std::vector<view_camera> shutter_camera_steps(const render_options& options, const scene& world,
+                                              const std::vector<shutter_step>& steps);
 
 // Bytes world.shutter holds.
 uint64_t shutter_motion_bytes(const shutter_motion& motion);

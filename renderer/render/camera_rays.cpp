@@ -51,10 +51,14 @@ void make_camera_rays(camera_ray_batch& b, const sample_run& run, const view_cam
     src.offset = pixel_sample_offset(settings.random_samples, uint32_t(src.x), uint32_t(src.y), src.sample,
                                      uint32_t(spp));
     src.cone = cone;
-    ray r = generate_camera_ray(cam, src.x + double(src.offset.x), src.y + double(src.offset.y));
-    if (settings.motion_blur)
-      r.time =
-          sample_time(settings.random_samples, uint32_t(src.x), uint32_t(src.y), src.sample, uint32_t(spp));
+    const float time = settings.motion_blur ? sample_time(settings.random_samples, uint32_t(src.x),
+                                                          uint32_t(src.y), src.sample, uint32_t(spp))
+                                            : 0.0f;
+    const double px = src.x + double(src.offset.x), py = src.y + double(src.offset.y);
+    ray r = settings.motion_blur && settings.camera_steps
+                ? generate_camera_ray(view_at_time(*settings.camera_steps, time), px, py)
+                : generate_camera_ray(cam, px, py);
+    r.time = time;
     b.rays.push_back(r);
     b.sources.push_back(src);
   }

@@ -42,6 +42,9 @@ struct render_settings {
   // Motion blur: each camera sample gets its time in the shutter (render/sample_pattern.h), which
   // every ray of its path keeps. Off: every ray is at time 0 (the frame, or the shutter's opening).
   bool motion_blur = false;
+  // With motion blur, a camera that moves during the shutter: its views at the shutter's evenly
+  // spaced steps (render/view_camera.h: view_at_time); null: the camera holds still.
+  const std::vector<view_camera>* camera_steps = nullptr;
   // The scene at the neighbouring frames (with the motion AOV; null: no motion, all 0).
   const scene_motion* motion = nullptr;
   // The Cryptomatte id of each glTF node and material (with the crypto_* AOVs).

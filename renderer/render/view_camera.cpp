@@ -1,10 +1,12 @@
 #include "render/view_camera.h"
 
 #include <cmath>
+#include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
 #include "core/message_text.h"
 #include "scene/coordinate_range.h"
+#include "scene/shutter_motion.h"
 
 namespace kiln {
 
@@ -123,6 +125,30 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
                       "the scene's bounds reach " + format_coordinate(max_abs_coordinate(scene_bounds)) +
                           ", too far to frame (give --look-from and --look-at)");
   return make_look_at_camera(eye, centre, up, yfov, width, height);
+}
+
+view_camera view_at_time(const std::vector<view_camera>& steps, float time) {
+  if (steps.size() < 2) return steps.empty() ? view_camera() : steps.front();
+  const shutter_interval at = interval_at(uint32_t(steps.size()), time);
+  const view_camera& a = steps[at.step];
+  const view_camera& b = steps[at.step + 1];
+  const double f = at.fraction;
+  auto mix = [f](double x, double y) { return x + f * (y - x); };
+  view_camera cam = a;
+  cam.eye = a.eye + f * (b.eye - a.eye);
+  // (right, up, -view) is a rotation: the camera's own frame, as glTF places it.
+  const glm::dquat qa = glm::quat_cast(dmat3(a.right, a.up, -a.view));
+  const glm::dquat qb = glm::quat_cast(dmat3(b.right, b.up, -b.view));
+  const dmat3 frame = glm::mat3_cast(glm::slerp(qa, qb, f));
+  cam.right = frame[0];
+  cam.up = frame[1];
+  cam.view = -frame[2];
+  cam.left = mix(a.left, b.left);
+  cam.right_edge = mix(a.right_edge, b.right_edge);
+  cam.bottom = mix(a.bottom, b.bottom);
+  cam.top = mix(a.top, b.top);
+  cam.distance = mix(a.distance, b.distance);
+  return cam;
 }
 
 ray generate_camera_ray(const view_camera& cam, double px, double py) {

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/ray.h"
 #include "scene/scene.h"
@@ -34,6 +35,11 @@ view_camera make_gltf_camera(const camera& c, int width, int height);
 // The default when a file has no camera: looks along -Z at the centre of the scene bounds from
 // far enough that the bounding sphere fills a 45° vertical field of view.
 view_camera make_default_camera(const bounds3& scene_bounds, int width, int height);
+
+// The camera at `time` in the shutter (motion blur) among `steps` views evenly spaced over it: the
+// eye and the window interpolated linearly, the orientation by shortest-path slerp, so the camera
+// turns rigidly between steps. The views share projection and image size.
+view_camera view_at_time(const std::vector<view_camera>& steps, float time);
 
 // The ray through image position (px, py) in pixels, (0, 0) at the top-left corner of the image
 // and (width, height) at the bottom-right; pixel (i, j) has its centre at (i + 0.5, j + 0.5).
