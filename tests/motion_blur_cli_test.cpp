@@ -158,6 +158,42 @@ TEST(motion_blur_cli, a_sliding_camera_blurs_a_still_edge_the_other_way) {
   for (size_t i = size_t(side / 2) * side; i < image.count(); ++i) EXPECT_EQ(image.at(i, "A"), 0.0f) << i;
 }
 
+// A KILN_quadric sphere of radius 0.25 sliding +1 in x a second from (-0.5, 0.5): Embree moves its
+// instance, and the user geometry takes each ray back to object space at the ray's time.
+std::string sliding_sphere(const std::string& folder) {
+  gltf_builder b;
+  b.add_mesh({{0, 0, -9}, {0.01f, 0, -9}, {0, 0.01f, -9}}, {0, 1, 2});  // the builder needs a buffer
+  b.doc["extensionsUsed"] = {"KILN_quadric"};
+  b.doc["extensions"]["KILN_quadric"]["primitives"] = {{{"kind", "sphere"}, {"radius", 0.25}}};
+  const int sphere =
+      b.add_node({{"translation", {-0.5, 0.5, 0}}, {"extensions", {{"KILN_quadric", {{"primitive", 0}}}}}});
+  animate(b, sphere, "translation", {-0.5f, 0.5f, 0}, {0.5f, 0.5f, 0});
+  add_camera(b);
+  return b.write(folder + "/sphere.gltf");
+}
+
+TEST(motion_blur_cli, a_sliding_sphere_quadric_keeps_its_area_and_blurs_along_its_path) {
+  const std::string dir = scratch_folder("blur_sphere");
+  const channel_exr image =
+      render_float_exr(sliding_sphere(dir), dir + "/out.exr", side, side, blurred_frame);
+  ASSERT_EQ(image.count(), size_t(side * side));
+  const double r = 0.25;
+  EXPECT_NEAR(alpha_sum(image), M_PI * r * r * pixels_per_unit * pixels_per_unit, 3.0);
+  // Its centre runs over x -0.2..0 at y 0.5: on that row the pixels within x -0.22..0.02 are
+  // covered at every time, and no pixel past x -0.48 or 0.28 is ever covered.
+  const int row = int((1.0 - 0.5) * pixels_per_unit);
+  int partial = 0;
+  for (int x = 0; x < side; ++x) {
+    const double centre = -1.0 + (x + 0.5) / pixels_per_unit;
+    const float alpha = image.at(size_t(row) * side + size_t(x), "A");
+    if (centre > -0.22 && centre < 0.02) EXPECT_EQ(alpha, 1.0f) << x;
+    for (int y = 0; y < side; ++y)
+      if (centre < -0.48 || centre > 0.28) EXPECT_EQ(image.at(size_t(y) * side + size_t(x), "A"), 0.0f) << x;
+    partial += alpha > 0.05f && alpha < 0.95f;
+  }
+  EXPECT_GE(partial, 8);  // 6.4 pixels of motion at each side
+}
+
 TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_and_tiling) {
   const std::string dir = scratch_folder("blur_threads");
   const std::string scene = sliding_and_morphing(dir);
