@@ -212,6 +212,13 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
     if (layer)
       for (auto& attribute : cryptomatte_attributes(*layer))
         metadata.attributes.push_back(std::move(attribute));
+  if (prepared.colour.converts()) {
+    // OpenImageIO reads oiio:ColorSpace from an EXR as the image's colour space; colorspace is the
+    // name other tools (and the issue) ask for. Both hold the config's name for the space.
+    metadata.attributes.emplace_back("colorspace", prepared.colour.name);
+    metadata.attributes.emplace_back("oiio:ColorSpace", prepared.colour.name);
+    for (size_t i = 0; i < 8; ++i) metadata.chromaticities[i] = float(prepared.colour.primaries.xy[i]);
+  }
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
   return metadata;
@@ -266,6 +273,8 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
     p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
     p.world.env.intensity = options.environment_intensity;
   }
+  // Once the environment map is in: every colour the file and options give is linear Rec.709.
+  apply_working_space(p.world, p.colour, p.memory.get());
   if (warn) {
     for (const std::string& warning : p.world.stats.warnings) warn("warning: " + warning);
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
@@ -300,6 +309,8 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   check_asset_file(options.input);
   prepared_scene p;
   p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
+  p.colour = resolve_working_space(options);            // a bad config or space fails before the asset loads
+  if (!options.preview.empty()) preview_view(options);  // and so does a bad display or view
   const auto load_start = std::chrono::steady_clock::now();
   gltf_sequence asset(options.input, job_load_options(options, cancel, p.memory.get()));
   pose_job_frame(asset, options, nullptr, nullptr, p);
@@ -431,7 +442,10 @@ void write_job_outputs(const render_job_result& result, const render_options& op
   }
   // From the file as written, so the preview shows exactly what the EXR holds.
   try {
-    if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
+    if (!options.preview.empty()) {
+      const std::optional<display_transform> view = preview_view(options);
+      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr);
+    }
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the preview");
   }

@@ -14,6 +14,7 @@
 #include "core/memory_budget.h"
 #include "io/exr/exr_writer.h"
 #include "job/render_options.h"
+#include "job/working_space.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
@@ -49,6 +50,7 @@ struct prepared_scene {
   // With the motion AOV: the scene at the neighbouring frames (job/frame_motion.h); else null.
   std::shared_ptr<scene_motion> motion;
   std::shared_ptr<memory_charge> motion_memory;  // what motion holds, charged to memory
+  working_space colour;  // --working-space, resolved before loading; applied once by finish_loaded_scene
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

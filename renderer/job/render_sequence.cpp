@@ -105,6 +105,11 @@ std::vector<long long> check_sequence(const render_options& options) {
     throw input_error("", "--time", "--time and --frames both choose the time; give one of them");
   if (options.frame)
     throw input_error("", "--frame", "--frame and --frames both choose the frame; give one of them");
+  // A sequence re-poses one loaded asset: its lights are rebuilt each frame while its materials and
+  // images carry over, so a once-only conversion would not reach every frame alike.
+  if (!options.working_space.empty())
+    throw input_error("", "--working-space",
+                      "not supported with --frames yet; render the frames one by one with --frame N");
   if (frames.size() > 1 && !options.output.empty()) {  // no output: a benchmark's frames
     if (!has_frame_placeholder(options.output))
       throw input_error("", "-o",
