@@ -173,6 +173,9 @@ TEST(working_space_cli, the_exr_is_tagged_with_the_working_space) {
     const auto* recorded = in.header().findTypedAttribute<Imf::StringAttribute>("kiln/working_space");
     ASSERT_TRUE(recorded);
     EXPECT_EQ(recorded->value(), "ACEScg");
+    const auto* file = in.header().findTypedAttribute<Imf::StringAttribute>("kiln/ocio_config_file");
+    ASSERT_TRUE(file);
+    EXPECT_EQ(file->value(), config);
   }
   Imf::InputFile in(plain.c_str());
   const Imf::Chromaticities c = Imf::chromaticities(in.header());
@@ -227,6 +230,26 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
   expect_refused(with({"--working-space", "ACEScg"}), out,
                  "broken.ocio: $OCIO: not a valid OpenColorIO config");
   ::unsetenv("OCIO");
+}
+
+TEST(working_space_cli, opencolorio_is_opened_only_when_a_render_names_a_working_space) {
+  // With the colour module missing, everything but a colour-managed render still works.
+  ::setenv("KILN_COLOUR_MODULE", "/nonexistent/kiln_colour.so", 1);
+  const std::string dir = scratch_folder("working_space_lazy");
+  const std::string scene = testing::copy_scene(dir);
+  EXPECT_EQ(run_kiln({"--version"}).exit_code, 0);
+  const std::vector<std::string> base = {"render",   scene, "-o", dir + "/out.exr", "--width", "8",
+                                         "--height", "8",   "-q"};
+  EXPECT_EQ(run_kiln(base).exit_code, 0);
+  std::vector<std::string> managed = base;
+  managed.insert(managed.end(), {"--working-space", "ACEScg"});
+  const auto result = run_kiln(managed);
+  ::unsetenv("KILN_COLOUR_MODULE");
+  EXPECT_EQ(result.exit_code, 1) << result.stderr_text;
+  EXPECT_EQ(testing::lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("--working-space needs the colour module: /nonexistent/kiln_colour.so"),
+            std::string::npos)
+      << result.stderr_text;
 }
 
 // The PNG preview's 8-bit codes, read with OpenImageIO.

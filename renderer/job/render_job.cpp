@@ -217,6 +217,7 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
     // name other tools (and the issue) ask for. Both hold the config's name for the space.
     metadata.attributes.emplace_back("colorspace", prepared.colour.name);
     metadata.attributes.emplace_back("oiio:ColorSpace", prepared.colour.name);
+    metadata.attributes.emplace_back("kiln/ocio_config_file", prepared.colour.config);  // whichever named it
     for (size_t i = 0; i < 8; ++i) metadata.chromaticities[i] = float(prepared.colour.primaries.xy[i]);
   }
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
