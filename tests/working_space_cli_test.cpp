@@ -73,9 +73,11 @@ testing::channel_exr render(const std::string& scene, const std::string& path,
 
 // The scene rendered twice: in linear Rec.709 (the default) and in ACEScg through kiln's config.
 std::pair<testing::channel_exr, testing::channel_exr> rec709_and_acescg(const std::string& scene,
-                                                                        const std::string& dir) {
-  return {render(scene, dir + "/rec709.exr", {}),
-          render(scene, dir + "/acescg.exr", {"--ocio-config", config, "--working-space", "ACEScg"})};
+                                                                        const std::string& dir,
+                                                                        std::vector<std::string> extra = {}) {
+  std::vector<std::string> managed = extra;
+  managed.insert(managed.end(), {"--ocio-config", config, "--working-space", "ACEScg"});
+  return {render(scene, dir + "/rec709.exr", extra), render(scene, dir + "/acescg.exr", managed)};
 }
 
 // Per glTF material: the largest |converted Rec.709 − ACEScg| of R, G, B relative to max(|ACEScg|, 1e-3),
@@ -111,11 +113,16 @@ std::map<int, difference> compare_by_material(const testing::channel_exr& rec709
 // round trip of converted texels; measured at most 2e-6 (see the report printed below).
 constexpr float tolerance = 1e-5f;
 
-void expect_equal_within_rounding(const std::string& scene, const std::string& dir, const std::string& what) {
-  const auto [rec709, acescg] = rec709_and_acescg(scene, dir);
+void expect_equal_within_rounding(const std::string& scene, const std::string& dir, const std::string& what,
+                                  const std::vector<std::string>& extra = {}) {
+  const auto [rec709, acescg] = rec709_and_acescg(scene, dir, extra);
   ASSERT_EQ(rec709.count(), acescg.count());
   EXPECT_EQ(rec709.spec.get_string_attribute("colorspace"), "");
-  for (const auto& [material, d] : compare_by_material(rec709, acescg)) {
+  const std::map<int, difference> by_material = compare_by_material(rec709, acescg);
+  // From outside the box (-1: the background) the camera sees the environment or background colour.
+  const bool outside = std::find(extra.begin(), extra.end(), "--show-background") != extra.end();
+  EXPECT_EQ(by_material.count(-1), outside ? 1u : 0u) << what;
+  for (const auto& [material, d] : by_material) {
     std::printf("%s, material %d (%zu pixels): largest relative difference %.3g, mean %.3g\n", what.c_str(),
                 material, d.pixels, double(d.largest), d.sum / double(d.pixels));
     EXPECT_LE(d.largest, tolerance) << what << ", material " << material;
@@ -132,6 +139,16 @@ TEST(working_space_cli, white_light_rec709_converted_equals_the_acescg_render) {
                                                  drop_textures(g);
                                                }),
                                plain, "untextured");
+  // The environment map and the background colour are converted too: seen by camera rays from outside
+  // the box, against white lights.
+  const std::string sky = scratch_folder("working_space_white_sky");
+  expect_equal_within_rounding(cornell_variant(sky, "white.gltf", whiten_lights), sky, "environment",
+                               {"--environment", KILN_SOURCE_DIR "/scenes/glass_showcase_sky.hdr",
+                                "--show-background", "--look-from", "0,1,9", "--look-at", "0,1,0"});
+  const std::string background = scratch_folder("working_space_white_background");
+  expect_equal_within_rounding(
+      cornell_variant(background, "white.gltf", whiten_lights), background, "background",
+      {"--background", "0.8,0.3,0.1", "--show-background", "--look-from", "0,1,9", "--look-at", "0,1,0"});
 }
 
 TEST(working_space_cli, coloured_light_on_coloured_surfaces_differs_where_colours_multiply) {
@@ -226,6 +243,8 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
                  "broken.ocio: --ocio-config: not a valid OpenColorIO config");
   expect_refused(with({"--working-space", "ACEScg", "--preview", dir + "/p.png", "--display", "P3"}), out,
                  "--display: the config has no display 'P3'");
+  expect_refused(with({"--working-space", "ACEScg", "--frames", "1-2"}), out,
+                 "--working-space: not supported with --frames yet");
   ::setenv("OCIO", broken.c_str(), 1);
   expect_refused(with({"--working-space", "ACEScg"}), out,
                  "broken.ocio: $OCIO: not a valid OpenColorIO config");
