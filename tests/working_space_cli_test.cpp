@@ -309,7 +309,15 @@ TEST(working_space_cli, the_preview_uses_the_configs_view_only_when_a_config_is_
   EXPECT_LE(worst, 1);
   std::printf("preview codes: OCIO view vs exact curve differ by at most %d; ACEScg render's preview by %d\n",
               worst, worst_acescg);
-  EXPECT_LE(worst_acescg, 4);  // the light is warm: its products differ by about 2% (see the test above)
+  EXPECT_LE(worst_acescg, 4);
+  // The config's Raw view shows the linear values themselves: far from the sRGB curve, so the view
+  // named is the view applied.
+  const auto raw = preview("raw", {"--ocio-config", config, "--view", "Raw"});
+  ASSERT_EQ(raw.size(), exact.size());
+  int worst_raw = 0;
+  for (size_t i = 0; i < raw.size(); ++i)
+    worst_raw = std::max(worst_raw, std::abs(int(exact[i]) - int(raw[i])));
+  EXPECT_GT(worst_raw, 30);  // the light is warm: its products differ by about 2% (see the test above)
 }
 
 }  // namespace
