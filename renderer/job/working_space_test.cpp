@@ -144,6 +144,31 @@ TEST(working_space, a_scene_converts_colours_and_never_data) {
   }
 }
 
+TEST(working_space, float_colour_textures_and_the_environment_map_convert_in_place) {
+  const working_space acescg = resolve("ACEScg");
+  const mat3 m(acescg.from_rec709);
+  scene s;
+  // A 16-bit or float colour texture (sRGB-encoded floats, one above 1) and an environment map
+  // (linear radiance), neither shared with a data slot.
+  s.images.push_back(image{"colour", 1, 1, {}, {0.2f, 0.9f, 1.5f, 0.5f}});
+  s.images.push_back(image{"sky", 1, 1, {}, {3.0f, 0.25f, 0.0f, 1.0f}});
+  s.textures.push_back({0, {}});
+  material mat;
+  mat.emissive_texture.texture = 0;
+  s.materials.push_back(mat);
+  s.env.map_image = 1;
+  const scene before = s;
+  apply_working_space(s, acescg, nullptr);
+  ASSERT_EQ(s.images.size(), 2u);  // nothing copied
+  const vec3 colour = m * vec3(fetch_texel(before.images[0], 0, 0, texel_encoding::srgb));
+  const vec4 converted = fetch_texel(s.images[0], 0, 0, texel_encoding::srgb);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(converted[c], colour[c], 1e-6f * std::max(1.0f, colour[c])) << c;
+  EXPECT_EQ(converted.a, 0.5f);
+  const vec4 sky = fetch_texel(s.images[1], 0, 0, texel_encoding::linear);
+  EXPECT_EQ(vec3(sky), m * vec3(3.0f, 0.25f, 0.0f));  // linear: no round trip at all
+  EXPECT_EQ(sky.a, 1.0f);
+}
+
 TEST(working_space, the_srgb_encoding_inverts_the_decoding_everywhere) {
   for (float v : {-0.5f, -1e-4f, 0.0f, 1e-4f, 0.0031308f, 0.01f, 0.18f, 0.5f, 1.0f, 4.0f, 100.0f})
     EXPECT_NEAR(srgb_to_linear(linear_to_srgb(v)), v, 2e-6f * std::max(1.0f, std::abs(v))) << v;
