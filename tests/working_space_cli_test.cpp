@@ -241,6 +241,8 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
   std::ofstream(broken) << "not: [a config\n";
   expect_refused(with({"--ocio-config", broken, "--working-space", "ACEScg"}), out,
                  "broken.ocio: --ocio-config: not a valid OpenColorIO config");
+  expect_refused(with({"--ocio-config", broken}), out,
+                 "broken.ocio: --ocio-config: not a valid OpenColorIO config");
   expect_refused(with({"--working-space", "ACEScg", "--preview", dir + "/p.png", "--display", "P3"}), out,
                  "--display: the config has no display 'P3'");
   expect_refused(with({"--working-space", "ACEScg", "--frames", "1-2"}), out,

@@ -8,6 +8,10 @@ namespace kiln {
 
 working_space resolve_working_space(const render_options& options) {
   working_space ws;
+  // A config named on the command line is checked even when nothing uses it: a broken file the
+  // user chose fails the job rather than pass unnoticed ($OCIO, set for a whole session, does not).
+  if (options.working_space.empty() && !options.ocio_config.empty())
+    load_colour_module("--ocio-config needs").check_config(find_colour_config(options.ocio_config));
   if (options.working_space.empty()) return ws;
   const colour_config_source config = find_colour_config(options.ocio_config);
   const working_space_info info =

@@ -84,10 +84,15 @@ TEST(working_space, chromaticities_name_the_working_space) {
   EXPECT_FALSE(working_space{}.converts());
 }
 
-TEST(working_space, no_working_space_loads_nothing_and_converts_nothing) {
+TEST(working_space, no_working_space_converts_nothing_and_reads_only_a_named_config) {
+  ::setenv("OCIO", "/nonexistent/env.ocio", 1);  // a session's $OCIO is read only when used
   render_options o;
-  o.ocio_config = "/nonexistent.ocio";  // never read without a working space
   EXPECT_FALSE(resolve_working_space(o).converts());
+  ::unsetenv("OCIO");
+  o.ocio_config = config;
+  EXPECT_FALSE(resolve_working_space(o).converts());
+  o.ocio_config = "/nonexistent.ocio";  // one named on the command line is checked
+  EXPECT_THROW(resolve_working_space(o), error);
 }
 
 // A scene of one material reading a colour texture and a data texture from the same image.

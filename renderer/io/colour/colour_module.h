@@ -37,6 +37,10 @@ struct colour_functions {
   uint32_t abi = colour_module_abi;
   uint32_t table_bytes = sizeof(colour_functions);  // a second check that both sides agree on the layout
 
+  // Reads and validates the config. Throws kiln::error (input) naming its file and option when it
+  // is missing or broken.
+  void (*check_config)(const colour_config_source& config) = nullptr;
+
   // The working space `space` (a colour space name or alias in the config). Throws kiln::error
   // (input) naming the config's file and option for a missing or broken config, and --working-space
   // for an unknown space, one the config cannot reach from linear Rec.709, or one that is not a

@@ -7,6 +7,7 @@ namespace {
 
 kiln::colour_functions make_table() {
   kiln::colour_functions table;
+  table.check_config = &kiln::colour_module::check_config;
   table.working_space = &kiln::colour_module::working_space;
   table.display_view = &kiln::colour_module::display_view;
   return table;

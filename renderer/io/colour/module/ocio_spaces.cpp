@@ -81,6 +81,8 @@ std::array<double, 3> apply(const OCIO::ConstCPUProcessorRcPtr& cpu, std::array<
 
 }  // namespace
 
+void check_config(const colour_config_source& config) { read_config(config); }
+
 working_space_info working_space(const colour_config_source& config, const std::string& space) {
   const OCIO::ConstConfigRcPtr cfg = read_config(config);
   const OCIO::ConstColorSpaceRcPtr target = cfg->getColorSpace(space.c_str());

@@ -6,6 +6,8 @@
 
 namespace kiln::colour_module {
 
+void check_config(const colour_config_source& config);
+
 working_space_info working_space(const colour_config_source& config, const std::string& space);
 
 display_transform display_view(const colour_config_source& config, const std::string& space,
