@@ -25,8 +25,9 @@ struct working_space {
   bool converts() const { return !name.empty(); }
 };
 
-// The working space options name (a config given with --ocio-config alone is only checked). Throws kiln::error (input) naming the config and option for a
-// missing or broken config or an unusable space, (io) when the colour module cannot be opened.
+// The working space options name; a config given with --ocio-config alone is only checked.
+// Throws kiln::error (input) naming the config and option for a missing or broken config or an
+// unusable space, (io) when the colour module cannot be opened.
 working_space resolve_working_space(const render_options& options);
 
 // The preview's display transform: the config's display/view (--display, --view, else its
