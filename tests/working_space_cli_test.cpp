@@ -3,8 +3,9 @@
 // equals the ACEScg render to float rounding, textured and untextured materials alike; where a
 // coloured light meets a coloured surface they differ, because (M·a) ⊙ (M·b) ≠ M·(a ⊙ b): the
 // test measures by how much, material by material. The EXR carries the space (chromaticities,
-// colorspace, oiio:ColorSpace); without the option nothing changes; bad configs and spaces are
-// one line and exit 2 with nothing written; the preview goes through OCIO only when asked.
+// colorspace, oiio:ColorSpace); without the option nothing changes; a sequence's frames equal
+// single frames; bad configs and spaces are one line and exit 2 with nothing written; the preview
+// goes through OCIO only when asked.
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenEXR/ImfChromaticitiesAttribute.h>
 #include <OpenEXR/ImfInputFile.h>
@@ -21,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/channel_exr.h"
+#include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -213,6 +215,64 @@ TEST(working_space_cli, without_the_option_the_pixels_keep_every_bit) {
   EXPECT_EQ(plain.pixels, named.pixels);
 }
 
+// A coloured quad with vertex colours whose right edge a morph target moves (so each pose builds it
+// again), beside a still one with vertex colours (carried from frame to frame), under a coloured
+// point light, seen by an orthographic camera: every kind of colour a sequence rebuilds or carries.
+std::string animated_colours(const std::string& folder) {
+  testing::gltf_builder b;
+  const int material = b.add_material(
+      {{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.4, 0.2, 1.0}}, {"metallicFactor", 0.0}}}});
+  const std::vector<float> colours = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 0};
+  const int moving =
+      b.add_mesh({{-1, -1, 0}, {-0.5f, -1, 0}, {-0.5f, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3}, material);
+  const int still =
+      b.add_mesh({{0.2f, -1, 0}, {1, -1, 0}, {1, 1, 0}, {0.2f, 1, 0}}, {0, 1, 2, 0, 2, 3}, material);
+  for (int mesh : {moving, still})
+    b.doc["meshes"][mesh]["primitives"][0]["attributes"]["COLOR_0"] = b.add_data(colours, 5126, "VEC3", 3);
+  const int target =
+      b.add_data(std::vector<float>{0, 0, 0, 0.6f, 0, 0, 0.6f, 0, 0, 0, 0, 0}, 5126, "VEC3", 3);
+  b.doc["meshes"][moving]["primitives"][0]["targets"] = {{{"POSITION", target}}};
+  b.doc["meshes"][moving]["weights"] = {0.0};
+  const int morpher = b.add_node({{"mesh", moving}});
+  b.add_node({{"mesh", still}});
+  const int camera =
+      b.add_camera({{"type", "orthographic"},
+                    {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 100}}}});
+  b.add_node({{"camera", camera}, {"translation", {0, 0, 5}}});
+  const int light = b.add_light({{"type", "point"}, {"color", {0.3, 0.8, 1.0}}, {"intensity", 20.0}});
+  b.add_node({{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", light}}}}}});
+  const int times = b.add_data(std::vector<float>{0, 1}, 5126, "SCALAR", 1);
+  const int weights = b.add_data(std::vector<float>{0, 1}, 5126, "SCALAR", 1);
+  b.doc["animations"].push_back(
+      {{"samplers", {{{"input", times}, {"output", weights}}}},
+       {"channels", {{{"sampler", 0}, {"target", {{"node", morpher}, {"path", "weights"}}}}}}});
+  return b.write(folder + "/animated.gltf");
+}
+
+TEST(working_space_cli, a_sequence_converts_each_frame_once_like_single_frames) {
+  // Each frame's EXR is the one --frame N writes: what a pose builds again (the light, the morphed
+  // mesh) is converted every frame, what it carries over (material, the still mesh) only once.
+  const std::string dir = scratch_folder("working_space_sequence");
+  const std::string scene = animated_colours(dir);
+  const std::vector<std::string> managed = {"--ocio-config", config,  "--working-space",
+                                            "ACEScg",        "--fps", "4"};
+  std::vector<std::string> sequence = {"render",  scene,     "-o",       dir + "/seq_####.exr",
+                                       "--width", "16",      "--height", "16",
+                                       "-q",      "--float", "--frames", "1-3"};
+  sequence.insert(sequence.end(), managed.begin(), managed.end());
+  const auto result = run_kiln(sequence);
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  for (int frame = 1; frame <= 3; ++frame) {
+    std::vector<std::string> single = managed;
+    single.insert(single.end(), {"--frame", std::to_string(frame)});
+    const auto alone = testing::render_float_exr(scene, dir + "/one.exr", 16, 16, single);
+    const auto in_sequence =
+        testing::channel_exr{testing::read_float_exr(dir + "/seq_000" + std::to_string(frame) + ".exr")};
+    EXPECT_EQ(in_sequence.pixels, alone.pixels) << "frame " << frame;
+    EXPECT_EQ(in_sequence.spec.get_string_attribute("colorspace"), "ACEScg");
+  }
+}
+
 // Runs kiln with args; expects exit 2, one line naming `names`, and no output file.
 void expect_refused(const std::vector<std::string>& args, const std::string& output,
                     const std::string& names) {
@@ -245,8 +305,6 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
                  "broken.ocio: --ocio-config: not a valid OpenColorIO config");
   expect_refused(with({"--working-space", "ACEScg", "--preview", dir + "/p.png", "--display", "P3"}), out,
                  "--display: the config has no display 'P3'");
-  expect_refused(with({"--working-space", "ACEScg", "--frames", "1-2"}), out,
-                 "--working-space: not supported with --frames yet");
   ::setenv("OCIO", broken.c_str(), 1);
   expect_refused(with({"--working-space", "ACEScg"}), out,
                  "broken.ocio: $OCIO: not a valid OpenColorIO config");

@@ -265,7 +265,8 @@ gltf_load_options job_load_options(const render_options& options, const std::ato
 }
 
 void finish_loaded_scene(const render_options& options, prepared_scene& p,
-                         const std::function<void(const std::string&)>& warn, image* environment_map) {
+                         const std::function<void(const std::string&)>& warn, image* environment_map,
+                         const std::vector<uint32_t>* posed_meshes) {
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
     p.world.images.push_back(environment_map ? std::move(*environment_map)
@@ -275,7 +276,12 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
     p.world.env.intensity = options.environment_intensity;
   }
   // Once the environment map is in: every colour the file and options give is linear Rec.709.
-  apply_working_space(p.world, p.colour, p.memory.get());
+  colour_conversion_scope scope;
+  scope.carried_over = p.colours_converted;
+  scope.posed_meshes = posed_meshes;
+  scope.allow_image_copies = posed_meshes == nullptr;  // not in a sequence
+  apply_working_space(p.world, p.colour, p.memory.get(), scope);
+  p.colours_converted = true;
   if (warn) {
     for (const std::string& warning : p.world.stats.warnings) warn("warning: " + warning);
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)

@@ -50,7 +50,8 @@ struct prepared_scene {
   // With the motion AOV: the scene at the neighbouring frames (job/frame_motion.h); else null.
   std::shared_ptr<scene_motion> motion;
   std::shared_ptr<memory_charge> motion_memory;  // what motion holds, charged to memory
-  working_space colour;  // --working-space, resolved before loading; applied once by finish_loaded_scene
+  working_space colour;            // --working-space, resolved before loading; applied by finish_loaded_scene
+  bool colours_converted = false;  // what a sequence's poses carry over is in the working space already
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

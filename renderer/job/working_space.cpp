@@ -33,11 +33,12 @@ std::optional<display_transform> preview_view(const render_options& options) {
                     options.view);
 }
 
-void apply_working_space(scene& s, const working_space& ws, memory_budget* memory) {
+void apply_working_space(scene& s, const working_space& ws, memory_budget* memory,
+                         const colour_conversion_scope& scope) {
   // Linear Rec.709 named through a config: tagged, but nothing to convert (and textures keep
   // their bytes rather than take an sRGB round trip).
   if (!ws.converts() || ws.from_rec709 == dmat3(1.0)) return;
-  const uint64_t grown = convert_scene_colours(s, mat3(ws.from_rec709));
+  const uint64_t grown = convert_scene_colours(s, mat3(ws.from_rec709), scope);
   charge_memory(memory, grown, s.source, "colour textures converted to the working space (float texels)");
 }
 

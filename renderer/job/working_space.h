@@ -10,6 +10,7 @@
 #include "io/colour/colour_module.h"
 #include "job/colour_primaries.h"
 #include "job/render_options.h"
+#include "scene/colour_conversion.h"
 #include "scene/scene.h"
 
 namespace kiln {
@@ -36,6 +37,7 @@ working_space resolve_working_space(const render_options& options);
 std::optional<display_transform> preview_view(const render_options& options);
 
 // Converts s's colours into ws (scene/colour_conversion.h) and charges what its images grow by.
-void apply_working_space(scene& s, const working_space& ws, memory_budget* memory);
+void apply_working_space(scene& s, const working_space& ws, memory_budget* memory,
+                         const colour_conversion_scope& scope = {});
 
 }  // namespace kiln

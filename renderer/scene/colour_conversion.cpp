@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/error.h"
 #include "scene/texture_eval.h"
 
 namespace kiln {
@@ -61,7 +62,7 @@ int32_t colour_texture(scene& s, int32_t index, const std::map<uint32_t, uint32_
   return copied_textures[index] = int32_t(s.textures.size() - 1);
 }
 
-void convert_textures(scene& s, const mat3& m, uint64_t& grown) {
+void convert_textures(scene& s, const mat3& m, bool allow_copies, uint64_t& grown) {
   const image_uses uses = find_image_uses(s);
   std::map<uint32_t, uint32_t> copied_images;  // shared image -> its colour copy
   const size_t file_images = s.images.size();
@@ -69,6 +70,11 @@ void convert_textures(scene& s, const mat3& m, uint64_t& grown) {
     if (!uses.colour[i]) continue;
     uint32_t target = uint32_t(i);
     if (uses.data[i]) {
+      if (!allow_copies)
+        throw input_error(s.source, "--working-space",
+                          "image " + std::to_string(i) +
+                              " is read both as colour and as data; with --frames "
+                              "a working space needs each image used one way (render the frames one by one)");
       s.images.push_back(s.images[i]);
       target = uint32_t(s.images.size() - 1);
       copied_images[uint32_t(i)] = target;
@@ -92,8 +98,22 @@ float linear_to_srgb(float v) {
   return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
-uint64_t convert_scene_colours(scene& s, const mat3& working_from_rec709) {
+uint64_t convert_scene_colours(scene& s, const mat3& working_from_rec709,
+                               const colour_conversion_scope& scope) {
   const mat3& m = working_from_rec709;
+  // What every pose builds again.
+  for (light& l : s.lights) l.color = convert(m, l.color);
+  s.env.color = convert(m, s.env.color);
+  const auto convert_mesh = [&](mesh& me) {
+    for (vec4& c : me.colors0) c = vec4(convert(m, vec3(c)), c.a);
+  };
+  if (scope.carried_over) {
+    if (scope.posed_meshes)
+      for (uint32_t i : *scope.posed_meshes)
+        if (i < s.meshes.size()) convert_mesh(s.meshes[i]);
+    return 0;
+  }
+  for (mesh& me : s.meshes) convert_mesh(me);
   for (material& mat : s.materials) {
     mat.base_color_factor = vec4(convert(m, vec3(mat.base_color_factor)), mat.base_color_factor.a);
     mat.emissive_factor = convert(m, mat.emissive_factor);
@@ -102,12 +122,8 @@ uint64_t convert_scene_colours(scene& s, const mat3& working_from_rec709) {
     // grey attenuation; it is still the colour the file means, in the working space's terms.
     mat.attenuation_color = convert(m, mat.attenuation_color);
   }
-  for (mesh& me : s.meshes)
-    for (vec4& c : me.colors0) c = vec4(convert(m, vec3(c)), c.a);
-  for (light& l : s.lights) l.color = convert(m, l.color);
-  s.env.color = convert(m, s.env.color);
   uint64_t grown = 0;
-  convert_textures(s, m, grown);
+  convert_textures(s, m, scope.allow_image_copies, grown);
   if (s.env.has_map() && size_t(s.env.map_image) < s.images.size()) {
     image& map = s.images[size_t(s.env.map_image)];
     const uint64_t before = image_bytes(map);
