@@ -122,6 +122,28 @@ option_spec custom_option(const std::string& name,
   return s;
 }
 
+void check_existing_file(const std::string& path, const std::string& option) {
+  struct stat s {};
+  if (::stat(path.c_str(), &s) != 0) throw input_error("", option, "no such file '" + path + "'");
+  if (S_ISDIR(s.st_mode)) throw input_error("", option, "'" + path + "' is a folder, not a file");
+}
+
+// An option naming a file that must exist, given back by absolute path: the same file named from
+// another folder is the same setting. Its example is filled in by the table's tests.
+option_spec file_option(const std::string& name, std::string render_options::*at, const std::string& help) {
+  return custom_option(
+      name,
+      [name, at](render_options& o, const std::string& text) {
+        check_existing_file(text, dashed(name));
+        o.*at = text;
+      },
+      [at](const render_options& o) -> std::optional<std::string> {
+        if ((o.*at).empty()) return std::nullopt;
+        return fs::absolute(o.*at).lexically_normal().string();
+      },
+      "", help);
+}
+
 option_spec optional_side(const std::string& name, field<std::optional<int>> at, const std::string& example,
                           const std::string& help) {
   option_spec s = custom_option(
@@ -207,12 +229,6 @@ void parse_aovs(render_options& o, const std::string& text) {
   aovs->crypto_depth = o.aovs.crypto_depth;
   aovs->depth_kind = o.aovs.depth_kind;
   o.aovs = *aovs;
-}
-
-void check_existing_file(const std::string& path, const std::string& option) {
-  struct stat s {};
-  if (::stat(path.c_str(), &s) != 0) throw input_error("", option, "no such file '" + path + "'");
-  if (S_ISDIR(s.st_mode)) throw input_error("", option, "'" + path + "' is a folder, not a file");
 }
 
 std::vector<std::string> quality_names() {
@@ -389,19 +405,9 @@ void add_view_options(std::vector<option_spec>& t) {
           [](const render_options& o) -> std::optional<std::string> { return triple_text(o.background); },
           "0.5,0.5,0.5", "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)"))
       .recorded_as = "kiln/background";
-  add(custom_option(
-      "environment",
-      [](render_options& o, const std::string& text) {
-        check_existing_file(text, "--environment");
-        o.environment = text;
-      },
-      // By absolute path: the same map named from another folder is the same setting.
-      [](const render_options& o) -> std::optional<std::string> {
-        if (o.environment.empty()) return std::nullopt;
-        return fs::absolute(o.environment).lexically_normal().string();
-      },
-      "",
-      "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave the scene"));
+  add(file_option("environment", &render_options::environment,
+                  "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave "
+                  "the scene"));
   add(number_option<double>(
       "environment-rotation", [](render_options & o) -> auto& { return o.environment_rotation_degrees; },
       -36000.0, 36000.0, "90",
@@ -645,6 +651,36 @@ void add_image_options(std::vector<option_spec>& t) {
       },
       "x.png", "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty"));
   preview.effect = option_effect::none;  // an output, not a setting of the EXR's pixels
+  // Colour management: the working space changes pixels (and so the settings hash); the config
+  // is hashed by its path, as --environment is. The display and view change only the preview.
+  auto text_option = [](const std::string& name, std::string render_options::*at, const std::string& example,
+                        const std::string& help) {
+    return custom_option(
+        name,
+        [name, at](render_options& o, const std::string& text) {
+          if (text.empty()) throw input_error("", "--" + name, "expects a name, got nothing");
+          o.*at = text;
+        },
+        [at](const render_options& o) -> std::optional<std::string> {
+          return (o.*at).empty() ? std::nullopt : std::optional<std::string>(o.*at);
+        },
+        example, help);
+  };
+  add(file_option("ocio-config", &render_options::ocio_config,
+                  "OpenColorIO config for --working-space and the preview (default: $OCIO, else kiln's "
+                  "share/ocio/kiln.ocio)"))
+      .recorded_as = "kiln/ocio_config";
+  add(text_option("working-space", &render_options::working_space, "ACEScg",
+                  "Render in this colour space of the config (e.g. ACEScg): glTF's linear Rec.709 colours, "
+                  "textures and lights are converted into it, and the EXR is tagged with it (default: "
+                  "linear Rec.709, unconverted)"))
+      .recorded_as = "kiln/working_space";
+  add(text_option("display", &render_options::display, "sRGB",
+                  "Preview through this display of the OpenColorIO config (default: the config's default)"))
+      .effect = option_effect::none;
+  add(text_option("view", &render_options::view, "Raw",
+                  "Preview through this view of the display (default: the display's default view)"))
+      .effect = option_effect::none;
   add(number_option<double>(
           "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
           "1", "Preview: scale linear colour by 2^EV"))

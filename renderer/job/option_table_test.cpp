@@ -25,9 +25,11 @@ namespace fs = std::filesystem;
 
 // The example of an entry, with the one that names a file pointed at a file that exists.
 std::string example_of(const option_spec& spec) {
-  if (spec.name != "environment") return spec.example;
   static const std::string sky = KILN_SOURCE_DIR "/scenes/glass_showcase_sky.hdr";
-  return sky;
+  static const std::string config = KILN_SOURCE_DIR "/share/ocio/kiln.ocio";
+  if (spec.name == "environment") return sky;
+  if (spec.name == "ocio-config") return config;
+  return spec.example;
 }
 
 TEST(option_table, names_are_unique_and_every_entry_is_complete) {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "io/colour/colour_loader.h"
 #include "io/exr/environment_reader.h"
 #include "io/file/input_file.h"
 #include "io/gltf/gltf_references.h"
@@ -75,6 +76,14 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
     inputs.add("environment");
     fnv1a bytes;
     add_file(bytes, options.environment, max_environment_file_bytes, cancel, "--environment");
+    inputs.add(bytes.hex());
+  }
+  if (!options.working_space.empty()) {
+    // The config decides the working space's matrix, whichever names it (--ocio-config, $OCIO, kiln's own).
+    const colour_config_source config = find_colour_config(options.ocio_config);
+    inputs.add("ocio_config");
+    fnv1a bytes;
+    add_file(bytes, config.path, max_environment_file_bytes, cancel, config.named_by);
     inputs.add(bytes.hex());
   }
   render_fingerprint hashed;

@@ -212,6 +212,14 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
     if (layer)
       for (auto& attribute : cryptomatte_attributes(*layer))
         metadata.attributes.push_back(std::move(attribute));
+  if (prepared.colour.converts()) {
+    // OpenImageIO reads oiio:ColorSpace from an EXR as the image's colour space; colorspace is the
+    // name other tools (and the issue) ask for. Both hold the config's name for the space.
+    metadata.attributes.emplace_back("colorspace", prepared.colour.name);
+    metadata.attributes.emplace_back("oiio:ColorSpace", prepared.colour.name);
+    metadata.attributes.emplace_back("kiln/ocio_config_file", prepared.colour.config);  // whichever named it
+    for (size_t i = 0; i < 8; ++i) metadata.chromaticities[i] = float(prepared.colour.primaries.xy[i]);
+  }
   metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
   if (options.shutter) {
     // ImfStandardAttributes' expTime: how long the shutter is open, in seconds.
@@ -264,7 +272,8 @@ gltf_load_options job_load_options(const render_options& options, const std::ato
 }
 
 void finish_loaded_scene(const render_options& options, prepared_scene& p,
-                         const std::function<void(const std::string&)>& warn, image* environment_map) {
+                         const std::function<void(const std::string&)>& warn, image* environment_map,
+                         const std::vector<uint32_t>* posed_meshes) {
   p.world.env.color = options.background;
   if (!options.environment.empty()) {
     p.world.images.push_back(environment_map ? std::move(*environment_map)
@@ -273,6 +282,13 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
     p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
     p.world.env.intensity = options.environment_intensity;
   }
+  // Once the environment map is in: every colour the file and options give is linear Rec.709.
+  colour_conversion_scope scope;
+  scope.carried_over = p.colours_converted;
+  scope.posed_meshes = posed_meshes;
+  scope.allow_image_copies = posed_meshes == nullptr;  // not in a sequence
+  apply_working_space(p.world, p.colour, p.memory.get(), scope);
+  p.colours_converted = true;
   if (warn) {
     for (const std::string& warning : p.world.stats.warnings) warn("warning: " + warning);
     if (size_t dropped = p.world.stats.degenerate_triangles_dropped)
@@ -308,6 +324,8 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
   check_asset_file(options.input);
   prepared_scene p;
   p.memory = std::make_shared<memory_budget>(job_memory_limit(options));
+  p.colour = resolve_working_space(options);            // a bad config or space fails before the asset loads
+  if (!options.preview.empty()) preview_view(options);  // and so does a bad display or view
   const auto load_start = std::chrono::steady_clock::now();
   gltf_sequence asset(options.input, job_load_options(options, cancel, p.memory.get()));
   pose_job_frame(asset, options, nullptr, nullptr, p);
@@ -445,7 +463,10 @@ void write_job_outputs(const render_job_result& result, const render_options& op
   }
   // From the file as written, so the preview shows exactly what the EXR holds.
   try {
-    if (!options.preview.empty()) write_preview(options.output, options.preview, options.preview_exposure);
+    if (!options.preview.empty()) {
+      const std::optional<display_transform> view = preview_view(options);
+      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr);
+    }
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the preview");
   }

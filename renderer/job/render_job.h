@@ -14,6 +14,7 @@
 #include "core/memory_budget.h"
 #include "io/exr/exr_writer.h"
 #include "job/render_options.h"
+#include "job/working_space.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
 #include "render/view_camera.h"
@@ -52,6 +53,8 @@ struct prepared_scene {
   std::shared_ptr<memory_charge> shutter_memory;  // what world.shutter holds (motion blur)
   // A glTF camera moving during the shutter: the view at each step, in render space; else empty.
   std::vector<view_camera> camera_steps;
+  working_space colour;            // --working-space, resolved before loading; applied by finish_loaded_scene
+  bool colours_converted = false;  // what a sequence's poses carry over is in the working space already
 };
 
 // The job's memory budget in bytes: --max-memory, or job/memory_limit.h's default.

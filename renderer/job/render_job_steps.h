@@ -23,10 +23,13 @@ gltf_load_options job_load_options(const render_options& options, const std::ato
 
 // Everything prepare_scene does after loading p.world: the background and environment map (the
 // one given, else read from --environment), the loader's warnings, holdouts, the view and its
-// range check, the headlight, and the move to render space.
+// range check, the headlight, the working space and the move to render space. A sequence passes
+// posed_meshes, the meshes this frame's pose built (the rest, like its materials and images,
+// carry over from the last frame, already in the working space).
 void finish_loaded_scene(const render_options& options, prepared_scene& p,
                          const std::function<void(const std::string&)>& warn,
-                         image* environment_map = nullptr);
+                         image* environment_map = nullptr,
+                         const std::vector<uint32_t>* posed_meshes = nullptr);
 
 // The view the job renders world through: --look-from/--look-at, the --camera (default: the
 // first glTF camera), or the default camera; description names it. Throws kiln::error (input).

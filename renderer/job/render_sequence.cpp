@@ -49,7 +49,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   if (!st.environment) st.environment = take_environment(previous);
   pose_job_frame(*st.asset, options, &previous, &posed, st.prepared);
   previous = scene();  // the last frame's deformed meshes go now
-  finish_loaded_scene(options, st.prepared, job.warn, st.environment ? &*st.environment : nullptr);
+  finish_loaded_scene(options, st.prepared, job.warn, st.environment ? &*st.environment : nullptr, &posed);
   st.environment.reset();
   report.pose_seconds += seconds_since(pose_start);
 
@@ -134,6 +134,8 @@ void run_sequence(const render_job& job,
     stage = "loading the scene";
     const auto load_start = std::chrono::steady_clock::now();
     st.prepared.memory = std::make_shared<memory_budget>(job_memory_limit(first_options));
+    st.prepared.colour = resolve_working_space(first_options);        // before the asset loads
+    if (!first_options.preview.empty()) preview_view(first_options);  // and the preview's view
     st.asset = std::make_unique<gltf_sequence>(
         first_options.input, job_load_options(first_options, stop, st.prepared.memory.get()));
     if (!first_options.environment.empty())

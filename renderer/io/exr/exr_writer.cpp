@@ -291,9 +291,10 @@ Imf::Header base_header(const film& f, const exr_settings& settings, const exr_m
   if (settings.tile_size > 0)
     header.setTileDescription(
         Imf::TileDescription(unsigned(settings.tile_size), unsigned(settings.tile_size)));
-  // Rec.709 primaries and D65 white: glTF's linear colour space.
-  Imf::addChromaticities(header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
-                                                     Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
+  // The render's colour space: glTF's linear Rec.709 (D65) unless a working space was chosen.
+  const std::array<float, 8>& xy = metadata.chromaticities;
+  Imf::addChromaticities(header, Imf::Chromaticities(Imath::V2f(xy[0], xy[1]), Imath::V2f(xy[2], xy[3]),
+                                                     Imath::V2f(xy[4], xy[5]), Imath::V2f(xy[6], xy[7])));
   // OpenEXR stores matrices row-major with row vectors (p' = p·M): the transpose of GLM's
   // column-vector convention, so M44f's row c is GLM's column c.
   Imath::M44f world_to_camera, world_to_ndc;

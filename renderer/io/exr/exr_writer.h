@@ -4,6 +4,7 @@
 // renamed into place, so a failed write never leaves a partial image.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <string>
 #include <utility>
@@ -25,6 +26,9 @@ struct exr_metadata {
   std::vector<std::pair<std::string, std::string>> attributes;  // e.g. {"kiln/spp", "4"}
   std::vector<std::pair<std::string, float>> float_attributes;  // e.g. {"renderTimeSeconds", 1.5f}
   std::vector<std::pair<std::string, int>> int_attributes;      // e.g. {"samplesPerPixel", 4}
+  // The colour space of R G B (OpenEXR's chromaticities: red, green, blue, white as xy): Rec.709
+  // primaries and D65 white, glTF's linear space, unless the render has a working space.
+  std::array<float, 8> chromaticities{0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
 };
 
 // Throws kiln::error (io) when the directory of path does not exist or cannot be written.

@@ -5,11 +5,12 @@
 
 namespace kiln {
 
-void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure) {
+void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
+                   const display_transform* view) {
   // A bad name is refused before the module is looked for.
   if (preview_format(preview_path).empty())
     throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
-  load_image_codecs("a preview needs").write_preview(exr_path, preview_path, exposure);
+  load_image_codecs("a preview needs").write_preview(exr_path, preview_path, exposure, view);
 }
 
 bool preview_complete(const std::string& preview_path, int width, int height) {

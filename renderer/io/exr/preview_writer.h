@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "io/colour/colour_module.h"
 #include "io/exr/preview_codes.h"
 
 namespace kiln {
@@ -15,7 +16,10 @@ namespace kiln {
 // premultiplied R G B through preview_code (the colour over black) and no alpha. The preview covers
 // the EXR's data window. Throws kiln::error (input) when the EXR has no R G B A, (io) when the
 // preview cannot be written or the codecs module cannot be loaded.
-void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure);
+// With view, the colour (times 2^exposure) goes through that display transform instead of
+// preview_code, and its code values are round(255 · clamp(v, 0, 1)).
+void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
+                   const display_transform* view = nullptr);
 
 // True when preview_path is a complete preview of a width x height data window: its format is the
 // one its extension names, its size is right, it ends with the format's closing marker (PNG IEND,

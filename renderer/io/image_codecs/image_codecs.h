@@ -7,12 +7,13 @@
 #include <cstdint>
 #include <string>
 
+#include "io/colour/colour_module.h"
 #include "scene/scene.h"
 
 namespace kiln {
 
 // Bumped whenever the table below changes; kiln refuses a module built with another value.
-constexpr uint32_t image_codecs_abi = 1;
+constexpr uint32_t image_codecs_abi = 2;
 
 struct image_codecs {
   uint32_t abi = image_codecs_abi;
@@ -30,8 +31,8 @@ struct image_codecs {
   image (*read_float_rgba)(const std::string& path, const std::string& where, uint64_t max_texels) = nullptr;
 
   // io/exr/preview_writer.h's write_preview and preview_complete, same contracts.
-  void (*write_preview)(const std::string& exr_path, const std::string& preview_path,
-                        double exposure) = nullptr;
+  void (*write_preview)(const std::string& exr_path, const std::string& preview_path, double exposure,
+                        const display_transform* view) = nullptr;
   bool (*preview_complete)(const std::string& preview_path, int width, int height) = nullptr;
 };
 

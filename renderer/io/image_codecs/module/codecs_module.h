@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "io/colour/colour_module.h"
 #include "scene/scene.h"
 
 namespace kiln::codecs_module {
@@ -18,7 +19,8 @@ image decode(const uint8_t* data, size_t size, const std::string& name, const st
 image read_float_rgba(const std::string& path, const std::string& where, uint64_t max_texels);
 
 // image_codecs::write_preview and preview_complete (preview_codec.cpp).
-void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure);
+void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
+                   const display_transform* view);
 bool preview_complete(const std::string& preview_path, int width, int height);
 
 }  // namespace kiln::codecs_module

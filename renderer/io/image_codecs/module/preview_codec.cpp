@@ -99,7 +99,8 @@ bool preview_complete(const std::string& preview_path, int width, int height) {
   return read;
 }
 
-void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure) {
+void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
+                   const display_transform* view) {
   const std::string format = preview_format(preview_path);
   if (format.empty())
     throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
@@ -115,16 +116,35 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
 
   const int channels = format == "png" ? 4 : 3;
   std::vector<unsigned char> codes(pixel_count * size_t(channels));
-  for (size_t i = 0; i < pixel_count; ++i) {
-    const float a = std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
-    // PNG stores straight alpha, so its colour is unpremultiplied and a viewer's "over" is right;
-    // JPEG has no alpha and shows the premultiplied colour, i.e. the image over black.
-    const float unpremultiply = channels == 4 && a > 0.0f ? 1.0f / a : 1.0f;
-    for (int c = 0; c < 3; ++c)
-      codes[i * size_t(channels) + size_t(c)] =
-          preview_code(rgba[i * 4 + size_t(c)] * unpremultiply, exposure);
-    if (channels == 4) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * a);
+  const auto alpha = [&](size_t i) {
+    return std::isnan(rgba[i * 4 + 3]) ? 0.0f : std::clamp(rgba[i * 4 + 3], 0.0f, 1.0f);
+  };
+  // PNG stores straight alpha, so its colour is unpremultiplied and a viewer's "over" is right;
+  // JPEG has no alpha and shows the premultiplied colour, i.e. the image over black.
+  const auto unpremultiply = [&](size_t i) {
+    return channels == 4 && alpha(i) > 0.0f ? 1.0f / alpha(i) : 1.0f;
+  };
+  if (view && *view) {
+    // An OpenColorIO display/view: exposure on the scene-linear colour, then the view, whose
+    // display code values [0, 1] are quantised as the sRGB curve's are.
+    std::vector<float> rgb(pixel_count * 3);
+    const float scale = float(std::exp2(exposure));
+    for (size_t i = 0; i < pixel_count; ++i)
+      for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = rgba[i * 4 + c] * unpremultiply(i) * scale;
+    (*view)(rgb.data(), pixel_count);
+    for (size_t i = 0; i < pixel_count; ++i)
+      for (size_t c = 0; c < 3; ++c) {
+        const float v = rgb[i * 3 + c];
+        codes[i * size_t(channels) + c] =
+            std::isnan(v) ? 0 : (unsigned char)std::lround(255.0f * std::clamp(v, 0.0f, 1.0f));
+      }
+  } else {
+    for (size_t i = 0; i < pixel_count; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        codes[i * size_t(channels) + c] = preview_code(rgba[i * 4 + c] * unpremultiply(i), exposure);
   }
+  if (channels == 4)
+    for (size_t i = 0; i < pixel_count; ++i) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * alpha(i));
   OIIO::ImageSpec out_spec(spec.width, spec.height, channels, OIIO::TypeDesc::UINT8);
   if (channels == 4) {
     out_spec.alpha_channel = 3;
