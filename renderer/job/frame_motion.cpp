@@ -39,9 +39,10 @@ void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& optio
   std::string description;
   std::vector<uint32_t> deformed_before, deformed_after;
   scene before = asset.pose(time - step, previous, &deformed_before);
-  const view_camera view_before = job_view(options, before, description);
+  const bounds3* framing = p.framing ? &*p.framing : nullptr;
+  const view_camera view_before = job_view(options, before, description, framing);
   scene after = asset.pose(time + step, &before, &deformed_after);
-  const view_camera view_after = job_view(options, after, description);
+  const view_camera view_after = job_view(options, after, description, framing);
   p.world = asset.pose(time, &after, posed);
   motion->previous = neighbour_pose(p.world, before, view_before, deformed_before);
   motion->next = neighbour_pose(p.world, after, view_after, deformed_after);
@@ -53,6 +54,29 @@ void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& optio
   p.motion = motion;
 }
 
+// The default camera of an animated file frames the union of its bounds at evenly spaced times of
+// the animation, so it stands still through a shot and frame N looks the same rendered alone or in
+// a sequence. Poses chain (each takes over what the last built); `held` keeps the last.
+constexpr int framing_poses = 9;
+
+void find_framing(gltf_sequence& asset, const render_options& options, scene*& previous, scene& held,
+                  prepared_scene& p) {
+  p.framing_checked = true;
+  if (options.look_from || options.look_at || !options.camera.empty() || !asset.animated()) return;
+  const auto [first, last] = asset.time_range();
+  bounds3 framing;
+  for (int k = 0; k < framing_poses; ++k) {
+    const double t = first + (last - first) * k / (framing_poses - 1);
+    scene posed = asset.pose(t, previous);
+    const bool has_camera = !posed.cameras.empty();
+    framing.extend(world_bounds(posed));
+    held = std::move(posed);  // what previous held is in it now
+    previous = &held;
+    if (has_camera) return;  // the file's own camera is the view
+  }
+  if (!framing.empty()) p.framing = framing;
+}
+
 }  // namespace
 
 void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
@@ -62,8 +86,10 @@ void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* 
   p.motion_memory.reset();  // the last frame's neighbours and shutter steps go now
   p.shutter_memory.reset();
   // The shutter's steps first: each pose takes from the one before, and the frame's own comes last.
-  scene last_step;
-  const std::vector<shutter_step> steps = pose_shutter_steps(asset, options, time, previous, last_step);
+  scene framing_pose, last_step;
+  if (!p.framing_checked) find_framing(asset, options, previous, framing_pose, p);
+  const std::vector<shutter_step> steps =
+      pose_shutter_steps(asset, options, time, p.framing ? &*p.framing : nullptr, previous, last_step);
   pose_frame_and_neighbours(asset, options, time, previous, posed, p);
   attach_shutter_motion(p.world, steps);
   p.camera_steps = shutter_camera_steps(options, p.world, steps);

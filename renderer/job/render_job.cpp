@@ -98,7 +98,8 @@ void resolve_image_size(const render_options& options, float camera_aspect, int&
 
 }  // namespace
 
-view_camera job_view(const render_options& options, const scene& world, std::string& description) {
+view_camera job_view(const render_options& options, const scene& world, std::string& description,
+                     const bounds3* framing) {
   if (options.look_from || options.look_at) {
     if (!options.look_from || !options.look_at)
       throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
@@ -127,7 +128,7 @@ view_camera job_view(const render_options& options, const scene& world, std::str
   resolve_image_size(options, 0.0f, width, height);
   description = "default";
   try {
-    return make_default_camera(world_bounds(world), width, height);
+    return make_default_camera(framing ? *framing : world_bounds(world), width, height);
   } catch (const error& e) {
     throw input_error(world.source, e.location(), e.reason());
   }
@@ -297,7 +298,7 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
   }
 
   apply_holdouts(p.world, options.holdout, options.only, options.holdout_invisible);
-  p.cam = job_view(options, p.world, p.camera_description);
+  p.cam = job_view(options, p.world, p.camera_description, p.framing ? &*p.framing : nullptr);
   // Before any accelerator is built, for every backend and every client (render, batch, compare,
   // bench): no coordinate a ray can reach may pass Embree's limit.
   if (options.look_from)

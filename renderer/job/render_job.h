@@ -8,6 +8,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "accel/accelerator.h"
@@ -53,6 +54,10 @@ struct prepared_scene {
   std::shared_ptr<memory_charge> shutter_memory;  // what world.shutter holds (motion blur)
   // A glTF camera moving during the shutter: the view at each step, in render space; else empty.
   std::vector<view_camera> camera_steps;
+  // An animated file seen by the default camera: the bounds of its poses across the animation, which
+  // that camera frames at every time (job/frame_motion.h); empty otherwise.
+  std::optional<bounds3> framing;
+  bool framing_checked = false;    // framing was worked out (once for a sequence)
   working_space colour;            // --working-space, resolved before loading; applied by finish_loaded_scene
   bool colours_converted = false;  // what a sequence's poses carry over is in the working space already
 };

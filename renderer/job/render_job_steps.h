@@ -32,8 +32,10 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
                          const std::vector<uint32_t>* posed_meshes = nullptr);
 
 // The view the job renders world through: --look-from/--look-at, the --camera (default: the
-// first glTF camera), or the default camera; description names it. Throws kiln::error (input).
-view_camera job_view(const render_options& options, const scene& world, std::string& description);
+// first glTF camera), or the default camera, which frames `framing` when given (an animated
+// file's every pose) and else world's bounds; description names it. Throws kiln::error (input).
+view_camera job_view(const render_options& options, const scene& world, std::string& description,
+                     const bounds3* framing = nullptr);
 
 // The region of the frame the job renders: its --crop or --band, checked against the image.
 pixel_rect job_region(const render_options& options, const view_camera& cam);

@@ -14,11 +14,11 @@ namespace {
 // fraction of the moving shape's size.
 constexpr double interpolation_tolerance = 1e-3;
 
-shutter_step record_step(const render_options& options, const scene& posed,
+shutter_step record_step(const render_options& options, const bounds3* framing, const scene& posed,
                          const std::vector<uint32_t>& deformed) {
   shutter_step step;
   std::string description;
-  step.view = job_view(options, posed, description);
+  step.view = job_view(options, posed, description, framing);
   step.keys = instance_keys(posed);
   for (const instance& inst : posed.instances) {
     step.world_from_object.push_back(inst.world_from_object);
@@ -77,14 +77,14 @@ bool follows_linear(const shutter_step& a, const shutter_step& mid, const shutte
 }  // namespace
 
 std::vector<shutter_step> pose_shutter_steps(gltf_sequence& asset, const render_options& options, double time,
-                                             scene*& chain, scene& last) {
+                                             const bounds3* framing, scene*& chain, scene& last) {
   if (!options.shutter || !asset.animated()) return {};
   const double frame = motion_frame_seconds(options);
   const double open = time + options.shutter->first * frame, close = time + options.shutter->second * frame;
   auto pose_at = [&](double u) {
     std::vector<uint32_t> deformed;
     scene posed = asset.pose(open + u * (close - open), chain, &deformed);
-    shutter_step step = record_step(options, posed, deformed);
+    shutter_step step = record_step(options, framing, posed, deformed);
     last = std::move(posed);  // what chain pointed to has given up its parts
     chain = &last;
     return step;

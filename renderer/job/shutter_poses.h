@@ -28,10 +28,11 @@ constexpr uint32_t max_default_motion_steps = 33;
 // The shutter's steps for the frame at `time` seconds: options.shutter's frame offsets at --fps.
 // --motion-steps gives their count; by default it is the fewest of 2, 3, 5, 9, 17, 33 for which,
 // halfway between two steps, linear interpolation stays within 0.1% of each moving shape's size of
-// where the animation puts it. `chain` is the scene posed last (gltf_sequence::pose's previous, or
-// null); it then holds the last step's scene, which the next pose takes its unchanged parts from.
+// where the animation puts it. framing: the default camera's (job_view). `chain` is the scene posed last
+// (gltf_sequence::pose's previous, or null); it then holds the last step's scene, which the next pose takes
+// its unchanged parts from.
 std::vector<shutter_step> pose_shutter_steps(gltf_sequence& asset, const render_options& options, double time,
-                                             scene*& chain, scene& last);
+                                             const bounds3* framing, scene*& chain, scene& last);
 
 // Keeps in world.shutter what moves among the steps, matched to world's instances by instance_key
 // (one a step lacks holds still there); leaves it empty when nothing moves.

@@ -127,6 +127,25 @@ void sample_keyframes(const std::vector<float>& times, const std::vector<float>&
   if (rotation) normalize_quaternion(out);
 }
 
+std::pair<double, double> animation_time_range(const tinygltf::Model& model,
+                                               const std::vector<int>& animations, const std::string& file) {
+  double first = inf, last = -inf;
+  for (int a : animations) {
+    const tinygltf::Animation& animation = model.animations[static_cast<size_t>(a)];
+    for (size_t i = 0; i < animation.samplers.size(); ++i) {
+      const int input = animation.samplers[i].input;
+      if (input < 0 || static_cast<size_t>(input) >= model.accessors.size()) continue;
+      const std::string where =
+          "/animations/" + std::to_string(a) + "/samplers/" + std::to_string(i) + "/input";
+      const std::vector<float> times = read_times(model, input, file, where);
+      if (times.empty()) continue;
+      first = std::min(first, double(times.front()));
+      last = std::max(last, double(times.back()));
+    }
+  }
+  return first <= last ? std::make_pair(first, last) : std::make_pair(0.0, 0.0);
+}
+
 std::vector<int> chosen_animations(const tinygltf::Model& model, const std::string& which,
                                    const std::string& file) {
   const int count = static_cast<int>(model.animations.size());

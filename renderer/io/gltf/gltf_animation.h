@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -48,6 +49,11 @@ struct animation_pose {
 // kiln::error (input, location --animation) naming the known animations when none matches.
 std::vector<int> chosen_animations(const tinygltf::Model& model, const std::string& which,
                                    const std::string& file);
+
+// The first and last keyframe times of the chosen animations' samplers ({0, 0} without keys).
+// Throws kiln::error (input) for keyframe times that are not finite and increasing.
+std::pair<double, double> animation_time_range(const tinygltf::Model& model,
+                                               const std::vector<int>& animations, const std::string& file);
 
 // Evaluates the chosen animations at `time` seconds (finite). When two chosen animations drive
 // the same property of a node, the first in document order wins and a warning says so.

@@ -929,6 +929,11 @@ gltf_sequence::~gltf_sequence() = default;
 
 bool gltf_sequence::animated() const { return state_->animated && !state_->animations.empty(); }
 
+std::pair<double, double> gltf_sequence::time_range() const {
+  if (!animated()) return {0.0, 0.0};
+  return animation_time_range(state_->model, state_->animations, state_->path);
+}
+
 scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* posed_meshes) {
   state& st = *state_;
   const tinygltf::Model& model = st.model;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"  // callers catch the kiln::error this throws
@@ -85,6 +86,9 @@ class gltf_sequence {
 
   // Whether animations drive the file's nodes, so frames differ.
   bool animated() const;
+  // The first and last keyframe times of the chosen animations, in seconds ({0, 0} when not
+  // animated).
+  std::pair<double, double> time_range() const;
 
  private:
   struct state;
