@@ -19,14 +19,16 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   s.passes.albedo = s.passes.normal = s.passes.diffuse = s.passes.specular = vec3(0.0f);
   std::fill(s.passes.shadow.begin(), s.passes.shadow.end(), 0.0f);
   s.layer_count = 0;
+  s.surface_count = 0;
   s.finite = false;
   return s;
 }
 
 }  // namespace
 
-sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion) {
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion, bool deep) {
   sample_outputs o;
+  o.deep = deep;
   o.motion = aovs.motion ? motion : nullptr;
   o.albedo = aovs.albedo;
   o.split = wants_light_split(aovs);
@@ -77,11 +79,14 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
 }
 
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
-// the ray's cone there). The sample's ray tree gets its own budget.
-void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p,
+// the ray's cone there; camera: the camera ray's origin, from which deep surfaces are measured).
+// The sample's ray tree gets its own budget.
+void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& camera, const shading_point& p,
                        const ray_cone& at_hit, bool show_background, const sample_outputs& outputs,
                        camera_sample& s, ray_counts& counts) {
   camera_path path;
+  path.record_surfaces = outputs.deep;
+  path.origin = camera;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
   ray_budget budget{ctx.options.max_rays_per_sample, ctx.cancel};
@@ -95,6 +100,8 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
+  std::copy(path.surfaces, path.surfaces + path.surface_count, s.surfaces);
+  s.surface_count = path.surface_count;
   // Opaque paths keep alpha exactly 1 (1 − 0).
   const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
   if (!is_finite(radiance)) {
@@ -122,7 +129,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   const ray_cone at_hit = cone_at(cone, distance);
   const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
   record_hit(ctx, *h, p, distance, outputs, s);
-  shade_camera_path(ctx, r, p, at_hit, show_background, outputs, s, counts);
+  shade_camera_path(ctx, r, start.origin, p, at_hit, show_background, outputs, s, counts);
   return s;
 }
 

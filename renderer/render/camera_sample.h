@@ -45,6 +45,10 @@ struct camera_sample {
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
   int layer_count = 0;
+  // With outputs.deep: the surfaces the camera path shades, their radiance summing to rgba's colour
+  // and their coverage to its alpha (shade/whitted.h's camera_path::surfaces).
+  path_surface surfaces[max_path_layers];
+  int surface_count = 0;
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
@@ -55,11 +59,13 @@ struct sample_outputs {
   bool groups = false;                   // fills groups
   bool passes = false;                   // fills passes (albedo, normal, diffuse, specular)
   bool shadow = false;                   // fills passes.shadow too (with passes)
+  bool deep = false;                     // fills surfaces
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point
 };
 
 // The sample outputs a film with aovs needs.
-sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion = nullptr);
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion = nullptr,
+                                  bool deep = false);
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.
