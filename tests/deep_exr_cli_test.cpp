@@ -2,7 +2,8 @@
 // compositor would: a BLEND triangle half over an opaque quad, half over nothing. Sample counts
 // (one per opaque interior pixel, two under the BLEND surface, none for background), samples
 // sorted front to back, a front-to-back `over` flatten equal to the flat beauty, the
-// deepImageState the file claims, and the refusals of the paths deep output does not take.
+// deepImageState the file claims, the refusals of the paths deep output does not take, and the
+// deep samples charged to --max-memory.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDeepFrameBuffer.h>
 #include <OpenEXR/ImfDeepImageStateAttribute.h>
@@ -231,6 +232,27 @@ TEST(deep_exr_cli, refuses_what_it_cannot_write_truthfully) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/refused.exr")) << extra[0];
     EXPECT_FALSE(std::filesystem::exists(dir + "/refused.deep.exr")) << extra[0];
   }
+}
+
+// The deep samples are charged to --max-memory as tiles finish: a budget the flat render fits in
+// but its deep samples (about 40 bytes a pixel here) do not stops the render, exit 2, one line,
+// nothing written.
+TEST(deep_exr_cli, deep_samples_are_charged_to_the_memory_budget) {
+  const std::string dir = testing::scratch_folder("deep_exr_memory");
+  const std::string scene = testing::copy_scene(dir);
+  const std::vector<std::string> args = {"render",   scene, "-o", dir + "/room.exr", "--width", "640",
+                                         "--height", "480", "-q", "--max-memory",    "30M"};
+  const auto flat = testing::run_kiln(args);
+  ASSERT_EQ(flat.exit_code, 0) << flat.stderr_text;
+  std::filesystem::remove(dir + "/room.exr");
+  std::vector<std::string> deep_args = args;
+  deep_args.push_back("--deep");
+  const auto deep = testing::run_kiln(deep_args);
+  EXPECT_EQ(deep.exit_code, 2);
+  EXPECT_NE(deep.stderr_text.find("the deep samples need about"), std::string::npos) << deep.stderr_text;
+  EXPECT_EQ(testing::lines(deep.stderr_text).size(), 1u) << deep.stderr_text;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/room.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/room.deep.exr"));
 }
 
 }  // namespace

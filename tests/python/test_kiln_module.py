@@ -290,3 +290,11 @@ def test_motion_vectors_arrive_as_forward_and_backward_arrays_equal_to_the_exr(t
     moving = walk.aovs["beauty"][:, :, 3] > 0
     assert np.abs(walk.aovs["forward"][moving]).max() > 0.1  # the figure walks
     assert not walk.aovs["forward"][~moving].any()  # background is 0
+
+
+def test_deep_writes_a_deep_file_beside_the_output(tmp_path):
+    out = str(tmp_path / "python.exr")
+    kiln.render(CORNELL, output=out, width=32, height=24, deep=True)
+    spec = oiio.ImageInput.open(str(tmp_path / "python.deep.exr")).spec()
+    assert spec.deep
+    assert oiio.ImageInput.open(out).spec().get_string_attribute("kiln/deep") == "on"
