@@ -624,6 +624,10 @@ void add_image_options(std::vector<option_spec>& t) {
       },
       "x.png", "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty"));
   preview.effect = option_effect::none;  // an output, not a setting of the EXR's pixels
+  add(number_option<double>(
+          "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
+          "1", "Preview: scale linear colour by 2^EV"))
+      .effect = option_effect::none;
   // Hashed like a pixel setting: a stored EXR rendered without it has no deep file beside it.
   add(flag_option(
           "deep", [](render_options & o) -> auto& { return o.deep; },
@@ -632,10 +636,6 @@ void add_image_options(std::vector<option_spec>& t) {
           "front to back, premultiplied R G B A, Z, ZBack and the ids; whole frame, stratified samples and a "
           "filter inside the pixel only"))
       .recorded_as = "kiln/deep";
-  add(number_option<double>(
-          "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
-          "1", "Preview: scale linear colour by 2^EV"))
-      .effect = option_effect::none;
   add(custom_option(
           "aovs", parse_aovs,
           [](const render_options& o) -> std::optional<std::string> { return aov_list_name(o.aovs); },

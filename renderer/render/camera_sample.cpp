@@ -19,16 +19,14 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   s.passes.albedo = s.passes.normal = s.passes.diffuse = s.passes.specular = vec3(0.0f);
   std::fill(s.passes.shadow.begin(), s.passes.shadow.end(), 0.0f);
   s.layer_count = 0;
-  s.surface_count = 0;
   s.finite = false;
   return s;
 }
 
 }  // namespace
 
-sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion, bool deep) {
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion) {
   sample_outputs o;
-  o.deep = deep;
   o.motion = aovs.motion ? motion : nullptr;
   o.albedo = aovs.albedo;
   o.split = wants_light_split(aovs);
@@ -85,7 +83,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
                        const ray_cone& at_hit, bool show_background, const sample_outputs& outputs,
                        camera_sample& s, ray_counts& counts) {
   camera_path path;
-  path.record_surfaces = outputs.deep;
+  path.record_surfaces = outputs.surfaces != nullptr;
   path.origin = camera;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
@@ -100,8 +98,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
-  std::copy(path.surfaces, path.surfaces + path.surface_count, s.surfaces);
-  s.surface_count = path.surface_count;
+  if (outputs.surfaces) outputs.surfaces->assign(path.surfaces, path.surfaces + path.surface_count);
   // Opaque paths keep alpha exactly 1 (1 − 0).
   const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
   if (!is_finite(radiance)) {
@@ -117,6 +114,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
                                ray_counts& counts, const sample_outputs& outputs) {
   camera_sample s;
+  if (outputs.surfaces) outputs.surfaces->clear();  // a miss shades no surface
   if (outputs.groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
   if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size(), 0.0f);
   ray r = start;  // find_visible_hit moves the origin past culled back faces

@@ -45,27 +45,26 @@ struct camera_sample {
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
   int layer_count = 0;
-  // With outputs.deep: the surfaces the camera path shades, their radiance summing to rgba's colour
-  // and their coverage to its alpha (shade/whitted.h's camera_path::surfaces).
-  path_surface surfaces[max_path_layers];
-  int surface_count = 0;
   bool finite = true;  // false: the radiance was NaN or infinite; rgba is then 0 and it is counted
 };
 
 // What a camera sample records beside its colour and geometry AOVs.
 struct sample_outputs {
-  bool albedo = false;                   // evaluates the material once more for the albedo AOV
-  bool split = false;                    // fills split
-  bool groups = false;                   // fills groups
-  bool passes = false;                   // fills passes (albedo, normal, diffuse, specular)
-  bool shadow = false;                   // fills passes.shadow too (with passes)
-  bool deep = false;                     // fills surfaces
+  bool albedo = false;  // evaluates the material once more for the albedo AOV
+  bool split = false;   // fills split
+  bool groups = false;  // fills groups
+  bool passes = false;  // fills passes (albedo, normal, diffuse, specular)
+  bool shadow = false;  // fills passes.shadow too (with passes)
+  // Deep output: set to the caller's buffer, which each sample clears and fills with the surfaces
+  // its camera path shades, their radiance summing to rgba's colour and their coverage to its
+  // alpha (shade/whitted.h's camera_path::surfaces). Kept outside camera_sample, which adaptive
+  // sampling stores for every pixel corner.
+  std::vector<path_surface>* surfaces = nullptr;
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point
 };
 
 // The sample outputs a film with aovs needs.
-sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion = nullptr,
-                                  bool deep = false);
+sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion = nullptr);
 
 // Traces and shades the camera ray through film position (px, py) in pixels (row 0 at the top).
 // A miss sees the environment with alpha 1 when show_background is set, else it is transparent.

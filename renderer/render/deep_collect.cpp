@@ -9,8 +9,7 @@ void add_deep_surfaces(const scene& world, const matte_ids& mattes, depth_mode d
   pixel.weight += w;
   if (w == 0.0f) return;
   const float to_z = depth == depth_mode::planar ? s.view_cosine : 1.0f;
-  for (int k = 0; k < s.surface_count; ++k) {
-    const path_surface& surface = s.surfaces[k];
+  for (const path_surface& surface : pixel.path) {
     const instance& inst = world.instances[surface.instance];
     deep_sample d;
     d.rgba = w * vec4(surface.radiance, surface.coverage);

@@ -12,14 +12,16 @@
 namespace kiln {
 
 // One pixel in progress: its camera samples' path surfaces, each weighted by its sample's filter
-// weight, and the sum of those weights.
+// weight, and the sum of those weights; path is the buffer each camera sample's surfaces go to
+// (sample_outputs::surfaces).
 struct deep_collector {
   std::vector<deep_sample> samples;
   float weight = 0.0f;
+  std::vector<path_surface> path;
 };
 
-// Adds the path surfaces of camera sample s (finite, with filter weight w for its own pixel) with
-// their ids; depth as the Z AOV measures it.
+// Adds the surfaces in pixel.path of camera sample s (finite, with filter weight w for its own
+// pixel) with their ids; depth as the Z AOV measures it.
 void add_deep_surfaces(const scene& world, const matte_ids& mattes, depth_mode depth, const camera_sample& s,
                        float w, deep_collector& pixel);
 

@@ -141,14 +141,15 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
+  sample_outputs outputs = sample_outputs_for(settings.aovs, settings.motion);
+  if (deep) outputs.surfaces = &deep->path;
   for (int s = 0; s < settings.samples_per_pixel; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
-    camera_sample cs =
-        shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
-                         sample_outputs_for(settings.aovs, settings.motion, deep != nullptr));
+    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
+                                        source.cone, counts, outputs);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
