@@ -3,7 +3,7 @@
 // (one per opaque interior pixel, two under the BLEND surface, none for background), samples
 // sorted front to back, a front-to-back `over` flatten equal to the flat beauty, the
 // deepImageState the file claims, the refusals of the paths deep output does not take, and the
-// deep samples charged to --max-memory.
+// deep samples charged to --max-memory; batch jobs with their deep files.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDeepFrameBuffer.h>
 #include <OpenEXR/ImfDeepImageStateAttribute.h>
@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -253,6 +254,30 @@ TEST(deep_exr_cli, deep_samples_are_charged_to_the_memory_budget) {
   EXPECT_EQ(testing::lines(deep.stderr_text).size(), 1u) << deep.stderr_text;
   EXPECT_FALSE(std::filesystem::exists(dir + "/room.exr"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/room.deep.exr"));
+}
+
+// A batch job takes --deep from its manifest overrides, and no other job may write its deep file.
+TEST(deep_exr_cli, batch_jobs_write_their_deep_files_and_never_one_another_s) {
+  const std::string dir = testing::scratch_folder("deep_exr_batch");
+  const std::string scene = write_scene(dir + "/scene.gltf");
+  const auto job = [&](const std::string& output, bool deep) {
+    return std::string("{\"asset\": \"") + scene + "\", \"resolution\": \"16x16\", \"output\": \"" + output +
+           "\"" + (deep ? ", \"overrides\": {\"deep\": true}" : "") + "}";
+  };
+  std::ofstream(dir + "/ok.json") << "{\"jobs\": [" << job("a.exr", true) << ", " << job("b.exr", false)
+                                  << "]}";
+  const auto ok =
+      testing::run_kiln({"batch", "--manifest", dir + "/ok.json", "--out-dir", dir + "/ok", "-q"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.stderr_text;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/ok/a.deep.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/ok/b.deep.exr"));
+  std::ofstream(dir + "/clash.json") << "{\"jobs\": [" << job("a.exr", true) << ", "
+                                     << job("a.deep.exr", false) << "]}";
+  const auto clash =
+      testing::run_kiln({"batch", "--manifest", dir + "/clash.json", "--out-dir", dir + "/clash", "-q"});
+  EXPECT_EQ(clash.exit_code, 2);
+  EXPECT_NE(clash.stderr_text.find("a.deep.exr, as does"), std::string::npos) << clash.stderr_text;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/clash/a.exr"));
 }
 
 }  // namespace
