@@ -49,12 +49,7 @@ std::string write_scene(const std::string& path, bool with_triangle = true) {
   b.add_node({{"name", "back_quad"},
               {"mesh", b.add_mesh({{-1.2f, -1.2f, 0}, {1.2f, -1.2f, 0}, {1.2f, 1.2f, 0}, {-1.2f, 1.2f, 0}},
                                   {0, 1, 2, 0, 2, 3}, blue, facing)}});
-  const int lamp = b.add_light({{"type", "point"}, {"name", "lamp"}, {"intensity", 12.0}});
-  b.add_node({{"name", "lamp"},
-              {"extensions", {{"KHR_lights_punctual", {{"light", lamp}}}}},
-              {"translation", {1.0, 0.8, 2.0}}});
-  b.add_camera({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
-  b.add_node({{"camera", 0}, {"translation", {0, 0, 4}}});
+  b.add_lamp_and_camera({1.0, 0.8, 2.0}, 12.0, {0, 0, 4}, 0.8);
   b.write(path);
   return path;
 }

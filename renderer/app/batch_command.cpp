@@ -20,6 +20,7 @@
 #include "io/exr/exr_writer.h"
 #include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
+#include "job/deep_output.h"
 #include "job/frame_range.h"
 #include "job/option_table.h"
 #include "job/output_guard.h"
@@ -110,6 +111,10 @@ void check_batch_outputs(const std::vector<batch_job>& jobs) {
       check_not_symlink(o.output, "output");
       if (!o.preview.empty()) check_not_symlink(o.preview, "--preview");
       check_exr_output_name(o.output, "output", preview_hint::hide);
+      if (o.deep) {
+        check_output_spares_inputs(deep_output_path(o.output), "--deep", inputs);
+        check_not_symlink(deep_output_path(o.output), "--deep");
+      }
     } catch (const error& e) {
       throw input_error("", job.where, e.what());
     }
@@ -220,11 +225,16 @@ void add_planned_job(batch_job job, const fs::path& out_dir, const std::string& 
                      std::vector<batch_job>& jobs, std::map<std::string, size_t>& writers,
                      std::map<std::string, int>& names) {
   job.options.command_line = render_command_line(job.options);
-  auto [it, inserted] = writers.emplace(job.options.output, jobs.size());
-  if (!inserted)
-    throw input_error("", where,
-                      "writes " + job.options.output + ", as does " + jobs[it->second].where +
-                          " (give one of them another output)");
+  // The deep file (--deep) is written too: no other job may write it, as its EXR or its own deep file.
+  std::vector<std::string> written = {job.options.output};
+  if (job.options.deep) written.push_back(deep_output_path(job.options.output));
+  for (const std::string& file : written) {
+    auto [it, inserted] = writers.emplace(file, jobs.size());
+    if (!inserted)
+      throw input_error(
+          "", where,
+          "writes " + file + ", as does " + jobs[it->second].where + " (give one of them another output)");
+  }
   // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
   const fs::path output(job.options.output);
   fs::path relative = output.lexically_relative(out_dir);

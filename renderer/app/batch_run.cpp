@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/preview_writer.h"
+#include "job/deep_output.h"
 #include "job/render_fingerprint.h"
 
 namespace kiln {
@@ -59,8 +60,13 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
   const auto start = std::chrono::steady_clock::now();
   try {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    if (resume && output_up_to_date(job.options.output, make_fingerprint(job.options, &interrupt_requested()),
-                                    job.options.preview)) {
+    // The deep file is renamed into place before the EXR, so an up-to-date EXR lacks it only when
+    // it was removed since: then the job renders again.
+    std::error_code ec;
+    if (resume &&
+        output_up_to_date(job.options.output, make_fingerprint(job.options, &interrupt_requested()),
+                          job.options.preview) &&
+        (!job.options.deep || fs::is_regular_file(deep_output_path(job.options.output), ec))) {
       result.status = job_status::skipped;
       result.seconds = seconds_since(start);
       return result;

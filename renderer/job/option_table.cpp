@@ -685,6 +685,14 @@ void add_image_options(std::vector<option_spec>& t) {
           "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
           "1", "Preview: scale linear colour by 2^EV"))
       .effect = option_effect::none;
+  // Hashed like a pixel setting: a stored EXR rendered without it has no deep file beside it.
+  add(flag_option(
+          "deep", [](render_options & o) -> auto& { return o.deep; },
+          "Also write a deep EXR beside -o (NAME.deep.exr for NAME.exr): per pixel its camera paths' "
+          "surfaces "
+          "front to back, premultiplied R G B A, Z, ZBack and the ids; whole frame, stratified samples and a "
+          "filter inside the pixel only"))
+      .recorded_as = "kiln/deep";
   add(custom_option(
           "aovs", parse_aovs,
           [](const render_options& o) -> std::optional<std::string> { return aov_list_name(o.aovs); },

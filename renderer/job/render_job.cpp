@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/message_text.h"
 #include "io/exr/cryptomatte.h"
+#include "io/exr/deep_writer.h"
 #include "io/exr/environment_reader.h"
 #include "io/exr/preview_writer.h"
 #include "io/gltf/gltf_loader.h"
@@ -387,6 +388,7 @@ void check_job(const render_options& options) {
   }
   resolve_exr_settings(options);
   if (!options.preview.empty()) check_output_writable(options.preview);
+  check_deep_job(options);
 }
 
 uint64_t job_memory_limit(const render_options& options) {
@@ -402,6 +404,15 @@ void charge_render_memory(const prepared_scene& prepared, const render_settings&
   memory.charge(accelerator_bytes(prepared.world), file, "the acceleration structures");
   memory.charge(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
                 "the film and AOV buffers");
+}
+
+std::shared_ptr<deep_output> attach_deep_output(const render_options& options, const prepared_scene& prepared,
+                                                render_settings& settings) {
+  if (!options.deep) return nullptr;
+  auto deep = std::make_shared<deep_output>(prepared.memory);
+  settings.deep = &deep->image;
+  settings.deep_memory = &deep->charge;
+  return deep;
 }
 
 namespace {
@@ -438,6 +449,7 @@ render_job_result run_stoppable_job(const render_job& job, const std::atomic<boo
   settings.mattes = {objects.id_by_key, materials.id_by_key};
   settings.cancel = stop;
   settings.progress = job.progress;
+  result.deep = attach_deep_output(options, prepared, settings);
   result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
   accel->throw_if_failed();  // an error Embree reported during traversal fails the render
   // A stop that arrives after the last pixel still ends the job before anything is written.
@@ -457,6 +469,12 @@ render_job_result run_job(const render_job& job) {
 
 void write_job_outputs(const render_job_result& result, const render_options& options,
                        const std::atomic<bool>* cancel) {
+  try {
+    if (result.deep)
+      write_deep_exr(deep_output_path(options.output), result.deep->image, result.metadata, cancel);
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(options, "writing the deep EXR");
+  }
   try {
     write_exr(options.output, result.image, result.storage, result.metadata, cancel);
   } catch (const std::bad_alloc&) {

@@ -14,6 +14,7 @@
 #include "accel/accelerator.h"
 #include "core/memory_budget.h"
 #include "io/exr/exr_writer.h"
+#include "job/deep_output.h"
 #include "job/render_options.h"
 #include "job/working_space.h"
 #include "render/film.h"
@@ -88,6 +89,8 @@ struct render_job_result {
   int width = 0, height = 0;  // the full frame; the film may hold a crop or band of it
   std::string camera_description;
   double load_seconds = 0.0, build_seconds = 0.0;
+  // With --deep: the deep image, written beside the EXR (job/deep_output.h); null otherwise.
+  std::shared_ptr<deep_output> deep;
 };
 
 // The checks that need no scene: the asset is a file, the outputs are safe to write (never a
@@ -100,7 +103,8 @@ void check_job(const render_options& options);
 // interrupted when cancel was raised.
 render_job_result run_job(const render_job& job);
 
-// Writes result to options.output (and options.preview when set), each through a temporary file
+// Writes result to options.output (and options.preview and the deep EXR when set; the deep file
+// first, so an EXR that exists has its deep file beside it), each through a temporary file
 // renamed into place. Throws kiln::error (io) on failure, (render) when memory runs out, (interrupted) when
 // cancel is raised before the EXR is renamed; an existing file is then untouched.
 void write_job_outputs(const render_job_result& result, const render_options& options,

@@ -43,6 +43,11 @@ pixel_rect job_region(const render_options& options, const view_camera& cam);
 // The film, the mip pyramids and the backend, charged to the job's budget before any is made.
 void charge_render_memory(const prepared_scene& prepared, const render_settings& settings);
 
+// With --deep: a deep image for settings to fill, its samples charged to the prepared scene's budget
+// as tiles finish; null (and settings untouched) without.
+std::shared_ptr<deep_output> attach_deep_output(const render_options& options, const prepared_scene& prepared,
+                                                render_settings& settings);
+
 // The EXR header of a finished render.
 exr_metadata job_metadata(const render_options& options, const prepared_scene& prepared,
                           const render_settings& settings, const render_statistics& stats,

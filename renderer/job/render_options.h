@@ -71,6 +71,7 @@ struct render_options {
   std::string working_space;
   std::string display;
   std::string view;
+  bool deep = false;                   // --deep: also a deep EXR beside -o (job/deep_output.h)
   aov_set aovs;                        // --aovs; the default is beauty, Z and N
   std::optional<pixel_rect> crop;      // --crop x0,y0,x1,y1; checked against the image size once it is known
   int band_index = 0, band_count = 0;  // --band i/N: band i of N (render/frame_bands.h); 0 bands: off

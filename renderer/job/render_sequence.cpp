@@ -81,6 +81,7 @@ render_job_result render_frame(const render_job& job, const render_options& opti
   settings.mattes = {objects.id_by_key, materials.id_by_key};
   settings.cancel = stop;
   settings.progress = job.progress;
+  result.deep = attach_deep_output(options, p, settings);
   result.image = render_image(p.world, *st.accel, p.cam, settings, &result.stats);
   st.accel->throw_if_failed();
   throw_if_cancelled(stop, options.output);

@@ -78,11 +78,14 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
 }
 
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
-// the ray's cone there). The sample's ray tree gets its own budget.
-void shade_camera_path(const shading_context& ctx, const ray& r, const shading_point& p,
+// the ray's cone there; camera: the camera ray's origin, from which deep surfaces are measured).
+// The sample's ray tree gets its own budget.
+void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& camera, const shading_point& p,
                        const ray_cone& at_hit, bool show_background, const sample_outputs& outputs,
                        camera_sample& s, ray_counts& counts) {
   camera_path path;
+  path.record_surfaces = outputs.surfaces != nullptr;
+  path.origin = camera;
   path.background_visible = show_background;
   path.transmission_transparent = ctx.options.transmission_transparent;
   ray_budget budget{ctx.options.max_rays_per_sample, ctx.cancel};
@@ -96,6 +99,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const shading_p
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
+  if (outputs.surfaces) outputs.surfaces->assign(path.surfaces, path.surfaces + path.surface_count);
   // Opaque paths keep alpha exactly 1 (1 − 0).
   const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
   if (!is_finite(radiance)) {
@@ -111,6 +115,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
                                ray_counts& counts, const sample_outputs& outputs) {
   camera_sample s;
+  if (outputs.surfaces) outputs.surfaces->clear();  // a miss shades no surface
   if (outputs.groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
   if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size(), 0.0f);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
@@ -123,7 +128,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   const ray_cone at_hit = cone_at(cone, distance);
   const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
   record_hit(ctx, *h, p, distance, outputs, s);
-  shade_camera_path(ctx, r, p, at_hit, show_background, outputs, s, counts);
+  shade_camera_path(ctx, r, start.origin, p, at_hit, show_background, outputs, s, counts);
   return s;
 }
 

@@ -51,11 +51,16 @@ struct camera_sample {
 
 // What a camera sample records beside its colour and geometry AOVs.
 struct sample_outputs {
-  bool albedo = false;                   // evaluates the material once more for the albedo AOV
-  bool split = false;                    // fills split
-  bool groups = false;                   // fills groups
-  bool passes = false;                   // fills passes (albedo, normal, diffuse, specular)
-  bool shadow = false;                   // fills passes.shadow too (with passes)
+  bool albedo = false;  // evaluates the material once more for the albedo AOV
+  bool split = false;   // fills split
+  bool groups = false;  // fills groups
+  bool passes = false;  // fills passes (albedo, normal, diffuse, specular)
+  bool shadow = false;  // fills passes.shadow too (with passes)
+  // Deep output: set to the caller's buffer, which each sample clears and fills with the surfaces
+  // its camera path shades, their radiance summing to rgba's colour and their coverage to its
+  // alpha (shade/whitted.h's camera_path::surfaces). Kept outside camera_sample, which adaptive
+  // sampling stores for every pixel corner.
+  std::vector<path_surface>* surfaces = nullptr;
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point
 };
 

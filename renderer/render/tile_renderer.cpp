@@ -19,6 +19,7 @@
 #include "render/adaptive_sampling.h"
 #include "render/camera_rays.h"
 #include "render/camera_sample.h"
+#include "render/deep_collect.h"
 #include "render/flush_denormals.h"
 #include "render/light_groups.h"
 #include "render/sample_pattern.h"
@@ -136,18 +137,19 @@ bool wants_beauty_parts(const aov_set& aovs) {
 // normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, camera_ray_batch& rays, pixel_splat& splat, splat_film& splats, tile_sums& sums,
-                  std::vector<vec3>& parts, film& out, ray_counts& counts) {
+                  std::vector<vec3>& parts, film& out, deep_collector* deep, ray_counts& counts) {
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
+  sample_outputs outputs = sample_outputs_for(settings.aovs, settings.motion);
+  if (deep) outputs.surfaces = &deep->path;
   for (int s = 0; s < settings.samples_per_pixel; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
-    camera_sample cs =
-        shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone, counts,
-                         sample_outputs_for(settings.aovs, settings.motion));
+    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
+                                        source.cone, counts, outputs);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
@@ -158,6 +160,11 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
       if (hit && splat_wants_mattes)
         mattes = mattes_of(ctx.world, settings.mattes, cs.layers, cs.layer_count);
       splat.add(settings.filter, source.offset, cs.rgba, hit ? &mattes : nullptr, parts.data());
+      // The weight the splat gives the sample in its own pixel: deep output has no other.
+      if (deep)
+        add_deep_surfaces(ctx.world, settings.mattes, settings.aovs.depth_kind, cs,
+                          filter_weight(settings.filter, source.offset.x - 0.5f, source.offset.y - 0.5f),
+                          *deep);
     }
     if (cs.depth < nearest.depth) nearest = cs;
   }
@@ -182,8 +189,11 @@ void count_row_done(const render_settings& settings, const pixel_rect& tl) {
     settings.progress->pixels_done.fetch_add(uint64_t(tl.x1 - tl.x0), std::memory_order_relaxed);
 }
 
-// Stratified samples, splatted through the reconstruction filter.
-void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& sums, ray_counts& counts) {
+// Stratified samples, splatted through the reconstruction filter; with deep output, the tile's
+// deep samples go to deep (whose rect is tl).
+void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& sums, deep_tile* deep,
+                          ray_counts& counts) {
+  deep_collector deep_pixel;
   pixel_splat splat(job.splats.reach(), matte_layers(job.settings.aovs).on,
                     beauty_part_count(job.settings.aovs, light_group_count(job.ctx.world)));
   std::vector<vec3> parts;  // one sample's beauty parts, reused
@@ -192,9 +202,11 @@ void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& 
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
-    for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x)
+    for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, parts, job.out,
-                   counts);
+                   deep ? &deep_pixel : nullptr, counts);
+      if (deep) finish_deep_pixel(deep_pixel, *deep);
+    }
     count_row_done(job.settings, tl);
   }
   job.splats.finish_tile(sums, job.out);
@@ -258,7 +270,31 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
   }
 }
 
+// An empty deep tile for each render tile, in the same (row-major) order.
+void start_deep_image(deep_image& deep, const std::vector<pixel_rect>& tiles, const pixel_rect& region,
+                      int tile_size, const view_camera& cam) {
+  deep.region = region;
+  deep.full_width = cam.width;
+  deep.full_height = cam.height;
+  deep.tile_size = tile_size;
+  deep.tiles.assign(tiles.size(), deep_tile{});
+  for (size_t t = 0; t < tiles.size(); ++t) deep.tiles[t].rect = tiles[t];
+}
+
 }  // namespace
+
+void check_deep_path(const render_settings& settings, bool whole_frame) {
+  const char* reason = nullptr;
+  if (settings.adaptive.threshold > 0.0f)
+    reason = "deep output takes stratified samples; drop --adaptive-threshold";
+  else if (!whole_frame)
+    reason = "deep output renders the whole frame; drop --crop and --band";
+  else if (filter_reach(settings.filter) > 0)
+    reason = "deep output needs a filter that stays inside its pixel (e.g. box, radius 0.5, the default)";
+  else if (settings.show_background)
+    reason = "deep output holds no background sample; drop --show-background";
+  if (reason) throw input_error("", "--deep", reason);
+}
 
 double sample_cone_scale(int spp) { return std::max(0.125, 1.0 / std::sqrt(double(std::max(spp, 1)))); }
 
@@ -281,6 +317,10 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       adaptive ? crop : render_region(crop, filter_reach(settings.filter), cam.width, cam.height);
   const int tile_size = std::max(1, settings.tile_size);
   const std::vector<pixel_rect> tiles = make_tiles(region, tile_size);
+  if (settings.deep) {
+    check_deep_path(settings, crop == frame);
+    start_deep_image(*settings.deep, tiles, region, tile_size, cam);
+  }
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
   // The film, the splat accumulator and the texture pyramids are set up side by side on the
@@ -354,8 +394,16 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
             if (adaptive)
               render_adaptive_tile(job, tl, scratch.local(), counts);
             else
-              render_filtered_tile(job, tl, sums.local(), counts);
+              render_filtered_tile(job, tl, sums.local(), settings.deep ? &settings.deep->tiles[t] : nullptr,
+                                   counts);
             std::lock_guard<std::mutex> lock(merge_mutex);
+            // A finished tile's deep samples are charged to the job's budget (its one line when
+            // they would not fit), so a deep render's memory is bounded like the rest.
+            if (settings.deep && settings.deep_memory) {
+              deep_tile& dt = settings.deep->tiles[t];
+              dt.samples.shrink_to_fit();
+              settings.deep_memory->add(deep_tile_bytes(dt), world.source, "the deep samples");
+            }
             total_counts += counts;
             size_t done = ++tiles_done;
             if (progress) progress(done, tiles.size());

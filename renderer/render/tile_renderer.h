@@ -8,7 +8,9 @@
 #include <atomic>
 #include <functional>
 
+#include "core/memory_budget.h"
 #include "render/adaptive_sampling.h"
+#include "render/deep_pixel.h"
 #include "render/film.h"
 #include "render/id_coverage.h"
 #include "render/motion_vectors.h"
@@ -58,6 +60,11 @@ struct render_settings {
   const std::atomic<bool>* cancel = nullptr;
   // When set, render_image counts the pixels it finishes here (read from any thread).
   render_progress* progress = nullptr;
+  // When set, render_image also fills it with every pixel's deep samples (render/deep_pixel.h),
+  // charging each finished tile's to deep_memory when that is set. Deep output takes the simple
+  // path only (check_deep_path); render_image throws kiln::error (input) otherwise.
+  deep_image* deep = nullptr;
+  memory_charge* deep_memory = nullptr;
 };
 
 struct render_statistics {
@@ -76,6 +83,12 @@ using progress_callback = std::function<void(size_t done, size_t total)>;
 ray_cone sample_cone(const view_camera& cam, int spp);
 // The factor sample_cone narrows the pixel's cone by.
 double sample_cone_scale(int spp);
+
+// Throws kiln::error (input, location "--deep") unless settings take the path deep output supports:
+// the whole frame (whole_frame: no crop or band), stratified samples, a filter that stays inside
+// the pixel, no visible background. Anything else would write samples that do not add up to the
+// flat pixels.
+void check_deep_path(const render_settings& settings, bool whole_frame);
 
 film render_image(const scene& world, const accelerator& accel, const view_camera& cam,
                   const render_settings& settings, render_statistics* stats = nullptr,

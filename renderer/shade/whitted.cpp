@@ -350,6 +350,9 @@ vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surfa
   const vec3 radiance = shade_covered(ctx, r, sp, mp, s, counts);
   const float covered = s.share - (s.camera->transparency - escaped_before);
   if (s.record_layers) s.camera->cover(sp.instance, covered);
+  // The sample's radiance is Σ share · radiance over the surfaces its path covers (BLEND and
+  // trace_behind scale by the same shares), so each deep surface gets its own term.
+  if (s.record_layers) s.camera->add_surface(sp.instance, sp.position, s.share * radiance, covered);
   // The denoiser's albedo and normal go by the surface's coverage, like its matte.
   if (s.passes && s.record_layers && covered > 0.0f) {
     s.passes->albedo += covered * denoising_albedo(mp);
@@ -370,7 +373,10 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
       !spend_ray(s.budget)) {
     // Not traced: the part behind stays covered by this surface, as opaque black, so the mattes
     // still sum to alpha.
-    if (s.camera && s.record_layers) s.camera->cover(sp.instance, next.share);
+    if (s.camera && s.record_layers) {
+      s.camera->cover(sp.instance, next.share);
+      s.camera->add_surface(sp.instance, sp.position, vec3(0.0f), next.share);
+    }
     return vec3(0.0f);
   }
   ray through;
@@ -445,6 +451,18 @@ void camera_path::cover(uint32_t instance, float coverage) {
     return;
   }
   layers[layer_count++] = {instance, coverage};
+}
+
+void camera_path::add_surface(uint32_t instance, const vec3& position, const vec3& radiance, float coverage) {
+  if (!record_surfaces) return;
+  if (surface_count == max_path_layers) {
+    // Deeper surfaces than that fold into the last, so the colours still sum to the sample's.
+    path_surface& last = surfaces[surface_count - 1];
+    last.radiance += radiance;
+    last.coverage += coverage;
+    return;
+  }
+  surfaces[surface_count++] = {instance, glm::length(position - origin), radiance, coverage};
 }
 
 shading_point prepare_shading(const shading_context& ctx, const ray& r, const surface_point& unmapped) {

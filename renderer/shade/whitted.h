@@ -124,6 +124,16 @@ struct path_layer {
 };
 constexpr int max_path_layers = 8;
 
+// A surface the camera's own path shades, for deep output: its distance from the camera along the
+// ray, the radiance it adds to the sample (already times the share of the sample it covers, so the
+// surfaces' radiance sums to the sample's) and its coverage (its layer's share, summing to alpha).
+struct path_surface {
+  uint32_t instance = 0;
+  float distance = 0.0f;
+  vec3 radiance{0.0f};
+  float coverage = 0.0f;
+};
+
 // What the camera's own path through a sample collects: the ray itself, its continuations behind
 // BLEND surfaces and, with transmission_transparent, its refractions. Alpha is coverage × opacity
 // along it: what reaches a background the camera does not show is transparency (no colour, alpha
@@ -136,9 +146,17 @@ struct camera_path {
   float transparency = 0.0f;              // the part of the sample that escaped
   path_layer layers[max_path_layers];     // in the order met; a deeper layer folds into the last
   int layer_count = 0;
+  // Deep output only (record_surfaces): each surface shaded on the path, in the order met; a deeper
+  // one folds into the last. origin is the camera ray's, in render space, for the distances.
+  bool record_surfaces = false;
+  vec3 origin{0.0f};
+  path_surface surfaces[max_path_layers];
+  int surface_count = 0;
 
   // Adds coverage to instance's layer.
   void cover(uint32_t instance, float coverage);
+  // With record_surfaces: adds a surface at position (render space) with its radiance and coverage.
+  void add_surface(uint32_t instance, const vec3& position, const vec3& radiance, float coverage);
 };
 
 // What one ray of a camera sample's tree carries down the Whitted recursion. Passed by value: a

@@ -305,3 +305,11 @@ def test_motion_blur_takes_the_shutter_and_equals_the_cli(tmp_path):
     assert not np.array_equal(sharp.aovs["beauty"], blurred.aovs["beauty"])
     with pytest.raises(kiln.InputError, match="must open before it closes"):
         kiln.render(CESIUM_MAN, shutter="0.5,-0.5", **view)
+
+
+def test_deep_writes_a_deep_file_beside_the_output(tmp_path):
+    out = str(tmp_path / "python.exr")
+    kiln.render(CORNELL, output=out, width=32, height=24, deep=True)
+    spec = oiio.ImageInput.open(str(tmp_path / "python.deep.exr")).spec()
+    assert spec.deep
+    assert oiio.ImageInput.open(out).spec().get_string_attribute("kiln/deep") == "on"

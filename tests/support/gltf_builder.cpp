@@ -125,6 +125,16 @@ int gltf_builder::add_light(const json& light) {
   return push(doc["extensions"]["KHR_lights_punctual"]["lights"], light);
 }
 
+void gltf_builder::add_lamp_and_camera(const std::array<double, 3>& light, double intensity,
+                                       const std::array<double, 3>& camera, double yfov) {
+  const int lamp = add_light({{"type", "point"}, {"name", "lamp"}, {"intensity", intensity}});
+  add_node({{"name", "lamp"},
+            {"extensions", {{"KHR_lights_punctual", {{"light", lamp}}}}},
+            {"translation", light}});
+  add_camera({{"type", "perspective"}, {"perspective", {{"yfov", yfov}, {"znear", 0.1}}}});
+  add_node({{"camera", int(doc["cameras"].size()) - 1}, {"translation", camera}});
+}
+
 void gltf_builder::add_child(int parent, int child) { doc["nodes"][parent]["children"].push_back(child); }
 
 void gltf_builder::set_scene(const std::vector<int>& roots) {

@@ -51,6 +51,11 @@ struct gltf_builder {
 
   void add_child(int parent, int child);
 
+  // A node holding a point light of intensity candela at light, and a node with a perspective
+  // camera (yfov radians, znear 0.1) at camera looking down -Z: the set-up of the layer tests.
+  void add_lamp_and_camera(const std::array<double, 3>& light, double intensity,
+                           const std::array<double, 3>& camera, double yfov);
+
   // Scene 0, the default scene, with these root nodes.
   void set_scene(const std::vector<int>& roots);
 

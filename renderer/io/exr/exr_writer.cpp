@@ -30,7 +30,8 @@
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
 #include "io/exr/cryptomatte.h"
-#include "io/exr/exr_file_stream.h"
+#include "io/exr/exr_atomic_file.h"
+#include "io/exr/exr_base_header.h"
 #include "io/exr/exr_header.h"
 #include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
@@ -271,45 +272,14 @@ void set_compression(Imf::Header& header, const exr_settings& settings, bool dat
   }
 }
 
-// OpenEXR's capDate, the local time the file was made as "YYYY:MM:DD hh:mm:ss"; every kiln EXR
-// has carried it.
-std::string capture_date() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  ::localtime_r(&now, &local);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
-  return text;
-}
-
 // The header every part carries: windows, colour space, camera matrices, metadata, tiling.
 Imf::Header base_header(const film& f, const exr_settings& settings, const exr_metadata& metadata) {
   // The data window is the stored region; the display window the full frame (they differ for crops).
-  const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(f.full_width - 1, f.full_height - 1));
-  const Imath::Box2i stored(Imath::V2i(f.x0, f.y0), Imath::V2i(f.x0 + f.width - 1, f.y0 + f.height - 1));
-  Imf::Header header(display, stored);  // pixel aspect 1, screen window (0, 0) width 1, increasing y
+  Imf::Header header =
+      exr_base_header({f.full_width, f.full_height}, {f.x0, f.y0, f.x0 + f.width, f.y0 + f.height}, metadata);
   if (settings.tile_size > 0)
     header.setTileDescription(
         Imf::TileDescription(unsigned(settings.tile_size), unsigned(settings.tile_size)));
-  // The render's colour space: glTF's linear Rec.709 (D65) unless a working space was chosen.
-  const std::array<float, 8>& xy = metadata.chromaticities;
-  Imf::addChromaticities(header, Imf::Chromaticities(Imath::V2f(xy[0], xy[1]), Imath::V2f(xy[2], xy[3]),
-                                                     Imath::V2f(xy[4], xy[5]), Imath::V2f(xy[6], xy[7])));
-  // OpenEXR stores matrices row-major with row vectors (p' = p·M): the transpose of GLM's
-  // column-vector convention, so M44f's row c is GLM's column c.
-  Imath::M44f world_to_camera, world_to_ndc;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) {
-      world_to_camera[c][r] = float(metadata.world_to_camera[c][r]);
-      world_to_ndc[c][r] = float(metadata.world_to_ndc[c][r]);
-    }
-  Imf::addWorldToCamera(header, world_to_camera);
-  Imf::addWorldToNDC(header, world_to_ndc);
-  header.insert("Software", Imf::StringAttribute(std::string("kiln ") + KILN_VERSION));
-  header.insert("capDate", Imf::StringAttribute(capture_date()));
-  for (const auto& [key, value] : metadata.attributes) header.insert(key, Imf::StringAttribute(value));
-  for (const auto& [key, value] : metadata.float_attributes) header.insert(key, Imf::FloatAttribute(value));
-  for (const auto& [key, value] : metadata.int_attributes) header.insert(key, Imf::IntAttribute(value));
   return header;
 }
 
@@ -406,28 +376,8 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
 // after another, each part's channels in its channel list's order and in their own formats.
 void write_parts(const std::string& path, const std::vector<Imf::Header>& headers,
                  const unsigned char* pixels, size_t pixel, const std::atomic<bool>* cancel = nullptr) {
-  use_exr_threads();
-  write_atomically(
-      path, "EXR",
-      [&](const std::string& temporary) -> std::string {
-        exr_file_stream stream(temporary);
-        if (!stream.error().empty()) return stream.error();
-        try {
-          // The files' destructors write the offset tables; a failure there reaches only the stream.
-          write_file(stream, headers, pixels, pixel, cancel);
-        } catch (const error& e) {
-          stream.close();
-          if (e.kind() != error_kind::interrupted) throw;
-          throw error(error_kind::interrupted, path, "", "interrupted while writing, nothing written");
-        } catch (const std::exception& e) {
-          const std::string reason =
-              stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
-          stream.close();
-          return reason;
-        }
-        return stream.close();
-      },
-      cancel);
+  write_exr_atomically(
+      path, "EXR", [&](Imf::OStream& stream) { write_file(stream, headers, pixels, pixel, cancel); }, cancel);
 }
 
 // The bytes a pixel of headers' channels takes, in their formats.
