@@ -2,8 +2,8 @@
 // its closed-form coverage under an orthographic camera that maps one world unit to 32 pixels
 // (a sliding quad, a morph target's moving edge), a spinning square whose blurred area stays its
 // own (and shrinks when two steps interpolate a rotation linearly), a sliding glTF camera over a
-// still edge, a still scene unchanged by a shutter, the same bytes for any thread count and tiling, and the
-// refusals.
+// still edge, a sliding sphere quadric, the same bytes for any thread count, tiling and band, a
+// still scene unchanged by a shutter, and the refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -194,7 +194,7 @@ TEST(motion_blur_cli, a_sliding_sphere_quadric_keeps_its_area_and_blurs_along_it
   EXPECT_GE(partial, 8);  // 6.4 pixels of motion at each side
 }
 
-TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_and_tiling) {
+TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_tiling_and_band) {
   const std::string dir = scratch_folder("blur_threads");
   const std::string scene = sliding_and_morphing(dir);
   std::vector<std::string> one = blurred_frame, two = blurred_frame;
@@ -204,6 +204,15 @@ TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_and_tiling) {
   const channel_exr b = render_float_exr(scene, dir + "/two.exr", side, side, two);
   ASSERT_FALSE(a.pixels.empty());
   EXPECT_EQ(a.pixels, b.pixels);
+  // A band of the frame (a farm task's share) holds the same bytes as those rows of the whole.
+  std::vector<std::string> band = blurred_frame;
+  band.insert(band.end(), {"--band", "1/2"});
+  const channel_exr lower = render_float_exr(scene, dir + "/band.exr", side, side, band);
+  ASSERT_EQ(lower.spec.y, side / 2);
+  const size_t row = size_t(side) * size_t(a.spec.nchannels);
+  ASSERT_EQ(lower.pixels.size(), row * size_t(side / 2));
+  EXPECT_TRUE(
+      std::equal(lower.pixels.begin(), lower.pixels.end(), a.pixels.begin() + row * size_t(side / 2)));
 }
 
 TEST(motion_blur_cli, a_still_scene_renders_the_same_with_a_shutter) {
