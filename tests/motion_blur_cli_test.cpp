@@ -104,13 +104,17 @@ TEST(motion_blur_cli, a_spinning_square_keeps_its_area_and_blurs_only_where_it_t
   const std::string scene = spinning(dir);
   const channel_exr image = render_float_exr(scene, dir + "/out.exr", side, side, blurred_frame);
   ASSERT_EQ(image.count(), size_t(side * side));
-  // A rotation keeps the area at every time: 1 unit² = 1024 pixels of alpha. The samples' noise on
-  // the blurred rim is about 1 pixel; the default steps' linear interpolation loses about 1 more.
+  // A rotation keeps the area at every time: 1 unit² = 1024 pixels of alpha. Interpolating it as
+  // matrices over a step that turns by θ scales the area by 2/3 + cos(θ)/3 on average. The 18° turn
+  // takes 3 steps (9° apart) to stay within a quarter pixel halfway: 1019.8 pixels. The samples'
+  // noise on the blurred rim is about 1 pixel. The shutter is open 0.2 s.
   const double area = pixels_per_unit * pixels_per_unit;
-  EXPECT_NEAR(alpha_sum(image), area, 4.0);
-  // An 18° turn takes 5 steps (4.5° apart) to stay within 0.1%; the shutter is open 0.2 s.
-  EXPECT_EQ(image.spec.get_string_attribute("kiln/shutter_steps"), "5");
-  EXPECT_FLOAT_EQ(image.spec.get_float_attribute("ExposureTime"), 0.2f);  // OpenImageIO reads expTime so
+  auto interpolated_area = [&](int steps) {
+    return area * (2.0 + std::cos(18.0 / (steps - 1) * M_PI / 180.0)) / 3.0;
+  };
+  EXPECT_EQ(image.spec.get_string_attribute("kiln/shutter_steps"), "3");
+  EXPECT_NEAR(alpha_sum(image), interpolated_area(3), 3.0);
+  EXPECT_FLOAT_EQ(image.spec.get_float_attribute("ExposureTime"), 0.2f);  // expTime, as OpenImageIO names it
   // Inside the inscribed circle every time covers the pixel, outside the circumscribed one none.
   int inside = 0, outside = 0;
   for (int y = 0; y < side; ++y)
@@ -127,13 +131,14 @@ TEST(motion_blur_cli, a_spinning_square_keeps_its_area_and_blurs_only_where_it_t
     }
   EXPECT_GT(inside, 500);
   EXPECT_GT(outside, 1500);
-  // Two steps interpolate the 18° turn as matrices: halfway, the square shrinks by cos 9°, and the
-  // area by 2/3 + cos(18°)/3 on average over the shutter (1.6%, 17 pixels).
-  std::vector<std::string> two_steps = blurred_frame;
-  two_steps.insert(two_steps.end(), {"--motion-steps", "2"});
-  const channel_exr coarse = render_float_exr(scene, dir + "/two.exr", side, side, two_steps);
-  EXPECT_NEAR(alpha_sum(coarse), area * (2.0 / 3.0 + std::cos(18.0 * M_PI / 180.0) / 3.0), 4.0);
-  EXPECT_EQ(coarse.spec.get_string_attribute("kiln/shutter_steps"), "2");
+  // Fixed steps: two lose 1.6% (17 pixels), nine 0.03%.
+  for (const int steps : {2, 9}) {
+    std::vector<std::string> fixed = blurred_frame;
+    fixed.insert(fixed.end(), {"--motion-steps", std::to_string(steps)});
+    const channel_exr other = render_float_exr(scene, dir + "/steps.exr", side, side, fixed);
+    EXPECT_EQ(other.spec.get_string_attribute("kiln/shutter_steps"), std::to_string(steps));
+    EXPECT_NEAR(alpha_sum(other), interpolated_area(steps), 3.0) << steps << " steps";
+  }
 }
 
 // The top-half quad of sliding_and_morphing held still, seen by a glTF camera sliding +1 in x a

@@ -10,9 +10,9 @@ namespace kiln {
 
 namespace {
 
-// Halfway between two steps, how far linear interpolation may stray from the posed motion, as a
-// fraction of the moving shape's size.
-constexpr double interpolation_tolerance = 1e-3;
+// Halfway between two steps, how far linear interpolation may stray from the posed motion, in
+// pixels of the frame (a quarter pixel: below what 16 or more samples a pixel resolve).
+constexpr double interpolation_tolerance_pixels = 0.25;
 
 shutter_step record_step(const render_options& options, const bounds3* framing, const scene& posed,
                          const std::vector<uint32_t>& deformed) {
@@ -35,41 +35,54 @@ shutter_step record_step(const render_options& options, const bounds3* framing, 
   return step;
 }
 
-double diagonal(const bounds3& b) { return b.empty() ? 0.0 : glm::length(dvec3(b.upper - b.lower)); }
+// The pixels between two world points as view v sees them (its full frame); 0 when either lies
+// behind it, where no pixel shows the error.
+double pixel_distance(const view_camera& v, const dmat4& world_to_ndc_matrix, const dvec3& p,
+                      const dvec3& q) {
+  const dvec4 a = world_to_ndc_matrix * dvec4(p, 1.0), b = world_to_ndc_matrix * dvec4(q, 1.0);
+  if (!(a.w > 0.0) || !(b.w > 0.0)) return 0.0;
+  const glm::dvec2 d = glm::dvec2(a.x / a.w - b.x / b.w, a.y / a.w - b.y / b.w);
+  return glm::length(d * glm::dvec2(v.width, v.height));
+}
 
-// Whether `mid`, posed halfway between a and b, is where linear interpolation of a and b puts it.
+// Whether `mid`, posed halfway between a and b, is where linear interpolation of a and b puts it,
+// to within interpolation_tolerance_pixels as mid's view sees it: every corner of a moving
+// instance's bounds, every vertex of a deforming mesh.
 bool follows_linear(const shutter_step& a, const shutter_step& mid, const shutter_step& b) {
+  const dmat4 to_ndc = world_to_ndc(mid.view);
+  auto strays = [&](const dvec3& posed, const dvec3& interpolated) {
+    return pixel_distance(mid.view, to_ndc, posed, interpolated) > interpolation_tolerance_pixels;
+  };
   std::map<instance_key, size_t> in_a, in_b;
   for (size_t i = 0; i < a.keys.size(); ++i) in_a.emplace(a.keys[i], i);
   for (size_t i = 0; i < b.keys.size(); ++i) in_b.emplace(b.keys[i], i);
+  std::vector<const dmat4*> placing(mid.positions.size(), nullptr);  // per mesh: an instance's transform
   for (size_t i = 0; i < mid.keys.size(); ++i) {
+    const auto [node, kind, shape, order] = mid.keys[i];
+    if (kind == int(shape_kind::mesh) && shape < placing.size()) placing[shape] = &mid.world_from_object[i];
     const auto ia = in_a.find(mid.keys[i]), ib = in_b.find(mid.keys[i]);
     if (ia == in_a.end() || ib == in_b.end()) continue;  // it holds still where a step lacks it
-    const dmat4 off =
-        mid.world_from_object[i] - 0.5 * (a.world_from_object[ia->second] + b.world_from_object[ib->second]);
+    const dmat4& posed = mid.world_from_object[i];
+    const dmat4 interpolated = 0.5 * (a.world_from_object[ia->second] + b.world_from_object[ib->second]);
     const bounds3& box = mid.shape_bounds[i];
     if (box.empty()) continue;
-    double stray = 0.0;
     for (int corner = 0; corner < 8; ++corner) {
-      const dvec3 p((corner & 1) ? box.upper.x : box.lower.x, (corner & 2) ? box.upper.y : box.lower.y,
-                    (corner & 4) ? box.upper.z : box.lower.z);
-      stray = std::max(stray, glm::length(dvec3(off * dvec4(p, 1.0))));
+      const dvec4 c((corner & 1) ? box.upper.x : box.lower.x, (corner & 2) ? box.upper.y : box.lower.y,
+                    (corner & 4) ? box.upper.z : box.lower.z, 1.0);
+      if (strays(dvec3(posed * c), dvec3(interpolated * c))) return false;
     }
-    if (stray > interpolation_tolerance * diagonal(transform_bounds(mid.world_from_object[i], box)))
-      return false;
   }
   for (size_t m = 0; m < mid.positions.size(); ++m) {
     const std::vector<vec3>& p = mid.positions[m];
-    if (p.empty() || m >= a.positions.size() || m >= b.positions.size() ||
+    if (p.empty() || !placing[m] || m >= a.positions.size() || m >= b.positions.size() ||
         a.positions[m].size() != p.size() || b.positions[m].size() != p.size())
       continue;
-    bounds3 box;
-    double stray = 0.0;
     for (size_t v = 0; v < p.size(); ++v) {
-      box.extend(dvec3(p[v]));
-      stray = std::max(stray, double(glm::length(p[v] - 0.5f * (a.positions[m][v] + b.positions[m][v]))));
+      const vec3 interpolated = 0.5f * (a.positions[m][v] + b.positions[m][v]);
+      if (strays(transform_point(*placing[m], dvec3(p[v])),
+                 transform_point(*placing[m], dvec3(interpolated))))
+        return false;
     }
-    if (stray > interpolation_tolerance * diagonal(box)) return false;
   }
   return true;
 }
