@@ -216,7 +216,7 @@ for j in r["jobs"]:
 PY
   compare_to_reference "my shot 'v2'" "$scratch/out 3/my shot 'v2'.exr" "$scratch/work3/plan.json"
   echo "farm: --manifest through kiln batch --plan-only verified, names with spaces, quotes and non-ASCII included"
-  # A sequence: the manifest job's frames become one job (and one array task) per frame, each the
+  # A sequence: the manifest job's frames become one job (one unit) per frame, each the
   # pixels of `kiln render --frame N`.
   python3 "$source_dir/bench/sequence/make_sequence_scenes.py" "$scratch/anim" >/dev/null
   printf 'asset,frames,fps,resolution,spp\n%s,1-4,8,48x32,1\n' "$scratch/anim/rigid_boxes.gltf" \
@@ -233,7 +233,7 @@ PY
   for frame in 0001 0004; do
     compare_to_reference "rigid_boxes.$frame" "$scratch/out4/rigid_boxes.$frame.exr" "$scratch/work4/plan.json"
   done
-  echo "farm: a manifest job with frames is one verified array task per frame"
+  echo "farm: a manifest job with frames is one verified job per frame"
 else
   echo "farm: --manifest not exercised: this kiln's batch command has no --plan-only"
 fi

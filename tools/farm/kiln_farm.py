@@ -174,21 +174,36 @@ TASK_START_SECONDS, TASK_MIN_SECONDS = 30, 300
 PROCESS_BYTES = 256 << 20
 
 
-def job_estimate(job):
-    """(render seconds, peak bytes) of a plan job's "estimate", or None when it has none."""
+def job_estimate(job, threads):
+    """(load seconds, render seconds on `threads` threads, peak bytes) of a plan job's "estimate",
+    or None when it has none. kiln batch --plan-only writes load_seconds (load and BVH build) and
+    render_seconds on one thread; a plain "seconds" is taken as the render's."""
     e = job.get("estimate")
     if not isinstance(e, dict):
         return None
-    return float(e["seconds"]), int(e["peak_memory_bytes"])
+    if "render_seconds" in e:
+        return float(e.get("load_seconds", 0.0)), float(e["render_seconds"]) / threads, int(e["peak_memory_bytes"])
+    return 0.0, float(e["seconds"]), int(e["peak_memory_bytes"])
 
 
-def unit_estimates(plan, tiles):
-    """Estimated seconds and bytes of each unit (a band renders 1/tiles of its job's pixels, but
-    loads the whole scene), or None when any job lacks an estimate."""
-    estimates = [job_estimate(job) for job in plan["jobs"]]
-    if any(e is None for e in estimates):
+def unit_estimates(plan, tiles, cpus_per_task):
+    """Estimated seconds and bytes of each unit: a band renders 1/tiles of its job's pixels but
+    loads the whole scene. A job without an estimate (its asset could not be probed) counts as the
+    largest of the others; None when no job has one."""
+    estimates = []
+    for job in plan["jobs"]:
+        threads = option_value(job["render_args"], "--threads")
+        estimates.append(job_estimate(job, max(1, int(threads)) if threads and threads.isdigit() and threads != "0"
+                                      else cpus_per_task))
+    known = [e for e in estimates if e is not None]
+    if not known:
         return None
-    return [(seconds / tiles, peak) for seconds, peak in estimates for _ in range(tiles)]
+    fallback = tuple(max(e[k] for e in known) for k in range(3))
+    units = []
+    for e in estimates:
+        load, render, peak = e or fallback
+        units += [(load + render / tiles, peak)] * tiles
+    return units
 
 
 def pack_units(unit_count, estimates, jobs_per_task, task_seconds, target_tasks):
@@ -419,7 +434,7 @@ def submit(options):
         raise InputError("extra kiln batch defaults after -- need --manifest")
     plan = load_plan(plan_path)
     tasks = build_tasks(plan, options.kiln, options.tiles, options.cpus_per_task, options.work_dir)
-    estimates = unit_estimates(plan, options.tiles)
+    estimates = unit_estimates(plan, options.tiles, options.cpus_per_task)
     packs = pack_units(len(tasks), estimates, options.jobs_per_task, options.task_seconds, options.target_tasks)
     size_resources(options, estimates, packs)
     max_array_size = options.max_array_size or cluster_max_array_size()
