@@ -1,6 +1,6 @@
 // What a job will cost, estimated at plan time (kiln batch --plan-only) for a farm to size its
-// tasks: peak memory from job/memory_estimates.h over the loaded scene, and render seconds from a
-// probe, the frame rendered small and at few samples, scaled by pixels × samples.
+// tasks: peak memory from job/memory_estimates.h over the loaded scene, and render seconds from two
+// probes, the frame rendered small and at few samples: a cost fixed per render plus one per sample.
 #pragma once
 
 #include <cstdint>
@@ -16,8 +16,8 @@ struct plan_estimate {
   int probe_width = 0, probe_height = 0, probe_spp = 0;
 };
 
-// Loads options.input, estimates its memory and renders the probe (about probe_pixels pixels, at
-// most 4 samples a pixel, one thread). Throws kiln::error as run_job does for bad input.
-plan_estimate estimate_job(const render_options& options, int probe_pixels = 4800);
+// Loads options.input, estimates its memory and renders the probes (one pixel, then about
+// probe_pixels pixels; at most 4 samples a pixel, one thread). Throws kiln::error as run_job does.
+plan_estimate estimate_job(const render_options& options, int probe_pixels = 19200);
 
 }  // namespace kiln
