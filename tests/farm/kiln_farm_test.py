@@ -269,8 +269,21 @@ class FarmTest(unittest.TestCase):
                                "--max-array-size", "1001", "--time", "2:00:00", "--mem", "8G", "--tiles", "2"])
         self.assertIn("14 units (7 jobs x 2 bands) in 3 tasks (at most 6 units a task)", out)
         self.assertIn("--time 2:00:00 --mem 8G", out)
+        self.assert_plan_error({"version": 1, "jobs": [self.job(estimate={"seconds": 1, "peak_memory_bytes": 0,
+                                                                          "render_seconds": "x"})]},
+                               "/jobs/0/estimate/render_seconds: expected a non-negative number")
         self.assert_plan_error({"version": 1, "jobs": [self.job(estimate={"seconds": -1, "peak_memory_bytes": 0})]},
                                "/jobs/0/estimate/seconds: expected a non-negative number")
+
+    def test_unit_estimates_from_kiln_plans(self):
+        # kiln's estimate: load once a band, the one-thread render split over threads and bands;
+        # a job without one (its asset did not load) counts as the largest of the others.
+        kiln_style = {"seconds": 41.0, "load_seconds": 1.0, "render_seconds": 40.0, "peak_memory_bytes": 100}
+        plan = {"jobs": [self.job("a", estimate=kiln_style), self.job("b", render_args=["--threads", "8"],
+                                                                      estimate=kiln_style), self.job("c")]}
+        self.assertEqual(kiln_farm.unit_estimates(plan, 2, 4),
+                         [(6.0, 100), (6.0, 100), (3.5, 100), (3.5, 100), (6.0, 100), (6.0, 100)])
+        self.assertIsNone(kiln_farm.unit_estimates({"jobs": [self.job("c")]}, 1, 1))
 
     def test_a_packed_task_renders_resumes_and_reports_each_job(self):
         # Run the render script as Slurm would run task 1 of an array starting at task 0: its three

@@ -94,7 +94,9 @@ def load_plan(path):
         job["render_args"] = args
         if "estimate" in job:  # written by kiln batch --plan-only: sizes --time, --mem and the packing
             e = job["estimate"]
-            for key in ("seconds", "peak_memory_bytes"):
+            for key in ("seconds", "peak_memory_bytes", "load_seconds", "render_seconds"):
+                if key.endswith("_seconds") and isinstance(e, dict) and key not in e:
+                    continue  # optional: a plan written by hand may give seconds alone
                 value = e.get(key) if isinstance(e, dict) else None
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1e18:
                     raise InputError(f"{where}/estimate/{key}: expected a non-negative number")
