@@ -255,6 +255,17 @@ class FarmTest(unittest.TestCase):
                           f"{self.dir}/render.sbatch\n", out)
         self.assertIn("--dependency=afterany:<render job id 0>:<render job id 1>:<render job id 2> ", out)
 
+    def test_a_studio_batch_is_a_few_hundred_tasks(self):
+        jobs = [self.job(f"asset{i:05d}") for i in range(10000)]
+        path = self.write_plan({"version": 1, "jobs": jobs})
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "1001"])
+        self.assertEqual(rc, 0)
+        self.assertIn("10000 units (10000 jobs x 1 bands) in 500 tasks (at most 20 units a task) in 1 arrays", out)
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "101", "--tiles", "2", "--target-tasks", "300"])
+        self.assertIn("20000 units (10000 jobs x 2 bands) in 299 tasks (at most 67 units a task) in 3 arrays", out)
+
     def test_estimates_size_time_mem_and_packing(self):
         jobs = [self.job(f"j{i}", estimate={"seconds": 100.0, "peak_memory_bytes": 1 << 30}) for i in range(7)]
         path = self.write_plan({"version": 1, "jobs": jobs})

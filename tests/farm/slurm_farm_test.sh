@@ -222,8 +222,13 @@ PY
   printf 'asset,frames,fps,resolution,spp\n%s,1-4,8,48x32,1\n' "$scratch/anim/rigid_boxes.gltf" \
     >"$scratch/shot.csv"
   python3 "$farm/kiln_farm.py" submit --manifest "$scratch/shot.csv" --out-dir "$scratch/out4" \
-    --kiln "$kiln" --work-dir "$scratch/work4" --tiles 1 --mem 256M --time 5:00 --wait ||
+    --kiln "$kiln" --work-dir "$scratch/work4" --tiles 1 --wait ||
     fail "the frames farm run did not complete: $(cat "$scratch"/work4/logs/*.log)"
+  # No --time or --mem: both come from the plan's estimates (tiny frames: the 5-minute floor, and
+  # 256 MiB + 1.5 x a peak of a few MiB), and the four frames fit one task.
+  grep -qx '#SBATCH --time=00:05:00' "$scratch/work4/render.sbatch" || fail "--time not sized from the estimates"
+  grep -qE '^#SBATCH --mem=2[5-9][0-9]M$' "$scratch/work4/render.sbatch" || fail "--mem not sized from the estimates"
+  [ "$(wc -l <"$scratch/work4/packs.txt")" -eq 1 ] || fail "four tiny frames are not packed into one task"
   python3 - "$scratch/work4/verify.json" <<'PY' || fail "the frames run's verify.json is not ok"
 import json, sys
 r = json.load(open(sys.argv[1]))
