@@ -735,6 +735,17 @@ TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) 
   EXPECT_EQ(camera["asset"], asset);
   EXPECT_EQ(plain["output"], out + "/cornell_box.exr");
   EXPECT_EQ(camera["output"], out + "/cornell_box_0.exr");
+  // Each job's estimate for the farm (job/plan_estimate.h): a probe no larger than the frame, a
+  // render time, and a peak that holds at least the film (32 bytes a pixel).
+  for (const json& job : plan["jobs"]) {
+    ASSERT_TRUE(job.contains("estimate")) << job.dump();
+    const json& e = job["estimate"];
+    EXPECT_GT(e["render_seconds"].get<double>(), 0.0);
+    EXPECT_GE(e["seconds"].get<double>(), e["render_seconds"].get<double>());
+    EXPECT_GE(e["peak_memory_bytes"].get<uint64_t>(), uint64_t(32) * 32 * 24);
+    EXPECT_LE(e["probe"][0].get<int>(), 32);
+    EXPECT_EQ(e["probe"][2], 2);
+  }
   // The value after each option name, or "" when the option is absent.
   auto value = [](const json& job, const std::string& name) -> std::string {
     const std::vector<std::string> args = job["render_args"];

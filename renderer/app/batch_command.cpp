@@ -24,6 +24,7 @@
 #include "job/frame_range.h"
 #include "job/option_table.h"
 #include "job/output_guard.h"
+#include "job/plan_estimate.h"
 #include "job/render_fingerprint.h"
 #include "job/render_sequence.h"
 
@@ -121,6 +122,25 @@ void check_batch_outputs(const std::vector<batch_job>& jobs) {
   }
 }
 
+// A job's plan-time estimate for the farm (job/plan_estimate.h); null when its asset cannot be
+// rendered (a missing file fails its job alone, when it runs).
+nlohmann::json estimate_json(const render_options& options) {
+  render_options probe = options;
+  probe.quiet = true;
+  plan_estimate e;
+  try {
+    e = estimate_job(probe);
+  } catch (const error&) {
+    return nullptr;
+  }
+  return {{"seconds", e.load_seconds + e.render_seconds},
+          {"load_seconds", e.load_seconds},
+          {"render_seconds", e.render_seconds},
+          {"threads", 1},
+          {"peak_memory_bytes", e.peak_memory_bytes},
+          {"probe", {e.probe_width, e.probe_height, e.probe_spp}}};
+}
+
 nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
   nlohmann::json list = nlohmann::json::array();
   for (const batch_job& job : jobs) {
@@ -129,10 +149,13 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
       throw input_error("", job.where, "a plan leaves --crop and --band to whoever runs it; drop them");
     std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
     if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
-    list.push_back({{"name", job.name},
-                    {"asset", job.options.input},
-                    {"output", job.options.output},
-                    {"render_args", args}});
+    nlohmann::json entry = {{"name", job.name},
+                            {"asset", job.options.input},
+                            {"output", job.options.output},
+                            {"render_args", args}};
+    if (nlohmann::json estimate = estimate_json(job.options); !estimate.is_null())
+      entry["estimate"] = estimate;
+    list.push_back(entry);
   }
   return {{"version", 1}, {"jobs", list}};
 }

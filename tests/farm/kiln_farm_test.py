@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """tools/farm/kiln_farm.py without a cluster: plan checking, the task list and sbatch scripts of
---dry-run and a written work folder, the EXR header reader against kiln's own --tile bands, and
-finalize's report on missing and damaged bands.
+--dry-run and a written work folder, the EXR header reader against kiln's own --tile bands,
+finalize's report on missing and damaged bands, how units are packed into tasks and tasks split
+into arrays, --time and --mem from estimates, and a packed task's script run without Slurm.
 Usage: kiln_farm_test.py SOURCE_DIR KILN_BINARY"""
 
 import contextlib
@@ -85,7 +86,7 @@ class FarmTest(unittest.TestCase):
                      "#SBATCH --cpus-per-task=4", "#SBATCH --mem=3G", "#SBATCH --requeue", "max_retries=2",
                      f"#SBATCH --output={work}/logs/render.%A_%a.log",
                      f"exec python3 {work}/kiln_farm.py finalize --work-dir {work}",
-                     "--dependency=afterany:<render job id>"):
+                     "--dependency=afterany:<render job id 0> "):
             self.assertIn(line, out)
 
     def test_tasks_render_exactly_the_bands_that_stitch(self):
@@ -209,6 +210,128 @@ class FarmTest(unittest.TestCase):
         self.assertEqual(rc, 2)
         self.assertIn("'kiln batch --plan-only' is not supported by this binary", err)
         self.assertFalse(os.path.exists(os.path.join(self.dir, "batch_args")))
+
+    def test_packing_and_splitting_arithmetic(self):
+        # Without estimates: as many units a task as keep 10,000 within --target-tasks.
+        packs = kiln_farm.pack_units(10000, None, None, 300.0, 500)
+        self.assertEqual((len(packs), max(map(len, packs))), (500, 20))
+        self.assertEqual([u for p in packs for u in p], list(range(10000)))  # each unit once, in order
+        self.assertEqual(len(kiln_farm.pack_units(40, None, None, 300.0, 500)), 40)  # small: one a task
+        self.assertEqual([len(p) for p in kiln_farm.pack_units(41, None, 3, 300.0, 500)], [3] * 13 + [2])
+        # With estimates: units fill tasks up to --task-seconds; a longer one goes alone.
+        estimates = [(100.0, 1), (150.0, 1), (100.0, 1), (400.0, 1), (10.0, 1), (10.0, 1)]
+        self.assertEqual(kiln_farm.pack_units(6, estimates, None, 300.0, 500), [[0, 1], [2], [3], [4, 5]])
+        self.assertEqual(kiln_farm.pack_units(6, estimates, 4, 300.0, 500), [[0, 1, 2, 3], [4, 5]])
+        # Arrays: indices 0..n-1 stay below MaxArraySize.
+        self.assertEqual(kiln_farm.split_arrays(14, 5), [(0, 5), (5, 5), (10, 4)])
+        self.assertEqual(kiln_farm.split_arrays(5, 5), [(0, 5)])
+        self.assertEqual(kiln_farm.split_arrays(500, 1001), [(0, 500)])
+        self.assertEqual(len(kiln_farm.split_arrays(10000, 1001)), 10)
+
+    def test_max_array_size_comes_from_scontrol(self):
+        fake = os.path.join(self.dir, "bin")
+        os.makedirs(fake)
+        with open(os.path.join(fake, "scontrol"), "w") as f:
+            f.write("#!/bin/sh\necho 'MaxArraySize            = 7'\necho 'MaxJobCount = 10000'\n")
+        os.chmod(os.path.join(fake, "scontrol"), 0o755)
+        path = os.environ["PATH"]
+        try:
+            os.environ["PATH"] = fake + os.pathsep + path
+            self.assertEqual(kiln_farm.cluster_max_array_size(), 7)
+            os.environ["PATH"] = os.path.join(self.dir, "none")  # no scontrol: Slurm's default
+            self.assertEqual(kiln_farm.cluster_max_array_size(), 1001)
+        finally:
+            os.environ["PATH"] = path
+
+    def test_dry_run_splits_into_arrays_and_the_finalize_job_waits_for_all(self):
+        path = self.write_plan({"version": 1, "jobs": [self.job(f"j{i}") for i in range(40)]})
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--max-array-size", "5",
+                               "--jobs-per-task", "3", "--array-limit", "2", "--kiln", KILN])
+        self.assertEqual(rc, 0)
+        self.assertIn("40 units (40 jobs x 1 bands) in 14 tasks (at most 3 units a task) in 3 arrays "
+                      "(MaxArraySize 5); --time 01:00:00 --mem 2G", out)
+        for first, last in ((0, 4), (5, 4), (10, 3)):
+            self.assertIn(f"# sbatch --parsable --array=0-{last}%2 --export=ALL,KILN_FARM_FIRST_TASK={first} "
+                          f"{self.dir}/render.sbatch\n", out)
+        self.assertIn("--dependency=afterany:<render job id 0>:<render job id 1>:<render job id 2> ", out)
+
+    def test_a_studio_batch_is_a_few_hundred_tasks(self):
+        jobs = [self.job(f"asset{i:05d}") for i in range(10000)]
+        path = self.write_plan({"version": 1, "jobs": jobs})
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "1001"])
+        self.assertEqual(rc, 0)
+        self.assertIn("10000 units (10000 jobs x 1 bands) in 500 tasks (at most 20 units a task) in 1 arrays", out)
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "101", "--tiles", "2", "--target-tasks", "300"])
+        self.assertIn("20000 units (10000 jobs x 2 bands) in 299 tasks (at most 67 units a task) in 3 arrays", out)
+
+    def test_estimates_size_time_mem_and_packing(self):
+        jobs = [self.job(f"j{i}", estimate={"seconds": 100.0, "peak_memory_bytes": 1 << 30}) for i in range(7)]
+        path = self.write_plan({"version": 1, "jobs": jobs})
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "1001", "--max-retries", "0"])
+        self.assertEqual(rc, 0)
+        # 3 jobs of 100 s a task (300 s): 3 x 30 s start + 3 x 300 s = 990 s, 17 minutes;
+        # 256 MB + 1.5 x 1 GB = 1792 MB.
+        self.assertIn("in 3 tasks (at most 3 units a task) in 1 arrays (MaxArraySize 1001); "
+                      "--time 00:17:00 --mem 1792M", out)
+        rc, out, _ = run_main(["submit", "--plan", path, "--work-dir", self.dir, "--dry-run", "--kiln", KILN,
+                               "--max-array-size", "1001", "--time", "2:00:00", "--mem", "8G", "--tiles", "2"])
+        self.assertIn("14 units (7 jobs x 2 bands) in 3 tasks (at most 6 units a task)", out)
+        self.assertIn("--time 2:00:00 --mem 8G", out)
+        self.assert_plan_error({"version": 1, "jobs": [self.job(estimate={"seconds": 1, "peak_memory_bytes": 0,
+                                                                          "render_seconds": "x"})]},
+                               "/jobs/0/estimate/render_seconds: expected a non-negative number")
+        self.assert_plan_error({"version": 1, "jobs": [self.job(estimate={"seconds": -1, "peak_memory_bytes": 0})]},
+                               "/jobs/0/estimate/seconds: expected a non-negative number")
+
+    def test_unit_estimates_from_kiln_plans(self):
+        # kiln's estimate: load once a band, the one-thread render split over threads and bands;
+        # a job without one (its asset did not load) counts as the largest of the others.
+        kiln_style = {"seconds": 41.0, "load_seconds": 1.0, "render_seconds": 40.0, "peak_memory_bytes": 100}
+        plan = {"jobs": [self.job("a", estimate=kiln_style), self.job("b", render_args=["--threads", "8"],
+                                                                      estimate=kiln_style), self.job("c")]}
+        self.assertEqual(kiln_farm.unit_estimates(plan, 2, 4),
+                         [(6.0, 100), (6.0, 100), (3.5, 100), (3.5, 100), (6.0, 100), (6.0, 100)])
+        self.assertIsNone(kiln_farm.unit_estimates({"jobs": [self.job("c")]}, 1, 1))
+
+    def test_a_packed_task_renders_resumes_and_reports_each_job(self):
+        # Run the render script as Slurm would run task 1 of an array starting at task 0: its three
+        # units one after another; the missing asset's fails alone and the task exits with its 2.
+        jobs = [self.job(f"j{i}") for i in range(5)]
+        jobs[3]["asset"] = os.path.join(self.dir, "missing.gltf")
+        path = self.write_plan({"version": 1, "jobs": jobs})
+        options = kiln_farm.parse_args(["submit", "--plan", path, "--work-dir", self.dir, "--kiln", KILN,
+                                        "--jobs-per-task", "3", "--max-retries", "0"])
+        kiln_farm.size_resources(options, None, None)
+        plan = kiln_farm.load_plan(path)
+        tasks = kiln_farm.build_tasks(plan, KILN, 1, 1, self.dir)
+        packs = kiln_farm.pack_units(len(tasks), None, 3, 300.0, 500)
+        self.assertEqual(packs, [[0, 1, 2], [3, 4]])
+        kiln_farm.write_work_dir(options, plan, tasks, packs, [(0, 1), (1, 1)])
+        script = os.path.join(self.dir, "render.sbatch")
+        with open(script, "w") as f:
+            f.write(kiln_farm.render_script(options, 1))
+        env = dict(os.environ, SLURM_ARRAY_TASK_ID="0", KILN_FARM_FIRST_TASK="1")
+        run = subprocess.run(["bash", script], env=env, capture_output=True, text=True)
+        self.assertEqual(run.returncode, 2, run.stderr)
+        self.assertIn("kiln farm: task 1 attempt 0 (unit 4)", run.stdout)
+        with open(os.path.join(self.dir, "status", "3.rc")) as f:
+            self.assertEqual(f.read().strip(), "2")
+        # A requeued task skips the unit that finished: unit 4 is not rendered again.
+        run = subprocess.run(["bash", script], env=env, capture_output=True, text=True)
+        self.assertEqual(run.returncode, 2)
+        self.assertNotIn("(unit 4)", run.stdout)
+        rc, _, _ = run_main(["finalize", "--work-dir", self.dir])
+        self.assertEqual(rc, 1)
+        with open(os.path.join(self.dir, "verify.json")) as f:
+            report = {j["name"]: j for j in json.load(f)["jobs"]}
+        self.assertTrue(report["j4"]["ok"], report["j4"])
+        self.assertEqual(report["j3"]["problems"],
+                         [f"band 0 of 1 missing (task 1: exit 2; log {self.dir}/logs/render.*_0.log)"])
+        for name in ("j0", "j1", "j2"):  # task 0 never ran
+            self.assertIn("never ran to the end", report[name]["problems"][0])
 
     def test_header_reader_refuses_what_is_not_exr(self):
         path = os.path.join(self.dir, "x.exr")

@@ -4,8 +4,11 @@
 # names and formats, the full frame as data window, and pixels equal under `idiff` with zero
 # tolerance. A second submission, through a kiln wrapper that fails each band's first attempt,
 # checks that a failed render is retried, that a job whose asset is missing is not retried and is
-# reported in verify.json (band missing, exit 2) with the finalize job failing. When
-# `kiln batch --help` offers --plan-only, a third submission goes through --manifest.
+# reported in verify.json (band missing, exit 2) with the finalize job failing. The cluster's
+# MaxArraySize is 5, so every submission of more than 5 tasks is split into several arrays; a batch
+# of 40 small jobs (and one missing asset) is packed 3 jobs a task: 14 tasks in 3 arrays, each job
+# verified on its own. When `kiln batch --help` offers --plan-only, a submission goes through
+# --manifest.
 # Needs root (it starts munged, slurmctld and slurmd); exits 77 (skipped) otherwise.
 # Usage: slurm_farm_test.sh SOURCE_DIR KILN_BINARY
 set -euo pipefail
@@ -30,7 +33,7 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 143' TERM  # so that an interrupted run also stops its daemons
 trap 'exit 130' INT
-slurm_env=$("$farm/test_slurm.sh" start "$scratch/slurm")  # a plain assignment, so set -e sees a failure
+slurm_env=$(KILN_TEST_SLURM_MAX_ARRAY_SIZE=5 "$farm/test_slurm.sh" start "$scratch/slurm")  # a plain assignment, so set -e sees a failure
 eval "$slurm_env"
 
 fail() {
@@ -66,6 +69,11 @@ python3 "$farm/kiln_farm.py" submit --plan "$scratch/plan.json" --kiln "$kiln" -
   --tiles 3 --cpus-per-task 1 --mem 256M --time 5:00 --max-retries 0 --array-limit 2 --wait ||
   fail "the farm run did not complete: $(cat "$scratch"/work/logs/finalize.*.log 2>/dev/null)"
 echo "farm: 3 jobs x 3 bands rendered, stitched and verified in $(($(date +%s) - start)) s"
+python3 - "$scratch/work/submission.json" <<'PY' || fail "9 tasks on MaxArraySize 5 are not two arrays"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["max_array_size"] == 5 and s["tasks"] == 9 and len(s["render_jobs"]) == 2, s
+PY
 
 # compare_to_reference NAME OUTPUT PLAN: a single-process render of PLAN's job NAME must have
 # OUTPUT's channels (names and formats), windows and pixels.
@@ -145,6 +153,44 @@ for task, attempts in ((0, 2), (1, 2), (2, 1), (3, 1)):
 PY
 echo "farm: a failing first attempt is retried; a missing asset is reported in verify.json and fails the batch"
 
+# Many small jobs: 40 tiny renders and, in the middle of a task, one missing asset, packed 3 a task:
+# 41 units in 14 tasks, split into 3 arrays (5 + 5 + 4) by the MaxArraySize scontrol reports.
+small=()
+for i in $(seq 0 40); do
+  asset="$scenes/cornell_box.gltf"
+  [ "$i" -eq 19 ] && asset="$scratch/no_such_small.gltf"
+  small+=("small$i|$asset|--width 16 --height 12 --spp 1")
+done
+write_plan "$scratch/plan5.json" "$scratch/out5" "${small[@]}"
+start=$(date +%s)
+rc=0
+python3 "$farm/kiln_farm.py" submit --plan "$scratch/plan5.json" --kiln "$kiln" --work-dir "$scratch/work5" \
+  --jobs-per-task 3 --mem 256M --time 5:00 --max-retries 0 --wait || rc=$?
+[ "$rc" -eq 1 ] || fail "a packed batch with a missing asset must end with exit 1, got $rc"
+python3 - "$scratch/work5" <<'PY' || fail "the packed batch is not reported as it should"
+import json, os, re, subprocess, sys
+w = sys.argv[1]
+s = json.load(open(f"{w}/submission.json"))
+assert (s["units"], s["tasks"], s["max_array_size"], len(s["render_jobs"])) == (41, 14, 5, 3), s
+r = json.load(open(f"{w}/verify.json"))
+good = [j for j in r["jobs"] if j["ok"]]
+assert len(good) == 40 and all((j["width"], j["height"]) == (16, 12) for j in good), r
+lost = [j for j in r["jobs"] if not j["ok"]]
+assert [j["name"] for j in lost] == ["small19"], lost
+# Unit 19 is the second of task 6 (units 18-20): array 1, index 1. Its neighbours rendered.
+log = f"{w}/logs/render.{s['render_jobs'][1]}_1.log"
+assert lost[0]["problems"] == [f"band 0 of 1 missing (task 6: exit 2; log {log})"], lost
+text = open(log).read()
+for unit in (18, 19, 20):
+    assert f"kiln farm: task 6 attempt 0 (unit {unit})" in text, text
+# The task with the failed job exits non-zero; the others succeed.
+for array, index, code in ((1, 1, "2:0"), (1, 0, "0:0"), (2, 3, "0:0")):
+    out = subprocess.run(["scontrol", "show", "job", "-o", f"{s['render_jobs'][array]}_{index}"],
+                         capture_output=True, text=True).stdout
+    assert re.search(rf"\bExitCode={code}\b", out), (array, index, out)
+PY
+echo "farm: 41 small jobs packed into 14 tasks in 3 arrays, 40 verified, the lost one reported in $(($(date +%s) - start)) s"
+
 # kiln batch --plan-only resolves a manifest into the same plan format: run it when available.
 if "$kiln" batch --help 2>&1 | grep -q -- --plan-only; then
   # Every name kiln batch accepts goes through: spaces and quotes in the asset's file name and
@@ -170,14 +216,19 @@ for j in r["jobs"]:
 PY
   compare_to_reference "my shot 'v2'" "$scratch/out 3/my shot 'v2'.exr" "$scratch/work3/plan.json"
   echo "farm: --manifest through kiln batch --plan-only verified, names with spaces, quotes and non-ASCII included"
-  # A sequence: the manifest job's frames become one job (and one array task) per frame, each the
+  # A sequence: the manifest job's frames become one job (one unit) per frame, each the
   # pixels of `kiln render --frame N`.
   python3 "$source_dir/bench/sequence/make_sequence_scenes.py" "$scratch/anim" >/dev/null
   printf 'asset,frames,fps,resolution,spp\n%s,1-4,8,48x32,1\n' "$scratch/anim/rigid_boxes.gltf" \
     >"$scratch/shot.csv"
   python3 "$farm/kiln_farm.py" submit --manifest "$scratch/shot.csv" --out-dir "$scratch/out4" \
-    --kiln "$kiln" --work-dir "$scratch/work4" --tiles 1 --mem 256M --time 5:00 --wait ||
+    --kiln "$kiln" --work-dir "$scratch/work4" --tiles 1 --wait ||
     fail "the frames farm run did not complete: $(cat "$scratch"/work4/logs/*.log)"
+  # No --time or --mem: both come from the plan's estimates (tiny frames: the 5-minute floor, and
+  # 256 MiB + 1.5 x a peak of a few MiB), and the four frames fit one task.
+  grep -qx '#SBATCH --time=00:05:00' "$scratch/work4/render.sbatch" || fail "--time not sized from the estimates"
+  grep -qE '^#SBATCH --mem=2[5-9][0-9]M$' "$scratch/work4/render.sbatch" || fail "--mem not sized from the estimates"
+  [ "$(wc -l <"$scratch/work4/packs.txt")" -eq 1 ] || fail "four tiny frames are not packed into one task"
   python3 - "$scratch/work4/verify.json" <<'PY' || fail "the frames run's verify.json is not ok"
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -187,7 +238,7 @@ PY
   for frame in 0001 0004; do
     compare_to_reference "rigid_boxes.$frame" "$scratch/out4/rigid_boxes.$frame.exr" "$scratch/work4/plan.json"
   done
-  echo "farm: a manifest job with frames is one verified array task per frame"
+  echo "farm: a manifest job with frames is one verified job per frame"
 else
   echo "farm: --manifest not exercised: this kiln's batch command has no --plan-only"
 fi

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Renders a kiln batch on a Slurm cluster: one array task per job and band, then a stitch job.
+"""Renders a kiln batch on a Slurm cluster: job arrays whose tasks each render one or more job bands,
+then a stitch job.
 
     kiln_farm.py submit (--plan PLAN.json | --manifest M --out-dir DIR) --work-dir W [options]
                         [-- extra kiln batch defaults]
@@ -7,11 +8,13 @@
     kiln_farm.py verify --work-dir W       (checks the outputs again, prints the report)
 
 submit writes into W: plan.json (the resolved batch), tasks.txt (one shell-quoted kiln command a
-line, line k is array task k: every job times every band), farm.json (what finalize needs),
-render.sbatch and finalize.sbatch, and a copy of this script, so the jobs depend on W and the
-kiln binary only. It submits render.sbatch as an array job and finalize.sbatch with
---dependency=afterany on it: finalize runs whether or not every task succeeded and reports each
-missing band with its task's exit status and log. docs/farm.md describes the options.
+line, line u renders unit u: every job times every band), packs.txt (line t: the units task t
+renders, one after another), farm.json (what finalize needs), render.sbatch (one script for every
+array; each array passes its first task with --export) and finalize.sbatch, and a copy of this
+script, so the jobs depend on W and the kiln binary only. The tasks are split into as many arrays
+as the cluster's MaxArraySize needs; finalize.sbatch runs with --dependency=afterany on all of
+them: whether or not every task succeeded, it reports each missing band with its exit status and
+log. docs/farm.md describes the options.
 Python 3 standard library only.
 """
 
@@ -40,7 +43,8 @@ class InputError(Exception):
 
 
 # ---------------------------------------------------------------------------------------------
-# The plan: {"version": 1, "jobs": [{"name", "asset", "output", "render_args": [...]}]}
+# The plan: {"version": 1, "jobs": [{"name", "asset", "output", "render_args": [...],
+#                                    "estimate": {"seconds", "peak_memory_bytes"} (optional)}]}
 
 
 def load_plan(path):
@@ -88,6 +92,14 @@ def load_plan(path):
                     ("--band=", "--tile=", "--crop=", "--output=")):
                 raise InputError(f"{where}/render_args/{j}: '{a}' is set by the farm, not the plan")
         job["render_args"] = args
+        if "estimate" in job:  # written by kiln batch --plan-only: sizes --time, --mem and the packing
+            e = job["estimate"]
+            for key in ("seconds", "peak_memory_bytes", "load_seconds", "render_seconds"):
+                if key.endswith("_seconds") and isinstance(e, dict) and key not in e:
+                    continue  # optional: a plan written by hand may give seconds alone
+                value = e.get(key) if isinstance(e, dict) else None
+                if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1e18:
+                    raise InputError(f"{where}/estimate/{key}: expected a non-negative number")
     return plan
 
 
@@ -137,7 +149,8 @@ def tile_path(work_dir, stem, i, n):
 
 
 def build_tasks(plan, kiln, tiles, cpus_per_task, work_dir):
-    """One task per job and band, in job order: (job name, band, kiln argv)."""
+    """One unit (a kiln command) per job and band, in job order: (job name, band, kiln argv).
+    Line u of tasks.txt is unit u; packs.txt groups units into array tasks."""
     tasks = []
     for index, job in enumerate(plan["jobs"]):
         args = list(job["render_args"])
@@ -152,6 +165,110 @@ def build_tasks(plan, kiln, tiles, cpus_per_task, work_dir):
     return tasks
 
 
+# ---------------------------------------------------------------------------------------------
+# Estimates, packing units into tasks, and tasks into arrays
+
+DEFAULT_MAX_ARRAY_SIZE = 1001  # Slurm's default MaxArraySize
+# --time and --mem from the plan's estimates: the estimate times these factors (they cover the
+# probe's error on the shared assets, docs/farm.md), plus what every kiln process costs anyway.
+TIME_SAFETY, MEMORY_SAFETY = 3.0, 1.5
+TASK_START_SECONDS, TASK_MIN_SECONDS = 30, 300
+PROCESS_BYTES = 256 << 20
+
+
+def job_estimate(job, threads):
+    """(load seconds, render seconds on `threads` threads, peak bytes) of a plan job's "estimate",
+    or None when it has none. kiln batch --plan-only writes load_seconds (load and BVH build) and
+    render_seconds on one thread; a plain "seconds" is taken as the render's."""
+    e = job.get("estimate")
+    if not isinstance(e, dict):
+        return None
+    if "render_seconds" in e:
+        return float(e.get("load_seconds", 0.0)), float(e["render_seconds"]) / threads, int(e["peak_memory_bytes"])
+    return 0.0, float(e["seconds"]), int(e["peak_memory_bytes"])
+
+
+def unit_estimates(plan, tiles, cpus_per_task):
+    """Estimated seconds and bytes of each unit: a band renders 1/tiles of its job's pixels but
+    loads the whole scene. A job without an estimate (its asset could not be probed) counts as the
+    largest of the others; None when no job has one."""
+    estimates = []
+    for job in plan["jobs"]:
+        threads = option_value(job["render_args"], "--threads")
+        estimates.append(job_estimate(job, max(1, int(threads)) if threads and threads.isdigit() and threads != "0"
+                                      else cpus_per_task))
+    known = [e for e in estimates if e is not None]
+    if not known:
+        return None
+    fallback = tuple(max(e[k] for e in known) for k in range(3))
+    units = []
+    for e in estimates:
+        load, render, peak = e or fallback
+        units += [(load + render / tiles, peak)] * tiles
+    return units
+
+
+def pack_units(unit_count, estimates, jobs_per_task, task_seconds, target_tasks):
+    """Groups consecutive units into array tasks, a list of unit lists: jobs_per_task units a task
+    when given; else, with estimates, as many as fit in task_seconds (a longer unit alone); else
+    as many a task as keep the count within target_tasks."""
+    if not jobs_per_task and estimates:
+        packs, seconds = [], 0.0
+        for unit, (unit_seconds, _) in enumerate(estimates):
+            if not packs or seconds + unit_seconds > task_seconds:
+                packs.append([])
+                seconds = 0.0
+            packs[-1].append(unit)
+            seconds += unit_seconds
+        return packs
+    size = jobs_per_task or -(-unit_count // target_tasks)
+    return [list(range(u, min(u + size, unit_count))) for u in range(0, unit_count, size)]
+
+
+def split_arrays(task_count, max_array_size):
+    """Array jobs as (first task, task count): indices 0..n-1 of one array must stay below
+    MaxArraySize, so an array holds at most MaxArraySize tasks."""
+    return [(first, min(max_array_size, task_count - first)) for first in range(0, task_count, max_array_size)]
+
+
+def cluster_max_array_size():
+    """MaxArraySize from `scontrol show config`; Slurm's default when it cannot be read."""
+    try:
+        result = subprocess.run(["scontrol", "show", "config"], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return DEFAULT_MAX_ARRAY_SIZE
+    m = re.search(r"^MaxArraySize\s*=\s*(\d+)\s*$", result.stdout, re.M)
+    if result.returncode != 0 or not m or int(m.group(1)) < 1:
+        return DEFAULT_MAX_ARRAY_SIZE
+    return int(m.group(1))
+
+
+def slurm_time(seconds):
+    minutes = -(-int(seconds) // 60)
+    return f"{minutes // 60:02d}:{minutes % 60:02d}:00"
+
+
+def slurm_mem(peak_bytes):
+    return f"{-(-peak_bytes // (1 << 20))}M"
+
+
+def size_resources(options, estimates, packs):
+    """Fills --time and --mem the user left open: from the estimates (the longest task's units one
+    after another, 1 + max-retries times; the largest unit's peak), else the fixed defaults."""
+    if options.time is None:
+        if estimates:
+            longest = max(sum(estimates[u][0] for u in pack) for pack in packs)
+            options.time = slurm_time(max(TASK_MIN_SECONDS, TASK_START_SECONDS * len(max(packs, key=len)) +
+                                          TIME_SAFETY * longest * (1 + options.max_retries)))
+        else:
+            options.time = "01:00:00"
+    if options.mem is None:
+        if estimates:
+            options.mem = slurm_mem(PROCESS_BYTES + int(MEMORY_SAFETY * max(peak for _, peak in estimates)))
+        else:
+            options.mem = "2G"
+
+
 def sbatch_header(options, job_name, log_name, extra):
     lines = ["#!/bin/bash", f"#SBATCH --job-name={job_name}"]
     if options.partition:
@@ -162,37 +279,55 @@ def sbatch_header(options, job_name, log_name, extra):
     return lines
 
 
-def render_script(options, task_count):
+def array_option(options, task_count):
     throttle = f"%{options.array_limit}" if options.array_limit else ""
+    return f"--array=0-{task_count - 1}{throttle}"
+
+
+def render_script(options, task_count):
+    """The script of every render array; task_count sizes the first one's #SBATCH --array, and
+    submit passes each array's own --array and first task (KILN_FARM_FIRST_TASK)."""
     w = shlex.quote(options.work_dir)
     lines = sbatch_header(options, f"{options.job_name}-render", "render.%A_%a.log",
-                          [f"--array=0-{task_count - 1}{throttle}", f"--cpus-per-task={options.cpus_per_task}",
+                          [array_option(options, task_count), f"--cpus-per-task={options.cpus_per_task}",
                            "--ntasks=1", "--nodes=1", "--requeue", "--open-mode=append"])
     lines += [
-        "# One band of one job: line SLURM_ARRAY_TASK_ID + 1 of tasks.txt is its kiln command.",
+        "# Array task t renders the units on line t + 1 of packs.txt one after another; line u + 1 of",
+        "# tasks.txt is unit u's kiln command (one band of one job). Each unit is retried, recorded",
+        "# (status/UNIT.rc) and verified on its own; the task exits non-zero when any unit failed.",
         "# kiln writes the EXR atomically, so a failed or requeued attempt leaves no partial band.",
         "set -uo pipefail",
         f"work_dir={w}",
         f"max_retries={options.max_retries}",
-        'task="${SLURM_ARRAY_TASK_ID:?not an array task}"',
-        'line=$(sed -n "$((task + 1))p" "$work_dir/tasks.txt")',
-        '[ -n "$line" ] || { echo "kiln farm: no line $((task + 1)) in $work_dir/tasks.txt" >&2; exit 2; }',
-        'eval "argv=($line)"',
-        "attempt=0",
-        "while :; do",
-        '  echo "kiln farm: task $task attempt $attempt on $(hostname): ${argv[*]}"',
-        '  "${argv[@]}"',
-        "  rc=$?",
-        '  echo "$rc" >"$work_dir/status/$task.rc"',
-        '  [ "$rc" -eq 0 ] && exit 0',
-        "  # 2 is bad input or a usage error, the same on every attempt; 130/143 is a signal (scancel,",
-        "  # the time limit), where Slurm decides. Anything else (1: I/O, a crash) is worth retrying.",
-        '  case "$rc" in 2 | 130 | 143) exit "$rc" ;; esac',
-        "  attempt=$((attempt + 1))",
-        '  [ "$attempt" -le "$max_retries" ] || exit "$rc"',
-        '  echo "kiln farm: task $task failed with exit $rc, retrying" >&2',
-        "  sleep $((attempt * 5))",
+        'index="${SLURM_ARRAY_TASK_ID:?not an array task}"',
+        'task=$((${KILN_FARM_FIRST_TASK:-0} + index))',
+        'units=$(sed -n "$((task + 1))p" "$work_dir/packs.txt")',
+        '[ -n "$units" ] || { echo "kiln farm: no line $((task + 1)) in $work_dir/packs.txt" >&2; exit 2; }',
+        "failed=0",
+        "for unit in $units; do",
+        "  # A requeued task keeps the units an earlier run of it finished.",
+        '  if [ "$(cat "$work_dir/status/$unit.rc" 2>/dev/null)" = 0 ]; then continue; fi',
+        '  line=$(sed -n "$((unit + 1))p" "$work_dir/tasks.txt")',
+        '  [ -n "$line" ] || { echo "kiln farm: no line $((unit + 1)) in $work_dir/tasks.txt" >&2; failed=2; continue; }',
+        '  eval "argv=($line)"',
+        "  attempt=0",
+        "  while :; do",
+        '    echo "kiln farm: task $task attempt $attempt (unit $unit) on $(hostname): ${argv[*]}"',
+        '    "${argv[@]}"',
+        "    rc=$?",
+        '    echo "$rc" >"$work_dir/status/$unit.rc"',
+        '    [ "$rc" -eq 0 ] && break',
+        "    # 2 is bad input or a usage error, the same on every attempt; 130/143 is a signal (scancel,",
+        "    # the time limit), where Slurm decides. Anything else (1: I/O, a crash) is worth retrying.",
+        '    case "$rc" in 130 | 143) exit "$rc" ;; esac',
+        "    attempt=$((attempt + 1))",
+        '    [ "$rc" -ne 2 ] && [ "$attempt" -le "$max_retries" ] || break',
+        '    echo "kiln farm: unit $unit failed with exit $rc, retrying" >&2',
+        "    sleep $((attempt * 5))",
+        "  done",
+        '  [ "$rc" -eq 0 ] || failed=$rc',
         "done",
+        'exit "$failed"',
     ]
     return "\n".join(lines) + "\n"
 
@@ -209,21 +344,29 @@ def finalize_script(options):
     return "\n".join(lines) + "\n"
 
 
-def write_work_dir(options, plan, tasks):
+def write_work_dir(options, plan, tasks, packs=None, arrays=None):
     w = options.work_dir
+    packs = packs or [[u] for u in range(len(tasks))]
+    arrays = arrays or [(0, len(packs))]
     for sub in ("tiles", "logs", "status"):
         os.makedirs(os.path.join(w, sub), exist_ok=True)
     with open(os.path.join(w, "tasks.txt"), "w", encoding="utf-8") as f:
         for _, _, argv in tasks:
             f.write(" ".join(shlex.quote(a) for a in argv) + "\n")
-    farm = {"version": 1, "kiln": options.kiln, "tiles": options.tiles, "jobs": []}
+    with open(os.path.join(w, "packs.txt"), "w", encoding="utf-8") as f:
+        for pack in packs:
+            f.write(" ".join(str(u) for u in pack) + "\n")
+    task_of = {u: t for t, pack in enumerate(packs) for u in pack}
+    farm = {"version": 1, "kiln": options.kiln, "tiles": options.tiles,
+            "arrays": [{"first_task": first, "tasks": count} for first, count in arrays], "jobs": []}
     for index, job in enumerate(plan["jobs"]):
+        units = [u for u, (name, _, _) in enumerate(tasks) if name == job["name"]]
         farm["jobs"].append({
             "name": job["name"], "asset": job["asset"], "output": job["output"],
             "width": option_value(job["render_args"], "--width"),
             "height": option_value(job["render_args"], "--height"),
             "tiles": [tile_path(w, band_stem(index, job["name"]), i, options.tiles) for i in range(options.tiles)],
-            "tasks": [k for k, (name, _, _) in enumerate(tasks) if name == job["name"]],
+            "units": units, "tasks": [task_of[u] for u in units],
         })
     with open(os.path.join(w, "farm.json"), "w", encoding="utf-8") as f:
         json.dump(farm, f, indent=2)
@@ -235,22 +378,23 @@ def write_work_dir(options, plan, tasks):
         for t in job["tiles"]:
             if os.path.exists(t):
                 os.remove(t)
-    for k in range(len(tasks)):
-        p = os.path.join(w, "status", f"{k}.rc")
-        if os.path.exists(p):
-            os.remove(p)
-    if os.path.exists(os.path.join(w, "verify.json")):
-        os.remove(os.path.join(w, "verify.json"))
+    for name in os.listdir(os.path.join(w, "status")):
+        if name.endswith(".rc"):
+            os.remove(os.path.join(w, "status", name))
+    for name in ("verify.json", "submission.json"):
+        if os.path.exists(os.path.join(w, name)):
+            os.remove(os.path.join(w, name))
     for job in plan["jobs"]:
         os.makedirs(os.path.dirname(job["output"]), exist_ok=True)
 
 
-def sbatch(args, cancel_on_failure=None):
-    """Submits; on failure cancels cancel_on_failure (the array a finalize job would have ended)."""
+def sbatch(args, cancel_on_failure=()):
+    """Submits; on failure cancels cancel_on_failure (the arrays submitted before it, which no
+    finalize job would end)."""
     result = subprocess.run(["sbatch", "--parsable"] + args, capture_output=True, text=True)
     if result.returncode != 0:
         if cancel_on_failure:
-            subprocess.run(["scancel", cancel_on_failure])
+            subprocess.run(["scancel"] + list(cancel_on_failure))
         sys.exit(f"kiln farm: sbatch {' '.join(args)} failed: {result.stderr.strip()}")
     return result.stdout.strip().split(";")[0]
 
@@ -292,28 +436,43 @@ def submit(options):
         raise InputError("extra kiln batch defaults after -- need --manifest")
     plan = load_plan(plan_path)
     tasks = build_tasks(plan, options.kiln, options.tiles, options.cpus_per_task, options.work_dir)
-    render = render_script(options, len(tasks))
+    estimates = unit_estimates(plan, options.tiles, options.cpus_per_task)
+    packs = pack_units(len(tasks), estimates, options.jobs_per_task, options.task_seconds, options.target_tasks)
+    size_resources(options, estimates, packs)
+    max_array_size = options.max_array_size or cluster_max_array_size()
+    arrays = split_arrays(len(packs), max_array_size)
+    render = render_script(options, arrays[0][1])
     finalize = finalize_script(options)
     render_path = os.path.join(options.work_dir, "render.sbatch")
     finalize_path = os.path.join(options.work_dir, "finalize.sbatch")
+    array_args = [[array_option(options, count), f"--export=ALL,KILN_FARM_FIRST_TASK={first}", render_path]
+                  for first, count in arrays]
+    summary = (f"{len(tasks)} units ({len(plan['jobs'])} jobs x {options.tiles} bands) in {len(packs)} tasks "
+               f"(at most {max(len(p) for p in packs)} units a task) in {len(arrays)} arrays "
+               f"(MaxArraySize {max_array_size}); --time {options.time} --mem {options.mem}")
     if options.dry_run:
-        print(f"# {render_path}: {len(tasks)} tasks ({len(plan['jobs'])} jobs x {options.tiles} bands)")
+        print(f"# {render_path}: {summary}")
         print(render)
         print(f"# {finalize_path}")
         print(finalize)
-        print(f"# sbatch --parsable {render_path}")
-        print(f"# sbatch --parsable --dependency=afterany:<render job id> --kill-on-invalid-dep=no {finalize_path}")
+        for args in array_args:
+            print(f"# sbatch --parsable {' '.join(args)}")
+        dependency = ":".join(f"<render job id {i}>" for i in range(len(arrays)))
+        print(f"# sbatch --parsable --dependency=afterany:{dependency} --kill-on-invalid-dep=no {finalize_path}")
         return 0
-    write_work_dir(options, plan, tasks)
+    write_work_dir(options, plan, tasks, packs, arrays)
     for path, text in ((render_path, render), (finalize_path, finalize)):
         with open(path, "w", encoding="utf-8") as f:
             f.write(text)
-    array_id = sbatch([render_path])
-    final_id = sbatch([f"--dependency=afterany:{array_id}", "--kill-on-invalid-dep=no", finalize_path],
-                      cancel_on_failure=array_id)
+    array_ids = []
+    for args in array_args:
+        array_ids.append(sbatch(args, cancel_on_failure=array_ids))
+    final_id = sbatch([f"--dependency=afterany:{':'.join(array_ids)}", "--kill-on-invalid-dep=no", finalize_path],
+                      cancel_on_failure=array_ids)
     with open(os.path.join(options.work_dir, "submission.json"), "w", encoding="utf-8") as f:
-        json.dump({"render_job": array_id, "finalize_job": final_id, "tasks": len(tasks)}, f, indent=2)
-    print(f"kiln farm: render array job {array_id} ({len(tasks)} tasks), finalize job {final_id}; "
+        json.dump({"render_job": array_ids[0], "render_jobs": array_ids, "finalize_job": final_id,
+                   "tasks": len(packs), "units": len(tasks), "max_array_size": max_array_size}, f, indent=2)
+    print(f"kiln farm: render array jobs {' '.join(array_ids)}: {summary}; finalize job {final_id}; "
           f"report: {os.path.join(options.work_dir, 'verify.json')}")
     if not options.wait:
         return 0
@@ -393,14 +552,27 @@ def band_rows(i, n, height):
     return i * height // n, (i + 1) * height // n
 
 
-def task_failure(work_dir, task):
-    p = os.path.join(work_dir, "status", f"{task}.rc")
+def task_log(work_dir, farm, task):
+    """The Slurm log of a task: render.ARRAYID_INDEX.log, the id from submission.json when there."""
+    arrays = farm.get("arrays") or [{"first_task": 0, "tasks": task + 1}]
+    number = next((k for k, a in enumerate(arrays) if a["first_task"] <= task < a["first_task"] + a["tasks"]), 0)
+    array_id = "*"
+    try:
+        with open(os.path.join(work_dir, "submission.json"), encoding="utf-8") as f:
+            array_id = json.load(f).get("render_jobs", ["*"])[number]
+    except (OSError, ValueError, IndexError):
+        pass
+    return os.path.join(work_dir, "logs", f"render.{array_id}_{task - arrays[number]['first_task']}.log")
+
+
+def task_failure(work_dir, farm, unit, task):
+    p = os.path.join(work_dir, "status", f"{unit}.rc")
     try:
         with open(p, encoding="utf-8") as f:
             rc = f.read().strip()
     except OSError:
         rc = "never ran to the end (cancelled, timed out, node failure?)"
-    return f"task {task}: exit {rc}; log {os.path.join(work_dir, 'logs', 'render.*_' + str(task) + '.log')}"
+    return f"task {task}: exit {rc}; log {task_log(work_dir, farm, task)}"
 
 
 def expected_size(job, header):
@@ -435,9 +607,10 @@ def verify_output(job, problems):
 def finalize_job(farm, job, work_dir):
     problems, n = [], farm["tiles"]
     headers = []
-    for i, (tile, task) in enumerate(zip(job["tiles"], job["tasks"])):
+    units = job.get("units", job["tasks"])  # a farm.json from before packing: one unit a task
+    for i, (tile, unit, task) in enumerate(zip(job["tiles"], units, job["tasks"])):
         if not os.path.exists(tile):
-            problems.append(f"band {i} of {n} missing ({task_failure(work_dir, task)})")
+            problems.append(f"band {i} of {n} missing ({task_failure(work_dir, farm, unit, task)})")
             continue
         try:
             header = read_exr_header(tile)
@@ -538,12 +711,23 @@ def parse_args(argv):
     s.add_argument("--work-dir", required=True, help="task list, bands, logs, verify.json (shared filesystem)")
     s.add_argument("--tiles", type=positive_int, default=1, help="horizontal bands per job (1 = whole frames)")
     s.add_argument("--partition", help="Slurm partition (default: the cluster's default)")
-    s.add_argument("--time", default="01:00:00", help="time limit per task, Slurm format (default 01:00:00)")
+    s.add_argument("--time", help="time limit per task, Slurm format (default: from the plan's estimates, "
+                   "else 01:00:00)")
     s.add_argument("--cpus-per-task", type=positive_int, default=1, help="cores per task = kiln --threads")
-    s.add_argument("--mem", default="2G", help="memory per task, Slurm format (default 2G)")
+    s.add_argument("--mem", help="memory per task, Slurm format (default: from the plan's estimates, else 2G)")
     s.add_argument("--max-retries", type=non_negative_int, default=1,
                    help="in-task retries of a failed render (default 1); Slurm requeues on node failure")
-    s.add_argument("--array-limit", type=positive_int, help="at most N render tasks at once (%%N)")
+    s.add_argument("--array-limit", type=positive_int, help="at most N render tasks of each array at once (%%N)")
+    s.add_argument("--jobs-per-task", type=positive_int,
+                   help="units (job bands) rendered one after another by one array task (default: by the "
+                        "estimates, else as many as keep the tasks within --target-tasks)")
+    s.add_argument("--task-seconds", type=float, default=300.0,
+                   help="with estimates and no --jobs-per-task: pack units into tasks of about this many "
+                        "estimated render seconds (default 300)")
+    s.add_argument("--target-tasks", type=positive_int, default=500,
+                   help="without estimates and --jobs-per-task: at most this many tasks (default 500)")
+    s.add_argument("--max-array-size", type=positive_int,
+                   help="the cluster's MaxArraySize (default: from scontrol show config, else 1001)")
     s.add_argument("--job-name", default="kiln", help="Slurm job name prefix (default kiln)")
     s.add_argument("--wait", action="store_true", help="block until the finalize job ends; exit 0 if COMPLETED")
     s.add_argument("--dry-run", action="store_true", help="print the sbatch scripts, submit nothing")

@@ -7,7 +7,8 @@
 #   tools/farm/test_slurm.sh stop DIR               # cancels jobs, stops every process, removes DIR
 #
 # start creates DIR (default: a new mktemp folder; every folder above it must be searchable by all,
-# munged insists), waits until sinfo shows the node idle
+# munged insists; KILN_TEST_SLURM_MAX_ARRAY_SIZE sets MaxArraySize, default Slurm's 1001), waits
+# until sinfo shows the node idle
 # (KILN_TEST_SLURM_TIMEOUT seconds, default 60) and prints the exports on stdout; on failure it
 # prints the daemons' logs to stderr, stops what it started and exits 1. DIR/env.sh holds the same
 # exports. stop cancels the jobs (slurmstepd ends their processes), then ends, each by its id,
@@ -141,6 +142,7 @@ ReturnToService=2
 SchedulerType=sched/backfill
 SchedulerParameters=sched_interval=1
 MinJobAge=600
+MaxArraySize=${KILN_TEST_SLURM_MAX_ARRAY_SIZE:-1001}
 InactiveLimit=0
 KillWait=5
 SlurmctldTimeout=30
