@@ -746,6 +746,17 @@ TEST(batch_cli, a_plan_job_rendered_by_hand_gives_the_batchs_pixels_and_hashes) 
     EXPECT_LE(e["probe"][0].get<int>(), 32);
     EXPECT_EQ(e["probe"][2], 2);
   }
+  // --no-estimates leaves them out, and nothing else.
+  const std::string bare_path = (dir / "bare.json").string();
+  command_result bare = run_kiln(batch_args(inputs, [&] {
+    std::vector<std::string> a = options;
+    a.insert(a.end(), {"--plan-only", bare_path, "--no-estimates"});
+    return a;
+  }()));
+  ASSERT_EQ(bare.exit_code, 0) << bare.stderr_text;
+  json stripped = plan;
+  for (json& job : stripped["jobs"]) job.erase("estimate");
+  EXPECT_EQ(read_json(bare_path), stripped);
   // The value after each option name, or "" when the option is absent.
   auto value = [](const json& job, const std::string& name) -> std::string {
     const std::vector<std::string> args = job["render_args"];

@@ -141,7 +141,7 @@ nlohmann::json estimate_json(const render_options& options) {
           {"probe", {e.probe_width, e.probe_height, e.probe_spp}}};
 }
 
-nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
+nlohmann::json plan_json(const std::vector<batch_job>& jobs, bool estimates) {
   nlohmann::json list = nlohmann::json::array();
   for (const batch_job& job : jobs) {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
@@ -153,7 +153,7 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs) {
                             {"asset", job.options.input},
                             {"output", job.options.output},
                             {"render_args", args}};
-    if (nlohmann::json estimate = estimate_json(job.options); !estimate.is_null())
+    if (nlohmann::json estimate = estimates ? estimate_json(job.options) : nullptr; !estimate.is_null())
       entry["estimate"] = estimate;
     list.push_back(entry);
   }
@@ -180,6 +180,10 @@ void add_batch_options(CLI::App& app, batch_options& o) {
   app.add_option("--summary", o.summary,
                  "Write a JSON summary of every job (also after a failure or a signal)");
   app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
+  app.add_flag_callback(
+      "--no-estimates", [&o] { o.plan_estimates = false; },
+      "With --plan-only: leave out the per-job estimates of time and memory (each costs a load and a small "
+      "probe render of the asset)");
 }
 
 void apply_render_arguments(render_options& options, const std::vector<std::string>& arguments) {
@@ -343,7 +347,8 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
 int run_batch(const batch_options& options) {
   if (!options.plan.empty()) {
     check_output_writable(options.plan);
-    write_text_atomically(options.plan, plan_json(plan_batch(options)).dump(2) + "\n");
+    write_text_atomically(options.plan,
+                          plan_json(plan_batch(options), options.plan_estimates).dump(2) + "\n");
     return 0;
   }
   std::vector<batch_job> jobs = plan_batch(options);

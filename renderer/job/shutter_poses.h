@@ -28,9 +28,9 @@ constexpr uint32_t max_default_motion_steps = 33;
 // The shutter's steps for the frame at `time` seconds: options.shutter's frame offsets at --fps.
 // --motion-steps gives their count; by default it is the fewest of 2, 3, 5, 9, 17, 33 for which,
 // halfway between two steps, linear interpolation stays within a quarter pixel (as the job's view
-// sees it) of where the animation puts every moving shape's bounds and every deforming vertex. framing: the default camera's (job_view). `chain` is the scene posed last
-// (gltf_sequence::pose's previous, or null); it then holds the last step's scene, which the next pose takes
-// its unchanged parts from.
+// sees it) of where the animation puts every moving shape's bounds and every deforming vertex. framing: the
+// default camera's (job_view). `chain` is the scene posed last (gltf_sequence::pose's previous, or null); it
+// then holds the last step's scene, which the next pose takes its unchanged parts from.
 std::vector<shutter_step> pose_shutter_steps(gltf_sequence& asset, const render_options& options, double time,
                                              const bounds3* framing, scene*& chain, scene& last);
 

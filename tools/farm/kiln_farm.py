@@ -430,8 +430,10 @@ def submit(options):
         if not options.out_dir:
             raise InputError("--manifest needs --out-dir")
         plan_path = os.path.join(options.work_dir, "plan.json")
+        # Estimates cost each asset a load and a probe render; leave them out when nothing uses them.
+        uses_estimates = not (options.time and options.mem and options.jobs_per_task)
         plan_from_manifest(options.kiln, os.path.abspath(options.manifest), os.path.abspath(options.out_dir),
-                           options.batch_args, plan_path)
+                           ([] if uses_estimates else ["--no-estimates"]) + options.batch_args, plan_path)
     elif options.batch_args:
         raise InputError("extra kiln batch defaults after -- need --manifest")
     plan = load_plan(plan_path)
