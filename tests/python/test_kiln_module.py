@@ -316,3 +316,17 @@ def test_deep_writes_a_deep_file_beside_the_output(tmp_path):
     spec = oiio.ImageInput.open(str(tmp_path / "python.deep.exr")).spec()
     assert spec.deep
     assert oiio.ImageInput.open(out).spec().get_string_attribute("kiln/deep") == "on"
+
+
+def test_a_working_space_converts_like_the_cli_and_tags_the_exr(tmp_path):
+    view = dict(width=32, height=24, spp=2, quiet=True)
+    aces = kiln.render(CORNELL, working_space="ACEScg", **view)
+    out = str(tmp_path / "aces.exr")
+    assert cli(["render", CORNELL, "-o", out, "--width", "32", "--height", "24", "--spp", "2", "-q",
+                "--working-space", "ACEScg"]).returncode == 0
+    assert_arrays_match_exr(aces, out)
+    assert oiio.ImageInput.open(out).spec().get_string_attribute("colorspace") == "ACEScg"
+    # The Cornell box's coloured walls are other numbers in ACEScg.
+    assert not np.array_equal(aces.aovs["beauty"], kiln.render(CORNELL, **view).aovs["beauty"])
+    with pytest.raises(kiln.InputError, match="no-such-space"):
+        kiln.render(CORNELL, working_space="no-such-space", **view)
