@@ -68,7 +68,9 @@ void expect_profile(const channel_exr& image, int y0, int y1, const std::functio
     mean /= (y1 - y0);
     EXPECT_NEAR(mean, expected, per_column);
     // Fully covered or empty columns are exact: every sample agrees.
-    if (expected == 0.0 || expected == 1.0) EXPECT_EQ(mean, expected);
+    if (expected == 0.0 || expected == 1.0) {
+      EXPECT_EQ(mean, expected);
+    }
     partial += expected > 0.05 && expected < 0.95;
   }
 }
@@ -191,9 +193,11 @@ TEST(motion_blur_cli, a_sliding_sphere_quadric_keeps_its_area_and_blurs_along_it
   for (int x = 0; x < side; ++x) {
     const double centre = -1.0 + (x + 0.5) / pixels_per_unit;
     const float alpha = image.at(size_t(row) * side + size_t(x), "A");
-    if (centre > -0.22 && centre < 0.02) EXPECT_EQ(alpha, 1.0f) << x;
-    for (int y = 0; y < side; ++y)
-      if (centre < -0.48 || centre > 0.28) EXPECT_EQ(image.at(size_t(y) * side + size_t(x), "A"), 0.0f) << x;
+    if (centre > -0.22 && centre < 0.02) {
+      EXPECT_EQ(alpha, 1.0f) << x;
+    }
+    for (int y = 0; y < side && (centre < -0.48 || centre > 0.28); ++y)
+      EXPECT_EQ(image.at(size_t(y) * side + size_t(x), "A"), 0.0f) << x;
     partial += alpha > 0.05f && alpha < 0.95f;
   }
   EXPECT_GE(partial, 8);  // 6.4 pixels of motion at each side
