@@ -2,8 +2,8 @@
 // its closed-form coverage under an orthographic camera that maps one world unit to 32 pixels
 // (a sliding quad, a morph target's moving edge), a spinning square whose blurred area stays its
 // own (and shrinks when two steps interpolate a rotation linearly), a sliding glTF camera over a
-// still edge, a sliding sphere quadric, the same bytes for any thread count, tiling and band, a
-// still scene unchanged by a shutter, and the refusals.
+// still edge, a sliding sphere quadric, the same bytes for any thread count, tiling and band and
+// from a batch manifest, a still scene unchanged by a shutter, and the refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -222,6 +222,25 @@ TEST(motion_blur_cli, the_image_is_the_same_for_any_thread_count_tiling_and_band
   ASSERT_EQ(lower.pixels.size(), row * size_t(side / 2));
   EXPECT_TRUE(
       std::equal(lower.pixels.begin(), lower.pixels.end(), a.pixels.begin() + row * size_t(side / 2)));
+}
+
+TEST(motion_blur_cli, a_batch_job_blurs_as_the_render_command_does) {
+  const std::string dir = scratch_folder("blur_batch");
+  const std::string scene = spinning(dir);
+  const channel_exr alone = render_float_exr(scene, dir + "/alone.exr", side, side, blurred_frame);
+  {
+    std::ofstream manifest(dir + "/jobs.json");
+    manifest << R"([{"asset": ")" << scene
+             << R"(", "output": "spin.exr", "overrides": {"shutter": "-0.5,0.5", )"
+             << R"("fps": 5, "frame": 3, "spp": 256, "float": true, "width": )" << side << R"(, "height": )"
+             << side << "}}]";
+  }
+  const auto result = run_kiln({"batch", "--manifest", dir + "/jobs.json", "--out-dir", dir + "/out", "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const channel_exr batched{testing::read_float_exr(dir + "/out/spin.exr")};
+  ASSERT_FALSE(alone.pixels.empty());
+  EXPECT_EQ(batched.pixels, alone.pixels);
+  EXPECT_EQ(batched.spec.get_string_attribute("kiln/shutter"), "-0.5,0.5");
 }
 
 TEST(motion_blur_cli, a_still_scene_renders_the_same_with_a_shutter) {
