@@ -48,8 +48,10 @@ material_point evaluate_material(const scene& s, const material& m, vec2 uv0) {
 material_texels sample_material_textures(const scene& s, const material& m, const material_inputs& in,
                                          bool with_normal) {
   material_texels t;
-  texture_lookup lookups[5];
-  vec4* targets[5];
+  // Room for every texture slot a material can have (the core five and the extensions' slots).
+  constexpr int max_slots = 24;
+  texture_lookup lookups[max_slots];
+  vec4* targets[max_slots];
   int count = 0;
   const texture_ref* previous = nullptr;
   auto add = [&](const texture_ref& ref, texel_encoding encoding, vec4& target) {
@@ -73,7 +75,7 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   if (m.transmission_texture.present() && m.transmission_factor > 0.0f)
     add(m.transmission_texture, texel_encoding::linear, t.transmission);
   if (with_normal && m.normal_texture.present()) add(m.normal_texture, texel_encoding::linear, t.normal);
-  vec4 texels[5];
+  vec4 texels[max_slots];
   sample_textures(s, in.filter, lookups, count, texels);
   for (int i = 0; i < count; ++i) *targets[i] = texels[i];
   return t;
