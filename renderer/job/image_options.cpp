@@ -1,0 +1,207 @@
+// The option table's EXR part: channel formats, compression, tiles, outputs beside the EXR, colour
+// management, deep output, crop, band and the backend; and the progress interval.
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/exr/preview_codes.h"
+#include "job/exr_storage_options.h"
+#include "job/frame_range.h"
+#include "job/option_entries.h"
+
+namespace kiln::option_entries {
+
+void add_image_options(std::vector<option_spec>& t) {
+  auto add = [&t](option_spec s) -> option_spec& {
+    s.scope = option_scope::image;
+    t.push_back(std::move(s));
+    return t.back();
+  };
+  add(flag_option(
+      "float", [](render_options & o) -> auto& { return o.full_float; },
+      "Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the "
+      "passes (albedo_filtered, N_filtered, diffuse, specular, shadow) as 32-bit float "
+      "instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are "
+      "always float)"));
+  add(custom_option(
+      "channel-format",
+      [](render_options& o, const std::string& text) {
+        layer_formats check;
+        apply_channel_formats(text, check);  // an error now, not after the render
+        o.channel_formats = text;
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        return o.channel_formats.empty() ? std::nullopt : std::optional<std::string>(o.channel_formats);
+      },
+      "N=float",
+      "Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (" + selectable_format_aovs() +
+          "; Z, P and id are always float)"));
+  add(choice_option(
+      "compression", [](render_options & o) -> auto& { return o.exr.compression; }, exr_compression_names(),
+      "piz",
+      "EXR codec; pxr24, b44, b44a, dwaa and dwab are lossy and need --multipart when the file "
+      "holds Z, P or id (which then keep zip)"));
+  option_spec& level = add(custom_option(
+      "compression-level",
+      [](render_options& o, const std::string& text) {
+        o.exr.compression_level = int(parse_integer(text, "--compression-level", 1, 100000));
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        if (o.exr.compression_level <= 0) return std::nullopt;
+        return std::to_string(o.exr.compression_level);
+      },
+      "9", "zip/zips: zlib level 1-9 (default 4); dwaa/dwab: dwaCompressionLevel (default 45)"));
+  level.type = option_type::integer;
+  add(flag_option(
+      "tiled", [](render_options & o) -> auto& { return o.exr_tiled; },
+      "Tiled EXR (64x64 tiles unless --exr-tile-size) instead of scanlines"));
+  option_spec& exr_tile = add(custom_option(
+      "exr-tile-size",
+      [](render_options& o, const std::string& text) {
+        o.exr_tile_size = int(parse_integer(text, "--exr-tile-size", 1, 4096));
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        if (o.exr_tile_size <= 0) return std::nullopt;
+        return std::to_string(o.exr_tile_size);
+      },
+      "16", "Tiled EXR with NxN tiles (implies --tiled)"));
+  exr_tile.type = option_type::integer;
+  add(flag_option(
+      "multipart", [](render_options & o) -> auto& { return o.exr.multipart; },
+      "One EXR part per layer (" + exr_part_list() + "), each with the full header"));
+  // A sequence is many renders; each frame's own --frame reaches its settings hash.
+  add(custom_option(
+          "frames",
+          [](render_options& o, const std::string& text) {
+            parse_frame_range(text);
+            o.frames = text;
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.frames.empty() ? std::nullopt : std::optional<std::string>(o.frames);
+          },
+          "1-48:2",
+          "Render frames FIRST-LAST[:STEP] in one process, each to -o with its #### (or %04d) replaced "
+          "by the frame number; the asset loads once and only what moves is updated"))
+      .effect = option_effect::none;
+  option_spec& preview = add(custom_option(
+      "preview",
+      [](render_options& o, const std::string& text) {
+        if (preview_format(text).empty())
+          throw input_error("", "--preview", "a preview must end in .png, .jpg or .jpeg, got '" + text + "'");
+        o.preview = text;
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        return o.preview.empty() ? std::nullopt : std::optional<std::string>(o.preview);
+      },
+      "x.png", "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty"));
+  preview.effect = option_effect::none;  // an output, not a setting of the EXR's pixels
+  // Colour management: the working space changes pixels (and so the settings hash); the config
+  // is hashed by its path, as --environment is. The display and view change only the preview.
+  auto text_option = [](const std::string& name, std::string render_options::*at, const std::string& example,
+                        const std::string& help) {
+    return custom_option(
+        name,
+        [name, at](render_options& o, const std::string& text) {
+          if (text.empty()) throw input_error("", "--" + name, "expects a name, got nothing");
+          o.*at = text;
+        },
+        [at](const render_options& o) -> std::optional<std::string> {
+          return (o.*at).empty() ? std::nullopt : std::optional<std::string>(o.*at);
+        },
+        example, help);
+  };
+  add(file_option("ocio-config", &render_options::ocio_config,
+                  "OpenColorIO config for --working-space and the preview (default: $OCIO, else kiln's "
+                  "share/ocio/kiln.ocio)"))
+      .recorded_as = "kiln/ocio_config";
+  add(text_option("working-space", &render_options::working_space, "ACEScg",
+                  "Render in this colour space of the config (e.g. ACEScg): glTF's linear Rec.709 colours, "
+                  "textures and lights are converted into it, and the EXR is tagged with it (default: "
+                  "linear Rec.709, unconverted)"))
+      .recorded_as = "kiln/working_space";
+  add(text_option("display", &render_options::display, "sRGB",
+                  "Preview through this display of the OpenColorIO config (default: the config's default)"))
+      .effect = option_effect::none;
+  add(text_option("view", &render_options::view, "Raw",
+                  "Preview through this view of the display (default: the display's default view)"))
+      .effect = option_effect::none;
+  add(number_option<double>(
+          "preview-exposure", [](render_options & o) -> auto& { return o.preview_exposure; }, -64.0, 64.0,
+          "1", "Preview: scale linear colour by 2^EV"))
+      .effect = option_effect::none;
+  // Hashed like a pixel setting: a stored EXR rendered without it has no deep file beside it.
+  add(flag_option(
+          "deep", [](render_options & o) -> auto& { return o.deep; },
+          "Also write a deep EXR beside -o (NAME.deep.exr for NAME.exr): per pixel its camera paths' "
+          "surfaces "
+          "front to back, premultiplied R G B A, Z, ZBack and the ids; whole frame, stratified samples and a "
+          "filter inside the pixel only"))
+      .recorded_as = "kiln/deep";
+  add(custom_option(
+          "aovs", parse_aovs,
+          [](const render_options& o) -> std::optional<std::string> { return aov_list_name(o.aovs); },
+          "beauty,Z",
+          "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
+          "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
+          "and material names; cryptomatte for both), direct, reflection and refraction (the beauty split by "
+          "first event), lightgroups (the beauty split by light: one layer per light, emission and "
+          "environment), albedo_filtered and N_filtered (albedo and normal filtered like the beauty, for a "
+          "denoiser), diffuse and specular (the direct light by BRDF lobe), shadow (one shadow matte per "
+          "light) (default beauty,Z,N)"))
+      .recorded_as = "kiln/aovs";
+  add(integer_option<int>(
+      "cryptomatte-depth", [](render_options & o) -> auto& { return o.aovs.crypto_depth; }, 1,
+      max_cryptomatte_depth, "4",
+      "Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set"));
+  add(custom_option(
+      "depth-mode",
+      [](render_options& o, const std::string& text) {
+        check_choice(text, "--depth-mode", {"distance", "planar"});
+        o.aovs.depth_kind = *parse_depth_mode(text);
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        return std::string(o.aovs.depth_kind == depth_mode::planar ? "planar" : "distance");
+      },
+      "planar",
+      "What Z holds: distance (along the ray from the camera, the default) or planar (along the view axis)"));
+  t.back().choices = {"distance", "planar"};
+  add(custom_option(
+          "crop", [](render_options& o, const std::string& text) { o.crop = parse_crop(text); },
+          [](const render_options& o) -> std::optional<std::string> {
+            if (!o.crop) return std::nullopt;
+            const pixel_rect& c = *o.crop;
+            return std::to_string(c.x0) + "," + std::to_string(c.y0) + "," + std::to_string(c.x1) + "," +
+                   std::to_string(c.y1);
+          },
+          "0,0,8,8",
+          "Render and store only pixels [x0, x1) x [y0, y1) (EXR data window; the display window stays the "
+          "full frame)"))
+      .effect = option_effect::region;
+  option_spec& band = add(custom_option(
+      "band", parse_band,
+      [](const render_options& o) -> std::optional<std::string> {
+        if (o.band_count <= 0) return std::nullopt;
+        return std::to_string(o.band_index) + "/" + std::to_string(o.band_count);
+      },
+      "1/4",
+      "Render band I (0-based) of N horizontal bands of whole rows, as a crop (band I holds rows "
+      "[floor(I*H/N), floor((I+1)*H/N)); join the files with kiln stitch)"));
+  band.effect = option_effect::region;
+  band.alias = "tile";  // the name before render tiles, EXR tiles and farm bands were told apart
+  // compare and bench name their backends with their own --accel.
+  add(choice_option(
+          "accel", [](render_options & o) -> auto& { return o.accel; }, {"embree", "grid", "adaptive-grid"},
+          "grid", "Traversal backend"))
+      .recorded_as = "kiln/accelerator";
+}
+
+void add_progress_options(std::vector<option_spec>& t) {
+  option_spec s = number_option<double>(
+      "progress-interval", [](render_options & o) -> auto& { return o.progress_interval; }, 0.01, 86400.0,
+      "1", "Seconds between progress lines when stderr is not a terminal (a log or a pipe)");
+  s.scope = option_scope::progress;
+  s.effect = option_effect::none;
+  t.push_back(std::move(s));
+}
+
+}  // namespace kiln::option_entries

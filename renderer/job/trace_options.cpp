@@ -1,0 +1,180 @@
+// The option table's second part: the environment, holdouts, the loader's limits, the memory budget,
+// the traversal backend and the job's time limit.
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "job/option_entries.h"
+
+namespace kiln::option_entries {
+
+void add_trace_options(std::vector<option_spec>& t) {
+  // Settings of one view like the first part's (a batch job may override them per view).
+  auto add = [&t](option_spec s) -> option_spec& {
+    s.scope = option_scope::view;
+    t.push_back(std::move(s));
+    return t.back();
+  };
+  add(file_option("environment", &render_options::environment,
+                  "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave "
+                  "the scene"));
+  add(number_option<double>(
+      "environment-rotation", [](render_options & o) -> auto& { return o.environment_rotation_degrees; },
+      -36000.0, 36000.0, "90",
+      "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)"));
+  add(number_option<float>(
+      "environment-intensity", [](render_options & o) -> auto& { return o.environment_intensity; }, 0.0, 1e9,
+      "2", "Scale of the environment map's radiance"));
+  add(flag_option(
+      "show-background", [](render_options & o) -> auto& { return o.show_background; },
+      "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)"));
+  add(choice_option(
+          "transmission-alpha", [](render_options & o) -> auto& { return o.transmission_alpha; },
+          {"opaque", "transparent"}, "transparent",
+          "What glass contributes to alpha: opaque (it holds out, what it shows is baked in) or "
+          "transparent (refraction reaching a background the camera does not show is transparent)"))
+      .recorded_as = "kiln/transmission_alpha";
+  // Holdouts: the patterns are checked for their form here and against the file's nodes at load.
+  auto node_patterns = [](const std::string& name, std::string render_options::*at, const std::string& help) {
+    return custom_option(
+        name,
+        [name, at](render_options& o, const std::string& text) {
+          if (text.empty() || text.front() == ',' || text.back() == ',' ||
+              text.find(",,") != std::string::npos)
+            throw input_error("", "--" + name, "expects node names or globs separated by commas");
+          o.*at = text;
+        },
+        [at](const render_options& o) -> std::optional<std::string> {
+          return (o.*at).empty() ? std::nullopt : std::optional<std::string>(o.*at);
+        },
+        "wheel_*,body", help);
+  };
+  add(node_patterns(
+          "holdout", &render_options::holdout,
+          "Render these nodes (names or globs, comma-separated) as holdout mattes: they cut alpha to "
+          "zero and hide what is behind them, but still cast shadows and show in reflections"))
+      .recorded_as = "kiln/holdout";
+  add(node_patterns("only", &render_options::only,
+                    "Render only these nodes (names or globs); every other node is a holdout (a render "
+                    "layer)"))
+      .recorded_as = "kiln/only";
+  add(flag_option(
+          "holdout-invisible", [](render_options & o) -> auto& { return o.holdout_invisible; },
+          "Holdouts matte the camera only: they cast no shadows and do not show in reflections or "
+          "through glass"))
+      .recorded_as = "kiln/holdout_invisible";
+  add(integer_option<int>(
+          "max-depth", [](render_options & o) -> auto& { return o.max_depth; }, 0, 64, "2",
+          "Maximum reflection depth"))
+      .recorded_as = "kiln/max_depth";
+  add(number_option<float>(
+      "min-throughput", [](render_options & o) -> auto& { return o.min_throughput; }, 0.0, 1.0, "0.01",
+      "Reflections weighted below this are not traced"));
+  add(unsigned_option<uint64_t>(
+      "max-rays-per-sample", [](render_options & o) -> auto& { return o.max_rays_per_sample; }, 1, ~0ull,
+      "64",
+      "Reflected, refracted and continued rays one camera sample may spawn; past it the sample "
+      "keeps the light gathered so far"));
+  add(number_option<float>(
+          "texture-cache-mb", [](render_options & o) -> auto& { return o.texture_cache_mb; }, 1.0, 1e6, "64",
+          "No effect (texture pyramids are kept in memory); accepted so existing command lines "
+          "keep working"))
+      .effect = option_effect::none;
+  add(flag_option(
+      "allow-outside-files", [](render_options & o) -> auto& { return o.allow_outside_files; },
+      "Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that "
+      "lead out); absolute paths and URLs stay refused"));
+  // The loader's limits: their defaults are gltf_limits' own.
+  add(unsigned_option<size_t>(
+      "max-json-bytes", [](render_options & o) -> auto& { return o.limits.max_json_bytes; }, 1, ~0ull, "1000",
+      "Refuse glTF JSON larger than this (bytes)"));
+  add(unsigned_option<size_t>(
+      "max-json-depth", [](render_options & o) -> auto& { return o.limits.max_json_depth; }, 1, 100000, "10",
+      "Refuse glTF JSON nested deeper than this"));
+  add(unsigned_option<size_t>(
+      "max-nodes", [](render_options & o) -> auto& { return o.limits.max_nodes; }, 1, ~0ull, "10",
+      "Refuse glTF files with more nodes than this"));
+  add(unsigned_option<size_t>(
+      "max-instances", [](render_options & o) -> auto& { return o.limits.max_instances; }, 1, ~0ull, "10",
+      "Refuse glTF files whose EXT_mesh_gpu_instancing takes the scene past this many mesh instances"));
+  add(unsigned_option<uint64_t>(
+      "max-texels", [](render_options & o) -> auto& { return o.limits.max_texels; }, 1, ~0ull, "10",
+      "Refuse glTF images declaring more texels than this (width x height), before decoding"));
+  add(unsigned_option<size_t>(
+      "max-pixels", [](render_options & o) -> auto& { return o.max_pixels; }, 1, ~0ull, "10",
+      "Refuse images with more pixels than this (width x height)"));
+  // The job's memory budget does not change a pixel: a render it allows is the same image.
+  add(custom_option(
+          "max-memory",
+          [](render_options& o, const std::string& text) {
+            o.max_memory = parse_memory_size(text, "--max-memory");
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            if (o.max_memory == 0) return std::nullopt;
+            return std::to_string(o.max_memory);
+          },
+          "8G",
+          "Memory budget of a job, in bytes or with K, M, G, T (binary): a file whose estimated "
+          "memory exceeds it is refused (default: 90% of the machine's or the cgroup's memory)"))
+      .effect = option_effect::none;
+  add(number_option<double>(
+      "grid-density", [](render_options & o) -> auto& { return o.grid.density; }, 1e-3, 1e3, "4",
+      "Grid backends: aim for density x N cells for N items (the resolution heuristic; "
+      "default 2)"));
+  add(custom_option(
+      "grid-resolution",
+      [](render_options& o, const std::string& text) { o.grid.resolution = parse_grid_resolution(text); },
+      [](const render_options& o) -> std::optional<std::string> {
+        if (!o.grid.resolution) return std::nullopt;
+        const glm::ivec3& r = *o.grid.resolution;
+        return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.z);
+      },
+      "8", "Grid backends: N or X,Y,Z cells per axis for every grid, instead of the heuristic"));
+  add(integer_option<int>(
+      "grid-max-items", [](render_options & o) -> auto& { return o.grid.max_items_per_cell; }, 1, 1000000,
+      "3", "Adaptive grid: a cell holding more items than this is subdivided"));
+  add(integer_option<int>(
+      "grid-max-depth", [](render_options & o) -> auto& { return o.grid.max_depth; }, 0, max_grid_depth, "1",
+      "Adaptive grid: levels of subdivision below the top grid"));
+  add(custom_option(
+      "bvh-quality",
+      [](render_options& o, const std::string& text) {
+        check_choice(text, "--bvh-quality", quality_names());
+        o.embree.quality = *parse_bvh_quality(text);
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        return std::string(bvh_quality_name(o.embree.quality));
+      },
+      "high", "Embree BVH build quality: low, medium or high (default medium)"));
+  t.back().recorded_as = "kiln/bvh_quality";
+  t.back().choices = quality_names();
+  // Pixels do not depend on the BVH build, but a plan must reproduce the run.
+  add(flag_option(
+          "bvh-compact", [](render_options & o) -> auto& { return o.embree.compact; },
+          "Embree: compact BVH layout (less memory, slower rays)"))
+      .recorded_as = "kiln/bvh_compact";
+  // --packets can pick the other of two coincident surfaces, so it counts as a pixel setting.
+  add(custom_option(
+      "packets",
+      [](render_options& o, const std::string& text) {
+        check_choice(text, "--packets", {"on", "off"});
+        o.packets = text == "on";
+      },
+      [](const render_options& o) -> std::optional<std::string> {
+        return std::string(o.packets ? "on" : "off");
+      },
+      "on", "Trace each tile's camera rays together as Embree packets: on or off (default off)"));
+  t.back().recorded_as = "kiln/packets";
+  t.back().choices = {"on", "off"};
+  add(number_option<double>(
+          "time-limit", [](render_options & o) -> auto& { return o.time_limit_seconds; }, 0.0, 1e9, "60",
+          "Stop a job still loading or rendering after this many seconds: nothing is written, "
+          "exit 124 (0 = no limit)"))
+      .effect = option_effect::none;
+  option_spec& quiet = add(flag_option(
+      "quiet", [](render_options & o) -> auto& { return o.quiet; }, "No progress line or summary"));
+  quiet.short_name = "q";
+  quiet.effect = option_effect::none;
+}
+
+}  // namespace kiln::option_entries
