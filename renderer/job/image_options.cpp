@@ -12,11 +12,7 @@
 namespace kiln::option_entries {
 
 void add_image_options(std::vector<option_spec>& t) {
-  auto add = [&t](option_spec s) -> option_spec& {
-    s.scope = option_scope::image;
-    t.push_back(std::move(s));
-    return t.back();
-  };
+  const scoped_adder add{t, option_scope::image};
   add(flag_option(
       "float", [](render_options & o) -> auto& { return o.full_float; },
       "Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the "

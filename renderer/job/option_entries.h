@@ -101,6 +101,17 @@ void parse_band(render_options& o, const std::string& text);
 void parse_aovs(render_options& o, const std::string& text);
 std::vector<std::string> quality_names();
 
+// Appends the entries of one scope to the table; gives back the entry added, for the fields set after it.
+struct scoped_adder {
+  std::vector<option_spec>& table;
+  option_scope scope;
+  option_spec& operator()(option_spec s) const {
+    s.scope = scope;
+    table.push_back(std::move(s));
+    return table.back();
+  }
+};
+
 // The table's parts, in the table's order (which is --help's): the camera, image size and pose;
 // the scene's shading, limits and traversal; the EXR and its outputs; progress.
 void add_view_options(std::vector<option_spec>& t);

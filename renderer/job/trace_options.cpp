@@ -10,11 +10,7 @@ namespace kiln::option_entries {
 
 void add_trace_options(std::vector<option_spec>& t) {
   // Settings of one view like the first part's (a batch job may override them per view).
-  auto add = [&t](option_spec s) -> option_spec& {
-    s.scope = option_scope::view;
-    t.push_back(std::move(s));
-    return t.back();
-  };
+  const scoped_adder add{t, option_scope::view};
   add(file_option("environment", &render_options::environment,
                   "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave "
                   "the scene"));

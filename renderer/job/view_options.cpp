@@ -3,17 +3,13 @@
 #include <vector>
 
 #include "core/error.h"
-#include "render/adaptive_sampling.h"
 #include "job/option_entries.h"
+#include "render/adaptive_sampling.h"
 
 namespace kiln::option_entries {
 
 void add_view_options(std::vector<option_spec>& t) {
-  auto add = [&t](option_spec s) -> option_spec& {
-    s.scope = option_scope::view;
-    t.push_back(std::move(s));
-    return t.back();
-  };
+  const scoped_adder add{t, option_scope::view};
   add(optional_side(
       "width", [](render_options & o) -> auto& { return o.width; }, "64",
       "Image width in pixels (default 640, or from --height and the camera's aspect)"));
