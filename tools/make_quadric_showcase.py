@@ -134,15 +134,20 @@ def build():
     }
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def write_scene(build_scene, default_name, description):
+    """The generators' command line: writes build_scene() as JSON to --out (default scenes/NAME)."""
+    parser = argparse.ArgumentParser(description=description)
     here = os.path.dirname(os.path.abspath(__file__))
-    parser.add_argument("--out", default=os.path.join(here, "..", "scenes", "quadric_showcase.gltf"))
+    parser.add_argument("--out", default=os.path.join(here, "..", "scenes", default_name))
     args = parser.parse_args()
     with open(args.out, "w", encoding="utf-8") as f:
-        json.dump(build(), f, indent=1, sort_keys=False)
+        json.dump(build_scene(), f, indent=1, sort_keys=False)
         f.write("\n")
     print("wrote", os.path.normpath(args.out))
+
+
+def main():
+    write_scene(build, "quadric_showcase.gltf", __doc__.splitlines()[0])
 
 
 if __name__ == "__main__":

@@ -9,8 +9,8 @@ wrapper). Cycles settings: CPU, N samples, no adaptive sampling, no denoising, d
 (diffuse surfaces see only direct light, as in Whitted), up to 8 glossy and transmission bounces
 (kiln's --max-depth 8), no caustics, point lights of radius 0 (hard shadows), black world,
 transparent film, box pixel filter of one pixel (kiln's box 0.5 radius), smooth glass (roughness
-0 on every transmissive material), clearcoat and sheen off (kiln ignores both extensions: the importer's Velvet mix for sheen is
-bypassed).
+0 on every transmissive material). Clearcoat and sheen stay as the importer sets them up (kiln
+renders both lobes; the importer's sheen is Cycles' own sheen model, not glTF's Charlie lobe).
 Point lights: kiln takes glTF's intensity I in candela as radiance units (irradiance I/d^2);
 a Cycles point light of power P watts has intensity P/(4 pi), so P = 4 pi I.
 
@@ -108,15 +108,6 @@ def whitted_materials():
                 inp["Roughness"].default_value = 0.0
                 for link in list(inp["Roughness"].links):
                     mat.node_tree.links.remove(link)
-            # The importer renders KHR_materials_sheen as a Velvet BSDF mixed over the Principled
-            # one; kiln ignores sheen, so the Principled BSDF goes straight to the output.
-            for out in [n for n in mat.node_tree.nodes if n.type == "OUTPUT_MATERIAL"]:
-                mat.node_tree.links.new(node.outputs["BSDF"], out.inputs["Surface"])
-            for name in ("Clearcoat", "Sheen"):
-                if name in inp:
-                    for link in list(inp[name].links):
-                        mat.node_tree.links.remove(link)
-                    inp[name].default_value = 0.0
 
 
 def main():

@@ -75,9 +75,11 @@ struct material {
   float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
   texture_ref emissive_texture;    // sRGB
   texture_ref normal_texture;
-  float specular_factor = 1.0f;      // KHR_materials_specular
-  vec3 specular_color_factor{1.0f};  // KHR_materials_specular
-  float ior = 1.5f;                  // KHR_materials_ior
+  float specular_factor = 1.0f;        // KHR_materials_specular
+  vec3 specular_color_factor{1.0f};    // KHR_materials_specular
+  texture_ref specular_texture;        // linear: A multiplies specular_factor
+  texture_ref specular_color_texture;  // sRGB: RGB multiplies specular_color_factor
+  float ior = 1.5f;                    // KHR_materials_ior
   alpha_mode alpha = alpha_mode::opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
@@ -90,6 +92,45 @@ struct material {
   float thickness_factor = 0.0f;
   float attenuation_distance = inf;  // world units; infinite: no absorption
   vec3 attenuation_color{1.0f};      // colour that white light has after attenuation_distance
+
+  // KHR_materials_dispersion: the ior spreads over wavelength with Abbe number 20 / dispersion
+  // (0: none); refraction then bends each of R, G and B by its own ior.
+  float dispersion = 0.0f;
+
+  // KHR_materials_clearcoat: a smooth dielectric coat (ior 1.5) over the whole material, weighted by
+  // clearcoat · Fresnel(coat normal · view).
+  float clearcoat_factor = 0.0f;
+  texture_ref clearcoat_texture;  // linear: R multiplies clearcoat_factor
+  float clearcoat_roughness_factor = 0.0f;
+  texture_ref clearcoat_roughness_texture;  // linear: G multiplies clearcoat_roughness_factor
+  texture_ref clearcoat_normal_texture;     // the coat's own normal map; none: the unmapped normal
+
+  // KHR_materials_sheen: Charlie sheen over the base, which is scaled by the sheen's albedo.
+  vec3 sheen_color_factor{0.0f};
+  texture_ref sheen_color_texture;  // sRGB: RGB multiplies sheen_color_factor
+  float sheen_roughness_factor = 0.0f;
+  texture_ref sheen_roughness_texture;  // linear: A multiplies sheen_roughness_factor
+
+  // KHR_materials_iridescence: a thin film (thickness in nanometres) over the base, whose
+  // interference replaces Schlick's Fresnel by a share `iridescence`.
+  float iridescence_factor = 0.0f;
+  texture_ref iridescence_texture;  // linear: R multiplies iridescence_factor
+  float iridescence_ior = 1.3f;
+  float iridescence_thickness_minimum = 100.0f;
+  float iridescence_thickness_maximum = 400.0f;
+  texture_ref iridescence_thickness_texture;  // linear: G mixes minimum (0) to maximum (1)
+
+  // KHR_materials_diffuse_transmission: the share of the diffuse lobe that passes light through the
+  // surface to the other side, tinted.
+  float diffuse_transmission_factor = 0.0f;
+  texture_ref diffuse_transmission_texture;  // linear: A multiplies the factor
+  vec3 diffuse_transmission_color_factor{1.0f};
+  texture_ref diffuse_transmission_color_texture;  // sRGB: RGB multiplies the colour factor
+
+  // KHR_materials_anisotropy: the GGX lobe stretched along a direction in the tangent plane.
+  float anisotropy_strength = 0.0f;
+  float anisotropy_rotation = 0.0f;  // radians, counter-clockwise from the tangent
+  texture_ref anisotropy_texture;    // linear: RG direction in [-1, 1]², B multiplies the strength
 
   bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
 

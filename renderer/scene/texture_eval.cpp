@@ -6,12 +6,24 @@
 
 namespace kiln {
 
-std::array<texture_slot, 5> texture_slots(const material& m) {
+std::array<texture_slot, 17> texture_slots(const material& m) {
   return {{{&m.base_color_texture, texel_encoding::srgb},
            {&m.emissive_texture, texel_encoding::srgb},
            {&m.metallic_roughness_texture, texel_encoding::linear},
            {&m.normal_texture, texel_encoding::linear},
-           {&m.transmission_texture, texel_encoding::linear}}};
+           {&m.transmission_texture, texel_encoding::linear},
+           {&m.specular_texture, texel_encoding::linear},
+           {&m.specular_color_texture, texel_encoding::srgb},
+           {&m.clearcoat_texture, texel_encoding::linear},
+           {&m.clearcoat_roughness_texture, texel_encoding::linear},
+           {&m.clearcoat_normal_texture, texel_encoding::linear},
+           {&m.sheen_color_texture, texel_encoding::srgb},
+           {&m.sheen_roughness_texture, texel_encoding::linear},
+           {&m.iridescence_texture, texel_encoding::linear},
+           {&m.iridescence_thickness_texture, texel_encoding::linear},
+           {&m.diffuse_transmission_texture, texel_encoding::linear},
+           {&m.diffuse_transmission_color_texture, texel_encoding::srgb},
+           {&m.anisotropy_texture, texel_encoding::linear}}};
 }
 
 bool samples_textures(const material& m) {

@@ -26,9 +26,10 @@ struct texture_slot {
   texel_encoding encoding = texel_encoding::linear;
 };
 
-// Every texture a material's shading reads, with its encoding: base colour and emissive are sRGB;
-// metallic-roughness, normal and transmission linear. A new texture input is added here once.
-std::array<texture_slot, 5> texture_slots(const material& m);
+// Every texture a material's shading reads, with its encoding: the colour textures (base,
+// emissive, specular, sheen and diffuse-transmission colour) are sRGB, every other input linear.
+// A new texture input is added here once.
+std::array<texture_slot, 17> texture_slots(const material& m);
 
 // Whether shading reads any texture of m, so whether a hit needs its UV footprint at all.
 bool samples_textures(const material& m);

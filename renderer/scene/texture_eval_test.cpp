@@ -15,7 +15,19 @@ TEST(TextureSlots, ListEveryShadingInputWithItsEncoding) {
       {&material::emissive_texture, texel_encoding::srgb},
       {&material::metallic_roughness_texture, texel_encoding::linear},
       {&material::normal_texture, texel_encoding::linear},
-      {&material::transmission_texture, texel_encoding::linear}};
+      {&material::transmission_texture, texel_encoding::linear},
+      {&material::specular_texture, texel_encoding::linear},
+      {&material::specular_color_texture, texel_encoding::srgb},
+      {&material::clearcoat_texture, texel_encoding::linear},
+      {&material::clearcoat_roughness_texture, texel_encoding::linear},
+      {&material::clearcoat_normal_texture, texel_encoding::linear},
+      {&material::sheen_color_texture, texel_encoding::srgb},
+      {&material::sheen_roughness_texture, texel_encoding::linear},
+      {&material::iridescence_texture, texel_encoding::linear},
+      {&material::iridescence_thickness_texture, texel_encoding::linear},
+      {&material::diffuse_transmission_texture, texel_encoding::linear},
+      {&material::diffuse_transmission_color_texture, texel_encoding::srgb},
+      {&material::anisotropy_texture, texel_encoding::linear}};
   for (const auto& [member, encoding] : inputs) {
     material one;
     (one.*member).texture = 3;

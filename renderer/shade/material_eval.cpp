@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shade/material_lobes.h"
 #include "shade/texture_sampling.h"
 
 namespace kiln {
@@ -27,6 +28,55 @@ texture_lookup lookup_of(const texture_ref& ref, const material_inputs& in, texe
 bool same_uv_mapping(const texture_ref& a, const texture_ref& b) {
   return (a.texcoord == 1) == (b.texcoord == 1) && a.offset == b.offset && a.rotation == b.rotation &&
          a.uv_scale == b.uv_scale;
+}
+
+// The lobe extensions' factors times their textures (each texture's channel as its specification
+// says), clamped to the ranges the lobes are defined on.
+void evaluate_lobe_extensions(const material& m, const material_texels& t, material_point& mp) {
+  if (m.clearcoat_factor > 0.0f) {
+    mp.clearcoat = m.clearcoat_factor * (m.clearcoat_texture.present() ? t.clearcoat.r : 1.0f);
+    mp.clearcoat_roughness = m.clearcoat_roughness_factor *
+                             (m.clearcoat_roughness_texture.present() ? t.clearcoat_roughness.g : 1.0f);
+    mp.clearcoat = std::clamp(mp.clearcoat, 0.0f, 1.0f);
+    mp.clearcoat_roughness = std::clamp(mp.clearcoat_roughness, 0.0f, 1.0f);
+  }
+  if (m.sheen_color_factor != vec3(0.0f)) {
+    mp.sheen_color = m.sheen_color_factor;
+    if (m.sheen_color_texture.present()) mp.sheen_color *= vec3(t.sheen_color);
+    mp.sheen_roughness =
+        m.sheen_roughness_factor * (m.sheen_roughness_texture.present() ? t.sheen_roughness.a : 1.0f);
+    mp.sheen_roughness = std::clamp(mp.sheen_roughness, 0.0f, 1.0f);
+  }
+  if (m.iridescence_factor > 0.0f) {
+    mp.iridescence = m.iridescence_factor * (m.iridescence_texture.present() ? t.iridescence.r : 1.0f);
+    mp.iridescence = std::clamp(mp.iridescence, 0.0f, 1.0f);
+    mp.iridescence_ior = m.iridescence_ior;
+    mp.iridescence_thickness = m.iridescence_thickness_texture.present()
+                                   ? glm::mix(m.iridescence_thickness_minimum,
+                                              m.iridescence_thickness_maximum, t.iridescence_thickness.g)
+                                   : m.iridescence_thickness_maximum;
+  }
+  if (m.diffuse_transmission_factor > 0.0f) {
+    mp.diffuse_transmission = m.diffuse_transmission_factor *
+                              (m.diffuse_transmission_texture.present() ? t.diffuse_transmission.a : 1.0f);
+    mp.diffuse_transmission = std::clamp(mp.diffuse_transmission, 0.0f, 1.0f);
+    mp.diffuse_transmission_color = m.diffuse_transmission_color_factor;
+    if (m.diffuse_transmission_color_texture.present())
+      mp.diffuse_transmission_color *= vec3(t.diffuse_transmission_color);
+  }
+  if (m.anisotropy_strength > 0.0f) {
+    vec2 direction(1.0f, 0.0f);
+    float strength = m.anisotropy_strength;
+    if (m.anisotropy_texture.present()) {
+      direction = vec2(t.anisotropy) * 2.0f - 1.0f;
+      strength *= t.anisotropy.b;
+      const float length = glm::length(direction);
+      direction = length > 0.0f ? direction / length : vec2(1.0f, 0.0f);
+    }
+    const float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+    mp.anisotropy_tangent_space = vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y);
+    mp.anisotropy = std::clamp(strength, 0.0f, 1.0f);
+  }
 }
 
 }  // namespace
@@ -74,6 +124,34 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
     add(m.emissive_texture, texel_encoding::srgb, t.emissive);
   if (m.transmission_texture.present() && m.transmission_factor > 0.0f)
     add(m.transmission_texture, texel_encoding::linear, t.transmission);
+  if (m.specular_texture.present()) add(m.specular_texture, texel_encoding::linear, t.specular);
+  if (m.specular_color_texture.present())
+    add(m.specular_color_texture, texel_encoding::srgb, t.specular_color);
+  if (m.clearcoat_factor > 0.0f) {
+    if (m.clearcoat_texture.present()) add(m.clearcoat_texture, texel_encoding::linear, t.clearcoat);
+    if (m.clearcoat_roughness_texture.present())
+      add(m.clearcoat_roughness_texture, texel_encoding::linear, t.clearcoat_roughness);
+    if (with_normal && m.clearcoat_normal_texture.present())
+      add(m.clearcoat_normal_texture, texel_encoding::linear, t.clearcoat_normal);
+  }
+  if (m.sheen_color_factor != vec3(0.0f)) {
+    if (m.sheen_color_texture.present()) add(m.sheen_color_texture, texel_encoding::srgb, t.sheen_color);
+    if (m.sheen_roughness_texture.present())
+      add(m.sheen_roughness_texture, texel_encoding::linear, t.sheen_roughness);
+  }
+  if (m.iridescence_factor > 0.0f) {
+    if (m.iridescence_texture.present()) add(m.iridescence_texture, texel_encoding::linear, t.iridescence);
+    if (m.iridescence_thickness_texture.present())
+      add(m.iridescence_thickness_texture, texel_encoding::linear, t.iridescence_thickness);
+  }
+  if (m.diffuse_transmission_factor > 0.0f) {
+    if (m.diffuse_transmission_texture.present())
+      add(m.diffuse_transmission_texture, texel_encoding::linear, t.diffuse_transmission);
+    if (m.diffuse_transmission_color_texture.present())
+      add(m.diffuse_transmission_color_texture, texel_encoding::srgb, t.diffuse_transmission_color);
+  }
+  if (m.anisotropy_strength > 0.0f && m.anisotropy_texture.present())
+    add(m.anisotropy_texture, texel_encoding::linear, t.anisotropy);
   if (with_normal && m.normal_texture.present()) add(m.normal_texture, texel_encoding::linear, t.normal);
   vec4 texels[max_slots];
   sample_textures(s, in.filter, lookups, count, texels);
@@ -103,13 +181,19 @@ material_point evaluate_material(const material& m, const material_inputs& in, c
   vec3 emission = m.emissive_factor * m.emissive_strength;
   if (m.emissive_texture.present() && emission != vec3(0.0f)) emission *= vec3(t.emissive);
   mp.emission = emission;
+  // KHR_materials_specular: the factors times their textures (specularTexture's alpha,
+  // specularColorTexture's RGB); F0 from the ior, tinted, and kept at most 1.
   mp.specular_weight = m.specular_factor;
+  if (m.specular_texture.present()) mp.specular_weight *= t.specular.a;
+  vec3 specular_color = m.specular_color_factor;
+  if (m.specular_color_texture.present()) specular_color *= vec3(t.specular_color);
   float r = (m.ior - 1.0f) / (m.ior + 1.0f);
-  mp.dielectric_f0 = glm::min(vec3(r * r) * m.specular_color_factor, vec3(1.0f));
+  mp.dielectric_f0 = glm::min(vec3(r * r) * specular_color, vec3(1.0f));
   mp.transmission = m.transmission_factor;
   if (m.transmission_texture.present() && mp.transmission > 0.0f) mp.transmission *= t.transmission.r;
   mp.transmission = std::clamp(mp.transmission, 0.0f, 1.0f);
   mp.unlit = m.unlit;
+  evaluate_lobe_extensions(m, t, mp);
   return mp;
 }
 
@@ -131,27 +215,37 @@ float highlight_footprint_alpha(float spread, float width, float light_distance,
 
 namespace {
 
-// The BRDF's three terms: the dielectric's diffuse and specular parts and the metal's specular
-// (unweighted by metallic).
-struct brdf_terms {
-  vec3 dielectric_diffuse{0.0f};
-  vec3 dielectric_specular{0.0f};
-  vec3 metal{0.0f};
-  bool zero = true;  // below the horizon
-};
+// Schlick's Fresnel for f0, mixed toward the thin film's over a base of that f0 by the iridescence.
+vec3 fresnel_with_film(const material_point& mp, const vec3& f0, float cos_theta) {
+  const vec3 schlick = fresnel_schlick(f0, cos_theta);
+  if (!(mp.iridescence > 0.0f)) return schlick;
+  const vec3 film = iridescence_fresnel(1.0f, mp.iridescence_ior, cos_theta, mp.iridescence_thickness, f0);
+  return glm::mix(schlick, film, mp.iridescence);
+}
 
-brdf_terms brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                         float footprint_alpha) {
-  brdf_terms out;
-  float n_dot_l = glm::dot(n, l);
-  float n_dot_v = glm::dot(n, v);
-  if (n_dot_l <= 0.0f || n_dot_v <= 0.0f) return out;
-  vec3 h = glm::normalize(v + l);
-  float n_dot_h = std::max(glm::dot(n, h), 0.0f);
-  float v_dot_h = std::max(glm::dot(v, h), 0.0f);
+}  // namespace
 
-  // GGX distribution and height-correlated Smith visibility (glTF appendix B).
-  const float material_alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+vec3 dielectric_fresnel(const material_point& mp, float cos_theta) {
+  return fresnel_with_film(mp, mp.dielectric_f0, cos_theta);
+}
+
+vec3 metal_fresnel(const material_point& mp, float cos_theta) {
+  return fresnel_with_film(mp, mp.base_color, cos_theta);
+}
+
+float clearcoat_weight(const material_point& mp, float coat_cos_theta) {
+  if (!(mp.clearcoat > 0.0f)) return 0.0f;
+  return mp.clearcoat * fresnel_schlick(vec3(0.04f), std::abs(coat_cos_theta)).x;
+}
+
+namespace {
+
+float max3(const vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+// GGX D · V (glTF appendix B: height-correlated Smith) for perceptual roughness r, widened by the
+// footprint (see highlight_footprint_alpha).
+float ggx_lobe(float roughness, float n_dot_h, float n_dot_v, float n_dot_l, float footprint_alpha) {
+  const float material_alpha = std::max(roughness * roughness, 1e-3f);
   float alpha = material_alpha;
   if (footprint_alpha > 0.0f)
     alpha = std::min(std::sqrt(alpha * alpha + footprint_alpha * footprint_alpha), 1.0f);
@@ -172,17 +266,86 @@ brdf_terms brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
   float visibility_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
   float visibility_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
   float visibility = 0.5f / std::max(visibility_l + visibility_v, 1e-8f);
+  return distribution * visibility;
+}
 
-  // Dielectric layer: Fresnel-weighted specular over Lambert (KHR_materials_specular weights
-  // the Fresnel term); metal: specular only, tinted by base colour.
-  vec3 dielectric_fresnel = mp.specular_weight * fresnel_schlick(mp.dielectric_f0, v_dot_h);
-  vec3 metal_fresnel = fresnel_schlick(mp.base_color, v_dot_h);
-  // Transmitted light is traced as refraction, so it leaves the diffuse lobe (glTF's mix).
-  vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) / pi);
-  out.dielectric_diffuse = (vec3(1.0f) - dielectric_fresnel) * diffuse;
-  out.dielectric_specular = dielectric_fresnel * (distribution * visibility);
-  out.metal = metal_fresnel * (distribution * visibility);
-  out.zero = false;
+// KHR_materials_anisotropy's lobe: roughness α along the bitangent, mix(α, 1, strength²) along the
+// direction of anisotropy, both widened by the footprint in quadrature.
+float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, const vec3& l, const vec3& h,
+                       float footprint_alpha) {
+  vec3 t = mp.anisotropy_direction - n * glm::dot(n, mp.anisotropy_direction);
+  const float t_length = glm::length(t);
+  const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
+  const float n_dot_v = glm::dot(n, v), n_dot_l = glm::dot(n, l);
+  if (!(t_length > 1e-6f)) return ggx_lobe(mp.roughness, n_dot_h, n_dot_v, n_dot_l, footprint_alpha);
+  t /= t_length;
+  const vec3 b = glm::cross(n, t);
+  const float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
+  float at = glm::mix(alpha, 1.0f, mp.anisotropy * mp.anisotropy), ab = alpha;
+  const float widen = footprint_alpha * footprint_alpha;
+  at = std::min(std::sqrt(at * at + widen), 1.0f);
+  ab = std::min(std::sqrt(ab * ab + widen), 1.0f);
+  return ggx_anisotropic_distribution(n_dot_h, glm::dot(t, h), glm::dot(b, h), at, ab) *
+         ggx_anisotropic_visibility(n_dot_l, n_dot_v, glm::dot(t, v), glm::dot(b, v), glm::dot(t, l),
+                                    glm::dot(b, l), at, ab);
+}
+
+// KHR_materials_sheen's albedo scaling of what lies beneath the sheen, for the view and light
+// cosines (the specification's min over both).
+float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
+  if (mp.sheen_color == vec3(0.0f)) return 1.0f;
+  const float strength = max3(mp.sheen_color);
+  // The spec's fitted visibility lets E pass 1 at grazing views on smooth sheen: keep the base's
+  // weight from turning negative there.
+  return std::max(std::min(1.0f - strength * sheen_directional_albedo(n_dot_v, mp.sheen_roughness),
+                           1.0f - strength * sheen_directional_albedo(n_dot_l, mp.sheen_roughness)),
+                  0.0f);
+}
+
+brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                         float footprint_alpha, bool& zero) {
+  brdf_lobes out;
+  zero = true;
+  const float n_dot_l = glm::dot(n, l);
+  const float n_dot_v = glm::dot(n, v);
+  const vec3 h = glm::normalize(v + l);
+  if (n_dot_l > 0.0f && n_dot_v > 0.0f) {
+    zero = false;
+    const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
+    const float v_dot_h = std::max(glm::dot(v, h), 0.0f);
+    const float specular = mp.anisotropy > 0.0f && mp.anisotropy_direction != vec3(0.0f)
+                               ? anisotropic_lobe(mp, n, v, l, h, footprint_alpha)
+                               : ggx_lobe(mp.roughness, n_dot_h, n_dot_v, n_dot_l, footprint_alpha);
+    // Dielectric: KHR_materials_specular's fresnel_mix (the layer takes weight · F, the base what
+    // the strongest channel leaves); metal: specular only, tinted by base colour. Transmitted light
+    // (specular and diffuse) is traced or lit from the far side, so it leaves the diffuse lobe.
+    const vec3 fresnel = mp.specular_weight * dielectric_fresnel(mp, v_dot_h);
+    const vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) * (1.0f - mp.diffuse_transmission) / pi);
+    out.diffuse = ((1.0f - max3(fresnel)) * diffuse) * (1.0f - mp.metallic);
+    out.specular =
+        (fresnel * specular) * (1.0f - mp.metallic) + (metal_fresnel(mp, v_dot_h) * specular) * mp.metallic;
+    if (mp.sheen_color != vec3(0.0f)) {
+      const float scaling = sheen_scaling(mp, n_dot_v, n_dot_l);
+      out.diffuse *= scaling;
+      out.specular = out.specular * scaling +
+                     mp.sheen_color * (charlie_distribution(mp.sheen_roughness, n_dot_h) *
+                                       charlie_visibility(mp.sheen_roughness, n_dot_v, n_dot_l));
+    }
+  }
+  if (mp.clearcoat > 0.0f) {
+    // fresnel_coat: the coat's GGX layer (no Fresnel of its own) weighted by clearcoat · F(nc · v),
+    // over everything beneath weighted by one minus that.
+    const vec3 nc = coat_normal_or(mp, n);
+    const float coat_v = glm::dot(nc, v), coat_l = glm::dot(nc, l);
+    const float weight = clearcoat_weight(mp, coat_v);
+    out.diffuse *= 1.0f - weight;
+    out.specular *= 1.0f - weight;
+    if (coat_v > 0.0f && coat_l > 0.0f) {
+      zero = false;
+      out.specular += vec3(weight * ggx_lobe(mp.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v,
+                                             coat_l, footprint_alpha));
+    }
+  }
   return out;
 }
 
@@ -190,17 +353,29 @@ brdf_terms brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
 
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                    float footprint_alpha) {
-  const brdf_terms t = brdf_terms_at(mp, n, v, l, footprint_alpha);
-  if (t.zero) return vec3(0.0f);
-  return glm::mix(t.dielectric_diffuse + t.dielectric_specular, t.metal, mp.metallic);
+  bool zero = true;
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint_alpha, zero);
+  if (zero) return vec3(0.0f);
+  return t.diffuse + t.specular;
 }
 
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                                float footprint_alpha) {
-  const brdf_terms t = brdf_terms_at(mp, n, v, l, footprint_alpha);
-  if (t.zero) return {};
-  return {t.dielectric_diffuse * (1.0f - mp.metallic),
-          t.dielectric_specular * (1.0f - mp.metallic) + t.metal * mp.metallic};
+  bool zero = true;
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint_alpha, zero);
+  if (zero) return {};
+  return t;
+}
+
+vec3 evaluate_diffuse_btdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l) {
+  const float through = diffuse_see_through_weight(mp);
+  const float n_dot_v = glm::dot(n, v), n_dot_l = glm::dot(n, l);
+  if (!(through > 0.0f) || !(n_dot_v > 0.0f) || !(n_dot_l < 0.0f)) return vec3(0.0f);
+  // No half vector joins the two sides; the base's Fresnel is taken at the view's angle.
+  const vec3 fresnel = mp.specular_weight * dielectric_fresnel(mp, n_dot_v);
+  vec3 f = mp.diffuse_transmission_color * ((1.0f - max3(fresnel)) * through / pi);
+  f *= sheen_scaling(mp, n_dot_v, -n_dot_l);
+  return f * (1.0f - clearcoat_weight(mp, glm::dot(coat_normal_or(mp, n), v)));
 }
 
 vec3 denoising_albedo(const material_point& mp) {

@@ -21,7 +21,33 @@ struct material_point {
   vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
   float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
   bool unlit = false;            // KHR_materials_unlit
+  // KHR_materials_clearcoat: the coat's weight, perceptual roughness and normal (unit; zero: the
+  // shading normal; prepare_shading sets the unmapped or coat-mapped normal).
+  float clearcoat = 0.0f;
+  float clearcoat_roughness = 0.0f;
+  vec3 clearcoat_normal{0.0f};
+  // KHR_materials_sheen: colour (zero: no sheen) and perceptual roughness.
+  vec3 sheen_color{0.0f};
+  float sheen_roughness = 0.0f;
+  // KHR_materials_iridescence: share of the thin-film Fresnel, film ior and thickness (nm).
+  float iridescence = 0.0f;
+  float iridescence_ior = 1.3f;
+  float iridescence_thickness = 400.0f;
+  // KHR_materials_diffuse_transmission: share of the diffuse lobe passed through, and its colour.
+  float diffuse_transmission = 0.0f;
+  vec3 diffuse_transmission_color{1.0f};
+  // KHR_materials_anisotropy: strength and the unit direction of stretch in the tangent plane
+  // (zero: isotropic; prepare_shading sets it where the surface has a tangent frame).
+  float anisotropy = 0.0f;
+  vec3 anisotropy_direction{0.0f};
+  vec2 anisotropy_tangent_space{1.0f, 0.0f};  // the direction in (tangent, bitangent), rotated
 };
+
+// Share of light a diffuse-transmitting surface passes to its other side: the dielectric, not
+// specularly transmitted part times the diffuse transmission factor.
+inline float diffuse_see_through_weight(const material_point& mp) {
+  return (1.0f - mp.metallic) * (1.0f - mp.transmission) * mp.diffuse_transmission;
+}
 
 // Share of light that the surface passes on through itself: the dielectric part times the
 // transmission factor. The diffuse lobe is scaled by one minus the transmission factor.
@@ -45,11 +71,24 @@ struct material_texels {
   vec4 metallic_roughness{1.0f};
   vec4 emissive{1.0f};
   vec4 transmission{1.0f};
+  vec4 specular{1.0f};        // KHR_materials_specular: A weights the Fresnel term
+  vec4 specular_color{1.0f};  // KHR_materials_specular: RGB tints the dielectric F0
   vec4 normal{1.0f};
+  vec4 clearcoat{1.0f};                   // R weights the coat
+  vec4 clearcoat_roughness{1.0f};         // G
+  vec4 clearcoat_normal{1.0f};            // the coat's normal map (read with the normal map)
+  vec4 sheen_color{1.0f};                 // RGB
+  vec4 sheen_roughness{1.0f};             // A
+  vec4 iridescence{1.0f};                 // R
+  vec4 iridescence_thickness{1.0f};       // G
+  vec4 diffuse_transmission{1.0f};        // A
+  vec4 diffuse_transmission_color{1.0f};  // RGB
+  vec4 anisotropy{1.0f};                  // RG direction, B strength
 };
 
 // Every texture lookup of m at `in` in one batch (sample_textures: slots on one UV set, transform
-// and sampler over images of one size plan their texels once), the normal map's when with_normal.
+// and sampler over images of one size plan their texels once), the normal maps' (base and coat)
+// when with_normal.
 material_texels sample_material_textures(const scene& s, const material& m, const material_inputs& in,
                                          bool with_normal);
 
@@ -79,13 +118,33 @@ vec3 specular_f0(const material_point& mp);
 // Schlick's Fresnel with F90 = 1.
 vec3 fresnel_schlick(const vec3& f0, float cos_theta);
 
+// The Fresnel reflectance of the dielectric part (specular weight not applied) and of the metal
+// at cos θ: Schlick's, mixed toward the thin film's by the iridescence share.
+vec3 dielectric_fresnel(const material_point& mp, float cos_theta);
+vec3 metal_fresnel(const material_point& mp, float cos_theta);
+
+// KHR_materials_clearcoat's Fresnel weight clearcoat · F(coat normal · v) with F0 0.04: the share of
+// light the coat reflects; everything beneath is seen through 1 minus it.
+float clearcoat_weight(const material_point& mp, float coat_cos_theta);
+
+// The coat normal at a shading point whose base normal is n.
+inline vec3 coat_normal_or(const material_point& mp, const vec3& n) {
+  return mp.clearcoat_normal == vec3(0.0f) ? n : mp.clearcoat_normal;
+}
+
 // BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.
 // footprint_alpha widens the GGX lobe to sqrt(α² + footprint_alpha²) (see highlight_footprint_alpha).
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                    float footprint_alpha = 0.0f);
 
-// evaluate_brdf by lobe: the Lambert term and the GGX terms (dielectric and metal); diffuse +
-// specular equals evaluate_brdf to float rounding.
+// The diffuse transmission lobe (KHR_materials_diffuse_transmission) for a light on the far side
+// of the surface from the viewer (n·l < 0 < n·v): Lambert in the transmission colour, through the
+// base's Fresnel, the sheen's albedo scaling and the coat; zero unless the material transmits
+// diffusely.
+vec3 evaluate_diffuse_btdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l);
+
+// evaluate_brdf by lobe: the Lambert term and the glossy terms (GGX dielectric and metal, sheen,
+// clearcoat); diffuse + specular equals evaluate_brdf to float rounding.
 struct brdf_lobes {
   vec3 diffuse{0.0f};
   vec3 specular{0.0f};

@@ -20,4 +20,10 @@ bool reads_normal_map(const material& m, const surface_point& sp);
 // sample_material_textures); sp must be a point where reads_normal_map holds.
 void apply_normal_map(const material& m, const vec4& normal_texel, surface_point& sp);
 
+// The same for any normal texture (the clearcoat's: KHR_materials_clearcoat) and its texel.
+void apply_normal_map(const texture_ref& normal_texture, const vec4& normal_texel, surface_point& sp);
+
+// Whether shading at sp reads m's clearcoat normal map (a coat, the texture and a tangent frame).
+bool reads_clearcoat_normal_map(const material& m, const surface_point& sp);
+
 }  // namespace kiln

@@ -6,6 +6,7 @@
 #include "shade/environment.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
+#include "shade/material_lobes.h"
 #include "shade/normal_mapping.h"
 #include "shade/shading_normal.h"
 #include "shade/shadow_transmittance.h"
@@ -66,6 +67,34 @@ void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes
   p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
 }
 
+// The shadow ray from origin toward light l (sampled as ls), stopping just short of it.
+ray shadow_ray(const vec3& origin, const light& l, const light_sample& ls, float time) {
+  ray shadow;
+  shadow.origin = origin;
+  shadow.direction = ls.direction;
+  shadow.kind = ray_kind::shadow;
+  shadow.time = time;
+  shadow.tmax =
+      std::isinf(ls.distance) ? inf : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
+  return shadow;
+}
+
+// A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
+// its Lambert transmission, shadowed along a ray that leaves from the back of the surface.
+vec3 back_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                const vec3& to_viewer, const light& l, const light_sample& ls, ray_counts& counts) {
+  const float cos_theta = -glm::dot(sp.shading_normal, ls.direction);
+  if (!(cos_theta > 0.0f)) return vec3(0.0f);
+  const vec3 f = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction);
+  if (f == vec3(0.0f)) return vec3(0.0f);
+  vec3 visibility(1.0f);
+  if (l.casts_shadows) {
+    const vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
+    visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
+  }
+  return f * ls.irradiance * cos_theta * visibility;
+}
+
 // Direct light from every punctual light; with light groups, each light's share is filed in its
 // group (times the ray's tint); on the camera's path with passes, by lobe and as shadow mattes.
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
@@ -84,7 +113,14 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
     // the smooth one the vertex normals describe, not the flat facet: facets just past a low-poly
     // mesh's terminator still face the light there, and their shadow rays start on that smooth
     // surface (sp.smooth_position), above the neighbouring facets.
-    if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) continue;
+    if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) {
+      // ...except through a surface that transmits diffusely: then it lights the far side.
+      if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
+      const vec3 through = back_light(ctx, sp, mp, to_viewer, l, ls, counts);
+      add(i, through);
+      if (s.passes) s.passes->diffuse += s.share * through;
+      continue;
+    }
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
     if (cos_theta <= 0.0f) continue;
     const float scale = ctx.options.highlight_footprint_scale;
@@ -102,18 +138,11 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
       if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
       continue;
     }
-    ray shadow;
     // Always off the facet's front: a light just below the facet's plane is still above the smooth
     // surface the ray starts on.
-    shadow.origin =
+    const vec3 origin =
         offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
-    shadow.direction = ls.direction;
-    shadow.kind = ray_kind::shadow;
-    shadow.time = sp.time;
-    shadow.tmax = std::isinf(ls.distance)
-                      ? inf
-                      : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
-    vec3 visibility = shadow_visibility(ctx, shadow, counts);
+    vec3 visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
     if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
     if (visibility == vec3(0.0f)) continue;
     add(i, f * ls.irradiance * cos_theta * visibility);
@@ -121,17 +150,35 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
   return total;
 }
 
-// Weight of the perfect-mirror term for the opaque part of a surface: Schlick's
-// Fresnel (linear in F0, so metal and dielectric mix), faded out with roughness
-// (see shading_options). The transmissive part reflects by exact Fresnel
-// instead (see shade_surface).
+// Weight of the perfect-mirror term for the opaque part of a surface: the BRDF's Fresnel at the
+// view (linear in F0, so metal and dielectric mix; iridescent where the material is), faded out
+// with roughness (see shading_options), seen through the sheen and the coat. The transmissive part
+// reflects by exact Fresnel instead (see shade_surface); the coat's own mirror is coat_mirror_weight.
 vec3 mirror_weight(const shading_options& options, const material_point& mp, float cos_theta) {
   if (mp.roughness >= options.mirror_roughness_limit) return vec3(0.0f);
   float fade = 1.0f - mp.roughness / options.mirror_roughness_limit;
-  vec3 metal = fresnel_schlick(mp.base_color, cos_theta) * mp.metallic;
-  vec3 dielectric = fresnel_schlick(mp.dielectric_f0 * mp.specular_weight, cos_theta) *
+  vec3 metal = metal_fresnel(mp, cos_theta) * mp.metallic;
+  vec3 dielectric = mp.specular_weight * dielectric_fresnel(mp, cos_theta) *
                     ((1.0f - mp.metallic) * (1.0f - mp.transmission));
   return (metal + dielectric) * fade;
+}
+
+// The share of the base's reflection and transmission that reaches the viewer through the layers
+// above it: the sheen's albedo scaling at the view and 1 − the coat's Fresnel weight.
+float through_layers(const material_point& mp, float cos_theta, float coat_cos_theta) {
+  float share = 1.0f - clearcoat_weight(mp, coat_cos_theta);
+  if (mp.sheen_color != vec3(0.0f))
+    share *= std::max(1.0f - std::max({mp.sheen_color.x, mp.sheen_color.y, mp.sheen_color.z}) *
+                                 sheen_directional_albedo(cos_theta, mp.sheen_roughness),
+                      0.0f);
+  return share;
+}
+
+// The clearcoat's mirror: its Fresnel weight, faded out with the coat's roughness like the base's.
+float coat_mirror_weight(const shading_options& options, const material_point& mp, float coat_cos_theta) {
+  if (!(mp.clearcoat > 0.0f) || mp.clearcoat_roughness >= options.mirror_roughness_limit) return 0.0f;
+  return clearcoat_weight(mp, coat_cos_theta) *
+         (1.0f - mp.clearcoat_roughness / options.mirror_roughness_limit);
 }
 
 // The refraction event at a transmissive surface: the ior pair, the media on
@@ -147,10 +194,13 @@ struct interface_crossing {
 // (sp.front_face), never by the shading normal. A back-face hit on a volume not
 // in the stack (a camera inside glass, an open mesh) still counts as leaving
 // that material.
-interface_crossing cross_interface(const scene& s, const surface_point& sp, const medium_stack& media) {
+interface_crossing cross_interface(const scene& s, const surface_point& sp, const medium_stack& media,
+                                   int channel) {
   interface_crossing c;
   const material& m = s.materials[sp.material];
-  const float ior = material_ior(m);
+  // A ray of one colour channel refracts by that channel's ior (KHR_materials_dispersion); the
+  // media around the surface keep their single ior.
+  const float ior = channel >= 0 ? dispersed_ior(material_ior(m), m.dispersion)[channel] : material_ior(m);
   if (!m.has_volume()) {
     c.eta = media.ior(s) / ior;
     c.beyond = media;
@@ -274,33 +324,52 @@ vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const 
   return refraction;
 }
 
-// The transmissive share of a surface: a smooth dielectric whatever its roughness (Whitted has no
-// blurred refraction), split by exact Fresnel into the refracted ray traced here and a reflected
-// part added to reflect_weight (all of it under total internal reflection).
-vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                        const vec3& incident, float cos_theta, const path_state& s, vec3& reflect_weight,
-                        ray_counts& counts) {
-  const float see_through = see_through_weight(mp);
-  if (!(see_through > 0.0f)) return vec3(0.0f);
-  const interface_crossing crossing = cross_interface(ctx.world, sp, s.media);
+// The refracted part of a transmissive surface for one crossing (channel -1: all three colours,
+// else that channel alone): exact Fresnel splits it into the refracted ray traced here and a
+// reflected part added to reflect_weight (all of it under total internal reflection). layers: the
+// share seen through the sheen and the coat.
+vec3 refract_channel(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                     const vec3& incident, float cos_theta, float layers, int channel, const path_state& s,
+                     vec3& reflect_weight, ray_counts& counts) {
+  const float see_through = see_through_weight(mp) * layers;
+  const vec3 mask = channel < 0 ? vec3(1.0f) : vec3(channel == 0, channel == 1, channel == 2);
+  const interface_crossing crossing = cross_interface(ctx.world, sp, s.media, channel);
   const float fresnel = fresnel_dielectric(cos_theta, crossing.eta);
-  reflect_weight += vec3(see_through * mp.specular_weight * fresnel);
+  reflect_weight += mask * (see_through * mp.specular_weight * fresnel);
   const std::optional<vec3> direction = refraction_direction(sp, incident, crossing);
   if (!direction) {
-    reflect_weight += vec3(see_through * (1.0f - mp.specular_weight * fresnel));
+    reflect_weight += mask * (see_through * (1.0f - mp.specular_weight * fresnel));
     return vec3(0.0f);
   }
-  const vec3 weight = mp.base_color * (see_through * (1.0f - fresnel));
-  return trace_refracted(ctx, sp, incident, *direction, crossing, weight, s, counts);
+  const vec3 weight = mask * mp.base_color * (see_through * (1.0f - fresnel));
+  path_state channel_state = s;
+  channel_state.channel = channel;
+  return trace_refracted(ctx, sp, incident, *direction, crossing, weight, channel_state, counts);
+}
+
+// The transmissive share of a surface: a smooth dielectric whatever its roughness (Whitted has no
+// blurred refraction). A dispersive volume (KHR_materials_dispersion) entered by a ray of all
+// colours splits it into one refracted ray per channel, each bent by its own ior.
+vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                        const vec3& incident, float cos_theta, float layers, const path_state& s,
+                        vec3& reflect_weight, ray_counts& counts) {
+  if (!(see_through_weight(mp) > 0.0f)) return vec3(0.0f);
+  const material& m = ctx.world.materials[sp.material];
+  if (s.channel >= 0 || !(m.dispersion > 0.0f) || !m.has_volume())
+    return refract_channel(ctx, sp, mp, incident, cos_theta, layers, s.channel, s, reflect_weight, counts);
+  vec3 radiance(0.0f);
+  for (int channel = 0; channel < 3; ++channel)
+    radiance += refract_channel(ctx, sp, mp, incident, cos_theta, layers, channel, s, reflect_weight, counts);
+  return radiance;
 }
 
 // The mirror ray with weight reflect_weight, traced (when the throughput and the budget allow) and
 // filed under the split's reflection.
-vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& incident,
-                  const vec3& reflect_weight, const path_state& s, ray_counts& counts) {
+vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& normal,
+                  const vec3& incident, const vec3& reflect_weight, const path_state& s, ray_counts& counts) {
   const float next_throughput = s.throughput * max_component(reflect_weight);
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
-  vec3 direction = glm::reflect(incident, sp.shading_normal);
+  vec3 direction = glm::reflect(incident, normal);
   // An interpolated normal can send the mirror ray below the surface; use the true plane then.
   if (glm::dot(direction, sp.geometric_normal) <= 0.0f)
     direction = glm::reflect(incident, sp.geometric_normal);
@@ -329,15 +398,25 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
-  add_to_group(s, emission_group(ctx.world), mp.emission);
-  vec3 radiance = mp.emission + direct_light(ctx, sp, mp, to_viewer, s, counts);
+  const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
+  const vec3 coat_normal = coat_normal_or(mp, sp.shading_normal);
+  const float coat_cos_theta = std::max(glm::dot(coat_normal, to_viewer), 0.0f);
+  // KHR_materials_clearcoat: the coat lies over the emission too.
+  const vec3 emission = mp.emission * (1.0f - clearcoat_weight(mp, coat_cos_theta));
+  add_to_group(s, emission_group(ctx.world), emission);
+  vec3 radiance = emission + direct_light(ctx, sp, mp, to_viewer, s, counts);
   add_direct(s, radiance);
   if (s.depth >= ctx.options.max_depth) return radiance;
 
-  const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
-  vec3 reflect_weight = mirror_weight(ctx.options, mp, cos_theta);
-  radiance += shade_transmission(ctx, sp, mp, incident, cos_theta, s, reflect_weight, counts);
-  radiance += trace_mirror(ctx, sp, incident, reflect_weight, s, counts);
+  const float layers = through_layers(mp, cos_theta, coat_cos_theta);
+  vec3 reflect_weight = mirror_weight(ctx.options, mp, cos_theta) * layers;
+  radiance += shade_transmission(ctx, sp, mp, incident, cos_theta, layers, s, reflect_weight, counts);
+  // The coat's mirror joins the base's when both reflect about the same normal.
+  const float coat_mirror = coat_mirror_weight(ctx.options, mp, coat_cos_theta);
+  const bool separate_coat = coat_mirror > 0.0f && coat_normal != sp.shading_normal;
+  if (!separate_coat) reflect_weight += vec3(coat_mirror);
+  radiance += trace_mirror(ctx, sp, sp.shading_normal, incident, reflect_weight, s, counts);
+  if (separate_coat) radiance += trace_mirror(ctx, sp, coat_normal, incident, vec3(coat_mirror), s, counts);
   return radiance;
 }
 
@@ -465,17 +544,48 @@ void camera_path::add_surface(uint32_t instance, const vec3& position, const vec
   surfaces[surface_count++] = {instance, glm::length(position - origin), radiance, coverage};
 }
 
+namespace {
+
+// The frames of the lobe extensions at a prepared point: the clearcoat's normal (its own normal
+// map, else the unmapped normal, bent toward the viewer like the base's) and the direction of
+// anisotropy in the world (the tangent frame turned by the material's direction; none without a
+// tangent frame, and the lobe stays isotropic).
+void set_layer_frames(const material& m, const material_texels& texels, const surface_point& unmapped,
+                      const vec3& to_viewer, shading_point& p) {
+  if (p.mp.clearcoat > 0.0f) {
+    surface_point coat = unmapped;
+    if (reads_clearcoat_normal_map(m, unmapped))
+      apply_normal_map(m.clearcoat_normal_texture, texels.clearcoat_normal, coat);
+    p.mp.clearcoat_normal = bend_toward_viewer(coat.geometric_normal, to_viewer, coat.shading_normal);
+  }
+  if (p.mp.anisotropy > 0.0f && unmapped.tangent != vec4(0.0f)) {
+    const vec3 n = p.sp.shading_normal;
+    vec3 t = vec3(unmapped.tangent);
+    t -= n * glm::dot(n, t);
+    const float length = glm::length(t);
+    if (!(length > 0.0f) || !std::isfinite(length)) return;
+    t /= length;
+    const vec3 b =
+        glm::cross(n, t) * (unmapped.tangent.w < 0.0f ? -1.0f : 1.0f) * (unmapped.front_face ? 1.0f : -1.0f);
+    p.mp.anisotropy_direction = t * p.mp.anisotropy_tangent_space.x + b * p.mp.anisotropy_tangent_space.y;
+  }
+}
+
+}  // namespace
+
 shading_point prepare_shading(const shading_context& ctx, const ray& r, const surface_point& unmapped) {
   const material& m = ctx.world.materials[unmapped.material];
   material_inputs inputs = material_inputs_at(unmapped);
   inputs.filter = ctx.textures;
   // One batch for every texture the point reads, the normal map's included.
   const bool mapped = reads_normal_map(m, unmapped);
-  const material_texels texels = sample_material_textures(ctx.world, m, inputs, mapped);
+  const material_texels texels =
+      sample_material_textures(ctx.world, m, inputs, mapped || reads_clearcoat_normal_map(m, unmapped));
   shading_point p{unmapped, evaluate_material(m, inputs, texels)};
   if (mapped) apply_normal_map(m, texels.normal, p.sp);
-  p.sp.shading_normal =
-      bend_toward_viewer(p.sp.geometric_normal, -glm::normalize(r.direction), p.sp.shading_normal);
+  const vec3 to_viewer = -glm::normalize(r.direction);
+  p.sp.shading_normal = bend_toward_viewer(p.sp.geometric_normal, to_viewer, p.sp.shading_normal);
+  set_layer_frames(m, texels, unmapped, to_viewer, p);
   return p;
 }
 

@@ -183,6 +183,9 @@ struct path_state {
   // Where the camera path files its passes (null: not kept, or off the camera's path; nulled with
   // split, so diffuse and specular are always the direct light of the split's direct).
   camera_passes* passes = nullptr;
+  // KHR_materials_dispersion: the colour channel (0-2) a ray split off by a dispersive refraction
+  // carries, whose ior it refracts by from then on; -1: all three.
+  int channel = -1;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.

@@ -19,6 +19,7 @@ SOURCE = os.environ.get("KILN_SOURCE_DIR", os.path.join(os.path.dirname(__file__
 KILN = os.environ.get("KILN_BINARY", os.path.join(SOURCE, "build", "renderer", "app", "kiln"))
 CORNELL = os.path.join(SOURCE, "scenes", "cornell_box.gltf")
 GLASS = os.path.join(SOURCE, "scenes", "glass_showcase.gltf")
+LOBES = os.path.join(SOURCE, "scenes", "lobe_showcase.gltf")
 
 
 def cli(args):
@@ -79,6 +80,16 @@ def test_arrays_equal_the_cli_exr_bit_for_bit(tmp_path, extra, arguments):
     assert result.metadata["kiln/settings_hash"] == oiio.ImageInput.open(out).spec().get_string_attribute(
         "kiln/settings_hash")
     assert result.stats["camera_rays"] == 40 * 30 * 2
+
+
+def test_material_extension_lobes_render_from_python_as_from_the_cli(tmp_path):
+    # Clearcoat, sheen, iridescence, anisotropy, dispersion, specular and diffuse transmission.
+    out = str(tmp_path / "cli.exr")
+    done = cli(["render", LOBES, "-o", out, "-q"] + ARGUMENTS)
+    assert done.returncode == 0, done.stderr
+    result = kiln.render(LOBES, **OPTIONS)
+    assert np.count_nonzero(result.aovs["beauty"][:, :, 3]) > 600  # the spheres and the ground
+    assert_arrays_match_exr(result, out)
 
 
 def test_light_groups_are_arrays_that_sum_to_the_beauty():

@@ -6,6 +6,7 @@
 // the black default environment. Used by the material extensions' image tests.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,12 +22,20 @@ struct lobe_sphere {
   double illuminance = 2.0;                               // the light's intensity, lux
   int grid = 40;                                          // rays per side across the sphere's disk
   double max_radius = 0.95;  // rays farther than this from the disk's centre are left out (grazing)
-  // Rays are traced here; the camera ray hits the sphere at (x, y, √(1 − x² − y²)).
+  double min_radius = 0.0;   // and rays nearer than this (the sphere's tangent frame turns at its pole)
+  // "sphere", or "disk": the unit disk at z = 0 facing +z (a thin surface lit from either side).
+  std::string shape = "sphere";
+  // Constant 4×4 RGBA images, written beside the file as PNGs; texture i reads image i, so the
+  // material refers to them by their index here.
+  std::vector<std::array<int, 4>> textures;
+  // Rays are traced here; the camera ray hits the sphere at (x, y, √(1 − x² − y²)), the disk at
+  // (x, y, 0).
 };
 
 // One ray's closed-form geometry and what kiln shaded there.
 struct lobe_ray {
-  dvec3 normal;     // unit, outward: (x, y, √(1 − x² − y²))
+  dvec3 normal;     // unit, outward: (x, y, √(1 − x² − y²)); the disk's (0, 0, 1)
+  dvec3 tangent;    // unit dp/du of the surface's parameterisation: the sphere's (−y, x, 0) / ρ
   dvec3 to_viewer;  // (0, 0, 1)
   dvec3 to_light;   // lobe_sphere::to_light
   vec3 radiance;    // kiln's radiance along the ray

@@ -440,14 +440,14 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const def
               pointer("materials", prim.material) +
                   ": textures on TEXCOORD_2 or higher are not supported; they read TEXCOORD_0 positions");
 
-  // Tangent frames only for normal-mapped materials: the file's TANGENT when it has one and
-  // smooth normals, generated from the normal texture's UV set otherwise. Without NORMAL the mesh
-  // is flat-shaded and glTF says to ignore TANGENT; generated tangents then follow the faces.
+  // Tangent frames only for materials that read one (normal maps, the clearcoat's normal map,
+  // anisotropy): the file's TANGENT when it has one and smooth normals, generated from the UV set
+  // of the first such texture otherwise. Without NORMAL the mesh is flat-shaded and glTF says to
+  // ignore TANGENT; generated tangents then follow the faces.
   if (prim.material >= 0) {
-    const tinygltf::Material& mat = ctx.model.materials[static_cast<size_t>(prim.material)];
-    const std::vector<vec2>& uv =
-        material_normal_texcoord(ctx.model, prim.material) == 1 ? m.texcoords1 : m.texcoords0;
-    if (mat.normalTexture.index >= 0 && uv.size() == vertex_count) {
+    const int tangent_set = material_tangent_texcoord(ctx.model, prim.material);
+    const std::vector<vec2>& uv = tangent_set == 1 ? m.texcoords1 : m.texcoords0;
+    if (tangent_set >= 0 && uv.size() == vertex_count) {
       auto tangent = prim.attributes.find("TANGENT");
       if (tangent != prim.attributes.end() && !m.normals.empty()) {
         const std::vector<float> t =
@@ -498,10 +498,9 @@ std::vector<int> geometry_key(const build_context& ctx, const tinygltf::Primitiv
     key.push_back(material_samples_texcoord(ctx.model, prim.material, set)
                       ? attribute(set == 0 ? "TEXCOORD_0" : "TEXCOORD_1")
                       : -2);
-  const bool normal_mapped =
-      prim.material >= 0 && ctx.model.materials[static_cast<size_t>(prim.material)].normalTexture.index >= 0;
-  key.push_back(normal_mapped ? material_normal_texcoord(ctx.model, prim.material) : -2);
-  key.push_back(normal_mapped ? attribute("TANGENT") : -2);
+  const int tangent_set = prim.material >= 0 ? material_tangent_texcoord(ctx.model, prim.material) : -1;
+  key.push_back(tangent_set >= 0 ? tangent_set : -2);
+  key.push_back(tangent_set >= 0 ? attribute("TANGENT") : -2);
   return key;
 }
 

@@ -298,9 +298,10 @@ TEST(GltfLoaderErrors, SparseValuesPastEndOfBufferView) {
 
 TEST(GltfLoaderErrors, UnsupportedRequiredExtensionIsNamed) {
   gltf_builder b = single_triangle();
-  b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_clearcoat"};
-  b.doc["extensionsRequired"] = {"KHR_lights_punctual", "KHR_materials_clearcoat"};
-  expect_error(b, {"/extensionsRequired/1", "required extension KHR_materials_clearcoat is not supported"});
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_pbrSpecularGlossiness"};
+  b.doc["extensionsRequired"] = {"KHR_lights_punctual", "KHR_materials_pbrSpecularGlossiness"};
+  expect_error(b, {"/extensionsRequired/1",
+                   "required extension KHR_materials_pbrSpecularGlossiness is not supported"});
 }
 
 TEST(GltfLoaderErrors, RequiredBasisuTexturesAreRefusedWithTheReason) {

@@ -546,15 +546,18 @@ TEST(GltfLoader, ChoosesSceneFromOptionsOrDefault) {
 TEST(GltfLoader, WarnsAboutUnsupportedUsedExtensions) {
   temp_folder dir;
   gltf_builder b = single_triangle();
-  b.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_lights_punctual", "KHR_materials_clearcoat"};
+  b.doc["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness", "KHR_lights_punctual",
+                             "EXT_lights_image_based"};
   const scene s = load_gltf(b.write(dir.file("scene.gltf")));
   // One line names every unsupported optional extension, and only those.
   ASSERT_EQ(s.stats.warnings.size(), 1u);
-  EXPECT_EQ(s.stats.warnings[0],
-            "extensions KHR_materials_sheen, KHR_materials_clearcoat are not supported; they are ignored");
-  b.doc["extensionsUsed"] = {"KHR_materials_sheen"};
+  EXPECT_EQ(
+      s.stats.warnings[0],
+      "extensions KHR_materials_pbrSpecularGlossiness, EXT_lights_image_based are not supported; they are "
+      "ignored");
+  b.doc["extensionsUsed"] = {"EXT_lights_image_based"};
   EXPECT_EQ(load_gltf(b.write(dir.file("scene.gltf"))).stats.warnings,
-            std::vector<std::string>{"extension KHR_materials_sheen is not supported; it is ignored"});
+            std::vector<std::string>{"extension EXT_lights_image_based is not supported; it is ignored"});
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include "core/message_text.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_images.h"
+#include "io/gltf/gltf_material_fields.h"
+#include "io/gltf/gltf_material_lobes.h"
 
 namespace kiln::gltf_internal {
 namespace {
@@ -56,7 +58,19 @@ std::vector<std::pair<int, int>> texture_slots(const tinygltf::Material& m) {
                pbr.metallicRoughnessTexture.extensions),
           slot(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions),
           slot(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions),
-          extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture")};
+          extension_texture_slot(m, "KHR_materials_transmission", "transmissionTexture"),
+          extension_texture_slot(m, "KHR_materials_specular", "specularTexture"),
+          extension_texture_slot(m, "KHR_materials_specular", "specularColorTexture"),
+          extension_texture_slot(m, "KHR_materials_clearcoat", "clearcoatTexture"),
+          extension_texture_slot(m, "KHR_materials_clearcoat", "clearcoatRoughnessTexture"),
+          extension_texture_slot(m, "KHR_materials_clearcoat", "clearcoatNormalTexture"),
+          extension_texture_slot(m, "KHR_materials_sheen", "sheenColorTexture"),
+          extension_texture_slot(m, "KHR_materials_sheen", "sheenRoughnessTexture"),
+          extension_texture_slot(m, "KHR_materials_iridescence", "iridescenceTexture"),
+          extension_texture_slot(m, "KHR_materials_iridescence", "iridescenceThicknessTexture"),
+          extension_texture_slot(m, "KHR_materials_diffuse_transmission", "diffuseTransmissionTexture"),
+          extension_texture_slot(m, "KHR_materials_diffuse_transmission", "diffuseTransmissionColorTexture"),
+          extension_texture_slot(m, "KHR_materials_anisotropy", "anisotropyTexture")};
 }
 
 // glTF minFilter (OpenGL enums): NEAREST 9728, LINEAR 9729, {NEAREST,LINEAR}_MIPMAP_NEAREST 9984/9985,
@@ -173,38 +187,6 @@ texture_ref make_ref(const tinygltf::Model& model, int index, int texcoord, doub
   return ref;
 }
 
-// Reads a number member of an extension object; false when absent.
-bool extension_number(const tinygltf::Value& object, const char* key, double& out) {
-  if (!object.IsObject() || !object.Has(key)) return false;
-  const tinygltf::Value& v = object.Get(key);
-  if (!v.IsNumber()) return false;
-  out = v.GetNumberAsDouble();
-  return true;
-}
-
-const tinygltf::Value* find_extension(const tinygltf::Material& m, const char* name) {
-  auto it = m.extensions.find(name);
-  return it == m.extensions.end() ? nullptr : &it->second;
-}
-
-void require(bool ok, const std::string& file, const std::string& where, const std::string& reason) {
-  if (!ok) throw input_error(file, where, reason);
-}
-
-// Reads a number member that must lie in [low, high] when present; false when absent.
-bool bounded_number(const tinygltf::Value& object, const char* key, double low, double high, double& out,
-                    const std::string& file, const std::string& where) {
-  if (!object.IsObject() || !object.Has(key)) return false;
-  const tinygltf::Value& v = object.Get(key);
-  const std::string at = pointer_join(where, key);
-  require(v.IsNumber(), file, at, std::string(key) + " must be a number");
-  out = v.GetNumberAsDouble();
-  require(std::isfinite(out) && out >= low && out <= high, file, at,
-          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) +
-              "]");
-  return true;
-}
-
 // Reads a vec2 member ([x, y], finite) of a KHR_texture_transform object when present.
 void transform_pair(const tinygltf::Value& t, const char* key, vec2& out, const std::string& file,
                     const std::string& where) {
@@ -237,7 +219,52 @@ void apply_texture_transform(const tinygltf::Value* t, texture_ref& ref, const s
   }
 }
 
-// A textureInfo inside a material extension, validated like the core ones.
+}  // namespace
+
+bool extension_number(const tinygltf::Value& object, const char* key, double& out) {
+  if (!object.IsObject() || !object.Has(key)) return false;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsNumber()) return false;
+  out = v.GetNumberAsDouble();
+  return true;
+}
+
+const tinygltf::Value* find_extension(const tinygltf::Material& m, const char* name) {
+  auto it = m.extensions.find(name);
+  return it == m.extensions.end() ? nullptr : &it->second;
+}
+
+void require(bool ok, const std::string& file, const std::string& where, const std::string& reason) {
+  if (!ok) throw input_error(file, where, reason);
+}
+
+bool bounded_number(const tinygltf::Value& object, const char* key, double low, double high, double& out,
+                    const std::string& file, const std::string& where) {
+  if (!object.IsObject() || !object.Has(key)) return false;
+  const tinygltf::Value& v = object.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(v.IsNumber(), file, at, std::string(key) + " must be a number");
+  out = v.GetNumberAsDouble();
+  require(std::isfinite(out) && out >= low && out <= high, file, at,
+          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) +
+              "]");
+  return true;
+}
+
+void color_member(const tinygltf::Value& object, const char* key, vec3& out, const std::string& file,
+                  const std::string& where) {
+  if (!object.IsObject() || !object.Has(key)) return;
+  const tinygltf::Value& color = object.Get(key);
+  const std::string at = pointer_join(where, key);
+  require(color.IsArray() && color.ArrayLen() == 3, file, at, std::string(key) + " must have 3 numbers");
+  for (int i = 0; i < 3; ++i) {
+    const tinygltf::Value& c = color.Get(i);
+    require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file, at,
+            std::string(key) + " must be finite and not negative");
+    out[i] = static_cast<float>(c.GetNumberAsDouble());
+  }
+}
+
 texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Value& ext, const char* key,
                               texture_remap& remap, scene& out, const std::string& file,
                               const std::string& where) {
@@ -255,10 +282,14 @@ texture_ref extension_texture(const tinygltf::Model& model, const tinygltf::Valu
             pointer_join(at, "texCoord"), "texCoord must be a non-negative integer");
     texcoord = info.Get("texCoord").GetNumberAsInt();
   }
-  texture_ref ref = make_ref(model, index, texcoord, 1.0, remap, out, file);
+  double scale = 1.0;  // a normalTextureInfo's
+  bounded_number(info, "scale", -1e6, 1e6, scale, file, at);
+  texture_ref ref = make_ref(model, index, texcoord, scale, remap, out, file);
   apply_texture_transform(transform_of(info), ref, file, at);
   return ref;
 }
+
+namespace {
 
 // KHR_materials_transmission and KHR_materials_volume.
 void convert_transmission(const tinygltf::Model& model, const tinygltf::Material& src, material& m,
@@ -282,18 +313,7 @@ void convert_transmission(const tinygltf::Model& model, const tinygltf::Material
               "attenuationDistance must be positive");
       m.attenuation_distance = static_cast<float>(value);
     }
-    if (ext->IsObject() && ext->Has("attenuationColor")) {
-      const tinygltf::Value& color = ext->Get("attenuationColor");
-      const std::string color_at = pointer_join(at, "attenuationColor");
-      require(color.IsArray() && color.ArrayLen() == 3, file, color_at,
-              "attenuationColor must have 3 numbers");
-      for (int i = 0; i < 3; ++i) {
-        const tinygltf::Value& c = color.Get(i);
-        require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
-                color_at, "attenuationColor must be finite and not negative");
-        m.attenuation_color[i] = static_cast<float>(c.GetNumberAsDouble());
-      }
-    }
+    color_member(*ext, "attenuationColor", m.attenuation_color, file, at);
   }
 }
 
@@ -414,20 +434,12 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
               "specularFactor must be finite and not negative");
       m.specular_factor = static_cast<float>(factor);
     }
-    if (ext->IsObject() && ext->Has("specularColorFactor")) {
-      const tinygltf::Value& color = ext->Get("specularColorFactor");
-      require(color.IsArray() && color.ArrayLen() == 3, file, pointer_join(at, "specularColorFactor"),
-              "specularColorFactor must have 3 numbers");
-      for (int i = 0; i < 3; ++i) {
-        const tinygltf::Value& c = color.Get(i);
-        require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file,
-                pointer_join(at, "specularColorFactor"),
-                "specularColorFactor must be finite and not negative");
-        m.specular_color_factor[i] = static_cast<float>(c.GetNumberAsDouble());
-      }
-    }
+    color_member(*ext, "specularColorFactor", m.specular_color_factor, file, at);
+    m.specular_texture = extension_texture(model, *ext, "specularTexture", remap, out, file, at);
+    m.specular_color_texture = extension_texture(model, *ext, "specularColorTexture", remap, out, file, at);
   }
   convert_transmission(model, src, m, remap, out, file, ext_where);
+  convert_material_lobes(model, src, m, remap, out, file, ext_where);
   m.unlit = find_extension(src, "KHR_materials_unlit") != nullptr;
   return m;
 }
@@ -441,15 +453,23 @@ bool material_samples_texcoord0(const tinygltf::Model& model, int material_index
 
 bool material_samples_texcoord(const tinygltf::Model& model, int material_index, int set) {
   if (material_index < 0) return false;
+  // A tangent frame generated from a UV set needs that set, textures or not (anisotropy).
+  if (material_tangent_texcoord(model, material_index) == set) return true;
   for (const auto& [index, texcoord] : texture_slots(model.materials[static_cast<size_t>(material_index)]))
     if (index >= 0 && texcoord == set) return true;
   return false;
 }
 
-int material_normal_texcoord(const tinygltf::Model& model, int material_index) {
-  const tinygltf::NormalTextureInfo& info =
-      model.materials[static_cast<size_t>(material_index)].normalTexture;
-  return effective_texcoord(transform_of(info.extensions), info.texCoord);
+int material_tangent_texcoord(const tinygltf::Model& model, int material_index) {
+  const tinygltf::Material& m = model.materials[static_cast<size_t>(material_index)];
+  const tinygltf::NormalTextureInfo& info = m.normalTexture;
+  if (info.index >= 0) return effective_texcoord(transform_of(info.extensions), info.texCoord);
+  const auto [coat_index, coat_set] =
+      extension_texture_slot(m, "KHR_materials_clearcoat", "clearcoatNormalTexture");
+  if (coat_index >= 0) return coat_set;
+  if (m.extensions.count("KHR_materials_anisotropy") == 0) return -1;
+  const auto [index, set] = extension_texture_slot(m, "KHR_materials_anisotropy", "anisotropyTexture");
+  return index >= 0 ? set : 0;
 }
 
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index) {

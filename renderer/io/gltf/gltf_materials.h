@@ -46,11 +46,13 @@ material default_material();
 bool material_samples_texcoord0(const tinygltf::Model& model, int material_index);
 
 // True when a glTF material samples any texture through TEXCOORD_<set> (after
-// KHR_texture_transform's texCoord override).
+// KHR_texture_transform's texCoord override), or its tangent frame follows that set.
 bool material_samples_texcoord(const tinygltf::Model& model, int material_index, int set);
 
-// The UV set the normal texture reads (after KHR_texture_transform's texCoord override).
-int material_normal_texcoord(const tinygltf::Model& model, int material_index);
+// The UV set a material's tangent frame follows (after KHR_texture_transform's texCoord
+// override): the normal texture's, else the clearcoat normal texture's, else the anisotropy
+// texture's (0 for anisotropy without one); -1 when the material reads no tangent frame.
+int material_tangent_texcoord(const tinygltf::Model& model, int material_index);
 
 // True when a glTF material samples any texture through a TEXCOORD_n with n > 1 (not stored).
 bool material_samples_other_texcoords(const tinygltf::Model& model, int material_index);
