@@ -17,14 +17,19 @@ using testing::reference_material;
 
 // Traces setup and compares every ray against reference (whose anisotropy direction, when set, is
 // the tangent turned by `rotation` toward the bitangent cross(n, t)). tolerance: relative.
+// coat_texel: the clearcoat normal map's tangent-space normal (2 · texel − 1), when it has one.
 void expect_lobe(const testing::lobe_sphere& setup, reference_material reference, const std::string& name,
-                 double tolerance = 1e-4, double rotation = 0.0) {
+                 double tolerance = 1e-4, double rotation = 0.0, const dvec3* coat_texel = nullptr) {
   int lit = 0;
   for (const testing::lobe_ray& r : testing::trace_lobe_sphere(setup, name)) {
     const double cos_l = glm::dot(r.normal, r.to_light);
     if (reference.anisotropy > 0.0)
       reference.anisotropy_direction =
           std::cos(rotation) * r.tangent + std::sin(rotation) * glm::cross(r.normal, r.tangent);
+    if (coat_texel)
+      reference.clearcoat_normal =
+          glm::normalize(r.tangent * coat_texel->x + glm::cross(r.normal, r.tangent) * coat_texel->y +
+                         r.normal * coat_texel->z);
     const dvec3 expected = testing::reference_brdf(reference, r.normal, r.to_viewer, r.to_light) *
                            setup.illuminance * std::abs(cos_l);
     for (int c = 0; c < 3; ++c)
@@ -85,6 +90,25 @@ TEST(material_lobes, clearcoat_layers_a_fresnel_weighted_ggx_coat_over_the_base)
   m.clearcoat = 204.0 / 255.0;
   m.clearcoat_roughness = 0.5 * 153.0 / 255.0;
   expect_lobe(setup, m, "clearcoat");
+}
+
+TEST(material_lobes, the_clearcoat_normal_map_tilts_the_coat_alone) {
+  testing::lobe_sphere setup;
+  setup.textures = {{191, 128, 230, 255}};
+  setup.min_radius = 0.15;  // the sphere's tangent turns about its pole
+  setup.max_radius = 0.8;   // the tilted coat normal stays facing the viewer
+  setup.extensions = {"KHR_materials_clearcoat"};
+  setup.material = {{"pbrMetallicRoughness", pbr({0.2, 0.5, 0.8}, 0.0, 0.7)},
+                    {"extensions",
+                     {{"KHR_materials_clearcoat",
+                       {{"clearcoatFactor", 1.0},
+                        {"clearcoatRoughnessFactor", 0.3},
+                        {"clearcoatNormalTexture", {{"index", 0}}}}}}}};
+  reference_material m = reference_of({0.2, 0.5, 0.8}, 0.0, 0.7);
+  m.clearcoat = 1.0;
+  m.clearcoat_roughness = 0.3;
+  const dvec3 texel = dvec3(191.0, 128.0, 230.0) / 255.0 * 2.0 - 1.0;
+  expect_lobe(setup, m, "clearcoat_normal", 1e-3, 0.0, &texel);
 }
 
 TEST(material_lobes, clearcoat_over_metal_without_textures) {

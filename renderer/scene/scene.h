@@ -135,6 +135,12 @@ struct material {
   bool unlit = false;  // KHR_materials_unlit: radiance = base colour, no lighting
 
   bool has_volume() const { return thickness_factor > 0.0f; }
+  // Whether any lobe extension (clearcoat, sheen, iridescence, diffuse transmission, anisotropy)
+  // is on: only then does shading evaluate their layers.
+  bool has_lobe_extensions() const {
+    return clearcoat_factor > 0.0f || sheen_color_factor != vec3(0.0f) || iridescence_factor > 0.0f ||
+           diffuse_transmission_factor > 0.0f || anisotropy_strength > 0.0f;
+  }
 };
 
 // One unique glTF mesh primitive, as triangles, in its own object space. Stored once.

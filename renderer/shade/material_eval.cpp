@@ -32,37 +32,40 @@ bool same_uv_mapping(const texture_ref& a, const texture_ref& b) {
 
 // The lobe extensions' factors times their textures (each texture's channel as its specification
 // says), clamped to the ranges the lobes are defined on.
-void evaluate_lobe_extensions(const material& m, const material_texels& t, material_point& mp) {
+void evaluate_lobe_extensions(const material& m, const material_texels& texels, material_point& mp) {
+  if (!m.has_lobe_extensions()) return;
+  material_layers& L = mp.layers.emplace();
+  const lobe_texels& t = texels.lobes ? *texels.lobes : lobe_texels{};
   if (m.clearcoat_factor > 0.0f) {
-    mp.clearcoat = m.clearcoat_factor * (m.clearcoat_texture.present() ? t.clearcoat.r : 1.0f);
-    mp.clearcoat_roughness = m.clearcoat_roughness_factor *
-                             (m.clearcoat_roughness_texture.present() ? t.clearcoat_roughness.g : 1.0f);
-    mp.clearcoat = std::clamp(mp.clearcoat, 0.0f, 1.0f);
-    mp.clearcoat_roughness = std::clamp(mp.clearcoat_roughness, 0.0f, 1.0f);
+    L.clearcoat = m.clearcoat_factor * (m.clearcoat_texture.present() ? t.clearcoat.r : 1.0f);
+    L.clearcoat_roughness = m.clearcoat_roughness_factor *
+                            (m.clearcoat_roughness_texture.present() ? t.clearcoat_roughness.g : 1.0f);
+    L.clearcoat = std::clamp(L.clearcoat, 0.0f, 1.0f);
+    L.clearcoat_roughness = std::clamp(L.clearcoat_roughness, 0.0f, 1.0f);
   }
   if (m.sheen_color_factor != vec3(0.0f)) {
-    mp.sheen_color = m.sheen_color_factor;
-    if (m.sheen_color_texture.present()) mp.sheen_color *= vec3(t.sheen_color);
-    mp.sheen_roughness =
+    L.sheen_color = m.sheen_color_factor;
+    if (m.sheen_color_texture.present()) L.sheen_color *= vec3(t.sheen_color);
+    L.sheen_roughness =
         m.sheen_roughness_factor * (m.sheen_roughness_texture.present() ? t.sheen_roughness.a : 1.0f);
-    mp.sheen_roughness = std::clamp(mp.sheen_roughness, 0.0f, 1.0f);
+    L.sheen_roughness = std::clamp(L.sheen_roughness, 0.0f, 1.0f);
   }
   if (m.iridescence_factor > 0.0f) {
-    mp.iridescence = m.iridescence_factor * (m.iridescence_texture.present() ? t.iridescence.r : 1.0f);
-    mp.iridescence = std::clamp(mp.iridescence, 0.0f, 1.0f);
-    mp.iridescence_ior = m.iridescence_ior;
-    mp.iridescence_thickness = m.iridescence_thickness_texture.present()
-                                   ? glm::mix(m.iridescence_thickness_minimum,
-                                              m.iridescence_thickness_maximum, t.iridescence_thickness.g)
-                                   : m.iridescence_thickness_maximum;
+    L.iridescence = m.iridescence_factor * (m.iridescence_texture.present() ? t.iridescence.r : 1.0f);
+    L.iridescence = std::clamp(L.iridescence, 0.0f, 1.0f);
+    L.iridescence_ior = m.iridescence_ior;
+    L.iridescence_thickness = m.iridescence_thickness_texture.present()
+                                  ? glm::mix(m.iridescence_thickness_minimum, m.iridescence_thickness_maximum,
+                                             t.iridescence_thickness.g)
+                                  : m.iridescence_thickness_maximum;
   }
   if (m.diffuse_transmission_factor > 0.0f) {
-    mp.diffuse_transmission = m.diffuse_transmission_factor *
-                              (m.diffuse_transmission_texture.present() ? t.diffuse_transmission.a : 1.0f);
-    mp.diffuse_transmission = std::clamp(mp.diffuse_transmission, 0.0f, 1.0f);
-    mp.diffuse_transmission_color = m.diffuse_transmission_color_factor;
+    L.diffuse_transmission = m.diffuse_transmission_factor *
+                             (m.diffuse_transmission_texture.present() ? t.diffuse_transmission.a : 1.0f);
+    L.diffuse_transmission = std::clamp(L.diffuse_transmission, 0.0f, 1.0f);
+    L.diffuse_transmission_color = m.diffuse_transmission_color_factor;
     if (m.diffuse_transmission_color_texture.present())
-      mp.diffuse_transmission_color *= vec3(t.diffuse_transmission_color);
+      L.diffuse_transmission_color *= vec3(t.diffuse_transmission_color);
   }
   if (m.anisotropy_strength > 0.0f) {
     vec2 direction(1.0f, 0.0f);
@@ -74,8 +77,8 @@ void evaluate_lobe_extensions(const material& m, const material_texels& t, mater
       direction = length > 0.0f ? direction / length : vec2(1.0f, 0.0f);
     }
     const float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
-    mp.anisotropy_tangent_space = vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y);
-    mp.anisotropy = std::clamp(strength, 0.0f, 1.0f);
+    L.anisotropy_tangent_space = vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y);
+    L.anisotropy = std::clamp(strength, 0.0f, 1.0f);
   }
 }
 
@@ -127,31 +130,34 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   if (m.specular_texture.present()) add(m.specular_texture, texel_encoding::linear, t.specular);
   if (m.specular_color_texture.present())
     add(m.specular_color_texture, texel_encoding::srgb, t.specular_color);
-  if (m.clearcoat_factor > 0.0f) {
-    if (m.clearcoat_texture.present()) add(m.clearcoat_texture, texel_encoding::linear, t.clearcoat);
-    if (m.clearcoat_roughness_texture.present())
-      add(m.clearcoat_roughness_texture, texel_encoding::linear, t.clearcoat_roughness);
-    if (with_normal && m.clearcoat_normal_texture.present())
-      add(m.clearcoat_normal_texture, texel_encoding::linear, t.clearcoat_normal);
+  if (m.has_lobe_extensions()) {
+    lobe_texels& lt = t.lobes.emplace();
+    if (m.clearcoat_factor > 0.0f) {
+      if (m.clearcoat_texture.present()) add(m.clearcoat_texture, texel_encoding::linear, lt.clearcoat);
+      if (m.clearcoat_roughness_texture.present())
+        add(m.clearcoat_roughness_texture, texel_encoding::linear, lt.clearcoat_roughness);
+      if (with_normal && m.clearcoat_normal_texture.present())
+        add(m.clearcoat_normal_texture, texel_encoding::linear, lt.clearcoat_normal);
+    }
+    if (m.sheen_color_factor != vec3(0.0f)) {
+      if (m.sheen_color_texture.present()) add(m.sheen_color_texture, texel_encoding::srgb, lt.sheen_color);
+      if (m.sheen_roughness_texture.present())
+        add(m.sheen_roughness_texture, texel_encoding::linear, lt.sheen_roughness);
+    }
+    if (m.iridescence_factor > 0.0f) {
+      if (m.iridescence_texture.present()) add(m.iridescence_texture, texel_encoding::linear, lt.iridescence);
+      if (m.iridescence_thickness_texture.present())
+        add(m.iridescence_thickness_texture, texel_encoding::linear, lt.iridescence_thickness);
+    }
+    if (m.diffuse_transmission_factor > 0.0f) {
+      if (m.diffuse_transmission_texture.present())
+        add(m.diffuse_transmission_texture, texel_encoding::linear, lt.diffuse_transmission);
+      if (m.diffuse_transmission_color_texture.present())
+        add(m.diffuse_transmission_color_texture, texel_encoding::srgb, lt.diffuse_transmission_color);
+    }
+    if (m.anisotropy_strength > 0.0f && m.anisotropy_texture.present())
+      add(m.anisotropy_texture, texel_encoding::linear, lt.anisotropy);
   }
-  if (m.sheen_color_factor != vec3(0.0f)) {
-    if (m.sheen_color_texture.present()) add(m.sheen_color_texture, texel_encoding::srgb, t.sheen_color);
-    if (m.sheen_roughness_texture.present())
-      add(m.sheen_roughness_texture, texel_encoding::linear, t.sheen_roughness);
-  }
-  if (m.iridescence_factor > 0.0f) {
-    if (m.iridescence_texture.present()) add(m.iridescence_texture, texel_encoding::linear, t.iridescence);
-    if (m.iridescence_thickness_texture.present())
-      add(m.iridescence_thickness_texture, texel_encoding::linear, t.iridescence_thickness);
-  }
-  if (m.diffuse_transmission_factor > 0.0f) {
-    if (m.diffuse_transmission_texture.present())
-      add(m.diffuse_transmission_texture, texel_encoding::linear, t.diffuse_transmission);
-    if (m.diffuse_transmission_color_texture.present())
-      add(m.diffuse_transmission_color_texture, texel_encoding::srgb, t.diffuse_transmission_color);
-  }
-  if (m.anisotropy_strength > 0.0f && m.anisotropy_texture.present())
-    add(m.anisotropy_texture, texel_encoding::linear, t.anisotropy);
   if (with_normal && m.normal_texture.present()) add(m.normal_texture, texel_encoding::linear, t.normal);
   vec4 texels[max_slots];
   sample_textures(s, in.filter, lookups, count, texels);
@@ -201,41 +207,16 @@ vec3 specular_f0(const material_point& mp) {
   return glm::mix(mp.dielectric_f0 * mp.specular_weight, mp.base_color, mp.metallic);
 }
 
-vec3 fresnel_schlick(const vec3& f0, float cos_theta) {
-  float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
-  float m2 = m * m;
-  return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
-}
-
 float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature) {
   const float light_angle =
       std::isinf(light_distance) || !(light_distance > 0.0f) ? 0.0f : width / light_distance;
   return 0.25f * spread + 0.25f * light_angle + 0.5f * curvature * width;
 }
 
-namespace {
-
-// Schlick's Fresnel for f0, mixed toward the thin film's over a base of that f0 by the iridescence.
-vec3 fresnel_with_film(const material_point& mp, const vec3& f0, float cos_theta) {
-  const vec3 schlick = fresnel_schlick(f0, cos_theta);
-  if (!(mp.iridescence > 0.0f)) return schlick;
-  const vec3 film = iridescence_fresnel(1.0f, mp.iridescence_ior, cos_theta, mp.iridescence_thickness, f0);
-  return glm::mix(schlick, film, mp.iridescence);
-}
-
-}  // namespace
-
-vec3 dielectric_fresnel(const material_point& mp, float cos_theta) {
-  return fresnel_with_film(mp, mp.dielectric_f0, cos_theta);
-}
-
-vec3 metal_fresnel(const material_point& mp, float cos_theta) {
-  return fresnel_with_film(mp, mp.base_color, cos_theta);
-}
-
-float clearcoat_weight(const material_point& mp, float coat_cos_theta) {
-  if (!(mp.clearcoat > 0.0f)) return 0.0f;
-  return mp.clearcoat * fresnel_schlick(vec3(0.04f), std::abs(coat_cos_theta)).x;
+vec3 iridescent_fresnel(const material_point& mp, const vec3& f0, float cos_theta) {
+  const material_layers& L = layers_of(mp);
+  const vec3 film = iridescence_fresnel(1.0f, L.iridescence_ior, cos_theta, L.iridescence_thickness, f0);
+  return glm::mix(fresnel_schlick(f0, cos_theta), film, L.iridescence);
 }
 
 namespace {
@@ -273,7 +254,8 @@ float ggx_lobe(float roughness, float n_dot_h, float n_dot_v, float n_dot_l, flo
 // direction of anisotropy, both widened by the footprint in quadrature.
 float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, const vec3& l, const vec3& h,
                        float footprint_alpha) {
-  vec3 t = mp.anisotropy_direction - n * glm::dot(n, mp.anisotropy_direction);
+  const material_layers& L = layers_of(mp);
+  vec3 t = L.anisotropy_direction - n * glm::dot(n, L.anisotropy_direction);
   const float t_length = glm::length(t);
   const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
   const float n_dot_v = glm::dot(n, v), n_dot_l = glm::dot(n, l);
@@ -281,7 +263,7 @@ float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, c
   t /= t_length;
   const vec3 b = glm::cross(n, t);
   const float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
-  float at = glm::mix(alpha, 1.0f, mp.anisotropy * mp.anisotropy), ab = alpha;
+  float at = glm::mix(alpha, 1.0f, L.anisotropy * L.anisotropy), ab = alpha;
   const float widen = footprint_alpha * footprint_alpha;
   at = std::min(std::sqrt(at * at + widen), 1.0f);
   ab = std::min(std::sqrt(ab * ab + widen), 1.0f);
@@ -293,46 +275,50 @@ float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, c
 // KHR_materials_sheen's albedo scaling of what lies beneath the sheen, for the view and light
 // cosines (the specification's min over both).
 float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
-  if (mp.sheen_color == vec3(0.0f)) return 1.0f;
-  const float strength = max3(mp.sheen_color);
+  const material_layers& L = layers_of(mp);
+  if (L.sheen_color == vec3(0.0f)) return 1.0f;
+  const float strength = max3(L.sheen_color);
   // The spec's fitted visibility lets E pass 1 at grazing views on smooth sheen: keep the base's
   // weight from turning negative there.
-  return std::max(std::min(1.0f - strength * sheen_directional_albedo(n_dot_v, mp.sheen_roughness),
-                           1.0f - strength * sheen_directional_albedo(n_dot_l, mp.sheen_roughness)),
+  return std::max(std::min(1.0f - strength * sheen_directional_albedo(n_dot_v, L.sheen_roughness),
+                           1.0f - strength * sheen_directional_albedo(n_dot_l, L.sheen_roughness)),
                   0.0f);
 }
 
 brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                          float footprint_alpha, bool& zero) {
+  const material_layers& L = layers_of(mp);
   brdf_lobes out;
   zero = true;
   const float n_dot_l = glm::dot(n, l);
   const float n_dot_v = glm::dot(n, v);
+  const bool coated = L.clearcoat > 0.0f;
+  if (!(n_dot_l > 0.0f && n_dot_v > 0.0f) && !coated) return out;
   const vec3 h = glm::normalize(v + l);
   if (n_dot_l > 0.0f && n_dot_v > 0.0f) {
     zero = false;
     const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
     const float v_dot_h = std::max(glm::dot(v, h), 0.0f);
-    const float specular = mp.anisotropy > 0.0f && mp.anisotropy_direction != vec3(0.0f)
+    const float specular = L.anisotropy > 0.0f && L.anisotropy_direction != vec3(0.0f)
                                ? anisotropic_lobe(mp, n, v, l, h, footprint_alpha)
                                : ggx_lobe(mp.roughness, n_dot_h, n_dot_v, n_dot_l, footprint_alpha);
     // Dielectric: KHR_materials_specular's fresnel_mix (the layer takes weight · F, the base what
     // the strongest channel leaves); metal: specular only, tinted by base colour. Transmitted light
     // (specular and diffuse) is traced or lit from the far side, so it leaves the diffuse lobe.
     const vec3 fresnel = mp.specular_weight * dielectric_fresnel(mp, v_dot_h);
-    const vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) * (1.0f - mp.diffuse_transmission) / pi);
+    const vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) * (1.0f - L.diffuse_transmission) / pi);
     out.diffuse = ((1.0f - max3(fresnel)) * diffuse) * (1.0f - mp.metallic);
     out.specular =
         (fresnel * specular) * (1.0f - mp.metallic) + (metal_fresnel(mp, v_dot_h) * specular) * mp.metallic;
-    if (mp.sheen_color != vec3(0.0f)) {
+    if (L.sheen_color != vec3(0.0f)) {
       const float scaling = sheen_scaling(mp, n_dot_v, n_dot_l);
       out.diffuse *= scaling;
-      out.specular = out.specular * scaling +
-                     mp.sheen_color * (charlie_distribution(mp.sheen_roughness, n_dot_h) *
-                                       charlie_visibility(mp.sheen_roughness, n_dot_v, n_dot_l));
+      out.specular =
+          out.specular * scaling + L.sheen_color * (charlie_distribution(L.sheen_roughness, n_dot_h) *
+                                                    charlie_visibility(L.sheen_roughness, n_dot_v, n_dot_l));
     }
   }
-  if (mp.clearcoat > 0.0f) {
+  if (coated) {
     // fresnel_coat: the coat's GGX layer (no Fresnel of its own) weighted by clearcoat · F(nc · v),
     // over everything beneath weighted by one minus that.
     const vec3 nc = coat_normal_or(mp, n);
@@ -342,7 +328,7 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
     out.specular *= 1.0f - weight;
     if (coat_v > 0.0f && coat_l > 0.0f) {
       zero = false;
-      out.specular += vec3(weight * ggx_lobe(mp.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v,
+      out.specular += vec3(weight * ggx_lobe(L.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v,
                                              coat_l, footprint_alpha));
     }
   }
@@ -368,12 +354,13 @@ brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const ve
 }
 
 vec3 evaluate_diffuse_btdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l) {
+  const material_layers& L = layers_of(mp);
   const float through = diffuse_see_through_weight(mp);
   const float n_dot_v = glm::dot(n, v), n_dot_l = glm::dot(n, l);
   if (!(through > 0.0f) || !(n_dot_v > 0.0f) || !(n_dot_l < 0.0f)) return vec3(0.0f);
   // No half vector joins the two sides; the base's Fresnel is taken at the view's angle.
   const vec3 fresnel = mp.specular_weight * dielectric_fresnel(mp, n_dot_v);
-  vec3 f = mp.diffuse_transmission_color * ((1.0f - max3(fresnel)) * through / pi);
+  vec3 f = L.diffuse_transmission_color * ((1.0f - max3(fresnel)) * through / pi);
   f *= sheen_scaling(mp, n_dot_v, -n_dot_l);
   return f * (1.0f - clearcoat_weight(mp, glm::dot(coat_normal_or(mp, n), v)));
 }

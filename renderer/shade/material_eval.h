@@ -4,23 +4,18 @@
 // KHR_materials_ior adjust the dielectric reflectance). Depends on scene and texture sampling.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
 #include "scene/scene.h"
 #include "shade/surface.h"
 #include "shade/texture_sampling.h"
 
 namespace kiln {
 
-// A material's parameters at one point, textures already applied.
-struct material_point {
-  vec3 base_color{1.0f};
-  float alpha = 1.0f;
-  float metallic = 1.0f;
-  float roughness = 1.0f;        // perceptual; GGX alpha = roughness²
-  vec3 emission{0.0f};           // emitted radiance
-  float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
-  vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
-  float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
-  bool unlit = false;            // KHR_materials_unlit
+// The parameters of the lobe extensions at a point, for materials that have any of them.
+struct material_layers {
   // KHR_materials_clearcoat: the coat's weight, perceptual roughness and normal (unit; zero: the
   // shading normal; prepare_shading sets the unmapped or coat-mapped normal).
   float clearcoat = 0.0f;
@@ -43,10 +38,33 @@ struct material_point {
   vec2 anisotropy_tangent_space{1.0f, 0.0f};  // the direction in (tangent, bitangent), rotated
 };
 
+// A material's parameters at one point, textures already applied.
+struct material_point {
+  vec3 base_color{1.0f};
+  float alpha = 1.0f;
+  float metallic = 1.0f;
+  float roughness = 1.0f;        // perceptual; GGX alpha = roughness²
+  vec3 emission{0.0f};           // emitted radiance
+  float specular_weight = 1.0f;  // KHR_materials_specular specularFactor
+  vec3 dielectric_f0{0.04f};     // reflectance at normal incidence for the dielectric part
+  float transmission = 0.0f;     // KHR_materials_transmission share of the dielectric part
+  bool unlit = false;            // KHR_materials_unlit
+  // The lobe extensions' parameters; empty unless the material has one of them (most points
+  // have none, and then pay for no more than this flag).
+  std::optional<material_layers> layers;
+};
+
+// A point's layers, or every lobe off (zero weights) when it has none.
+inline const material_layers& layers_of(const material_point& mp) {
+  static const material_layers none;
+  return mp.layers ? *mp.layers : none;
+}
+
 // Share of light a diffuse-transmitting surface passes to its other side: the dielectric, not
 // specularly transmitted part times the diffuse transmission factor.
 inline float diffuse_see_through_weight(const material_point& mp) {
-  return (1.0f - mp.metallic) * (1.0f - mp.transmission) * mp.diffuse_transmission;
+  if (!mp.layers) return 0.0f;
+  return (1.0f - mp.metallic) * (1.0f - mp.transmission) * mp.layers->diffuse_transmission;
 }
 
 // Share of light that the surface passes on through itself: the dielectric part times the
@@ -63,6 +81,20 @@ struct material_inputs {
 
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
 
+// The texels of the lobe extensions' textures (see material_texels).
+struct lobe_texels {
+  vec4 clearcoat{1.0f};                   // R weights the coat
+  vec4 clearcoat_roughness{1.0f};         // G
+  vec4 clearcoat_normal{1.0f};            // the coat's normal map (read with the normal map)
+  vec4 sheen_color{1.0f};                 // RGB
+  vec4 sheen_roughness{1.0f};             // A
+  vec4 iridescence{1.0f};                 // R
+  vec4 iridescence_thickness{1.0f};       // G
+  vec4 diffuse_transmission{1.0f};        // A
+  vec4 diffuse_transmission_color{1.0f};  // RGB
+  vec4 anisotropy{1.0f};                  // RG direction, B strength
+};
+
 // The texels of m's textures that shading at one point reads, white where m has no such texture
 // or shading skips it (emissive without emission, transmission with a zero factor, the normal map
 // unless asked for).
@@ -74,16 +106,8 @@ struct material_texels {
   vec4 specular{1.0f};        // KHR_materials_specular: A weights the Fresnel term
   vec4 specular_color{1.0f};  // KHR_materials_specular: RGB tints the dielectric F0
   vec4 normal{1.0f};
-  vec4 clearcoat{1.0f};                   // R weights the coat
-  vec4 clearcoat_roughness{1.0f};         // G
-  vec4 clearcoat_normal{1.0f};            // the coat's normal map (read with the normal map)
-  vec4 sheen_color{1.0f};                 // RGB
-  vec4 sheen_roughness{1.0f};             // A
-  vec4 iridescence{1.0f};                 // R
-  vec4 iridescence_thickness{1.0f};       // G
-  vec4 diffuse_transmission{1.0f};        // A
-  vec4 diffuse_transmission_color{1.0f};  // RGB
-  vec4 anisotropy{1.0f};                  // RG direction, B strength
+  // The lobe extensions' texels; empty unless the material has a lobe extension.
+  std::optional<lobe_texels> lobes;
 };
 
 // Every texture lookup of m at `in` in one batch (sample_textures: slots on one UV set, transform
@@ -116,20 +140,38 @@ material_point evaluate_material(const scene& s, const material& m, vec2 uv0);
 vec3 specular_f0(const material_point& mp);
 
 // Schlick's Fresnel with F90 = 1.
-vec3 fresnel_schlick(const vec3& f0, float cos_theta);
+inline vec3 fresnel_schlick(const vec3& f0, float cos_theta) {
+  const float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
+  const float m2 = m * m;
+  return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
+}
+
+// Schlick's Fresnel for f0 mixed toward the thin film's (KHR_materials_iridescence) over a base of
+// that f0 by the layers' iridescence.
+vec3 iridescent_fresnel(const material_point& mp, const vec3& f0, float cos_theta);
 
 // The Fresnel reflectance of the dielectric part (specular weight not applied) and of the metal
-// at cos θ: Schlick's, mixed toward the thin film's by the iridescence share.
-vec3 dielectric_fresnel(const material_point& mp, float cos_theta);
-vec3 metal_fresnel(const material_point& mp, float cos_theta);
+// at cos θ: Schlick's, mixed toward the thin film's by the iridescence share. Inline: every light
+// of every hit evaluates them.
+inline vec3 dielectric_fresnel(const material_point& mp, float cos_theta) {
+  return mp.layers && mp.layers->iridescence > 0.0f ? iridescent_fresnel(mp, mp.dielectric_f0, cos_theta)
+                                                    : fresnel_schlick(mp.dielectric_f0, cos_theta);
+}
+inline vec3 metal_fresnel(const material_point& mp, float cos_theta) {
+  return mp.layers && mp.layers->iridescence > 0.0f ? iridescent_fresnel(mp, mp.base_color, cos_theta)
+                                                    : fresnel_schlick(mp.base_color, cos_theta);
+}
 
 // KHR_materials_clearcoat's Fresnel weight clearcoat · F(coat normal · v) with F0 0.04: the share of
 // light the coat reflects; everything beneath is seen through 1 minus it.
-float clearcoat_weight(const material_point& mp, float coat_cos_theta);
+inline float clearcoat_weight(const material_point& mp, float coat_cos_theta) {
+  if (!mp.layers || !(mp.layers->clearcoat > 0.0f)) return 0.0f;
+  return mp.layers->clearcoat * fresnel_schlick(vec3(0.04f), std::abs(coat_cos_theta)).x;
+}
 
 // The coat normal at a shading point whose base normal is n.
 inline vec3 coat_normal_or(const material_point& mp, const vec3& n) {
-  return mp.clearcoat_normal == vec3(0.0f) ? n : mp.clearcoat_normal;
+  return !mp.layers || mp.layers->clearcoat_normal == vec3(0.0f) ? n : mp.layers->clearcoat_normal;
 }
 
 // BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.

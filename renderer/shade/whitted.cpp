@@ -166,19 +166,22 @@ vec3 mirror_weight(const shading_options& options, const material_point& mp, flo
 // The share of the base's reflection and transmission that reaches the viewer through the layers
 // above it: the sheen's albedo scaling at the view and 1 − the coat's Fresnel weight.
 float through_layers(const material_point& mp, float cos_theta, float coat_cos_theta) {
+  if (!mp.layers) return 1.0f;
+  const material_layers& L = *mp.layers;
   float share = 1.0f - clearcoat_weight(mp, coat_cos_theta);
-  if (mp.sheen_color != vec3(0.0f))
-    share *= std::max(1.0f - std::max({mp.sheen_color.x, mp.sheen_color.y, mp.sheen_color.z}) *
-                                 sheen_directional_albedo(cos_theta, mp.sheen_roughness),
+  if (L.sheen_color != vec3(0.0f))
+    share *= std::max(1.0f - std::max({L.sheen_color.x, L.sheen_color.y, L.sheen_color.z}) *
+                                 sheen_directional_albedo(cos_theta, L.sheen_roughness),
                       0.0f);
   return share;
 }
 
 // The clearcoat's mirror: its Fresnel weight, faded out with the coat's roughness like the base's.
 float coat_mirror_weight(const shading_options& options, const material_point& mp, float coat_cos_theta) {
-  if (!(mp.clearcoat > 0.0f) || mp.clearcoat_roughness >= options.mirror_roughness_limit) return 0.0f;
+  const material_layers& L = layers_of(mp);
+  if (!(L.clearcoat > 0.0f) || L.clearcoat_roughness >= options.mirror_roughness_limit) return 0.0f;
   return clearcoat_weight(mp, coat_cos_theta) *
-         (1.0f - mp.clearcoat_roughness / options.mirror_roughness_limit);
+         (1.0f - L.clearcoat_roughness / options.mirror_roughness_limit);
 }
 
 // The refraction event at a transmissive surface: the ior pair, the media on
@@ -342,6 +345,8 @@ vec3 refract_channel(const shading_context& ctx, const surface_point& sp, const 
     return vec3(0.0f);
   }
   const vec3 weight = mask * mp.base_color * (see_through * (1.0f - fresnel));
+  if (channel == s.channel)
+    return trace_refracted(ctx, sp, incident, *direction, crossing, weight, s, counts);
   path_state channel_state = s;
   channel_state.channel = channel;
   return trace_refracted(ctx, sp, incident, *direction, crossing, weight, channel_state, counts);
@@ -552,13 +557,15 @@ namespace {
 // tangent frame, and the lobe stays isotropic).
 void set_layer_frames(const material& m, const material_texels& texels, const surface_point& unmapped,
                       const vec3& to_viewer, shading_point& p) {
-  if (p.mp.clearcoat > 0.0f) {
+  if (!p.mp.layers) return;
+  material_layers& L = *p.mp.layers;
+  if (L.clearcoat > 0.0f) {
     surface_point coat = unmapped;
-    if (reads_clearcoat_normal_map(m, unmapped))
-      apply_normal_map(m.clearcoat_normal_texture, texels.clearcoat_normal, coat);
-    p.mp.clearcoat_normal = bend_toward_viewer(coat.geometric_normal, to_viewer, coat.shading_normal);
+    if (reads_clearcoat_normal_map(m, unmapped) && texels.lobes)
+      apply_normal_map(m.clearcoat_normal_texture, texels.lobes->clearcoat_normal, coat);
+    L.clearcoat_normal = bend_toward_viewer(coat.geometric_normal, to_viewer, coat.shading_normal);
   }
-  if (p.mp.anisotropy > 0.0f && unmapped.tangent != vec4(0.0f)) {
+  if (L.anisotropy > 0.0f && unmapped.tangent != vec4(0.0f)) {
     const vec3 n = p.sp.shading_normal;
     vec3 t = vec3(unmapped.tangent);
     t -= n * glm::dot(n, t);
@@ -567,7 +574,7 @@ void set_layer_frames(const material& m, const material_texels& texels, const su
     t /= length;
     const vec3 b =
         glm::cross(n, t) * (unmapped.tangent.w < 0.0f ? -1.0f : 1.0f) * (unmapped.front_face ? 1.0f : -1.0f);
-    p.mp.anisotropy_direction = t * p.mp.anisotropy_tangent_space.x + b * p.mp.anisotropy_tangent_space.y;
+    L.anisotropy_direction = t * L.anisotropy_tangent_space.x + b * L.anisotropy_tangent_space.y;
   }
 }
 

@@ -135,7 +135,8 @@ double reference_sheen_albedo(double cos_v, double r) {
 
 dvec3 reference_brdf(const reference_material& m, const dvec3& n, const dvec3& v, const dvec3& l) {
   const double nv = glm::dot(n, v), nl = glm::dot(n, l);
-  const double coat_weight = m.clearcoat * (0.04 + 0.96 * schlick5(nv));
+  const dvec3 nc = m.clearcoat_normal == dvec3(0.0) ? n : m.clearcoat_normal;
+  const double coat_weight = m.clearcoat * (0.04 + 0.96 * schlick5(glm::dot(nc, v)));
   const double sheen_strength = max3(m.sheen_color);
   const auto sheen_scaling = [&](double cos_l) {
     if (sheen_strength <= 0.0) return 1.0;
@@ -167,7 +168,9 @@ dvec3 reference_brdf(const reference_material& m, const dvec3& n, const dvec3& v
         f * sheen_scaling(nl);
   if (m.clearcoat > 0.0) {
     const double coat_alpha = std::max(m.clearcoat_roughness * m.clearcoat_roughness, 1e-3);
-    f = glm::mix(f, dvec3(ggx(coat_alpha, nh, nv, nl)), coat_weight);
+    const double cv = glm::dot(nc, v), cl = glm::dot(nc, l);
+    const dvec3 coat = cv > 0.0 && cl > 0.0 ? dvec3(ggx(coat_alpha, glm::dot(nc, h), cv, cl)) : dvec3(0.0);
+    f = glm::mix(f, coat, coat_weight);
   }
   return f;
 }

@@ -18,6 +18,7 @@ struct reference_material {
   dvec3 specular_color{1.0};
   double clearcoat = 0.0;
   double clearcoat_roughness = 0.0;
+  dvec3 clearcoat_normal{0.0};  // unit; zero: n
   dvec3 sheen_color{0.0};
   double sheen_roughness = 0.0;
   double iridescence = 0.0;
