@@ -215,7 +215,10 @@ float highlight_footprint_alpha(float spread, float width, float light_distance,
 
 vec3 iridescent_fresnel(const material_point& mp, const vec3& f0, float cos_theta) {
   const material_layers& L = layers_of(mp);
-  const vec3 film = iridescence_fresnel(1.0f, L.iridescence_ior, cos_theta, L.iridescence_thickness, f0);
+  // Under a clearcoat the film lies below the coat's ior 1.5, not air (the extension's layering).
+  const float outside_ior = L.clearcoat > 0.0f ? 1.5f : 1.0f;
+  const vec3 film =
+      iridescence_fresnel(outside_ior, L.iridescence_ior, cos_theta, L.iridescence_thickness, f0);
   return glm::mix(fresnel_schlick(f0, cos_theta), film, L.iridescence);
 }
 

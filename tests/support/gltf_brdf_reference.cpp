@@ -62,7 +62,8 @@ dvec3 fresnel(const reference_material& m, const dvec3& f0, double cos_theta) {
   const dvec3 schlick = f0 + (dvec3(1.0) - f0) * schlick5(cos_theta);
   if (m.iridescence <= 0.0) return schlick;
   return glm::mix(schlick,
-                  reference_iridescence_fresnel(m.iridescence_ior, cos_theta, m.iridescence_thickness, f0),
+                  reference_iridescence_fresnel(m.iridescence_ior, cos_theta, m.iridescence_thickness, f0,
+                                                m.clearcoat > 0.0 ? 1.5 : 1.0),
                   m.iridescence);
 }
 
@@ -89,13 +90,15 @@ double srgb_decode8(int code) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-dvec3 reference_iridescence_fresnel(double film_ior, double cos1, double thickness, const dvec3& base_f0) {
-  const double sin2 = (1.0 - cos1 * cos1) / (film_ior * film_ior);
+dvec3 reference_iridescence_fresnel(double film_ior, double cos1, double thickness, const dvec3& base_f0,
+                                    double outside_ior) {
+  const double sin2 = std::pow(outside_ior / film_ior, 2.0) * (1.0 - cos1 * cos1);
+  if (sin2 > 1.0) return dvec3(1.0);  // total internal reflection into the film
   const double cos2 = std::sqrt(1.0 - sin2);
   const auto f0_of = [](double n2, double n1) { return std::pow((n2 - n1) / (n2 + n1), 2.0); };
-  const double r12 = f0_of(film_ior, 1.0) + (1.0 - f0_of(film_ior, 1.0)) * schlick5(cos1);
+  const double r12 = f0_of(film_ior, outside_ior) + (1.0 - f0_of(film_ior, outside_ior)) * schlick5(cos1);
   const double t121 = 1.0 - r12;
-  const double phi21 = dpi - (film_ior < 1.0 ? dpi : 0.0);
+  const double phi21 = dpi - (film_ior < outside_ior ? dpi : 0.0);
   dvec3 r23, phi23;
   for (int c = 0; c < 3; ++c) {
     const double root = std::sqrt(std::min(base_f0[c], 0.9999));

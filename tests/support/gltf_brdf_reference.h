@@ -33,9 +33,10 @@ struct reference_material {
 // f(v, l) for unit n, v, l with n·v > 0; l below the surface reaches only the diffuse transmission.
 dvec3 reference_brdf(const reference_material& m, const dvec3& n, const dvec3& v, const dvec3& l);
 
-// The thin-film Fresnel of KHR_materials_iridescence (outside ior 1).
+// The thin-film Fresnel of KHR_materials_iridescence seen from a medium of ior outside_ior (1: air,
+// 1.5: under a clearcoat).
 dvec3 reference_iridescence_fresnel(double film_ior, double cos_theta, double thickness_nm,
-                                    const dvec3& base_f0);
+                                    const dvec3& base_f0, double outside_ior = 1.0);
 
 // The white Charlie sheen lobe's directional albedo at cos θ for perceptual roughness r.
 double reference_sheen_albedo(double cos_theta, double sheen_roughness);
