@@ -50,7 +50,7 @@ struct hit {
   float t = inf;
   uint32_t instance_id = 0;   // index into scene.instances
   uint32_t primitive_id = 0;  // triangle index within the instance's mesh, or quadric part
-  float u = 0.0f;
+  float u = 0.0f;             // barycentrics (Embree's convention) on a triangle; zero on a quadric
   float v = 0.0f;
   vec3 geometric_normal{0.0f};  // world space, unit length, front face by glTF winding
 };

@@ -100,10 +100,10 @@ quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, c
 // quadric_world_hit from the object-space surface of the hit.
 quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s);
 
-// Only the world normal and the uv of quadric_world_hit (what an accelerator's hit record holds),
-// without the tangent and the error bound.
-void quadric_world_normal_uv(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
-                             vec3& normal, vec2& uv);
+// Only the world normal of quadric_world_hit (what an accelerator's hit record holds: culling
+// needs it for every hit), without the uv, the tangent and the error bound, which shading
+// computes for the hits it shades.
+vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
 
 // World-space dP/du and dP/dv of the parametric UV at the same hit, by central differences of the
 // UV along the surface (for texture footprints). False where the parameterisation is singular

@@ -195,22 +195,17 @@ quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, c
   return quadric_surface_at(q, part, object_hit_point(inst, r, t));
 }
 
-void quadric_world_normal_uv(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part,
-                             vec3& normal, vec2& uv) {
+vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
   const dvec3 approx_point = object_hit_point(inst, r, t);
   dvec3 object_normal;
   if (is_cap(part)) {
-    const dvec3 point = cap_point(q, part, approx_point);
     object_normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
-    uv = vec2(cap_uv(q, point));
   } else {
     const side_function side(q);
-    const dvec3 point = project_to_side(side, approx_point);
-    const dvec3 g = side.gradient(point);
+    const dvec3 g = side.gradient(project_to_side(side, approx_point));
     object_normal = side_normal(g, glm::length(g));
-    uv = vec2(side_uv(q, point));
   }
-  normal = vec3(glm::normalize(inst.world_from_object_normal * object_normal));
+  return vec3(glm::normalize(inst.world_from_object_normal * object_normal));
 }
 
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,

@@ -30,12 +30,25 @@ bool same_uv_mapping(const texture_ref& a, const texture_ref& b) {
          a.uv_scale == b.uv_scale;
 }
 
+// Every lobe texel white: what a slot without a texture reads.
+const lobe_texels& white_lobe_texels() {
+  static const lobe_texels white = [] {
+    lobe_texels t;
+    for (vec4* v : {&t.clearcoat, &t.clearcoat_roughness, &t.clearcoat_normal, &t.sheen_color,
+                    &t.sheen_roughness, &t.iridescence, &t.iridescence_thickness, &t.diffuse_transmission,
+                    &t.diffuse_transmission_color, &t.anisotropy})
+      *v = vec4(1.0f);
+    return t;
+  }();
+  return white;
+}
+
 // The lobe extensions' factors times their textures (each texture's channel as its specification
 // says), clamped to the ranges the lobes are defined on.
 void evaluate_lobe_extensions(const material& m, const material_texels& texels, material_point& mp) {
   if (!m.has_lobe_extensions()) return;
   material_layers& L = mp.layers.emplace();
-  const lobe_texels& t = texels.lobes ? *texels.lobes : lobe_texels{};
+  const lobe_texels& t = texels.has_lobes ? texels.lobes : white_lobe_texels();
   if (m.clearcoat_factor > 0.0f) {
     L.clearcoat = m.clearcoat_factor * (m.clearcoat_texture.present() ? t.clearcoat.r : 1.0f);
     L.clearcoat_roughness = m.clearcoat_roughness_factor *
@@ -103,7 +116,10 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   material_texels t;
   // Room for every texture slot a material can have (the core five and the extensions' slots).
   constexpr int max_slots = 24;
-  texture_lookup lookups[max_slots];
+  // Uninitialised room (only the first `count` are written, then read): zeroing all of it was a
+  // visible cost of every shaded hit.
+  alignas(texture_lookup) unsigned char lookup_storage[sizeof(texture_lookup) * max_slots];
+  texture_lookup* lookups = reinterpret_cast<texture_lookup*>(lookup_storage);
   vec4* targets[max_slots];
   int count = 0;
   const texture_ref* previous = nullptr;
@@ -131,7 +147,8 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   if (m.specular_color_texture.present())
     add(m.specular_color_texture, texel_encoding::srgb, t.specular_color);
   if (m.has_lobe_extensions()) {
-    lobe_texels& lt = t.lobes.emplace();
+    t.has_lobes = true;
+    lobe_texels& lt = t.lobes = white_lobe_texels();
     if (m.clearcoat_factor > 0.0f) {
       if (m.clearcoat_texture.present()) add(m.clearcoat_texture, texel_encoding::linear, lt.clearcoat);
       if (m.clearcoat_roughness_texture.present())
@@ -228,7 +245,8 @@ float max3(const vec3& v) { return std::max({v.x, v.y, v.z}); }
 
 // GGX D · V (glTF appendix B: height-correlated Smith) for perceptual roughness r, widened by the
 // footprint (see highlight_footprint_alpha).
-float ggx_lobe(float roughness, float n_dot_h, float n_dot_v, float n_dot_l, float footprint_alpha) {
+[[gnu::always_inline]] inline float ggx_lobe(float roughness, float n_dot_h, float n_dot_v, float n_dot_l,
+                                             float footprint_alpha) {
   const float material_alpha = std::max(roughness * roughness, 1e-3f);
   float alpha = material_alpha;
   if (footprint_alpha > 0.0f)

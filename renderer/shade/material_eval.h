@@ -81,18 +81,19 @@ struct material_inputs {
 
 material_point evaluate_material(const scene& s, const material& m, const material_inputs& in);
 
-// The texels of the lobe extensions' textures (see material_texels).
+// The texels of the lobe extensions' textures (see material_texels). Left unset on construction
+// (glm does not initialise), so the many points without lobes pay nothing for them.
 struct lobe_texels {
-  vec4 clearcoat{1.0f};                   // R weights the coat
-  vec4 clearcoat_roughness{1.0f};         // G
-  vec4 clearcoat_normal{1.0f};            // the coat's normal map (read with the normal map)
-  vec4 sheen_color{1.0f};                 // RGB
-  vec4 sheen_roughness{1.0f};             // A
-  vec4 iridescence{1.0f};                 // R
-  vec4 iridescence_thickness{1.0f};       // G
-  vec4 diffuse_transmission{1.0f};        // A
-  vec4 diffuse_transmission_color{1.0f};  // RGB
-  vec4 anisotropy{1.0f};                  // RG direction, B strength
+  vec4 clearcoat;                   // R weights the coat
+  vec4 clearcoat_roughness;         // G
+  vec4 clearcoat_normal;            // the coat's normal map (read with the normal map)
+  vec4 sheen_color;                 // RGB
+  vec4 sheen_roughness;             // A
+  vec4 iridescence;                 // R
+  vec4 iridescence_thickness;       // G
+  vec4 diffuse_transmission;        // A
+  vec4 diffuse_transmission_color;  // RGB
+  vec4 anisotropy;                  // RG direction, B strength
 };
 
 // The texels of m's textures that shading at one point reads, white where m has no such texture
@@ -106,8 +107,10 @@ struct material_texels {
   vec4 specular{1.0f};        // KHR_materials_specular: A weights the Fresnel term
   vec4 specular_color{1.0f};  // KHR_materials_specular: RGB tints the dielectric F0
   vec4 normal{1.0f};
-  // The lobe extensions' texels; empty unless the material has a lobe extension.
-  std::optional<lobe_texels> lobes;
+  // The lobe extensions' texels, white where absent like the others, but only when has_lobes
+  // (the material has a lobe extension); unset otherwise.
+  bool has_lobes = false;
+  lobe_texels lobes;
 };
 
 // Every texture lookup of m at `in` in one batch (sample_textures: slots on one UV set, transform

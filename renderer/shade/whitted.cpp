@@ -561,8 +561,8 @@ void set_layer_frames(const material& m, const material_texels& texels, const su
   material_layers& L = *p.mp.layers;
   if (L.clearcoat > 0.0f) {
     surface_point coat = unmapped;
-    if (reads_clearcoat_normal_map(m, unmapped) && texels.lobes)
-      apply_normal_map(m.clearcoat_normal_texture, texels.lobes->clearcoat_normal, coat);
+    if (reads_clearcoat_normal_map(m, unmapped) && texels.has_lobes)
+      apply_normal_map(m.clearcoat_normal_texture, texels.lobes.clearcoat_normal, coat);
     L.clearcoat_normal = bend_toward_viewer(coat.geometric_normal, to_viewer, coat.shading_normal);
   }
   if (L.anisotropy > 0.0f && unmapped.tangent != vec4(0.0f)) {

@@ -75,7 +75,7 @@ bool within_watertight_t_bound(const scene& s, const ray& r, const hit& h) {
 }
 
 bool hit_on_boundary(const scene& s, const ray& r, const hit& h) {
-  // Triangle edges; a quadric's (u, v) are its parametric coordinates and mark no edge.
+  // Triangle edges; a quadric hit's (u, v) are zero and mark no edge.
   const float b0 = 1.0f - h.u - h.v;
   if (s.instances[h.instance_id].kind == shape_kind::mesh && std::min({h.u, h.v, b0}) <= edge_margin)
     return true;

@@ -177,11 +177,11 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
   if (instance_moves(world, h.instance_id)) moved = instance_at(world, h.instance_id, r.time);
   const instance& inst = moved ? *moved : world.instances[h.instance_id];
   if (inst.kind == shape_kind::quadric) {
-    // Quadric hits carry the part in primitive_id and the parametric UV in (u, v).
-    vec2 uv;
-    quadric_world_normal_uv(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id, h.geometric_normal, uv);
-    h.u = uv.x;
-    h.v = uv.y;
+    // Quadric hits carry the part in primitive_id and (u, v) zero: shading finds the parametric UV
+    // of the hits it shades (make_surface_point), and no other ray needs it (an atan2 and a
+    // projection per reflection, refraction and culled hit saved).
+    h.u = h.v = 0.0f;
+    h.geometric_normal = quadric_world_normal(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
     return h;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances

@@ -95,11 +95,8 @@ hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint
   h.instance_id = instance_id;
   h.primitive_id = primitive;
   if (inst.kind == shape_kind::quadric) {
-    // Part in primitive_id, parametric UV in (u, v), normal from the gradient: as the Embree backend.
-    vec2 uv;
-    quadric_world_normal_uv(inst, s.quadrics[inst.shape], r, t, primitive, h.geometric_normal, uv);
-    h.u = uv.x;
-    h.v = uv.y;
+    // Part in primitive_id, normal from the gradient, (u, v) zero: as the Embree backend.
+    h.geometric_normal = quadric_world_normal(inst, s.quadrics[inst.shape], r, t, primitive);
     return h;
   }
   h.u = u;

@@ -27,7 +27,7 @@ bool occluded_instance_shape(const scene& s, uint32_t instance_id, const ray& wo
                              const vec3& direction, const mesh_grid* grid, traversal_counters& counters);
 
 // The backend-neutral hit for a shape hit, filled exactly as the Embree backend fills it
-// (triangle normal through the normal matrix; quadric normal and parametric UV in double).
+// (triangle normal through the normal matrix; quadric normal in double, (u, v) zero).
 hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint32_t primitive, float u,
                float v);
 
