@@ -193,6 +193,33 @@ TEST(material_lobes, thin_film_fresnel_has_no_film_at_zero_thickness_and_colours
   EXPECT_GT(std::max({film.r, film.g, film.b}) - std::min({film.r, film.g, film.b}), 0.01);
 }
 
+TEST(material_lobes, the_largest_values_the_loader_takes_shade_finite) {
+  // Every lobe member at the top of its range (float's largest where the spec sets no maximum):
+  // the film's path length and the lobes' weights stay finite, so no sample is discarded.
+  testing::lobe_sphere setup;
+  const double big = 3.4e38;
+  setup.extensions = {"KHR_materials_iridescence", "KHR_materials_sheen", "KHR_materials_clearcoat",
+                      "KHR_materials_anisotropy"};
+  setup.material = {
+      {"pbrMetallicRoughness", pbr({0.5, 0.5, 0.5}, 0.5, 0.5)},
+      {"extensions",
+       {{"KHR_materials_iridescence",
+         {{"iridescenceFactor", 1.0},
+          {"iridescenceIor", big},
+          {"iridescenceThicknessMinimum", big},
+          {"iridescenceThicknessMaximum", big}}},
+        {"KHR_materials_sheen", {{"sheenColorFactor", {big, big, big}}, {"sheenRoughnessFactor", 1.0}}},
+        {"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}, {"clearcoatRoughnessFactor", 1.0}}},
+        {"KHR_materials_anisotropy", {{"anisotropyStrength", 1.0}, {"anisotropyRotation", 1e6}}}}}};
+  int rays = 0;
+  for (const testing::lobe_ray& r : testing::trace_lobe_sphere(setup, "largest_values")) {
+    for (int c = 0; c < 3; ++c)
+      ASSERT_TRUE(std::isfinite(r.radiance[c]) && r.radiance[c] >= 0.0f) << r.radiance[c];
+    ++rays;
+  }
+  EXPECT_GT(rays, 1000);
+}
+
 TEST(material_lobes, anisotropy_stretches_the_ggx_lobe_along_the_rotated_tangent) {
   testing::lobe_sphere setup;
   setup.textures = {{255, 128, 204, 255}};  // direction (1, 0.004) in tangent space, strength 0.8

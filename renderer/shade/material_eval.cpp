@@ -66,11 +66,16 @@ void evaluate_lobe_extensions(const material& m, const material_texels& texels, 
   if (m.iridescence_factor > 0.0f) {
     L.iridescence = m.iridescence_factor * (m.iridescence_texture.present() ? t.iridescence.r : 1.0f);
     L.iridescence = std::clamp(L.iridescence, 0.0f, 1.0f);
-    L.iridescence_ior = m.iridescence_ior;
-    L.iridescence_thickness = m.iridescence_thickness_texture.present()
-                                  ? glm::mix(m.iridescence_thickness_minimum, m.iridescence_thickness_maximum,
-                                             t.iridescence_thickness.g)
-                                  : m.iridescence_thickness_maximum;
+    // Beyond these the film shows no interference the spectral fit resolves (its terms have
+    // vanished), and the optical path would overflow float.
+    constexpr float max_film_ior = 100.0f, max_thickness_nm = 1e6f;
+    L.iridescence_ior = std::min(m.iridescence_ior, max_film_ior);
+    L.iridescence_thickness =
+        std::clamp(m.iridescence_thickness_texture.present()
+                       ? glm::mix(m.iridescence_thickness_minimum, m.iridescence_thickness_maximum,
+                                  t.iridescence_thickness.g)
+                       : m.iridescence_thickness_maximum,
+                   0.0f, max_thickness_nm);
   }
   if (m.diffuse_transmission_factor > 0.0f) {
     L.diffuse_transmission = m.diffuse_transmission_factor *

@@ -8,7 +8,8 @@
 namespace kiln::gltf_internal {
 namespace {
 
-constexpr double largest = std::numeric_limits<double>::max();
+// Values are stored as float: larger ones would turn into infinities.
+constexpr double largest = std::numeric_limits<float>::max();
 
 // Reads a number member in [low, high] into out when present.
 void read_number(const tinygltf::Value& ext, const char* key, double low, double high, float& out,
