@@ -257,6 +257,7 @@ def test_time_keywords_pose_the_scene_as_the_cli_does(tmp_path):
         kiln.render(CESIUM_MAN, animation="walk", **view)
 
 
+@pytest.mark.skipif(not os.path.exists(CESIUM_MAN), reason="no shared sample assets")
 def test_render_sequence_returns_and_writes_each_frame_as_the_cli_does(tmp_path):
     view = dict(width=24, height=24, quiet=True)
     pattern = str(tmp_path / "walk.####.exr")
