@@ -1,7 +1,6 @@
 #include "shade/material_lobes.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 namespace kiln {
@@ -32,48 +31,6 @@ float charlie_lambda(float cos_theta, float alpha) {
   const float c = std::abs(cos_theta);
   return c < 0.5f ? std::exp(charlie_l(c, alpha))
                   : std::exp(2.0f * charlie_l(0.5f, alpha) - charlie_l(1.0f - c, alpha));
-}
-
-// E(μ, r) on a grid of μ = cos θ in [0, 1] and r in [0, 1], integrated over the half vector: the
-// lobe concentrates where h turns away from n, which a grid over h resolves at every roughness
-// the lobe allows. l = reflect(−v, h), dω_l = 4 (v·h) dω_h.
-// The view axis runs over √μ: E changes fastest at grazing views, where the samples crowd.
-constexpr int albedo_size = 32;
-float albedo_cos_theta(float x) { return x * x; }
-using albedo_table = std::array<float, albedo_size * albedo_size>;
-
-float integrate_sheen_albedo(float cos_v, float roughness) {
-  constexpr int theta_steps = 96, phi_steps = 48;  // φ over [0, π], doubled by symmetry
-  const float sin_v = std::sqrt(std::max(1.0f - cos_v * cos_v, 0.0f));
-  const vec3 v(sin_v, 0.0f, cos_v);
-  double sum = 0.0;
-  for (int i = 0; i < theta_steps; ++i) {
-    const float theta = (i + 0.5f) * (0.5f * pi) / theta_steps;
-    const float st = std::sin(theta), ct = std::cos(theta);
-    for (int j = 0; j < phi_steps; ++j) {
-      const float phi = (j + 0.5f) * pi / phi_steps;
-      const vec3 h(st * std::cos(phi), st * std::sin(phi), ct);
-      const float v_dot_h = glm::dot(v, h);
-      if (v_dot_h <= 0.0f) continue;
-      const float n_dot_l = 2.0f * v_dot_h * h.z - v.z;
-      if (n_dot_l <= 0.0f) continue;
-      const float f = charlie_distribution(roughness, ct) * charlie_visibility(roughness, cos_v, n_dot_l);
-      sum += double(f * n_dot_l * 4.0f * v_dot_h * st);
-    }
-  }
-  return float(sum * 2.0 * (0.5 * pi / theta_steps) * (pi / phi_steps));
-}
-
-const albedo_table& sheen_albedo_table() {
-  static const albedo_table table = [] {
-    albedo_table t{};
-    for (int r = 0; r < albedo_size; ++r)
-      for (int m = 0; m < albedo_size; ++m)
-        t[size_t(r * albedo_size + m)] = integrate_sheen_albedo(
-            std::max(albedo_cos_theta(float(m) / (albedo_size - 1)), 1e-3f), float(r) / (albedo_size - 1));
-    return t;
-  }();
-  return table;
 }
 
 // The colour matching functions' Gaussian fit in Fourier space (the specification's
@@ -119,18 +76,6 @@ float charlie_visibility(float sheen_roughness, float n_dot_v, float n_dot_l) {
   const float denominator =
       (1.0f + charlie_lambda(n_dot_v, alpha) + charlie_lambda(n_dot_l, alpha)) * (4.0f * n_dot_v * n_dot_l);
   return denominator > 0.0f ? 1.0f / denominator : 0.0f;
-}
-
-float sheen_directional_albedo(float cos_theta, float sheen_roughness) {
-  const albedo_table& t = sheen_albedo_table();
-  const float x = std::sqrt(std::clamp(cos_theta, 0.0f, 1.0f)) * (albedo_size - 1);
-  const float y = std::clamp(sheen_roughness, 0.0f, 1.0f) * (albedo_size - 1);
-  const int x0 = std::min(int(x), albedo_size - 2), y0 = std::min(int(y), albedo_size - 2);
-  const float fx = x - float(x0), fy = y - float(y0);
-  const auto at = [&](int r, int m) { return t[size_t(r * albedo_size + m)]; };
-  const float low = at(y0, x0) + (at(y0, x0 + 1) - at(y0, x0)) * fx;
-  const float high = at(y0 + 1, x0) + (at(y0 + 1, x0 + 1) - at(y0 + 1, x0)) * fx;
-  return low + (high - low) * fy;
 }
 
 vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos_theta, float thickness_nm,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "shade/sheen_albedo.h"  // E(μ, r), the sheen lobe's directional albedo
 
 namespace kiln {
 
@@ -15,10 +16,6 @@ float charlie_distribution(float sheen_roughness, float n_dot_h);
 
 // The specification's Charlie visibility, 1 / ((1 + Λ(n·v) + Λ(n·l)) · 4 · n·v · n·l).
 float charlie_visibility(float sheen_roughness, float n_dot_v, float n_dot_l);
-
-// E(μ, r): the directional albedo of the white sheen lobe (D · V · cos over the hemisphere) seen at
-// cos μ, from a table integrated once on first use and read bilinearly.
-float sheen_directional_albedo(float cos_theta, float sheen_roughness);
 
 // The iridescent Fresnel reflectance per R, G, B at cos θ (the half vector's angle to the view)
 // of a thin film of ior film_ior and thickness in nanometres over a base of normal-incidence
