@@ -1,8 +1,9 @@
 // OpenImageIO lives in the image codecs module, which kiln opens only when a render meets an
-// image: with KILN_IMAGE_CODECS naming a file that does not exist, `kiln --version` and a render
-// without textures succeed (the module is never looked for), while a textured scene, an
-// environment map or a preview fail with one line naming the path. Without the variable kiln looks
-// beside itself, then in ../lib/kiln/ (an install), then in the build tree.
+// image that kiln does not decode itself (it decodes 8-bit PNG and JPEG, core glTF's formats):
+// with KILN_IMAGE_CODECS naming a file that does not exist, `kiln --version`, a render without
+// textures and one with PNG textures succeed (the module is never looked for), while a WebP
+// texture, an environment map or a preview fail with one line naming the path. Without the
+// variable kiln looks beside itself, then in ../lib/kiln/ (an install), then in the build tree.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -11,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "support/run_kiln.h"
 
@@ -25,8 +28,34 @@ using testing::scratch_folder;
 
 const std::string scenes = std::string(KILN_SOURCE_DIR) + "/scenes/";
 const std::string untextured = scenes + "quadric_showcase.gltf";
-const std::string textured = scenes + "cornell_box.gltf";  // samples checker.png
+const std::string png_textured = scenes + "cornell_box.gltf";  // samples checker.png
 const std::string missing_module = "/nonexistent/path.so";
+
+// A 4x4 lossy WebP of pure green (oiiotool --pattern constant:color=0,1,0 4x4 3).
+const std::vector<uint8_t> green_webp = {
+    82,  73,  70,  70,  68,  0,   0,   0,   87,  69,  66,  80,  86, 80,  56,  32,  56,  0,   0,
+    0,   80,  2,   0,   157, 1,   42,  4,   0,   4,   0,   0,   0,  0,   37,  160, 2,   116, 186,
+    1,   248, 1,   250, 1,   252, 0,   7,   144, 0,   254, 251, 15, 139, 255, 238, 148, 37,  201,
+    154, 110, 127, 251, 165, 15,  255, 233, 234, 147, 103, 201, 49, 151, 255, 167, 113, 0,   0};
+
+// The Cornell box in `folder` with its texture read from a WebP (EXT_texture_webp), which only the
+// module decodes. Returns the glTF's path.
+std::string webp_textured_scene(const fs::path& folder) {
+  fs::create_directories(folder);
+  std::ifstream in(png_textured);
+  nlohmann::json doc = nlohmann::json::parse(in);
+  const std::string buffer = doc["buffers"][0]["uri"].get<std::string>();
+  fs::copy_file(fs::path(scenes) / buffer, folder / buffer, fs::copy_options::overwrite_existing);
+  doc["images"] = nlohmann::json::array({nlohmann::json{{"uri", "green.webp"}}});
+  doc["extensionsUsed"].push_back("EXT_texture_webp");
+  doc["textures"][0]["extensions"]["EXT_texture_webp"] = {{"source", 0}};
+  doc["textures"][0].erase("source");
+  std::ofstream(folder / "green.webp", std::ios::binary)
+      .write(reinterpret_cast<const char*>(green_webp.data()), std::streamsize(green_webp.size()));
+  const fs::path path = folder / "webp_box.gltf";
+  std::ofstream(path) << doc.dump();
+  return path.string();
+}
 
 // Sets KILN_IMAGE_CODECS for the kiln processes a test starts, and clears it afterwards.
 struct codecs_variable {
@@ -61,10 +90,19 @@ TEST(image_codecs_cli, render_without_images_never_looks_for_the_module) {
   EXPECT_TRUE(fs::is_regular_file(out));
 }
 
+TEST(image_codecs_cli, png_textures_never_look_for_the_module) {
+  const codecs_variable variable(missing_module);
+  const std::string out = scratch_folder("codecs_png") + "/out.exr";
+  const command_result result = run_kiln(small_render(png_textured, out));
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_TRUE(fs::is_regular_file(out));
+}
+
 TEST(image_codecs_cli, textured_scene_without_the_module_fails_naming_its_path) {
   const codecs_variable variable(missing_module);
-  const std::string out = scratch_folder("codecs_textured") + "/out.exr";
-  const command_result result = run_kiln(small_render(textured, out));
+  const std::string dir = scratch_folder("codecs_textured");
+  const std::string out = dir + "/out.exr";
+  const command_result result = run_kiln(small_render(webp_textured_scene(dir), out));
   expect_module_error(result, missing_module, "textures need");
   EXPECT_NE(result.stderr_text.find("No such file"), std::string::npos) << result.stderr_text;
   EXPECT_FALSE(fs::exists(out));
@@ -88,15 +126,17 @@ TEST(image_codecs_cli, a_file_that_is_no_module_is_reported_on_one_line) {
   const std::string fake = scratch_folder("codecs_fake") + "/kiln_image_codecs.so";
   std::ofstream(fake) << "not a shared object\n";
   const codecs_variable variable(fake);
-  expect_module_error(run_kiln(small_render(textured, fs::path(fake).parent_path() / "out.exr")), fake,
+  const fs::path dir = fs::path(fake).parent_path();
+  expect_module_error(run_kiln(small_render(webp_textured_scene(dir), dir / "out.exr")), fake,
                       "textures need");
 }
 
 TEST(image_codecs_cli, variable_naming_the_module_renders_textures) {
   const codecs_variable variable(KILN_IMAGE_CODECS_MODULE);
-  const std::string out = scratch_folder("codecs_named") + "/out.exr";
+  const std::string dir = scratch_folder("codecs_named");
+  const std::string out = dir + "/out.exr";
   const std::string preview = fs::path(out).replace_extension(".png").string();
-  std::vector<std::string> args = small_render(textured, out);
+  std::vector<std::string> args = small_render(webp_textured_scene(dir), out);
   args.insert(args.end(), {"--preview", preview});
   const command_result result = run_kiln(args);
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
@@ -114,8 +154,8 @@ TEST(image_codecs_cli, installed_kiln_looks_beside_itself_then_in_lib_kiln) {
   const fs::path kiln = prefix / "bin/kiln";
   fs::copy_file(KILN_BINARY, kiln);
   const auto render = [&](const std::string& name) {
-    const std::string command = "'" + kiln.string() + "' render '" + textured + "' -o '" +
-                                (prefix / name).string() + "' --width 16 --height 12 2> '" +
+    const std::string command = "'" + kiln.string() + "' render '" + webp_textured_scene(prefix / "scene") +
+                                "' -o '" + (prefix / name).string() + "' --width 16 --height 12 2> '" +
                                 (prefix / "stderr.txt").string() + "'";
     command_result result;
     const int status = std::system(command.c_str());

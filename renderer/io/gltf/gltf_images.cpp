@@ -7,11 +7,13 @@
 
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 #include "core/error.h"
 #include "io/gltf/gltf_memory.h"
 #include "io/gltf/image_header.h"
 #include "io/image_codecs/codecs_loader.h"
+#include "io/image_codecs/direct_decode.h"
 
 namespace kiln::gltf_internal {
 namespace {
@@ -75,7 +77,6 @@ std::vector<image> decode_images(const std::vector<encoded_image>& batch, const 
   charge_memory(memory, need.kept, file, "the decoded textures");
   memory_charge decoding(memory);
   decoding.add(need.decoding, file, "the decoded textures and their decoders' buffers");
-  const image_codecs& codecs = load_image_codecs("textures need");
   std::vector<image> images(batch.size());
   // Each image records its own failure; the first in batch order is reported, so the message
   // does not depend on which thread finished first.
@@ -88,7 +89,15 @@ std::vector<image> decode_images(const std::vector<encoded_image>& batch, const 
       tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) {
         const encoded_image& in = batch[i];
         try {
-          images[i] = codecs.decode(in.data, in.size, in.name, file, in.where, max_texels);
+          // 8-bit PNG and JPEG decode here; the module (opened once, the first time an image
+          // needs it) decodes the rest and words every refusal.
+          if (std::optional<image> direct = decode_directly(in.data, in.size, max_texels)) {
+            images[i] = std::move(*direct);
+            images[i].name = in.name;
+          } else {
+            images[i] = load_image_codecs("textures need")
+                            .decode(in.data, in.size, in.name, file, in.where, max_texels);
+          }
           // GIF frames may differ from the logical screen; every other format decodes to its header's size.
           const image_header& h = headers[i];
           if (h.format != "GIF" &&

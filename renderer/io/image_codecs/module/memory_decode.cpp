@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/image_codecs/module/codecs_module.h"
+#include "io/image_codecs/png_structure.h"
 
 namespace kiln::codecs_module {
 namespace {
@@ -60,31 +61,6 @@ void expand_to_rgba(const std::vector<T>& src, int channels, size_t texels, T op
   }
 }
 
-uint32_t read_be32(const uint8_t* p) {
-  return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
-}
-
-// Walks a PNG's chunk list (length, type, data, CRC) and returns why it is cut short or broken,
-// or an empty string when every chunk fits and the list ends with IEND. A truncated PNG must be
-// refused before libpng sees it: libpng reports a short read by longjmp-ing out of OpenImageIO's
-// read callback, past C++ destructors, which leaks memory on every broken image.
-std::string png_structure_problem(const byte_span& bytes) {
-  size_t pos = 8;  // after the signature
-  bool first = true;
-  while (true) {
-    if (bytes.size() - pos < 12) return "PNG data is truncated (it ends before the IEND chunk)";
-    const uint64_t length = read_be32(bytes.data() + pos);
-    const uint8_t* type = bytes.data() + pos + 4;
-    if (length > 0x7fffffffu) return "PNG chunk length is out of range";
-    if (uint64_t(bytes.size() - pos) < 12 + length)
-      return "PNG data is truncated (a chunk runs past the end of the data)";
-    if (first && std::memcmp(type, "IHDR", 4) != 0) return "PNG does not start with an IHDR chunk";
-    first = false;
-    pos += 12 + static_cast<size_t>(length);
-    if (std::memcmp(type, "IEND", 4) == 0) return "";
-  }
-}
-
 // OpenImageIO's messages may span lines; kiln's error is one line.
 std::string one_line(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
@@ -109,7 +85,9 @@ image decode(const uint8_t* data, size_t size, const std::string& name, const st
   const std::string pseudo_name = name_from_magic(encoded);
   if (pseudo_name.empty()) throw fail("image data is not PNG, JPEG, WebP, GIF or BMP");
   if (pseudo_name == "image.png") {
-    const std::string problem = png_structure_problem(encoded);
+    // A truncated PNG must be refused before libpng sees it: libpng reports a short read by
+    // longjmp-ing out of OpenImageIO's read callback, past C++ destructors, which leaks memory.
+    const std::string problem = png_structure_problem(encoded.data(), encoded.size());
     if (!problem.empty()) throw fail("cannot decode image: " + problem);
   }
 
