@@ -115,7 +115,8 @@ bool quadric_world_uv_jacobian(const instance& inst, const quadric& q, uint32_t 
 
 // A bound on the world-space curvature (1 / length) of the surface at the same hit: how fast the
 // world normal turns per unit of world distance along the surface, the larger of two orthogonal
-// tangents, by central differences. 0 where the surface is flat or the estimate is not finite.
+// tangents: in closed form from the constant Hessian on quadrics, by central differences on the
+// torus. 0 where the surface is flat or the estimate is not finite.
 float quadric_world_curvature(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
 float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
                               const quadric_surface& s);

@@ -281,9 +281,28 @@ float quadric_world_curvature(const instance& inst, const quadric& q, const ray&
 float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
                               const quadric_surface& s) {
   const dvec3 tangents[2] = {s.dpdu, glm::cross(s.normal, s.dpdu)};
+  if (is_cap(part) || q.kind == quadric_kind::disk) return 0.0f;  // planar
+  double curvature = 0.0;
+  if (q.kind != quadric_kind::torus) {
+    // A quadric's Hessian is the constant 2A, so the world normal N·∇F / |N·∇F| turns along the
+    // object tangent t at P·N·2A·t / |N·∇F| (P: the projection off the normal) while the point
+    // moves |M·t|: the limit of the central differences below, without their four projections.
+    const implicit_form f = implicit_of(q);
+    const dvec3 g = inst.world_from_object_normal * implicit_gradient(f, s.point);
+    const double g_len = glm::length(g);
+    if (!(g_len > 0.0) || !std::isfinite(g_len)) return 0.0f;  // the cone's apex
+    const dvec3 n = g / g_len;
+    for (const dvec3& tangent : tangents) {
+      const dvec3 dg = inst.world_from_object_normal * (2.0 * (f.a * tangent));
+      const double turn = glm::length(dg - n * glm::dot(n, dg)) / g_len;
+      const double distance = glm::length(transform_vector(inst.world_from_object, tangent));
+      if (distance > 0.0) curvature = std::max(curvature, turn / distance);
+    }
+    return std::isfinite(curvature) ? float(curvature) : 0.0f;
+  }
+  // The torus (quartic): central differences at a step small against the shape.
   const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
   const side_function side(q);
-  double curvature = 0.0;
   for (const dvec3& tangent : tangents) {
     dvec3 a_point, a_normal, b_point, b_normal;
     point_and_normal_at(side, part, s.point + h * tangent, a_point, a_normal);
