@@ -111,6 +111,45 @@ TEST(direct_decode, a_truncated_jpeg_is_left_to_the_module) {
   GTEST_SKIP() << "no JPEG among the shared assets";
 }
 
+// Corrupted data (bytes overwritten at random places, deterministic) is decoded or refused, never
+// read past (the sanitizer build runs this): a decoded image always has the texels it claims.
+void expect_corruptions_survive(const std::vector<uint8_t>& original, const std::string& what) {
+  uint32_t state = 12345u;
+  auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  int decoded = 0, refused = 0;
+  for (int variant = 0; variant < 300; ++variant) {
+    std::vector<uint8_t> bytes = original;
+    const int flips = 1 + int(next() % 8);
+    for (int k = 0; k < flips; ++k) bytes[next() % bytes.size()] = uint8_t(next() >> 24);
+    const std::optional<image> out = decode_directly(bytes.data(), bytes.size(), 1u << 24);
+    if (!out) {
+      ++refused;
+      continue;
+    }
+    ++decoded;
+    ASSERT_GT(out->width, 0) << what;
+    ASSERT_GT(out->height, 0) << what;
+    ASSERT_EQ(out->texels8.size(), size_t(out->width) * size_t(out->height) * 4) << what;
+  }
+  EXPECT_GT(refused, 0) << what;  // some corruptions are caught (CRCs, markers)
+  EXPECT_EQ(decoded + refused, 300) << what;
+}
+
+TEST(direct_decode, corrupted_images_are_decoded_or_refused_never_overrun) {
+  expect_corruptions_survive(tiny_png(3, true), "palette PNG");
+  expect_corruptions_survive(tiny_png(2, false), "RGB PNG");
+  const fs::path assets = KILN_SHARED_ASSETS;
+  if (!fs::is_directory(assets)) return;
+  int jpegs = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(assets)) {
+    if (entry.path().extension() != ".jpg" || entry.file_size() > (512u << 10) ||
+        entry.path().string().find("/invalid/") != std::string::npos)
+      continue;
+    expect_corruptions_survive(read_bytes(entry.path()), entry.path().string());
+    if (++jpegs == 2) break;
+  }
+}
+
 // ---- tiny PNGs -----------------------------------------------------------------------------------
 
 uint32_t crc32_of(const uint8_t* data, size_t n, uint32_t crc = 0xFFFFFFFFu) {

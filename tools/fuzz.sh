@@ -2,7 +2,8 @@
 # Fuzzes kiln's loader with libFuzzer (clang-14 from Debian, ASan+UBSan).
 #   tools/fuzz.sh [TARGET] [SECONDS]
 #     TARGET  gltf_loader (whole .gltf/.glb files), quadric (the KILN_quadric extension),
-#             image_header (encoded image headers), transforms (extreme transforms, cameras and
+#             image_header (encoded image headers), image_decode (PNG and JPEG through kiln's own
+#             decoding, io/image_codecs/direct_decode.h), transforms (extreme transforms, cameras and
 #             coordinates through the whole render job), draco_stream (KHR_draco_mesh_compression
 #             streams through the decoder wrapper) or all (default: every one in sequence);
 #             SECONDS per target, default 300
@@ -18,12 +19,12 @@ target=all
 seconds=300
 for arg in "$@"; do
   case "$arg" in
-    gltf_loader | quadric | image_header | transforms | draco_stream | all) target="$arg" ;;
-    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|transforms|draco_stream|all] [SECONDS]" >&2 && exit 2 ;;
+    gltf_loader | quadric | image_header | image_decode | transforms | draco_stream | all) target="$arg" ;;
+    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|image_decode|transforms|draco_stream|all] [SECONDS]" >&2 && exit 2 ;;
     *) seconds="$arg" ;;
   esac
 done
-targets=(gltf_loader quadric image_header transforms draco_stream)
+targets=(gltf_loader quadric image_header image_decode transforms draco_stream)
 [[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
@@ -64,6 +65,15 @@ seed_image_header() {
     -size -4096k | head -200 | while read -r f; do head -c 4096 "$f" >"$1/$(basename "$f")"; done
 }
 
+# Seeds for fuzz_image_decode: whole PNG and JPEG images of scenes/, tests/data and the sample assets
+# (the small ones: libFuzzer mutates within -max_len).
+seed_image_decode() {
+  local seeds=(scenes tests/data)
+  [[ -d ../shared/assets ]] && seeds+=(../shared/assets)
+  find "${seeds[@]}" -type f \( -name '*.png' -o -name '*.jpg' -o -name '*.jpeg' \) -size -256k -not -path '*/invalid/*' |
+    head -100 | while read -r f; do cp -n "$f" "$1/$(echo "$f" | tr '/' '_')"; done || true  # head ends find early
+}
+
 # Seeds for fuzz_transforms: the flag byte alone (every number at its default), one per flag set.
 seed_transforms() {
   for flags in 0 1 2 3 4 6 12 15; do printf "\\x$(printf %02x $flags)" >"$1/flags_$flags"; done
@@ -84,7 +94,7 @@ for t in "${targets[@]}"; do
   "seed_$t" "$corpus"
   dict=(-dict=fuzz/gltf.dict)
   [[ "$t" == quadric ]] && dict=(-dict=fuzz/quadric.dict)
-  [[ "$t" == image_header || "$t" == transforms || "$t" == draco_stream ]] && dict=()
+  [[ "$t" == image_header || "$t" == image_decode || "$t" == transforms || "$t" == draco_stream ]] && dict=()
   echo "kiln: fuzzing $t for $seconds s" >&2
   set +e
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \
