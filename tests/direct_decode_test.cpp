@@ -6,6 +6,12 @@
 
 #include <gtest/gtest.h>
 
+// clang-format off
+#include <cstdio>  // jpeglib.h needs FILE declared first
+#include <jpeglib.h>
+// clang-format on
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -96,6 +102,48 @@ TEST(direct_decode, leaves_to_the_module_what_it_does_not_decode) {
   EXPECT_FALSE(decode_directly(gif.data(), gif.size(), no_limit));
 }
 
+// A 37x23 JPEG written here with libjpeg (grey or YCbCr colour, baseline or progressive), so that
+// the JPEG path is held to the module without the shared assets too.
+std::vector<uint8_t> small_jpeg(bool colour, bool progressive) {
+  jpeg_compress_struct cinfo;
+  jpeg_error_mgr errors;
+  cinfo.err = jpeg_std_error(&errors);
+  jpeg_create_compress(&cinfo);
+  unsigned char* buffer = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&cinfo, &buffer, &size);
+  cinfo.image_width = 37;
+  cinfo.image_height = 23;
+  cinfo.input_components = colour ? 3 : 1;
+  cinfo.in_color_space = colour ? JCS_RGB : JCS_GRAYSCALE;
+  jpeg_set_defaults(&cinfo);
+  jpeg_set_quality(&cinfo, 85, TRUE);
+  if (progressive) jpeg_simple_progression(&cinfo);
+  jpeg_start_compress(&cinfo, TRUE);
+  std::vector<uint8_t> row(size_t(cinfo.image_width) * size_t(cinfo.input_components));
+  while (cinfo.next_scanline < cinfo.image_height) {
+    for (size_t i = 0; i < row.size(); ++i) row[i] = uint8_t((i * 29 + cinfo.next_scanline * 53) & 0xFF);
+    JSAMPROW pointer = row.data();
+    jpeg_write_scanlines(&cinfo, &pointer, 1);
+  }
+  jpeg_finish_compress(&cinfo);
+  std::vector<uint8_t> out(buffer, buffer + size);
+  jpeg_destroy_compress(&cinfo);
+  std::free(buffer);
+  return out;
+}
+
+TEST(direct_decode, jpegs_written_here_decode_as_the_module_decodes_them) {
+  for (bool colour : {false, true})
+    for (bool progressive : {false, true}) {
+      const std::string what =
+          std::string(colour ? "colour" : "grey") + (progressive ? " progressive" : " baseline");
+      const std::vector<uint8_t> jpeg = small_jpeg(colour, progressive);
+      EXPECT_TRUE(expect_same_as_module(jpeg, what)) << what;
+      EXPECT_FALSE(decode_directly(jpeg.data(), jpeg.size() / 2, no_limit)) << what << ", cut in half";
+    }
+}
+
 TEST(direct_decode, a_truncated_jpeg_is_left_to_the_module) {
   const fs::path assets = KILN_SHARED_ASSETS;
   if (!fs::is_directory(assets)) GTEST_SKIP() << "no shared assets at " << assets;
@@ -138,6 +186,8 @@ void expect_corruptions_survive(const std::vector<uint8_t>& original, const std:
 TEST(direct_decode, corrupted_images_are_decoded_or_refused_never_overrun) {
   expect_corruptions_survive(tiny_png(3, true), "palette PNG");
   expect_corruptions_survive(tiny_png(2, false), "RGB PNG");
+  expect_corruptions_survive(small_jpeg(true, false), "baseline JPEG");
+  expect_corruptions_survive(small_jpeg(true, true), "progressive JPEG");
   const fs::path assets = KILN_SHARED_ASSETS;
   if (!fs::is_directory(assets)) return;
   int jpegs = 0;
