@@ -21,20 +21,6 @@ bool starts_with(const uint8_t* data, size_t size, const char* magic, size_t n) 
   return size >= n && std::memcmp(data, magic, n) == 0;
 }
 
-// Expands n-channel 8-bit codes (grey or RGB) to RGBA, opaque, as the module does.
-void expand_to_rgba(const std::vector<uint8_t>& codes, int channels, std::vector<uint8_t>& rgba) {
-  const size_t texels = codes.size() / size_t(channels);
-  rgba.resize(texels * 4);
-  for (size_t i = 0; i < texels; ++i) {
-    const uint8_t* s = codes.data() + i * size_t(channels);
-    uint8_t* d = rgba.data() + i * 4;
-    d[0] = s[0];
-    d[1] = s[channels == 1 ? 0 : 1];
-    d[2] = s[channels == 1 ? 0 : 2];
-    d[3] = 255;
-  }
-}
-
 // ---- PNG ---------------------------------------------------------------------------------------
 
 struct png_source {
@@ -119,14 +105,15 @@ struct jpeg_job {
   const uint8_t* data;
   size_t size;
   uint64_t max_texels;
-  int width = 0, height = 0, channels = 0;
-  std::vector<uint8_t> codes;
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
   jpeg_decompress_struct cinfo;
   jpeg_failure failure;
 };
 
-// libjpeg's default decompression (the module changes none of it): grey stays one channel, YCbCr
-// becomes RGB. CMYK and YCCK are the module's. Any warning hands the image to the module too.
+// libjpeg's default decompression (the module changes none of it), straight into RGBA with opaque
+// alpha (libjpeg-turbo's JCS_EXT_RGBA: grey replicated, YCbCr converted as to RGB). CMYK and YCCK
+// are the module's. Any warning hands the image to the module too.
 bool read_jpeg(jpeg_job& job) {
   jpeg_decompress_struct& cinfo = job.cinfo;
   std::memset(&cinfo, 0, sizeof(cinfo));  // jpeg_destroy_decompress is then safe at any point
@@ -141,22 +128,21 @@ bool read_jpeg(jpeg_job& job) {
   jpeg_create_decompress(&cinfo);
   jpeg_mem_src(&cinfo, job.data, static_cast<unsigned long>(job.size));
   jpeg_read_header(&cinfo, TRUE);
-  const bool colour = cinfo.jpeg_color_space == JCS_YCbCr || cinfo.jpeg_color_space == JCS_RGB;
-  const bool grey = cinfo.jpeg_color_space == JCS_GRAYSCALE;
-  if ((!colour && !grey) || uint64_t(cinfo.image_width) * cinfo.image_height > job.max_texels) {
+  const bool supported = cinfo.jpeg_color_space == JCS_YCbCr || cinfo.jpeg_color_space == JCS_RGB ||
+                         cinfo.jpeg_color_space == JCS_GRAYSCALE;
+  if (!supported || uint64_t(cinfo.image_width) * cinfo.image_height > job.max_texels) {
     jpeg_destroy_decompress(&cinfo);
     return false;
   }
-  cinfo.out_color_space = grey ? JCS_GRAYSCALE : JCS_RGB;
+  cinfo.out_color_space = JCS_EXT_RGBA;
   jpeg_start_decompress(&cinfo);
+  if (cinfo.output_components != 4) std::longjmp(job.failure.jump, 1);
   job.width = int(cinfo.output_width);
   job.height = int(cinfo.output_height);
-  job.channels = cinfo.output_components;
-  if (job.channels != (grey ? 1 : 3)) std::longjmp(job.failure.jump, 1);
-  const size_t row_bytes = size_t(job.width) * size_t(job.channels);
-  job.codes.resize(row_bytes * size_t(job.height));
+  const size_t row_bytes = size_t(job.width) * 4;
+  job.rgba.resize(row_bytes * size_t(job.height));
   while (cinfo.output_scanline < cinfo.output_height) {
-    JSAMPROW row = job.codes.data() + size_t(cinfo.output_scanline) * row_bytes;
+    JSAMPROW row = job.rgba.data() + size_t(cinfo.output_scanline) * row_bytes;
     jpeg_read_scanlines(&cinfo, &row, 1);
   }
   jpeg_destroy_decompress(&cinfo);  // not finished: the module reads no further than the last row
@@ -187,7 +173,7 @@ std::optional<image> decode_directly(const uint8_t* data, size_t size, uint64_t 
     image out;
     out.width = job->width;
     out.height = job->height;
-    expand_to_rgba(job->codes, job->channels, out.texels8);
+    out.texels8 = std::move(job->rgba);
     return out;
   }
   return std::nullopt;
