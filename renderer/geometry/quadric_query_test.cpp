@@ -97,7 +97,7 @@ TEST(quadric_queries, partial_reconstructions_equal_the_full_surface) {
   inst.kind = shape_kind::quadric;
   inst.world_from_object = dmat4(dvec4(0.8, 0.1, 0.0, 0.0), dvec4(-0.1, 1.2, 0.3, 0.0),
                                  dvec4(0.0, -0.2, -0.9, 0.0), dvec4(1.0, -2.0, 3.0, 1.0));
-  inst.object_from_world = glm::inverse(inst.world_from_object);
+  finish_instance_transform(inst);
   inst.world_from_object_normal = glm::transpose(glm::inverse(dmat3(inst.world_from_object)));
   int checked = 0;
   for (const quadric& q : testing::every_kind()) {

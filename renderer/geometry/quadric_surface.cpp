@@ -147,11 +147,20 @@ dvec3 object_hit_point(const instance& inst, const ray& r, float t) {
 
 }  // namespace
 
+dvec3 quadric_project(const quadric& q, uint32_t part, const dvec3& approx_point) {
+  if (is_cap(part)) return cap_point(q, part, approx_point);
+  return project_to_side(side_function(q), approx_point);
+}
+
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point) {
+  return quadric_surface_on(q, part, quadric_project(q, part, approx_point));
+}
+
+quadric_surface quadric_surface_on(const quadric& q, uint32_t part, const dvec3& projected) {
   quadric_surface s;
   const double size = glm::length(stored_quadric_bounds(q).diagonal());
   if (is_cap(part)) {
-    s.point = cap_point(q, part, approx_point);
+    s.point = projected;
     s.normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
     s.uv = cap_uv(q, s.point);
     s.dpdu = azimuthal_tangent(s.point, s.normal);
@@ -162,7 +171,7 @@ quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3&
     return s;
   }
   const side_function side(q);
-  s.point = project_to_side(side, approx_point);
+  s.point = projected;
   dvec3 g = side.gradient(s.point);
   double g_len = glm::length(g);
   // At the cone apex (and any other singular point) the gradient vanishes: use the axis.
@@ -195,17 +204,23 @@ quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, c
   return quadric_surface_at(q, part, object_hit_point(inst, r, t));
 }
 
-vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
-  const dvec3 approx_point = object_hit_point(inst, r, t);
+quadric_hit_frame quadric_hit_frame_of(const instance& inst, const quadric& q, const ray& r, float t,
+                                       uint32_t part) {
+  quadric_hit_frame f;
+  f.point = quadric_project(q, part, object_hit_point(inst, r, t));
   dvec3 object_normal;
   if (is_cap(part)) {
     object_normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
   } else {
-    const side_function side(q);
-    const dvec3 g = side.gradient(project_to_side(side, approx_point));
+    const dvec3 g = side_function(q).gradient(f.point);
     object_normal = side_normal(g, glm::length(g));
   }
-  return vec3(glm::normalize(inst.world_from_object_normal * object_normal));
+  f.normal = vec3(glm::normalize(inst.world_from_object_normal * object_normal));
+  return f;
+}
+
+vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
+  return quadric_hit_frame_of(inst, q, r, t, part).normal;
 }
 
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,
@@ -216,7 +231,7 @@ quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, co
 
 quadric_world_point quadric_world_point_of(const instance& inst, const quadric_surface& s) {
   const dmat3 linear(inst.world_from_object);
-  const dmat3 abs_linear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
+  const dmat3& abs_linear = inst.abs_linear;
   const dvec3 world = transform_point(inst.world_from_object, s.point);
   // Object-space error (distance from the surface, any direction) carried by |M|, plus the
   // rounding of the double transform, then the rounding of the result to float.
@@ -231,7 +246,7 @@ quadric_world_point quadric_world_point_of(const instance& inst, const quadric_s
   w.tangent = vec3(glm::normalize(linear * s.dpdu));
   // The normal matrix keeps the normal outward while M carries dpdu and dp/dv, so under a mirror
   // cross(normal, tangent) turns against M·(−dp/dv): det M < 0 flips the handedness.
-  w.handedness = float(glm::determinant(linear) < 0.0 ? -s.handedness : s.handedness);
+  w.handedness = float(inst.mirrored ? -s.handedness : s.handedness);
   w.uv = vec2(s.uv);
   return w;
 }

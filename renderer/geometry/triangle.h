@@ -37,9 +37,8 @@ inline surface_position triangle_hit_position(const instance& inst, const mesh& 
   float b0 = 1.0f - u - v;
   vec3 obj = b0 * p[0] + u * p[1] + v * p[2];
   vec3 obj_error = gamma_bound(7) * (glm::abs(b0 * p[0]) + glm::abs(u * p[1]) + glm::abs(v * p[2]));
-  dmat3 linear(inst.world_from_object);
   dvec3 world = transform_point(inst.world_from_object, dvec3(obj));
-  dmat3 abs_linear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
+  const dmat3& abs_linear = inst.abs_linear;
   dvec3 world_error = abs_linear * dvec3(obj_error) * (1.0 + 4.0 * gamma_bound(3)) +
                       double(gamma_bound(3)) *
                           (abs_linear * glm::abs(dvec3(obj)) + glm::abs(dvec3(inst.world_from_object[3])));

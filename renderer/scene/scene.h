@@ -208,6 +208,10 @@ struct instance {
   dmat4 world_from_object{1.0};
   dmat4 object_from_world{1.0};
   dmat3 world_from_object_normal{1.0};  // inverse transpose of the linear part
+  // Derived from world_from_object by finish_instance_transform, once rather than per hit:
+  dmat3 abs_linear{1.0};    // |linear part|, elementwise: carries error bounds to world space
+  bool mirrored = false;    // the linear part's determinant is negative (flips handedness)
+  double mean_scale = 1.0;  // cube root of |determinant|: a length's world scale (exact if uniform)
 };
 
 enum class light_kind { point, spot, directional };
@@ -302,7 +306,7 @@ struct scene {
 // World-space bounds of every instance.
 bounds3 world_bounds(const scene& s);
 
-// Fills object_from_world and the normal matrix from world_from_object.
+// Fills object_from_world, the normal matrix and the derived constants from world_from_object.
 void finish_instance_transform(instance& inst);
 
 }  // namespace kiln

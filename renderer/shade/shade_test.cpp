@@ -30,6 +30,25 @@ scene one_triangle(const dmat4& world_from_object) {
   return s;
 }
 
+// The constants a hit reads from its instance (error bounds, tangent handedness, curvature's
+// scale) are derived once when the transform is set, and are what the per-hit formulas gave.
+TEST(surface, the_instance_carries_the_constants_hits_read) {
+  const dmat4 m = glm::rotate(glm::scale(glm::translate(dmat4(1.0), dvec3(3, -2, 1)), dvec3(2.0, -0.5, 8.0)),
+                              0.7, dvec3(0.3, 1.0, -0.2));
+  instance inst;
+  inst.world_from_object = m;
+  finish_instance_transform(inst);
+  const dmat3 linear(m);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) EXPECT_EQ(inst.abs_linear[c][r], std::abs(linear[c][r]));
+  EXPECT_TRUE(inst.mirrored);                // one negative scale
+  EXPECT_NEAR(inst.mean_scale, 2.0, 1e-12);  // cbrt(|2 · -0.5 · 8|)
+  inst.world_from_object = glm::scale(dmat4(1.0), dvec3(3.0));
+  finish_instance_transform(inst);
+  EXPECT_FALSE(inst.mirrored);
+  EXPECT_NEAR(inst.mean_scale, 3.0, 1e-12);
+}
+
 TEST(surface, barycentric_interpolation_follows_embree_convention) {
   scene s = one_triangle(dmat4(1.0));
   hit h;

@@ -33,7 +33,7 @@ vec3 surface_transmittance(const scene& s, const surface_point& sp) {
 vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint64_t& crossings) {
   vec3 transmittance(1.0f);
   for (int i = 0; i < max_shadow_crossings; ++i) {
-    std::optional<hit> h = accel.intersect(r);
+    std::optional<hit> h = accel.intersect_for_shadow(r);
     ++crossings;
     if (!h) return transmittance;
     const instance& blocker = s.instances[h->instance_id];

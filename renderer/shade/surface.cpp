@@ -58,15 +58,10 @@ void triangle_uv_jacobian(const vec3 p[3], const vec2 uv[3], vec3& dp_du, vec3& 
   dp_dv = (e2 * d1.x - e1 * d2.x) / det;
 }
 
-uv_footprint triangle_footprint(const instance& inst, const mesh& m, const uint32_t* idx,
-                                const std::vector<vec2>& set, const vec3& n, const vec3& direction,
-                                float cone_width) {
-  vec3 p[3];
-  vec2 uv[3];
-  for (int k = 0; k < 3; ++k) {
-    p[k] = vec3(transform_point(inst.world_from_object, dvec3(m.positions[idx[k]])));
-    uv[k] = set[idx[k]];
-  }
+// The UV footprint of one UV set over the triangle's world corners p (corners idx of the mesh).
+uv_footprint triangle_footprint(const vec3 p[3], const uint32_t* idx, const std::vector<vec2>& set,
+                                const vec3& n, const vec3& direction, float cone_width) {
+  const vec2 uv[3] = {set[idx[0]], set[idx[1]], set[idx[2]]};
   vec3 dp_du, dp_dv;
   triangle_uv_jacobian(p, uv, dp_du, dp_dv);
   return footprint_from_jacobian(dp_du, dp_dv, n, direction, cone_width);
@@ -83,8 +78,11 @@ bool may_be_smooth(const material& m) {
 surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
                                          float cone_width) {
   const quadric& q = s.quadrics[inst.shape];
-  // One projection onto the surface serves the point, the UV footprint and the curvature.
-  const quadric_surface object = quadric_surface_of_hit(inst, q, r, h.t, h.primitive_id);
+  // One projection onto the surface (the backend's, in the hit record) serves the normal, the
+  // point, the UV footprint and the curvature.
+  const quadric_surface object = h.has_quadric_point
+                                     ? quadric_surface_on(q, h.primitive_id, h.quadric_point)
+                                     : quadric_surface_of_hit(inst, q, r, h.t, h.primitive_id);
   quadric_world_point w = quadric_world_point_of(inst, object);
   surface_point sp;
   sp.instance = h.instance_id;
@@ -126,7 +124,7 @@ float triangle_curvature(const instance& inst, const mesh& m, const uint32_t* id
     const float length = glm::length(m.positions[b] - m.positions[a]);
     if (length > 0.0f) curvature = std::max(curvature, glm::length(m.normals[b] - m.normals[a]) / length);
   }
-  const double scale = std::cbrt(std::abs(glm::determinant(dmat3(inst.world_from_object))));
+  const double scale = inst.mean_scale;
   const float world = scale > 0.0 ? float(curvature / scale) : 0.0f;
   return std::isfinite(world) ? world : 0.0f;
 }
@@ -179,8 +177,7 @@ surface_point make_triangle_surface_point(const scene& s, const instance& inst, 
     // normal matrix. A mirroring transform flips cross(normal, tangent) against the transformed
     // bitangent, so it flips w as well.
     const dmat3 linear(inst.world_from_object);
-    const bool mirrored = glm::determinant(linear) < 0.0;
-    sp.tangent = vec4(vec3(linear * dvec3(vec3(t))), (t.w < 0.0f) != mirrored ? -1.0f : 1.0f);
+    sp.tangent = vec4(vec3(linear * dvec3(vec3(t))), (t.w < 0.0f) != inst.mirrored ? -1.0f : 1.0f);
   }
   if (!m.colors0.empty())
     sp.color0 = interpolate(m.colors0[idx[0]], m.colors0[idx[1]], m.colors0[idx[2]], h.u, h.v);
@@ -211,11 +208,15 @@ surface_point make_triangle_surface_point(const scene& s, const instance& inst, 
     // (ToyCar's glass, say) skips them.
     if (samples_textures(s.materials[inst.material])) {
       const vec3 direction = glm::normalize(r.direction);
+      // The world corners, once for both UV sets.
+      vec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = vec3(transform_point(inst.world_from_object, dvec3(m.positions[idx[k]])));
       if (!m.texcoords0.empty())
-        sp.footprint0 = triangle_footprint(inst, m, idx, m.texcoords0, ng, direction, cone_width);
+        sp.footprint0 = triangle_footprint(p, idx, m.texcoords0, ng, direction, cone_width);
       sp.footprint1 = m.texcoords1.empty()
                           ? sp.footprint0
-                          : triangle_footprint(inst, m, idx, m.texcoords1, ng, direction, cone_width);
+                          : triangle_footprint(p, idx, m.texcoords1, ng, direction, cone_width);
     }
   }
   return sp;

@@ -138,33 +138,35 @@ void set_instance_motion(RTCGeometry geometry, const std::vector<dmat4>& steps) 
   for (size_t k = 0; k < steps.size(); ++k) set_instance_transform(geometry, steps[k], unsigned(k));
 }
 
-RTCRay to_embree(const ray& r) {
-  RTCRay out{};
+// Fills Embree's ray from r field by field, in place. Building a zero-initialised RTCRay and
+// copying it into the query made GCC store 8 bytes and reload them as 16: a failed store-to-load
+// forward that took half of intersect()'s own cycles.
+void fill_embree_ray(const ray& r, RTCRay& out) {
   out.org_x = r.origin.x;
   out.org_y = r.origin.y;
   out.org_z = r.origin.z;
+  out.tnear = r.tmin;
   out.dir_x = r.direction.x;
   out.dir_y = r.direction.y;
   out.dir_z = r.direction.z;
-  out.tnear = r.tmin;
+  out.time = r.time;
   out.tfar = r.tmax;
   out.mask = ~0u;
+  out.id = 0;
   out.flags = 0;
-  out.time = r.time;
-  return out;
 }
 
 // The query of one ray, with no hit yet.
-RTCRayHit embree_query(const ray& r) {
-  RTCRayHit query{};
-  query.ray = to_embree(r);
+void fill_embree_query(const ray& r, RTCRayHit& query) {
+  fill_embree_ray(r, query.ray);
   query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return query;
 }
 
-// kiln's hit record of an answered query of r.
-std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r) {
+// kiln's hit record of an answered query of r; without quadric_frame a quadric hit leaves its
+// frame unset (accelerator::intersect_for_shadow).
+std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r,
+                            bool quadric_frame = true) {
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   hit h;
   h.t = query.ray.tfar;
@@ -181,7 +183,12 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
     // of the hits it shades (make_surface_point), and no other ray needs it (an atan2 and a
     // projection per reflection, refraction and culled hit saved).
     h.u = h.v = 0.0f;
-    h.geometric_normal = quadric_world_normal(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
+    if (!quadric_frame) return h;
+    const quadric_hit_frame f =
+        quadric_hit_frame_of(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
+    h.quadric_point = f.point;
+    h.has_quadric_point = true;
+    h.geometric_normal = f.normal;
     return h;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances
@@ -312,15 +319,22 @@ void embree_accelerator::throw_if_failed() const {
     unscoped_embree_error_log().throw_if_any("tracing rays");
 }
 
-std::optional<hit> embree_accelerator::intersect(const ray& r) const {
+std::optional<hit> embree_accelerator::intersect(const ray& r) const { return closest_hit(r, true); }
+
+std::optional<hit> embree_accelerator::intersect_for_shadow(const ray& r) const {
+  return closest_hit(r, false);
+}
+
+std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_frame) const {
   if (!is_valid(r)) return std::nullopt;
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
   context.world_ray = &r;
-  RTCRayHit query = embree_query(r);
+  RTCRayHit query;
+  fill_embree_query(r, query);
   rtcIntersect1(state_->top, &context.embree, &query);
-  return kiln_hit(scene_, query, r);
+  return kiln_hit(scene_, query, r, quadric_frame);
 }
 
 void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {
@@ -333,7 +347,7 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
   for (size_t i = 0; i < count; ++i) {
     out[i].reset();
     if (!is_valid(rays[i])) continue;
-    queries.push_back(embree_query(rays[i]));
+    fill_embree_query(rays[i], queries.emplace_back());
     index.push_back(uint32_t(i));
   }
   if (queries.empty()) return;
@@ -356,7 +370,8 @@ bool embree_accelerator::occluded(const ray& r) const {
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
   context.world_ray = &r;
-  RTCRay query = to_embree(r);
+  RTCRay query;
+  fill_embree_ray(r, query);
   rtcOccluded1(state_->top, &context.embree, &query);
   // Embree marks an occluded ray by setting tfar to -infinity.
   return query.tfar < 0.0f;
@@ -378,11 +393,13 @@ size_t embree_accelerator::trace_bare(const ray* rays, size_t count, bool occlus
     rtcInitIntersectContext(&context.embree);
     context.world_ray = &rays[i];  // quadric user geometry reads the double-precision world ray
     if (occlusion) {
-      RTCRay query = to_embree(rays[i]);
+      RTCRay query;
+      fill_embree_ray(rays[i], query);
       rtcOccluded1(state_->top, &context.embree, &query);
       hits += query.tfar < 0.0f;
     } else {
-      RTCRayHit query = embree_query(rays[i]);
+      RTCRayHit query;
+      fill_embree_query(rays[i], query);
       rtcIntersect1(state_->top, &context.embree, &query);
       hits += query.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
@@ -393,7 +410,7 @@ size_t embree_accelerator::trace_bare(const ray* rays, size_t count, bool occlus
 size_t embree_accelerator::trace_bare_stream(const ray* rays, size_t count) const {
   thread_local std::vector<RTCRayHit> queries;
   queries.resize(count);
-  for (size_t i = 0; i < count; ++i) queries[i] = embree_query(rays[i]);
+  for (size_t i = 0; i < count; ++i) fill_embree_query(rays[i], queries[i]);
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
   context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

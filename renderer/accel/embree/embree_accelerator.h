@@ -25,6 +25,7 @@ class embree_accelerator final : public accelerator {
   embree_accelerator& operator=(const embree_accelerator&) = delete;
 
   std::optional<hit> intersect(const ray& r) const override;
+  std::optional<hit> intersect_for_shadow(const ray& r) const override;
   bool occluded(const ray& r) const override;
   // One rtcIntersect1M stream with the coherent flag (Embree traces it as packets of the CPU's
   // native width). Scenes with quadrics answer one ray at a time: their user geometry reads the
@@ -55,6 +56,9 @@ class embree_accelerator final : public accelerator {
   bool update(const std::vector<uint32_t>& changed_meshes) override;
 
  private:
+  // intersect(), with the quadric frame only when quadric_frame is set (intersect_for_shadow).
+  std::optional<hit> closest_hit(const ray& r, bool quadric_frame) const;
+
   struct state;
   std::unique_ptr<state> state_;
   const scene& scene_;
