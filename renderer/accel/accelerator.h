@@ -22,9 +22,9 @@ class accelerator {
   virtual std::optional<hit> intersect(const ray& r) const = 0;
 
   // intersect() for a shadow ray's walk past see-through surfaces: the same hit, except that a
-  // backend may leave a quadric hit's frame unset (geometric_normal zero, has_quadric_point
-  // false). The walk reads only the instance of an opaque blocker, and rebuilds the surface point of
-  // a see-through one itself; projecting every blocking hit onto its quadric would be wasted.
+  // backend may leave a quadric hit's geometric_normal zero. The walk reads only the instance of an
+  // opaque blocker, and the surface point of a see-through one projects the hit itself; projecting
+  // every blocking hit onto its quadric for a normal would be wasted.
   virtual std::optional<hit> intersect_for_shadow(const ray& r) const { return intersect(r); }
 
   // The closest hits of `count` rays that start close together and point alike (one tile's camera

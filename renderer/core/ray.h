@@ -53,12 +53,6 @@ struct hit {
   float u = 0.0f;             // barycentrics (Embree's convention) on a triangle; zero on a quadric
   float v = 0.0f;
   vec3 geometric_normal{0.0f};  // world space, unit length, front face by glTF winding
-  // Quadric hits from a backend: the hit moved onto the exact surface of its part, in object space
-  // (quadric_hit_frame_of), from which geometric_normal was taken; shading's surface point starts
-  // from it instead of projecting the same point again. Without it (a hit made by hand, or a
-  // triangle) shading projects the hit itself.
-  bool has_quadric_point = false;
-  dvec3 quadric_point{0.0};
 };
 
 }  // namespace kiln

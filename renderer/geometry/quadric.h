@@ -76,13 +76,6 @@ struct quadric_surface {
 // the surface in double precision, so its error no longer depends on how t was found.
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point);
 
-// The first step of quadric_surface_at: approx_point moved onto the surface of `part`.
-dvec3 quadric_project(const quadric& q, uint32_t part, const dvec3& approx_point);
-
-// quadric_surface_at for a point quadric_project already moved onto the surface:
-// quadric_surface_at(q, part, p) == quadric_surface_on(q, part, quadric_project(q, part, p)).
-quadric_surface quadric_surface_on(const quadric& q, uint32_t part, const dvec3& projected);
-
 // A quadric hit in world space, with a per-axis bound on the position's rounding error.
 struct quadric_world_point {
   vec3 point{0.0f};
@@ -111,15 +104,6 @@ quadric_world_point quadric_world_point_of(const instance& inst, const quadric_s
 // needs it for every hit), without the uv, the tangent and the error bound, which shading
 // computes for the hits it shades.
 vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part);
-
-// What a backend's quadric hit record holds: the hit of world ray r at t projected onto `part`
-// (hit::quadric_point, quadric_project of the object-space hit) and quadric_world_normal there.
-struct quadric_hit_frame {
-  dvec3 point{0.0};
-  vec3 normal{0.0f};
-};
-quadric_hit_frame quadric_hit_frame_of(const instance& inst, const quadric& q, const ray& r, float t,
-                                       uint32_t part);
 
 // World-space dP/du and dP/dv of the parametric UV at the same hit, by central differences of the
 // UV along the surface (for texture footprints). False where the parameterisation is singular

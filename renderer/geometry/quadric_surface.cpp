@@ -147,20 +147,11 @@ dvec3 object_hit_point(const instance& inst, const ray& r, float t) {
 
 }  // namespace
 
-dvec3 quadric_project(const quadric& q, uint32_t part, const dvec3& approx_point) {
-  if (is_cap(part)) return cap_point(q, part, approx_point);
-  return project_to_side(side_function(q), approx_point);
-}
-
 quadric_surface quadric_surface_at(const quadric& q, uint32_t part, const dvec3& approx_point) {
-  return quadric_surface_on(q, part, quadric_project(q, part, approx_point));
-}
-
-quadric_surface quadric_surface_on(const quadric& q, uint32_t part, const dvec3& projected) {
   quadric_surface s;
   const double size = glm::length(stored_quadric_bounds(q).diagonal());
   if (is_cap(part)) {
-    s.point = projected;
+    s.point = cap_point(q, part, approx_point);
     s.normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
     s.uv = cap_uv(q, s.point);
     s.dpdu = azimuthal_tangent(s.point, s.normal);
@@ -171,7 +162,7 @@ quadric_surface quadric_surface_on(const quadric& q, uint32_t part, const dvec3&
     return s;
   }
   const side_function side(q);
-  s.point = projected;
+  s.point = project_to_side(side, approx_point);
   dvec3 g = side.gradient(s.point);
   double g_len = glm::length(g);
   // At the cone apex (and any other singular point) the gradient vanishes: use the axis.
@@ -204,23 +195,17 @@ quadric_surface quadric_surface_of_hit(const instance& inst, const quadric& q, c
   return quadric_surface_at(q, part, object_hit_point(inst, r, t));
 }
 
-quadric_hit_frame quadric_hit_frame_of(const instance& inst, const quadric& q, const ray& r, float t,
-                                       uint32_t part) {
-  quadric_hit_frame f;
-  f.point = quadric_project(q, part, object_hit_point(inst, r, t));
+vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
+  const dvec3 approx_point = object_hit_point(inst, r, t);
   dvec3 object_normal;
   if (is_cap(part)) {
     object_normal = dvec3(0.0, 0.0, part == quadric_cap_zmin ? -1.0 : 1.0);
   } else {
-    const dvec3 g = side_function(q).gradient(f.point);
+    const side_function side(q);
+    const dvec3 g = side.gradient(project_to_side(side, approx_point));
     object_normal = side_normal(g, glm::length(g));
   }
-  f.normal = vec3(glm::normalize(inst.world_from_object_normal * object_normal));
-  return f;
-}
-
-vec3 quadric_world_normal(const instance& inst, const quadric& q, const ray& r, float t, uint32_t part) {
-  return quadric_hit_frame_of(inst, q, r, t, part).normal;
+  return vec3(glm::normalize(inst.world_from_object_normal * object_normal));
 }
 
 quadric_world_point quadric_world_hit(const instance& inst, const quadric& q, const ray& r, float t,

@@ -78,11 +78,8 @@ bool may_be_smooth(const material& m) {
 surface_point make_quadric_surface_point(const scene& s, const instance& inst, const hit& h, const ray& r,
                                          float cone_width) {
   const quadric& q = s.quadrics[inst.shape];
-  // One projection onto the surface (the backend's, in the hit record) serves the normal, the
-  // point, the UV footprint and the curvature.
-  const quadric_surface object = h.has_quadric_point
-                                     ? quadric_surface_on(q, h.primitive_id, h.quadric_point)
-                                     : quadric_surface_of_hit(inst, q, r, h.t, h.primitive_id);
+  // One projection onto the surface serves the point, the UV footprint and the curvature.
+  const quadric_surface object = quadric_surface_of_hit(inst, q, r, h.t, h.primitive_id);
   quadric_world_point w = quadric_world_point_of(inst, object);
   surface_point sp;
   sp.instance = h.instance_id;

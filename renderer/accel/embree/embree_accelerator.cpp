@@ -163,10 +163,10 @@ void fill_embree_query(const ray& r, RTCRayHit& query) {
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-// kiln's hit record of an answered query of r; without quadric_frame a quadric hit leaves its
-// frame unset (accelerator::intersect_for_shadow).
+// kiln's hit record of an answered query of r; without quadric_normal a quadric hit leaves its
+// geometric normal zero (accelerator::intersect_for_shadow).
 std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r,
-                            bool quadric_frame = true) {
+                            bool quadric_normal = true) {
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   hit h;
   h.t = query.ray.tfar;
@@ -183,12 +183,8 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
     // of the hits it shades (make_surface_point), and no other ray needs it (an atan2 and a
     // projection per reflection, refraction and culled hit saved).
     h.u = h.v = 0.0f;
-    if (!quadric_frame) return h;
-    const quadric_hit_frame f =
-        quadric_hit_frame_of(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
-    h.quadric_point = f.point;
-    h.has_quadric_point = true;
-    h.geometric_normal = f.normal;
+    if (!quadric_normal) return h;
+    h.geometric_normal = quadric_world_normal(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
     return h;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances
@@ -325,7 +321,7 @@ std::optional<hit> embree_accelerator::intersect_for_shadow(const ray& r) const 
   return closest_hit(r, false);
 }
 
-std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_frame) const {
+std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_normal) const {
   if (!is_valid(r)) return std::nullopt;
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
@@ -334,7 +330,7 @@ std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_fr
   RTCRayHit query;
   fill_embree_query(r, query);
   rtcIntersect1(state_->top, &context.embree, &query);
-  return kiln_hit(scene_, query, r, quadric_frame);
+  return kiln_hit(scene_, query, r, quadric_normal);
 }
 
 void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {

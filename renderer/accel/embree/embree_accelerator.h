@@ -56,8 +56,8 @@ class embree_accelerator final : public accelerator {
   bool update(const std::vector<uint32_t>& changed_meshes) override;
 
  private:
-  // intersect(), with the quadric frame only when quadric_frame is set (intersect_for_shadow).
-  std::optional<hit> closest_hit(const ray& r, bool quadric_frame) const;
+  // intersect(), with a quadric hit's normal only when quadric_normal is set (intersect_for_shadow).
+  std::optional<hit> closest_hit(const ray& r, bool quadric_normal) const;
 
   struct state;
   std::unique_ptr<state> state_;

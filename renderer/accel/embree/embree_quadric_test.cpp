@@ -131,31 +131,15 @@ TEST(embree_quadrics, secondary_rays_from_every_kind_never_self_intersect) {
   EXPECT_EQ(disagreements, 0);
 }
 
-// Every field of a shading point, bit for bit (memcmp would also compare padding).
-void expect_same_point(const surface_point& a, const surface_point& b, int& differing) {
-  const bool same = a.position == b.position && a.position_error == b.position_error &&
-                    a.geometric_normal == b.geometric_normal && a.shading_normal == b.shading_normal &&
-                    a.smooth_normal == b.smooth_normal && a.smooth_position == b.smooth_position &&
-                    a.curvature == b.curvature && a.uv0 == b.uv0 && a.uv1 == b.uv1 &&
-                    a.tangent == b.tangent && a.footprint0.dx == b.footprint0.dx &&
-                    a.footprint0.dy == b.footprint0.dy && a.material == b.material &&
-                    a.instance == b.instance && a.front_face == b.front_face;
-  if (!same) ++differing;
-}
-
-// The hit record carries the projection onto the surface that its normal came from, and shading
-// starts from it: the shading point equals, bit for bit, the one made by projecting the ray's hit
-// again (the hit without its projection), at every kind and part, under rotations, shears of scale
-// and mirrors, with a footprint and curvature. intersect_for_shadow finds the same hit and leaves
-// the frame unset.
-TEST(embree_quadrics, the_hit_carries_the_projection_shading_would_make) {
+// intersect_for_shadow() skips only the quadric normal: over every kind and part, under rotations,
+// shears of scale and mirrors, it finds the same t, instance and part as intersect() and leaves the
+// normal zero, while intersect()'s normal is quadric_world_normal's exactly.
+TEST(embree_quadrics, the_shadow_walk_finds_the_same_hit_without_its_normal) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   scene s;
   s.quadrics = testing::every_kind();
-  material smooth;
-  smooth.roughness_factor = 0.1f;  // below curvature_roughness_limit: curvature is estimated
-  s.materials = {smooth};
+  s.materials = {material{}};
   for (uint32_t k = 0; k < s.quadrics.size(); ++k) {
     const dvec3 scale(0.5 + std::abs(u(rng)), 0.5 + std::abs(u(rng)),
                       (k % 2 ? -1.0 : 1.0) * (0.5 + std::abs(u(rng))));
@@ -165,7 +149,7 @@ TEST(embree_quadrics, the_hit_carries_the_projection_shading_would_make) {
     s.instances.push_back(place(k, m));
   }
   embree_accelerator accel(s);
-  int hits = 0, differing = 0, wrong_normal = 0, shadow_differs = 0;
+  int hits = 0, wrong_normal = 0, shadow_differs = 0;
   int parts[3] = {0, 0, 0};
   for (int i = 0; i < 6000; ++i) {
     const instance& target = s.instances[size_t(i) % s.instances.size()];
@@ -179,23 +163,16 @@ TEST(embree_quadrics, the_hit_carries_the_projection_shading_would_make) {
     if (!h) continue;
     ++hits;
     ++parts[std::min(h->primitive_id, 2u)];
-    ASSERT_TRUE(h->has_quadric_point);
     const instance& inst = s.instances[h->instance_id];
     if (h->geometric_normal != quadric_world_normal(inst, s.quadrics[inst.shape], r, h->t, h->primitive_id))
       ++wrong_normal;
-    hit reprojected = *h;
-    reprojected.has_quadric_point = false;
-    reprojected.quadric_point = dvec3(0.0);
-    expect_same_point(make_surface_point(s, *h, r, 0.01f), make_surface_point(s, reprojected, r, 0.01f),
-                      differing);
     const std::optional<hit> shadow = accel.intersect_for_shadow(r);
     if (!shadow || shadow->t != h->t || shadow->instance_id != h->instance_id ||
-        shadow->primitive_id != h->primitive_id || shadow->has_quadric_point)
+        shadow->primitive_id != h->primitive_id || shadow->geometric_normal != vec3(0.0f))
       ++shadow_differs;
   }
   EXPECT_GT(hits, 3000);
   EXPECT_GT(parts[1] + parts[2], 50);  // caps are among them
-  EXPECT_EQ(differing, 0);
   EXPECT_EQ(wrong_normal, 0);
   EXPECT_EQ(shadow_differs, 0);
 }

@@ -96,10 +96,7 @@ hit finish_hit(const scene& s, const ray& r, float t, uint32_t instance_id, uint
   h.primitive_id = primitive;
   if (inst.kind == shape_kind::quadric) {
     // Part in primitive_id, normal from the gradient, (u, v) zero: as the Embree backend.
-    const quadric_hit_frame f = quadric_hit_frame_of(inst, s.quadrics[inst.shape], r, t, primitive);
-    h.quadric_point = f.point;
-    h.has_quadric_point = true;
-    h.geometric_normal = f.normal;
+    h.geometric_normal = quadric_world_normal(inst, s.quadrics[inst.shape], r, t, primitive);
     return h;
   }
   h.u = u;
