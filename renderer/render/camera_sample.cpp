@@ -96,6 +96,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   state.split = outputs.split ? &s.split : nullptr;
   state.groups = s.groups.empty() ? nullptr : s.groups.data();
   state.passes = outputs.passes ? &s.passes : nullptr;
+  state.memo = outputs.memo;
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
@@ -126,7 +127,8 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   if (!h) return missed(ctx, s, r, show_background, outputs.split, counts);
   const float distance = distance_to_hit(start, r, *h);
   const ray_cone at_hit = cone_at(cone, distance);
-  const shading_point p = prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width));
+  const shading_point p =
+      prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width, outputs.memo));
   record_hit(ctx, *h, p, distance, outputs, s);
   shade_camera_path(ctx, r, start.origin, p, at_hit, show_background, outputs, s, counts);
   return s;

@@ -62,6 +62,8 @@ struct sample_outputs {
   // sampling stores for every pixel corner.
   std::vector<path_surface>* surfaces = nullptr;
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point
+  // The caller's triangle constants, kept from sample to sample (null: none); see triangle_memo.
+  triangle_memo* memo = nullptr;
 };
 
 // The sample outputs a film with aovs needs.

@@ -143,6 +143,8 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   splat.clear();
   sample_outputs outputs = sample_outputs_for(settings.aovs, settings.motion);
   if (deep) outputs.surfaces = &deep->path;
+  triangle_memo memo;  // the pixel's samples mostly hit the same few triangles
+  outputs.memo = &memo;
   for (int s = 0; s < settings.samples_per_pixel; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
     if (s % 64 == 63 && cancel_requested(settings)) break;

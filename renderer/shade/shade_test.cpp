@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <random>
 
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
@@ -47,6 +48,92 @@ TEST(surface, the_instance_carries_the_constants_hits_read) {
   finish_instance_transform(inst);
   EXPECT_FALSE(inst.mirrored);
   EXPECT_NEAR(inst.mean_scale, 3.0, 1e-12);
+}
+
+// Every field of a shading point, bit for bit.
+bool same_point(const surface_point& a, const surface_point& b) {
+  return a.position == b.position && a.position_error == b.position_error &&
+         a.geometric_normal == b.geometric_normal && a.shading_normal == b.shading_normal &&
+         a.smooth_normal == b.smooth_normal && a.smooth_position == b.smooth_position &&
+         a.curvature == b.curvature && a.uv0 == b.uv0 && a.uv1 == b.uv1 && a.color0 == b.color0 &&
+         a.tangent == b.tangent && a.footprint0.dx == b.footprint0.dx && a.footprint0.dy == b.footprint0.dy &&
+         a.footprint1.dx == b.footprint1.dx && a.footprint1.dy == b.footprint1.dy &&
+         a.material == b.material && a.instance == b.instance && a.time == b.time &&
+         a.front_face == b.front_face;
+}
+
+// A memo of triangle constants changes no shading point: hits on a few triangles of two meshes
+// (one with vertex normals and two UV sets, one flat) under three instances (one mirrored, one
+// rough and untextured), in an order that hits, misses and evicts entries, with and without a
+// footprint (a triangle first met without one gets its footprint's part when it needs it).
+TEST(surface, the_triangle_memo_changes_no_shading_point) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  scene s;
+  mesh smooth;
+  for (int k = 0; k < 12; ++k) {
+    smooth.positions.push_back(vec3(unit(rng), unit(rng), unit(rng)) * 4.0f);
+    smooth.normals.push_back(glm::normalize(vec3(unit(rng), unit(rng), 1.0f)));
+    smooth.texcoords0.push_back(vec2(unit(rng), unit(rng)));
+    smooth.texcoords1.push_back(vec2(unit(rng), unit(rng)) * 3.0f);
+  }
+  for (uint32_t t = 0; t < 4; ++t) smooth.indices.insert(smooth.indices.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  mesh flat = smooth;
+  flat.normals.clear();
+  flat.texcoords1.clear();
+  s.meshes = {smooth, flat};
+  material textured;
+  textured.roughness_factor = 0.1f;  // smooth: curvature is estimated
+  textured.base_color_texture.texture = 0;
+  material rough;
+  rough.roughness_factor = 0.8f;
+  s.materials = {textured, rough};
+  const dmat4 placements[3] = {dmat4(1.0),
+                               glm::scale(glm::translate(dmat4(1.0), dvec3(1, 2, 3)), dvec3(-1, 2, 0.5)),
+                               glm::rotate(dmat4(1.0), 0.5, dvec3(0, 1, 0))};
+  const uint32_t shapes[3] = {0, 1, 0}, materials[3] = {0, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    instance inst;
+    inst.shape = shapes[i];
+    inst.material = materials[i];
+    inst.world_from_object = placements[i];
+    finish_instance_transform(inst);
+    s.instances.push_back(inst);
+  }
+  triangle_memo memo;
+  int checked = 0, differing = 0;
+  for (int i = 0; i < 4000; ++i) {
+    hit h;
+    h.instance_id = uint32_t(rng() % 3);
+    h.primitive_id = uint32_t(rng() % (i < 2000 ? 2 : 4));  // few triangles first, then evictions
+    h.u = 0.3f * unit(rng);
+    h.v = 0.3f * unit(rng);
+    const instance& inst = s.instances[h.instance_id];
+    h.geometric_normal = triangle_world_normal(inst, s.meshes[inst.shape], h.primitive_id);
+    ray r;
+    r.origin = vec3(unit(rng), unit(rng), 10.0f) * 3.0f;
+    r.direction = glm::normalize(vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, -1.0f));
+    const float cone = rng() % 3 == 0 ? 0.0f : 0.01f * unit(rng);
+    if (!same_point(make_surface_point(s, h, r, cone, &memo), make_surface_point(s, h, r, cone))) ++differing;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4000);
+  EXPECT_EQ(differing, 0);
+  // A triangle met first without a footprint, then with one.
+  triangle_memo fresh;
+  hit h;
+  h.instance_id = 0;
+  h.u = h.v = 0.25f;
+  h.geometric_normal = triangle_world_normal(s.instances[0], s.meshes[0], 0);
+  ray r;
+  r.origin = vec3(1.0f, 1.0f, 10.0f);
+  r.direction = vec3(0, 0, -1);
+  make_surface_point(s, h, r, 0.0f, &fresh);
+  const surface_point with_memo = make_surface_point(s, h, r, 0.02f, &fresh);
+  const surface_point without = make_surface_point(s, h, r, 0.02f);
+  EXPECT_NE(without.footprint0.dx, vec2(0.0f));
+  EXPECT_GT(without.curvature, 0.0f);
+  EXPECT_TRUE(same_point(with_memo, without));
 }
 
 TEST(surface, barycentric_interpolation_follows_embree_convention) {

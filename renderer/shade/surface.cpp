@@ -58,15 +58,6 @@ void triangle_uv_jacobian(const vec3 p[3], const vec2 uv[3], vec3& dp_du, vec3& 
   dp_dv = (e2 * d1.x - e1 * d2.x) / det;
 }
 
-// The UV footprint of one UV set over the triangle's world corners p (corners idx of the mesh).
-uv_footprint triangle_footprint(const vec3 p[3], const uint32_t* idx, const std::vector<vec2>& set,
-                                const vec3& n, const vec3& direction, float cone_width) {
-  const vec2 uv[3] = {set[idx[0]], set[idx[1]], set[idx[2]]};
-  vec3 dp_du, dp_dv;
-  triangle_uv_jacobian(p, uv, dp_du, dp_dv);
-  return footprint_from_jacobian(dp_du, dp_dv, n, direction, cone_width);
-}
-
 // Whether a hit on material m needs a curvature estimate: its roughness may be below
 // curvature_roughness_limit (a texture can lower any factor).
 bool may_be_smooth(const material& m) {
@@ -126,18 +117,64 @@ float triangle_curvature(const instance& inst, const mesh& m, const uint32_t* id
   return std::isfinite(world) ? world : 0.0f;
 }
 
+// The constants of triangle idx of mesh m placed by inst (see triangle_constants), the footprint's
+// part only when `footprint`.
+void fill_triangle_constants(const scene& s, const instance& inst, const mesh& m, const uint32_t* idx,
+                             bool footprint, triangle_constants& c) {
+  c.inst = &inst;
+  c.idx = idx;
+  c.footprint = footprint;
+  if (!m.normals.empty())
+    for (int k = 0; k < 3; ++k) c.unit_normal[k] = glm::normalize(dvec3(m.normals[idx[k]]));
+  if (!footprint) return;
+  const material& mat = s.materials[inst.material];
+  c.curvature = !m.normals.empty() && may_be_smooth(mat) ? triangle_curvature(inst, m, idx) : 0.0f;
+  // As for quadrics: the UV footprints only feed texture lookups, so an untextured material
+  // (ToyCar's glass, say) skips them.
+  if (!samples_textures(mat)) return;
+  vec3 p[3];
+  for (int k = 0; k < 3; ++k)
+    p[k] = vec3(transform_point(inst.world_from_object, dvec3(m.positions[idx[k]])));
+  const std::vector<vec2>* sets[2] = {&m.texcoords0, &m.texcoords1};
+  for (int set = 0; set < 2; ++set) {
+    if (sets[set]->empty()) continue;
+    const std::vector<vec2>& uv = *sets[set];
+    const vec2 corners[3] = {uv[idx[0]], uv[idx[1]], uv[idx[2]]};
+    triangle_uv_jacobian(p, corners, c.dp_du[set], c.dp_dv[set]);
+  }
+}
+
+// The constants of the hit triangle: from memo when it holds them, else computed (and kept there).
+const triangle_constants& constants_of(const scene& s, const instance& inst, const mesh& m,
+                                       const uint32_t* idx, bool footprint, triangle_memo* memo,
+                                       triangle_constants& scratch) {
+  if (!memo) {
+    fill_triangle_constants(s, inst, m, idx, footprint, scratch);
+    return scratch;
+  }
+  for (triangle_constants& c : memo->entries)
+    if (c.idx == idx && c.inst == &inst) {
+      if (footprint && !c.footprint) fill_triangle_constants(s, inst, m, idx, true, c);
+      return c;
+    }
+  triangle_constants& c = memo->entries[memo->next];
+  memo->next = (memo->next + 1) % triangle_memo::size;
+  fill_triangle_constants(s, inst, m, idx, footprint, c);
+  return c;
+}
+
 // Hanika's shadow-terminator offset in object space: from the hit to the blend, by barycentrics,
 // of its projections onto the vertices' tangent planes, each taken only where that plane lies
-// above the hit (outward: concave parts keep the flat point). front: normals as stored (true) or
-// flipped toward a back-face ray.
-dvec3 smooth_surface_lift(const mesh& m, const uint32_t* idx, float u, float v, bool front) {
+// above the hit (outward: concave parts keep the flat point). unit_normal: the vertex normals;
+// front: as stored (true) or flipped toward a back-face ray.
+dvec3 smooth_surface_lift(const mesh& m, const uint32_t* idx, const dvec3 unit_normal[3], float u, float v,
+                          bool front) {
   const double w[3] = {1.0 - double(u) - double(v), double(u), double(v)};
   dvec3 p(0.0);
   for (int k = 0; k < 3; ++k) p += w[k] * dvec3(m.positions[idx[k]]);
   dvec3 lift(0.0);
   for (int k = 0; k < 3; ++k) {
-    dvec3 n = glm::normalize(dvec3(m.normals[idx[k]]));
-    if (!front) n = -n;
+    const dvec3 n = front ? unit_normal[k] : -unit_normal[k];
     const double height = glm::dot(p - dvec3(m.positions[idx[k]]), n);
     if (height < 0.0 && std::isfinite(height)) lift -= w[k] * height * n;
   }
@@ -146,8 +183,11 @@ dvec3 smooth_surface_lift(const mesh& m, const uint32_t* idx, float u, float v, 
 
 // The shading point of hit h on triangle `primitive` (corners idx) of mesh m placed by inst.
 surface_point make_triangle_surface_point(const scene& s, const instance& inst, const mesh& m,
-                                          uint32_t primitive, const hit& h, const ray& r, float cone_width) {
+                                          uint32_t primitive, const hit& h, const ray& r, float cone_width,
+                                          triangle_memo* memo) {
   const uint32_t* idx = &m.indices[size_t(primitive) * 3];
+  triangle_constants scratch;
+  const triangle_constants& c = constants_of(s, inst, m, idx, cone_width > 0.0f, memo, scratch);
   surface_point sp;
   sp.instance = h.instance_id;
   surface_position pos = triangle_hit_position(inst, m, primitive, h.u, h.v);
@@ -192,28 +232,21 @@ surface_point make_triangle_surface_point(const scene& s, const instance& inst, 
   sp.smooth_normal = ns;
   sp.smooth_position = sp.position;
   if (!m.normals.empty()) {
-    const dvec3 lift = smooth_surface_lift(m, idx, h.u, h.v, sp.front_face);
+    const dvec3 lift = smooth_surface_lift(m, idx, c.unit_normal, h.u, h.v, sp.front_face);
     if (lift != dvec3(0.0)) {
       const dvec3 world_lift = transform_vector(inst.world_from_object, lift);
       if (is_finite(world_lift)) sp.smooth_position = vec3(dvec3(sp.position) + world_lift);
     }
   }
   if (cone_width > 0.0f) {
-    if (!m.normals.empty() && may_be_smooth(s.materials[inst.material]))
-      sp.curvature = triangle_curvature(inst, m, idx);
-    // As for quadrics: the UV footprints only feed texture lookups, so an untextured material
-    // (ToyCar's glass, say) skips them.
+    sp.curvature = c.curvature;
     if (samples_textures(s.materials[inst.material])) {
       const vec3 direction = glm::normalize(r.direction);
-      // The world corners, once for both UV sets.
-      vec3 p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = vec3(transform_point(inst.world_from_object, dvec3(m.positions[idx[k]])));
       if (!m.texcoords0.empty())
-        sp.footprint0 = triangle_footprint(p, idx, m.texcoords0, ng, direction, cone_width);
+        sp.footprint0 = footprint_from_jacobian(c.dp_du[0], c.dp_dv[0], ng, direction, cone_width);
       sp.footprint1 = m.texcoords1.empty()
                           ? sp.footprint0
-                          : triangle_footprint(p, idx, m.texcoords1, ng, direction, cone_width);
+                          : footprint_from_jacobian(c.dp_du[1], c.dp_dv[1], ng, direction, cone_width);
     }
   }
   return sp;
@@ -255,7 +288,8 @@ vec3 interpolation_error(const surface_point& sp, const instance& inst) {
 
 }  // namespace
 
-surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width) {
+surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width,
+                                 triangle_memo* memo) {
   // A moving instance or deforming mesh is shaded where it is at the ray's time.
   std::optional<instance> moved;
   if (instance_moves(s, h.instance_id)) moved = instance_at(s, h.instance_id, r.time);
@@ -266,9 +300,10 @@ surface_point make_surface_point(const scene& s, const hit& h, const ray& r, flo
     sp = make_quadric_surface_point(s, inst, h, r, cone_width);
   else if (deforms)
     sp = make_triangle_surface_point(s, inst, triangle_at_time(s, inst.shape, h.primitive_id, r.time), 0, h,
-                                     r, cone_width);
-  else
-    sp = make_triangle_surface_point(s, inst, s.meshes[inst.shape], h.primitive_id, h, r, cone_width);
+                                     r, cone_width, nullptr);
+  else  // a moving instance is a copy made for this call: its address is no key
+    sp = make_triangle_surface_point(s, inst, s.meshes[inst.shape], h.primitive_id, h, r, cone_width,
+                                     moved ? nullptr : memo);
   if (moved || deforms) sp.position_error += interpolation_error(sp, inst);
   sp.time = r.time;
   return sp;

@@ -488,7 +488,7 @@ vec3 escape(const shading_context& ctx, const ray& r, const path_state& s, float
 // shade_prepared for the closest hit h of r; s.cone is r's at the hit.
 vec3 shade_hit(const shading_context& ctx, const ray& r, const hit& h, const path_state& s,
                ray_counts& counts) {
-  const surface_point sp = make_surface_point(ctx.world, h, r, s.cone.width);
+  const surface_point sp = make_surface_point(ctx.world, h, r, s.cone.width, s.memo);
   return shade_prepared(ctx, r, prepare_shading(ctx, r, sp), s, counts);
 }
 

@@ -186,6 +186,8 @@ struct path_state {
   // KHR_materials_dispersion: the colour channel (0-2) a ray split off by a dispersive refraction
   // carries, whose ior it refracts by from then on; -1: all three.
   int channel = -1;
+  // The caller's triangle constants (shade/surface.h), shared by every ray of the tree; null: none.
+  triangle_memo* memo = nullptr;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.
