@@ -12,15 +12,6 @@ shutter_interval interval_at(uint32_t steps, float time) {
   return {step, scaled - float(step)};
 }
 
-bool instance_moves(const scene& s, uint32_t instance) {
-  return s.shutter.any() && instance < s.shutter.instance_steps.size() &&
-         !s.shutter.instance_steps[instance].empty();
-}
-
-bool mesh_deforms(const scene& s, uint32_t mesh) {
-  return s.shutter.any() && mesh < s.shutter.mesh_positions.size() && !s.shutter.mesh_positions[mesh].empty();
-}
-
 instance instance_at(const scene& s, uint32_t i, float time) {
   instance moved = s.instances[i];
   if (!instance_moves(s, i)) return moved;

@@ -19,8 +19,14 @@ struct shutter_interval {
 };
 shutter_interval interval_at(uint32_t steps, float time);
 
-bool instance_moves(const scene& s, uint32_t instance);
-bool mesh_deforms(const scene& s, uint32_t mesh);
+// Inline: every hit record and shading point asks, and almost every scene is still.
+inline bool instance_moves(const scene& s, uint32_t instance) {
+  return s.shutter.any() && instance < s.shutter.instance_steps.size() &&
+         !s.shutter.instance_steps[instance].empty();
+}
+inline bool mesh_deforms(const scene& s, uint32_t mesh) {
+  return s.shutter.any() && mesh < s.shutter.mesh_positions.size() && !s.shutter.mesh_positions[mesh].empty();
+}
 
 // s.instances[i] as it sits at `time`: world_from_object interpolated in float (as Embree does),
 // with its inverse and normal matrix. The instance itself when it does not move.

@@ -163,21 +163,9 @@ void fill_embree_query(const ray& r, RTCRayHit& query) {
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-// kiln's hit record of an answered query of r; without quadric_normal a quadric hit leaves its
-// geometric normal zero (accelerator::intersect_for_shadow).
-std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r,
-                            bool quadric_normal = true) {
-  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  hit h;
-  h.t = query.ray.tfar;
-  h.instance_id = query.hit.instID[0];
-  h.primitive_id = query.hit.primID;
-  h.u = query.hit.u;
-  h.v = query.hit.v;
-  // A moving instance's normal is the one of its transform at the ray's time.
-  std::optional<instance> moved;
-  if (instance_moves(world, h.instance_id)) moved = instance_at(world, h.instance_id, r.time);
-  const instance& inst = moved ? *moved : world.instances[h.instance_id];
+// kiln_hit's record h completed on instance inst: the geometric normal in world space.
+hit finish_hit(const scene& world, const instance& inst, const RTCRayHit& query, const ray& r,
+               bool quadric_normal, hit h) {
   if (inst.kind == shape_kind::quadric) {
     // Quadric hits carry the part in primitive_id and (u, v) zero: shading finds the parametric UV
     // of the hits it shades (make_surface_point), and no other ray needs it (an atan2 and a
@@ -194,6 +182,29 @@ std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ra
   h.geometric_normal = vec3(
       glm::normalize(inst.world_from_object_normal * dvec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z)));
   return h;
+}
+
+// finish_hit on a moving instance, where it is at the ray's time: its copy (some 400 bytes) is
+// made only here, not zeroed on every hit of the still scenes that never need it.
+[[gnu::noinline]] hit moved_hit(const scene& world, const RTCRayHit& query, const ray& r, bool quadric_normal,
+                                const hit& h) {
+  return finish_hit(world, instance_at(world, h.instance_id, r.time), query, r, quadric_normal, h);
+}
+
+// kiln's hit record of an answered query of r; without quadric_normal a quadric hit leaves its
+// geometric normal zero (accelerator::intersect_for_shadow).
+std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r,
+                            bool quadric_normal = true) {
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  hit h;
+  h.t = query.ray.tfar;
+  h.instance_id = query.hit.instID[0];
+  h.primitive_id = query.hit.primID;
+  h.u = query.hit.u;
+  h.v = query.hit.v;
+  // A moving instance's normal is the one of its transform at the ray's time.
+  if (instance_moves(world, h.instance_id)) return moved_hit(world, query, r, quadric_normal, h);
+  return finish_hit(world, world.instances[h.instance_id], query, r, quadric_normal, h);
 }
 
 }  // namespace
