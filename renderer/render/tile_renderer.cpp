@@ -137,13 +137,13 @@ bool wants_beauty_parts(const aov_set& aovs) {
 // normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, camera_ray_batch& rays, pixel_splat& splat, splat_film& splats, tile_sums& sums,
-                  std::vector<vec3>& parts, film& out, deep_collector* deep, ray_counts& counts) {
+                  std::vector<vec3>& parts, film& out, deep_collector* deep, triangle_memo& memo,
+                  ray_counts& counts) {
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
   sample_outputs outputs = sample_outputs_for(settings.aovs, settings.motion);
   if (deep) outputs.surfaces = &deep->path;
-  triangle_memo memo;  // the pixel's samples mostly hit the same few triangles
   outputs.memo = &memo;
   for (int s = 0; s < settings.samples_per_pixel; ++s) {
     // A pixel of thousands of samples takes long enough that a signal must not wait for it.
@@ -203,10 +203,11 @@ void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& 
                         {tl.x0 - job.out.x0, tl.y0 - job.out.y0, tl.x1 - job.out.x0, tl.y1 - job.out.y0});
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
+  triangle_memo memo;  // the tile's samples mostly hit the same few triangles (shade/surface.h)
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, parts, job.out,
-                   deep ? &deep_pixel : nullptr, counts);
+                   deep ? &deep_pixel : nullptr, memo, counts);
       if (deep) finish_deep_pixel(deep_pixel, *deep);
     }
     count_row_done(job.settings, tl);

@@ -128,16 +128,18 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   vec4* targets[max_slots];
   int count = 0;
   const texture_ref* previous = nullptr;
+  texture_lookup mapped;  // the previous slot's lookup: its uv and footprint
   auto add = [&](const texture_ref& ref, texel_encoding encoding, vec4& target) {
     // Slots on the same UV set and transform (the usual case) share the transformed uv and
-    // footprint: the same arithmetic on the same inputs.
-    if (previous && same_uv_mapping(*previous, ref)) {
-      lookups[count] = lookups[count - 1];
-      lookups[count].texture = uint32_t(ref.texture);
-      lookups[count].encoding = encoding;
-    } else {
-      lookups[count] = lookup_of(ref, in, encoding);
-    }
+    // footprint: the same arithmetic on the same inputs. They come from a local rather than from
+    // the array's previous entry: reading back a lookup just stored field by field as one wide
+    // copy stalled on store forwarding.
+    if (!previous || !same_uv_mapping(*previous, ref)) mapped = lookup_of(ref, in, encoding);
+    texture_lookup& l = lookups[count];
+    l.texture = uint32_t(ref.texture);
+    l.encoding = encoding;
+    l.uv = mapped.uv;
+    l.footprint = mapped.footprint;
     previous = &ref;
     targets[count++] = &target;
   };

@@ -57,11 +57,12 @@ struct triangle_constants {
   vec3 dp_dv[2];
 };
 
-// The triangle constants of the last few triangles one caller shaded: the samples of a pixel, and
+// The triangle constants of the last few triangles one caller shaded: the samples of a tile, and
 // the reflections they see, mostly hit the triangles their neighbours hit (86% of ToyCar's 16-spp
-// hits find theirs here). Keyed by addresses, so valid only while the scene does not change: a
-// caller keeps one for one pixel. Entries are exactly what make_surface_point would compute, so
-// results never depend on it.
+// shading points find theirs here; 80% with one memo per pixel, 90% with eight entries, which did
+// not render faster). Keyed by addresses, so valid only while the scene does not change: a caller
+// keeps one for one tile of one render. Entries are exactly what make_surface_point would
+// compute, so results never depend on it.
 struct triangle_memo {
   static constexpr int size = 4;
   triangle_constants entries[size];
