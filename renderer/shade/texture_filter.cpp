@@ -139,8 +139,11 @@ struct lookup_plan {
   int n = 1;
   level_blend blend;
   vec2 axis{0.0f};  // from the centre to the outermost probe, in UV
-  float major = 0.0f;
-  float reach = 0.0f;
+  // Probe i lies at uv + axis · position[i] with weight weight[i]; weights is their sum in order.
+  // They depend on the plan alone, so the slots that share it share the exp() calls too.
+  float position[2 * max_anisotropy - 1];
+  float weight[2 * max_anisotropy - 1];
+  float weights = 0.0f;
 };
 
 lookup_plan plan_lookup(const mip_pyramid& p, const uv_footprint& footprint, const sampler& smp) {
@@ -163,9 +166,20 @@ lookup_plan plan_lookup(const mip_pyramid& p, const uv_footprint& footprint, con
   const float minor = std::max(e.minor, e.major / float(max_anisotropy));
   plan.n = std::clamp(int(2.0f * e.major / minor - 1.0f), 1, 2 * max_anisotropy - 1);
   plan.blend = levels_for(p, minor, smp);
-  plan.major = e.major;
-  plan.reach = e.major - minor;
-  plan.axis = e.direction * plan.reach / texels;
+  const float reach = e.major - minor;
+  plan.axis = e.direction * reach / texels;
+  const int n = plan.n;
+  float weights = 0.0f;
+  for (int i = 0; i < n; ++i) {
+    const float position = 2.0f * (float(i) + 0.5f) / float(n) - 1.0f;  // in (-1, 1)
+    const float x = position * e.major / (2.0f * reach);
+    // The centre probe of an odd n sits exactly at 0, where exp() would return exactly 1.
+    const float w = n == 2 || x == 0.0f ? 1.0f : std::exp(-2.0f * x * x);
+    plan.position[i] = position;
+    plan.weight[i] = w;
+    weights += w;
+  }
+  plan.weights = weights;
   return plan;
 }
 
@@ -198,17 +212,11 @@ void texture_filter::minified_taps(uint32_t texture_index, texel_encoding encodi
   out.two_levels = plan.blend.coarser > 0.0f;
   out.coarser = plan.blend.coarser;
   if (n == 1) return probe_taps(p, uv, plan.blend, smp, 0, out);
-  float weights = 0.0f;
   for (int i = 0; i < n; ++i) {
-    const float position = 2.0f * (float(i) + 0.5f) / float(n) - 1.0f;  // in (-1, 1)
-    const float x = position * plan.major / (2.0f * plan.reach);
-    // The centre probe of an odd n sits exactly at 0, where exp() would return exactly 1.
-    const float w = n == 2 || x == 0.0f ? 1.0f : std::exp(-2.0f * x * x);
-    out.weight[i] = w;
-    probe_taps(p, uv + plan.axis * position, plan.blend, smp, i, out);
-    weights += w;
+    out.weight[i] = plan.weight[i];
+    probe_taps(p, uv + plan.axis * plan.position[i], plan.blend, smp, i, out);
   }
-  out.weights = weights;
+  out.weights = plan.weights;
 }
 
 vec4 texture_filter::minified(uint32_t texture_index, texel_encoding encoding, vec2 uv,
