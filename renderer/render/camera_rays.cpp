@@ -42,8 +42,10 @@ void make_camera_rays(camera_ray_batch& b, const sample_run& run, const view_cam
   b.first = run.begin;
   b.rays.clear();
   b.sources.clear();
+  // Each ray and its source are filled in place: built on the stack and then copied in whole,
+  // the copy's wide loads stalled on the field-by-field stores just made.
   for (size_t i = run.begin; i < run.end; ++i) {
-    camera_ray_source src;
+    camera_ray_source& src = b.sources.emplace_back();
     const size_t pixel = i / size_t(spp);
     src.x = b.x0 + int(pixel % width);
     src.y = b.y0 + int(pixel / width);
@@ -55,12 +57,12 @@ void make_camera_rays(camera_ray_batch& b, const sample_run& run, const view_cam
                                                           uint32_t(src.y), src.sample, uint32_t(spp))
                                             : 0.0f;
     const double px = src.x + double(src.offset.x), py = src.y + double(src.offset.y);
-    ray r = settings.motion_blur && settings.camera_steps
-                ? generate_camera_ray(view_at_time(*settings.camera_steps, time), px, py)
-                : generate_camera_ray(cam, px, py);
+    ray& r = b.rays.emplace_back();
+    if (settings.motion_blur && settings.camera_steps)
+      generate_camera_ray(view_at_time(*settings.camera_steps, time), px, py, r);
+    else
+      generate_camera_ray(cam, px, py, r);
     r.time = time;
-    b.rays.push_back(r);
-    b.sources.push_back(src);
   }
 }
 

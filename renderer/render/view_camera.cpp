@@ -151,22 +151,26 @@ view_camera view_at_time(const std::vector<view_camera>& steps, float time) {
   return cam;
 }
 
-ray generate_camera_ray(const view_camera& cam, double px, double py) {
+void generate_camera_ray(const view_camera& cam, double px, double py, ray& out) {
   // Lower-left corner of the window and the point at fraction (sx, sy) across it.
   dvec3 lower_left = cam.eye + cam.distance * cam.view + cam.left * cam.right + cam.bottom * cam.up;
   double sx = px / cam.width;
   double sy = 1.0 - py / cam.height;  // image rows run top-down, the window's u axis bottom-up
   dvec3 on_window =
       lower_left + (cam.right_edge - cam.left) * sx * cam.right + (cam.top - cam.bottom) * sy * cam.up;
-  ray r;
-  r.kind = ray_kind::camera;
+  out.kind = ray_kind::camera;
   if (cam.kind == projection::orthographic) {
-    r.origin = vec3(on_window);
-    r.direction = vec3(cam.view);
+    out.origin = vec3(on_window);
+    out.direction = vec3(cam.view);
   } else {
-    r.origin = vec3(cam.eye);
-    r.direction = vec3(glm::normalize(on_window - cam.eye));
+    out.origin = vec3(cam.eye);
+    out.direction = vec3(glm::normalize(on_window - cam.eye));
   }
+}
+
+ray generate_camera_ray(const view_camera& cam, double px, double py) {
+  ray r;
+  generate_camera_ray(cam, px, py, r);
   return r;
 }
 

@@ -45,6 +45,11 @@ view_camera view_at_time(const std::vector<view_camera>& steps, float time);
 // and (width, height) at the bottom-right; pixel (i, j) has its centre at (i + 0.5, j + 0.5).
 ray generate_camera_ray(const view_camera& cam, double px, double py);
 
+// generate_camera_ray written into `out` (its origin, direction and kind; the other fields are left
+// as they are): a batch fills its rays in place rather than copying each one in whole from where it
+// was just written field by field (a store-forwarding stall per ray).
+void generate_camera_ray(const view_camera& cam, double px, double py, ray& out);
+
 // A pixel's ray cone (Akenine-Möller et al., Ray Tracing Gems ch. 20): perspective rays start with
 // width 0 and spread by the pixel angle, window height / (d · image height); orthographic rays are
 // one pixel wide and do not spread.

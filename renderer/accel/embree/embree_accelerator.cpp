@@ -163,17 +163,18 @@ void fill_embree_query(const ray& r, RTCRayHit& query) {
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-// kiln_hit's record h completed on instance inst: the geometric normal in world space.
-hit finish_hit(const scene& world, const instance& inst, const RTCRayHit& query, const ray& r,
-               bool quadric_normal, hit h) {
+// Completes h, its query's fields already in it, on instance inst: the geometric normal in world
+// space.
+void finish_hit(const scene& world, const instance& inst, const RTCRayHit& query, const ray& r,
+                bool quadric_normal, hit& h) {
   if (inst.kind == shape_kind::quadric) {
     // Quadric hits carry the part in primitive_id and (u, v) zero: shading finds the parametric UV
     // of the hits it shades (make_surface_point), and no other ray needs it (an atan2 and a
     // projection per reflection, refraction and culled hit saved).
     h.u = h.v = 0.0f;
-    if (!quadric_normal) return h;
-    h.geometric_normal = quadric_world_normal(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
-    return h;
+    if (quadric_normal)
+      h.geometric_normal = quadric_world_normal(inst, world.quadrics[inst.shape], r, h.t, h.primitive_id);
+    return;
   }
   // Embree's Ng is the unnormalised cross(p1 - p0, p2 - p0) in the mesh's object space (instances
   // do not transform it): carried through the normal matrix it is the normal triangle_world_normal
@@ -181,30 +182,36 @@ hit finish_hit(const scene& world, const instance& inst, const RTCRayHit& query,
   // on the demo). A reported hit has Ng·d != 0, so Ng is never zero.
   h.geometric_normal = vec3(
       glm::normalize(inst.world_from_object_normal * dvec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z)));
-  return h;
 }
 
 // finish_hit on a moving instance, where it is at the ray's time: its copy (some 400 bytes) is
 // made only here, not zeroed on every hit of the still scenes that never need it.
-[[gnu::noinline]] hit moved_hit(const scene& world, const RTCRayHit& query, const ray& r, bool quadric_normal,
-                                const hit& h) {
-  return finish_hit(world, instance_at(world, h.instance_id, r.time), query, r, quadric_normal, h);
+[[gnu::noinline]] void moved_hit(const scene& world, const RTCRayHit& query, const ray& r,
+                                 bool quadric_normal, hit& h) {
+  finish_hit(world, instance_at(world, h.instance_id, r.time), query, r, quadric_normal, h);
 }
 
-// kiln's hit record of an answered query of r; without quadric_normal a quadric hit leaves its
-// geometric normal zero (accelerator::intersect_for_shadow).
-std::optional<hit> kiln_hit(const scene& world, const RTCRayHit& query, const ray& r,
-                            bool quadric_normal = true) {
-  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  hit h;
+// Writes into `out` kiln's hit record of an answered query of r (empty for a miss); without
+// quadric_normal a quadric hit leaves its geometric normal zero (accelerator::intersect_for_shadow).
+// Filled in place where the caller keeps it: a record built field by field and then copied whole
+// stalls the copy's wide loads on store forwarding.
+void kiln_hit(const scene& world, const RTCRayHit& query, const ray& r, bool quadric_normal,
+              std::optional<hit>& out) {
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    out.reset();
+    return;
+  }
+  hit& h = out.emplace();
   h.t = query.ray.tfar;
   h.instance_id = query.hit.instID[0];
   h.primitive_id = query.hit.primID;
   h.u = query.hit.u;
   h.v = query.hit.v;
   // A moving instance's normal is the one of its transform at the ray's time.
-  if (instance_moves(world, h.instance_id)) return moved_hit(world, query, r, quadric_normal, h);
-  return finish_hit(world, world.instances[h.instance_id], query, r, quadric_normal, h);
+  if (instance_moves(world, h.instance_id))
+    moved_hit(world, query, r, quadric_normal, h);
+  else
+    finish_hit(world, world.instances[h.instance_id], query, r, quadric_normal, h);
 }
 
 }  // namespace
@@ -326,14 +333,23 @@ void embree_accelerator::throw_if_failed() const {
     unscoped_embree_error_log().throw_if_any("tracing rays");
 }
 
-std::optional<hit> embree_accelerator::intersect(const ray& r) const { return closest_hit(r, true); }
-
-std::optional<hit> embree_accelerator::intersect_for_shadow(const ray& r) const {
-  return closest_hit(r, false);
+std::optional<hit> embree_accelerator::intersect(const ray& r) const {
+  std::optional<hit> out;
+  closest_hit(r, true, out);
+  return out;
 }
 
-std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_normal) const {
-  if (!is_valid(r)) return std::nullopt;
+std::optional<hit> embree_accelerator::intersect_for_shadow(const ray& r) const {
+  std::optional<hit> out;
+  closest_hit(r, false, out);
+  return out;
+}
+
+void embree_accelerator::closest_hit(const ray& r, bool quadric_normal, std::optional<hit>& out) const {
+  if (!is_valid(r)) {
+    out.reset();
+    return;
+  }
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
@@ -341,11 +357,15 @@ std::optional<hit> embree_accelerator::closest_hit(const ray& r, bool quadric_no
   RTCRayHit query;
   fill_embree_query(r, query);
   rtcIntersect1(state_->top, &context.embree, &query);
-  return kiln_hit(scene_, query, r, quadric_normal);
+  kiln_hit(scene_, query, r, quadric_normal, out);
 }
 
 void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {
-  if (state_->has_quadrics) return accelerator::intersect_coherent(rays, count, out);
+  if (state_->has_quadrics) {
+    // Quadric callbacks answer single rays: one query each, written straight into out.
+    for (size_t i = 0; i < count; ++i) closest_hit(rays[i], true, out[i]);
+    return;
+  }
   // Invalid rays never reach Embree; the stream holds the others in order.
   thread_local std::vector<RTCRayHit> queries;
   thread_local std::vector<uint32_t> index;
@@ -363,7 +383,8 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
   context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   context.world = &scene_;
   rtcIntersect1M(state_->top, &context.embree, queries.data(), unsigned(queries.size()), sizeof(RTCRayHit));
-  for (size_t k = 0; k < queries.size(); ++k) out[index[k]] = kiln_hit(scene_, queries[k], rays[index[k]]);
+  for (size_t k = 0; k < queries.size(); ++k)
+    kiln_hit(scene_, queries[k], rays[index[k]], true, out[index[k]]);
 }
 
 size_t embree_accelerator::embree_bytes() const { return size_t(std::max<int64_t>(0, state_->built_bytes)); }

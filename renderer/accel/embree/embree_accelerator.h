@@ -57,7 +57,8 @@ class embree_accelerator final : public accelerator {
 
  private:
   // intersect(), with a quadric hit's normal only when quadric_normal is set (intersect_for_shadow).
-  std::optional<hit> closest_hit(const ray& r, bool quadric_normal) const;
+  // Written into out, in place (see kiln_hit).
+  void closest_hit(const ray& r, bool quadric_normal, std::optional<hit>& out) const;
 
   struct state;
   std::unique_ptr<state> state_;
