@@ -123,7 +123,8 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   // Orthographic rays run along the view axis from the window plane: their distance is planar.
   if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
   ++counts.camera;
-  const std::optional<hit> h = find_visible_hit_from(ctx, r, first, counts);
+  std::optional<hit> walked;
+  const std::optional<hit>& h = visible_hit_from(ctx, r, first, walked, counts);
   if (!h) return missed(ctx, s, r, show_background, outputs.split, counts);
   const float distance = distance_to_hit(start, r, *h);
   const ray_cone at_hit = cone_at(cone, distance);

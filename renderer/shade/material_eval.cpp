@@ -10,17 +10,23 @@ namespace kiln {
 
 namespace {
 
-// The lookup sample_texture_ref makes for ref (present).
-texture_lookup lookup_of(const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
+// ref's texture coordinates at the point: its UV set's uv and footprint through its transform.
+inline void map_uv(const texture_ref& ref, const material_inputs& in, vec2& uv, uv_footprint& footprint) {
   // Sets beyond TEXCOORD_1 are not stored; they read TEXCOORD_0 (the loader warned).
   const int set = ref.texcoord == 1 ? 1 : 0;
+  uv = transform_uv(ref, in.uv[set]);
+  const uv_footprint& f = in.footprint[set];
+  // An empty footprint stays empty: the lookup reads level 0 by the magnification filter.
+  footprint = f.empty() ? uv_footprint{}
+                        : uv_footprint{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
+}
+
+// The lookup sample_texture_ref makes for ref (present).
+texture_lookup lookup_of(const texture_ref& ref, const material_inputs& in, texel_encoding encoding) {
   texture_lookup l;
   l.texture = uint32_t(ref.texture);
   l.encoding = encoding;
-  l.uv = transform_uv(ref, in.uv[set]);
-  const uv_footprint& f = in.footprint[set];
-  // An empty footprint stays empty: the lookup reads level 0 by the magnification filter.
-  if (!f.empty()) l.footprint = uv_footprint{transform_uv_vector(ref, f.dx), transform_uv_vector(ref, f.dy)};
+  map_uv(ref, in, l.uv, l.footprint);
   return l;
 }
 
@@ -125,22 +131,13 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
   // visible cost of every shaded hit.
   alignas(texture_lookup) unsigned char lookup_storage[sizeof(texture_lookup) * max_slots];
   texture_lookup* lookups = reinterpret_cast<texture_lookup*>(lookup_storage);
+  const texture_ref* refs[max_slots];
+  texel_encoding encodings[max_slots];
   vec4* targets[max_slots];
   int count = 0;
-  const texture_ref* previous = nullptr;
-  texture_lookup mapped;  // the previous slot's lookup: its uv and footprint
   auto add = [&](const texture_ref& ref, texel_encoding encoding, vec4& target) {
-    // Slots on the same UV set and transform (the usual case) share the transformed uv and
-    // footprint: the same arithmetic on the same inputs. They come from a local rather than from
-    // the array's previous entry: reading back a lookup just stored field by field as one wide
-    // copy stalled on store forwarding.
-    if (!previous || !same_uv_mapping(*previous, ref)) mapped = lookup_of(ref, in, encoding);
-    texture_lookup& l = lookups[count];
-    l.texture = uint32_t(ref.texture);
-    l.encoding = encoding;
-    l.uv = mapped.uv;
-    l.footprint = mapped.footprint;
-    previous = &ref;
+    refs[count] = &ref;
+    encodings[count] = encoding;
     targets[count++] = &target;
   };
   if (m.base_color_texture.present()) add(m.base_color_texture, texel_encoding::srgb, t.base_color);
@@ -183,6 +180,21 @@ material_texels sample_material_textures(const scene& s, const material& m, cons
       add(m.anisotropy_texture, texel_encoding::linear, lt.anisotropy);
   }
   if (with_normal && m.normal_texture.present()) add(m.normal_texture, texel_encoding::linear, t.normal);
+  // Slots on the same UV set and transform (the usual case) share the transformed uv and
+  // footprint: the same arithmetic on the same inputs. They are carried in locals and stored
+  // field by field: copying them back from a lookup (or a whole lookup) just stored field by field,
+  // as one wide copy, stalled on store forwarding.
+  vec2 uv(0.0f);
+  uv_footprint footprint;
+  for (int i = 0; i < count; ++i) {
+    const texture_ref& ref = *refs[i];
+    if (i == 0 || !same_uv_mapping(*refs[i - 1], ref)) map_uv(ref, in, uv, footprint);
+    texture_lookup& l = lookups[i];
+    l.texture = uint32_t(ref.texture);
+    l.encoding = encodings[i];
+    l.uv = uv;
+    l.footprint = footprint;
+  }
   vec4 texels[max_slots];
   sample_textures(s, in.filter, lookups, count, texels);
   for (int i = 0; i < count; ++i) *targets[i] = texels[i];

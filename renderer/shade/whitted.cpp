@@ -250,6 +250,14 @@ std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std
   return std::nullopt;
 }
 
+const std::optional<hit>& visible_hit_from(const shading_context& ctx, ray& r,
+                                           const std::optional<hit>& first, std::optional<hit>& walked,
+                                           ray_counts& counts) {
+  if (!first || !back_face_culled(ctx.world, *first, r)) return first;
+  walked = find_visible_hit_from(ctx, r, first, counts);
+  return walked;
+}
+
 namespace {
 
 float mean_component(const vec3& v) { return (v.x + v.y + v.z) / 3.0f; }

@@ -85,6 +85,13 @@ std::optional<hit> find_visible_hit(const shading_context& ctx, ray& r, ray_coun
 std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std::optional<hit> first,
                                          ray_counts& counts);
 
+// find_visible_hit_from's answer by reference: `first` itself when it is visible (the usual case),
+// else the walk's hit, kept in `walked`. The camera's first hits are read where their batch holds
+// them: copied in and out of the walk, each copy stalled on store forwarding.
+const std::optional<hit>& visible_hit_from(const shading_context& ctx, ray& r,
+                                           const std::optional<hit>& first, std::optional<hit>& walked,
+                                           ray_counts& counts);
+
 // Distance from start.origin to the hit h of r, where r is start advanced by find_visible_hit past
 // culled back faces (the ray cone keeps widening across them).
 float distance_to_hit(const ray& start, const ray& r, const hit& h);
