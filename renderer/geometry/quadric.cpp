@@ -238,15 +238,18 @@ std::optional<quadric_ray_hit> intersect_quadric(const quadric& q, const dvec3& 
 std::optional<quadric_ray_hit> intersect_quadric(const prepared_quadric& p, const dvec3& o, const dvec3& d,
                                                  double tmin, double tmax, bool any_hit) {
   const quadric& q = *p.shape;
+  // Every path returns `best`, so it is built in the caller's slot: returning another object
+  // copied it there whole, a copy that stalled on the field-by-field stores just made.
+  std::optional<quadric_ray_hit> best;
   // Slab-test the padded bounds first: it rejects most misses cheaply. Only the verdict is used:
   // the torus clips the ray to its own padded box for its root search (intersect_torus).
   double t_enter = tmin, t_exit = tmax;
-  if (!clip_ray_to_box(p.padded, o, d, t_enter, t_exit)) return std::nullopt;
+  if (!clip_ray_to_box(p.padded, o, d, t_enter, t_exit)) return best;
 
   if (q.kind == quadric_kind::torus) {
-    std::optional<double> t = intersect_torus(q.major_radius, q.radius, o, d, tmin, tmax);
-    if (!t) return std::nullopt;
-    return quadric_ray_hit{*t, quadric_side};
+    const std::optional<double> t = intersect_torus(q.major_radius, q.radius, o, d, tmin, tmax);
+    if (t) best.emplace(quadric_ray_hit{*t, quadric_side});
+    return best;
   }
 
   // Re-centre: o + t_c·d is the point of the ray closest to the centre of the bounds. Any ray
@@ -255,7 +258,6 @@ std::optional<quadric_ray_hit> intersect_quadric(const prepared_quadric& p, cons
   const double t_c = glm::dot(center - o, d) / glm::dot(d, d);
   const dvec3 oc = o + t_c * d;
 
-  std::optional<quadric_ray_hit> best;
   if (q.kind == quadric_kind::disk) {
     intersect_disk(oc, d, t_c, 0.0, q.inner_radius, q.radius, tmin, tmax, quadric_side, best);
     return best;

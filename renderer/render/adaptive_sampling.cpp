@@ -28,7 +28,7 @@ struct pixel_refiner {
   adaptive_pixel result;
 
   void note(const camera_sample& s) {
-    if (s.depth < result.nearest.depth) result.nearest = s;
+    if (s.depth < result.nearest.depth) keep_as_nearest(s, result.nearest);
   }
 
   void store(int i, int j, const camera_sample& s) {

@@ -10,8 +10,9 @@ namespace kiln {
 namespace {
 
 // A sample whose radiance is not finite contributes nothing (adaptive sampling sees a transparent
-// black corner) and is counted.
-camera_sample discard(camera_sample s, ray_counts& counts) {
+// black corner) and is counted. In place, as the sample's other steps: a camera sample (its path
+// layers, split and passes) is hundreds of bytes, and returning a copy of it cost every sample.
+void discard(camera_sample& s, ray_counts& counts) {
   ++counts.discarded_samples;
   s.rgba = vec4(0.0f);
   s.split = light_split{};
@@ -20,7 +21,6 @@ camera_sample discard(camera_sample s, ray_counts& counts) {
   std::fill(s.passes.shadow.begin(), s.passes.shadow.end(), 0.0f);
   s.layer_count = 0;
   s.finite = false;
-  return s;
 }
 
 }  // namespace
@@ -47,13 +47,12 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
 namespace {
 
 // The sample of a camera ray that hits nothing: the environment when the background is shown.
-camera_sample missed(const shading_context& ctx, camera_sample s, const ray& r, bool show_background,
-                     bool with_split, ray_counts& counts) {
+void missed(const shading_context& ctx, camera_sample& s, const ray& r, bool show_background, bool with_split,
+            ray_counts& counts) {
   if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
   if (with_split) s.split.direct = vec3(s.rgba);
   if (!s.groups.empty()) s.groups[environment_group(ctx.world)] = vec3(s.rgba);
-  if (!is_finite(s.rgba)) return discard(s, counts);
-  return s;
+  if (!is_finite(s.rgba)) discard(s, counts);
 }
 
 // The geometry AOVs of the hit h at p (distance from the camera, also behind culled back faces).
@@ -104,7 +103,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   // Opaque paths keep alpha exactly 1 (1 − 0).
   const float alpha = std::clamp(1.0f - path.transparency, 0.0f, 1.0f);
   if (!is_finite(radiance)) {
-    s = discard(s, counts);
+    discard(s, counts);
     return;
   }
   s.rgba = vec4(radiance, alpha);
@@ -125,7 +124,10 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   ++counts.camera;
   std::optional<hit> walked;
   const std::optional<hit>& h = visible_hit_from(ctx, r, first, walked, counts);
-  if (!h) return missed(ctx, s, r, show_background, outputs.split, counts);
+  if (!h) {
+    missed(ctx, s, r, show_background, outputs.split, counts);
+    return s;  // every path returns s, so it is built in the caller's slot
+  }
   const float distance = distance_to_hit(start, r, *h);
   const ray_cone at_hit = cone_at(cone, distance);
   const shading_point p =
@@ -133,6 +135,22 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   record_hit(ctx, *h, p, distance, outputs, s);
   shade_camera_path(ctx, r, start.origin, p, at_hit, show_background, outputs, s, counts);
   return s;
+}
+
+void keep_as_nearest(const camera_sample& s, camera_sample& nearest) {
+  nearest.depth = s.depth;
+  nearest.view_cosine = s.view_cosine;
+  nearest.normal = s.normal;
+  nearest.instance = s.instance;
+  nearest.position = s.position;
+  nearest.albedo = s.albedo;
+  nearest.uv = s.uv;
+  nearest.node = s.node;
+  nearest.material = s.material;
+  nearest.surface_hit = s.surface_hit;
+  nearest.render_point = s.render_point;
+  nearest.time = s.time;
+  nearest.motion = s.motion;
 }
 
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion) {

@@ -82,6 +82,11 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
                                ray_counts& counts, const sample_outputs& outputs = {});
 
+// Makes `nearest` the sample that decides its pixel's AOVs, from s: the fields motion_of_nearest and
+// store_nearest_sample read, not the path's layers, split and passes (hundreds of bytes and two
+// vectors, copied for nothing on every nearer sample).
+void keep_as_nearest(const camera_sample& s, camera_sample& nearest);
+
 // Fills s.motion (forward and backward, in pixels) when s hit something and motion is set: once a
 // pixel, for the sample that decides it, not for every sample.
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion);

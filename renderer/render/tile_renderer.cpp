@@ -168,7 +168,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
                           filter_weight(settings.filter, source.offset.x - 0.5f, source.offset.y - 0.5f),
                           *deep);
     }
-    if (cs.depth < nearest.depth) nearest = cs;
+    if (cs.depth < nearest.depth) keep_as_nearest(cs, nearest);
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
   splats.add(x - out.x0, y - out.y0, splat, sums);

@@ -30,10 +30,15 @@ vec3 surface_transmittance(const scene& s, const surface_point& sp) {
   return through;
 }
 
-vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint64_t& crossings) {
+vec3 shadow_transmittance(const scene& s, const accelerator& accel, const ray& shadow, uint64_t& crossings) {
   vec3 transmittance(1.0f);
+  // The segment still to walk: the caller's ray itself until a surface is crossed (taken by value,
+  // it was copied whole from the fields its caller had just stored: a store-forwarding stall on
+  // every shadow ray), then `rest`, moved past each crossing.
+  const ray* segment = &shadow;
+  ray rest;
   for (int i = 0; i < max_shadow_crossings; ++i) {
-    std::optional<hit> h = accel.intersect_for_shadow(r);
+    std::optional<hit> h = accel.intersect_for_shadow(*segment);
     ++crossings;
     if (!h) return transmittance;
     const instance& blocker = s.instances[h->instance_id];
@@ -41,16 +46,20 @@ vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint6
     // An opaque blocker ends the walk: the same product surface_transmittance would give (times
     // 0), without reconstructing the surface point (a quadric's costs a projection onto it).
     if (!invisible && passes_no_light(s.materials[blocker.material])) return transmittance * vec3(0.0f);
-    surface_point sp = make_surface_point(s, *h, r);
+    surface_point sp = make_surface_point(s, *h, *segment);
     if (!invisible) transmittance *= surface_transmittance(s, sp);
     if (transmittance == vec3(0.0f)) return transmittance;
     // Continue from just beyond the surface; the segment keeps its far end.
-    vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);
-    if (!std::isinf(r.tmax)) {
-      r.tmax -= glm::length(origin - r.origin);
-      if (r.tmax <= 0.0f) return transmittance;
+    if (segment != &rest) {
+      rest = shadow;
+      segment = &rest;
     }
-    r.origin = origin;
+    vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, rest.direction);
+    if (!std::isinf(rest.tmax)) {
+      rest.tmax -= glm::length(origin - rest.origin);
+      if (rest.tmax <= 0.0f) return transmittance;
+    }
+    rest.origin = origin;
   }
   return vec3(0.0f);
 }

@@ -20,6 +20,6 @@ vec3 surface_transmittance(const scene& s, const surface_point& sp);
 // Transmittance along the segment of shadow ray r: 1 when nothing blocks it, 0
 // when something opaque does. crossings counts the extra queries made (for ray
 // statistics).
-vec3 shadow_transmittance(const scene& s, const accelerator& accel, ray r, uint64_t& crossings);
+vec3 shadow_transmittance(const scene& s, const accelerator& accel, const ray& r, uint64_t& crossings);
 
 }  // namespace kiln
