@@ -9,8 +9,18 @@
 
 namespace kiln {
 
-uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n,
-                                     const vec3& direction, float cone_width) {
+namespace {
+
+// The footprint in UV space of a cone of width `cone_width` arriving along unit `direction` at a
+// surface with unit normal n, whose UV-to-world Jacobian has columns dp_du, dp_dv: the circular cross
+// section stretches by 1/|cos θ| along the projected ray direction (the ellipse's major axis) and
+// keeps its width across it. Axes that dp_du, dp_dv cannot express are dropped (degenerate UVs).
+// Inlined into the shading points below: called, its result came back in two registers that GCC
+// stored to the stack as overlapping 16- and 8-byte halves and read back whole, a store-forwarding
+// stall on every textured hit.
+[[gnu::always_inline]] inline uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv,
+                                                                   const vec3& n, const vec3& direction,
+                                                                   float cone_width) {
   uv_footprint fp;
   if (!(cone_width > 0.0f)) return fp;
   // The ellipse's axes on the tangent plane: along the projected ray direction (stretched by
@@ -40,8 +50,6 @@ uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const
   fp.dy = to_uv(axis_y);
   return fp;
 }
-
-namespace {
 
 // dP/du and dP/dv of a triangle (world space) for one UV set, from its edges: [e1 e2] = J·[Δuv1 Δuv2].
 // Degenerate UVs (zero area in UV space) give zero vectors, so the footprint stays empty.

@@ -75,11 +75,4 @@ struct triangle_memo {
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width = 0.0f,
                                  triangle_memo* memo = nullptr);
 
-// The footprint in UV space of a cone of width `cone_width` arriving along unit `direction` at a
-// surface with unit normal n, whose UV-to-world Jacobian has columns dp_du, dp_dv: the circular cross
-// section stretches by 1/|cos θ| along the projected ray direction (the ellipse's major axis) and
-// keeps its width across it. Axes that dp_du, dp_dv cannot express are dropped (degenerate UVs).
-uv_footprint footprint_from_jacobian(const vec3& dp_du, const vec3& dp_dv, const vec3& n,
-                                     const vec3& direction, float cone_width);
-
 }  // namespace kiln
