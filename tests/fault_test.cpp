@@ -108,11 +108,12 @@ std::vector<std::string> long_write(const std::string& output) {
           "--exr-tile-size", "1",        "--aovs", "beauty", "--threads", "2",   "-q"};
 }
 
-// The temporary file kiln writes beside output (".frame.exr.tmp-HOST-PID"), once it exists.
+// The temporary file kiln writes beside output (".frame.exr.kiln-tmp-HOST-PID-N"), once it exists.
 std::string wait_for_temporary(const std::string& folder) {
   for (int i = 0; i < 6000; ++i) {
     for (const auto& entry : fs::directory_iterator(folder))
-      if (entry.path().filename().string().rfind(".frame.exr.tmp-", 0) == 0) return entry.path().string();
+      if (entry.path().filename().string().rfind(".frame.exr.kiln-tmp-", 0) == 0)
+        return entry.path().string();
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return "";
@@ -157,8 +158,9 @@ TEST(faults, two_signals_during_the_exr_write_leave_no_temporary_file) {
   EXPECT_TRUE(stray_files(folder, "frame.exr").empty()) << "a temporary file was left behind";
 }
 
-// SIGKILL cannot be handled: its temporary file stays, and the next write into the folder
-// removes it (its process is gone), while a live process's temporary file is left alone.
+// SIGKILL cannot be handled: its temporary file stays, and the next write of that output removes
+// it (its process is gone), while a live process's temporary file is left alone, and so is
+// everything a write of another output finds.
 TEST(faults, the_next_write_removes_what_a_killed_write_left) {
   const std::string folder = scratch_folder("killed_during_write");
   const std::string output = folder + "/frame.exr";
@@ -168,10 +170,15 @@ TEST(faults, the_next_write_removes_what_a_killed_write_left) {
   ASSERT_EQ(::kill(child.pid, SIGKILL), 0);
   EXPECT_EQ(child.wait(), -SIGKILL);
   ASSERT_TRUE(fs::exists(left));
-  // A temporary file of a process that is alive (this test) stays.
-  const std::string alive = left.substr(0, left.rfind('-') + 1) + std::to_string(::getpid());
+  // A temporary file of a process that is alive (this test): ".frame.exr.kiln-tmp-HOST-" + its pid.
+  const std::string before_pid = left.substr(0, left.rfind('-'));
+  const std::string alive =
+      before_pid.substr(0, before_pid.rfind('-') + 1) + std::to_string(::getpid()) + "-0";
   write_file(alive, "being written");
   auto result = testing::run_kiln({"render", demo_scene, "-o", folder + "/other.exr", "--width", "8", "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_TRUE(fs::exists(left)) << "a write of other.exr removed " << left;
+  result = testing::run_kiln({"render", demo_scene, "-o", output, "--width", "8", "-q"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_FALSE(fs::exists(left)) << left;
   EXPECT_TRUE(fs::exists(alive));

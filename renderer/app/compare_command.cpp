@@ -3,13 +3,13 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "accel/compare/comparing_accelerator.h"
 #include "accel/make_accelerator.h"
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
+#include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
 #include "render/render_space.h"
@@ -200,11 +200,9 @@ int run_compare(const compare_options& o) {
     metadata.attributes = {{"kiln/scene_file", o.view.input}, {"kiln/mask", o.accel + " vs " + o.against}};
     write_exr(o.mask, image.mask, exr_settings{}, metadata);
   }
-  if (!o.json.empty()) {
-    std::ofstream out(o.json);
-    out << report_json(o, prepared.cam, *tested, *reference, rays, image, agree).dump(2) << '\n';
-    if (!out) throw io_error(o.json, "cannot write the JSON report");
-  }
+  if (!o.json.empty())
+    write_text_atomically(
+        o.json, report_json(o, prepared.cam, *tested, *reference, rays, image, agree).dump(2) + "\n");
   if (!o.view.quiet) print_summary(o, *tested, *reference, rays, image, agree);
   return agree ? 0 : exit_backends_disagree;
 }

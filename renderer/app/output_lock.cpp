@@ -37,14 +37,69 @@ std::string held_by(int fd) {
   return pid.empty() ? "another kiln batch" : "another kiln batch (pid " + pid + ")";
 }
 
+// Why what fd opened is not a lock file kiln made, "" when it is one: a regular file with no
+// other name (a hard link would let the pid overwrite a file elsewhere) holding nothing but a pid
+// (empty while its maker has not written it yet).
+std::string not_a_lock_file(int fd) {
+  struct stat s {};
+  if (::fstat(fd, &s) != 0) return std::strerror(errno);
+  if (!S_ISREG(s.st_mode)) return "the lock file is not a regular file";
+  if (s.st_nlink != 1) return "the lock file has other names (hard links)";
+  char text[33] = {};
+  const ssize_t n = ::pread(fd, text, sizeof text, 0);
+  const std::string pid = n > 0 ? std::string(text, size_t(n)) : "";
+  if (n < 0 || pid.size() >= sizeof text || pid.find_first_not_of("0123456789\n") != std::string::npos)
+    return "the lock file holds something other than a process id";
+  return "";
+}
+
+// Opens the lock file at path, creating it when missing. The folder may be writable by others, so
+// never through a symbolic link at the name (O_NOFOLLOW), never waiting on a FIFO (O_NONBLOCK), and
+// never anything but a lock file kiln made: whatever else is there is refused and left as it is.
+int open_lock_file(const std::string& path) {
+  const std::string remedy =
+      "; it is not one kiln made: remove it if no kiln batch is running, or give another --out-dir";
+  const int fd =
+      ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0644);
+  if (fd < 0 && errno == ELOOP) throw input_error(path, "", "the lock file is a symbolic link" + remedy);
+  if (fd < 0 && errno == EISDIR) throw input_error(path, "", "the lock file is a folder" + remedy);
+  if (fd < 0) throw io_error(path, std::string("cannot create the lock file: ") + std::strerror(errno));
+  const std::string problem = not_a_lock_file(fd);
+  if (problem.empty()) return fd;
+  ::close(fd);
+  throw input_error(path, "", problem + remedy);
+}
+
+// Whether path still names the file fd holds: the previous holder unlinks the file when it ends,
+// and a lock on a file it unlinked (or on one someone put in its place) is no lock.
+bool names_file(const std::string& path, int fd) {
+  struct stat held {
+  }, named{};
+  return ::fstat(fd, &held) == 0 && ::lstat(path.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+         held.st_dev == named.st_dev;
+}
+
+// Who holds the batch lock at lock ("another kiln batch (pid N)"), "" when nobody does. Only a
+// regular file at the name itself is a lock: a link there is nobody's, and what it points to is
+// not read.
+std::string lock_holder(const std::string& lock) {
+  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW | O_NOCTTY);
+  if (fd < 0) return "";
+  struct stat s {};
+  const bool busy = ::fstat(fd, &s) == 0 && S_ISREG(s.st_mode) && ::flock(fd, LOCK_SH | LOCK_NB) != 0 &&
+                    errno == EWOULDBLOCK;
+  const std::string holder = busy ? held_by(fd) : "";
+  ::close(fd);
+  return holder;
+}
+
 }  // namespace
 
 output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
     : path_((fs::path(folder) / output_lock_name).string()) {
   bool told = false;
   for (;;) {
-    const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) throw io_error(path_, std::string("cannot create the lock file: ") + std::strerror(errno));
+    const int fd = open_lock_file(path_);
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int e = errno;
       const std::string holder = held_by(fd);
@@ -64,11 +119,7 @@ output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
                     "interrupted while waiting for the output folder's lock");
       continue;
     }
-    // The previous holder unlinks the file when it ends: a lock on the file it unlinked is no lock.
-    struct stat held {
-    }, named{};
-    if (::fstat(fd, &held) != 0 || ::stat(path_.c_str(), &named) != 0 || held.st_ino != named.st_ino ||
-        held.st_dev != named.st_dev) {
+    if (!names_file(path_, fd)) {
       ::close(fd);
       continue;
     }
@@ -83,24 +134,20 @@ output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
 
 output_folder_lock::~output_folder_lock() {
   if (fd_ < 0) return;
-  ::unlink(path_.c_str());  // while still locked, so nobody takes a lock on a file about to go
+  // While still locked, so nobody takes a lock on a file about to go; and only while the name is
+  // still this file, so nothing someone put in its place is removed.
+  if (names_file(path_, fd_)) ::unlink(path_.c_str());
   ::close(fd_);
 }
 
 void check_not_in_locked_folder(const std::string& path) {
   const fs::path target = fs::absolute(path).lexically_normal();
   for (fs::path folder = target.parent_path();; folder = folder.parent_path()) {
-    const std::string lock = (folder / output_lock_name).string();
-    const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd >= 0) {
-      const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-      const std::string holder = busy ? held_by(fd) : "";
-      ::close(fd);
-      if (busy)
-        throw input_error(path, "",
-                          "the folder " + folder.string() + " is the output folder of " + holder +
-                              " that is still running; write elsewhere or wait for it");
-    }
+    const std::string holder = lock_holder((folder / output_lock_name).string());
+    if (!holder.empty())
+      throw input_error(path, "",
+                        "the folder " + folder.string() + " is the output folder of " + holder +
+                            " that is still running; write elsewhere or wait for it");
     if (folder == folder.parent_path()) break;
   }
 }

@@ -15,7 +15,9 @@ class output_folder_lock {
  public:
   // Takes the lock on folder (which exists). Another holder: throws kiln::error (input) naming the
   // folder and the holder's pid, or, with wait, waits for it (a signal stops the wait: kind
-  // interrupted). Throws kiln::error (io) when the lock file cannot be created.
+  // interrupted). Throws kiln::error (io) when the lock file cannot be created, and (input) when
+  // what is at its name is not a lock file kiln made (a symbolic link, a hard link, a FIFO, a file
+  // holding anything but a pid): that is refused and left as it is, and nothing is written through it.
   output_folder_lock(const std::string& folder, bool wait);
   ~output_folder_lock();
   output_folder_lock(const output_folder_lock&) = delete;
@@ -27,7 +29,7 @@ class output_folder_lock {
 };
 
 // Throws kiln::error (input) when path lies in a folder, or below one, whose lock a running batch
-// holds. Takes no lock itself and creates nothing.
+// holds. Takes no lock itself, creates nothing, and follows no symbolic link at a lock file's name.
 void check_not_in_locked_folder(const std::string& path);
 
 }  // namespace kiln

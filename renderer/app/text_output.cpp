@@ -1,30 +1,15 @@
 #include "app/text_output.h"
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
-
-#include "core/error.h"
+#include "io/exr/atomic_write.h"
 
 namespace kiln {
 
 void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".kiln-tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw io_error(path, "cannot write the file");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw io_error(path, "cannot move the finished file into place");
-  }
+  // The writer the images use: a temporary name no other write shares, created by this call (never
+  // a file or link placed at a guessable name), fsynced, renamed into place.
+  write_atomically(path, "the file", [&](const temporary_file& temporary) {
+    return write_all(temporary.fd, text.data(), text.size());
+  });
 }
 
 }  // namespace kiln

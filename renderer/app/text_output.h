@@ -6,7 +6,7 @@
 
 namespace kiln {
 
-// Throws kiln::error (io) naming the path when the text cannot be written.
+// Throws kiln::error (io) naming the path when the text cannot be written (io/exr/atomic_write.h).
 void write_text_atomically(const std::string& path, const std::string& text);
 
 }  // namespace kiln

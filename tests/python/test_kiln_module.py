@@ -1,8 +1,10 @@
 """The Python module against the CLI: the arrays of kiln.render equal the EXR `kiln render` writes
 for the same options, bit for bit; output= writes that EXR; bad options and bad assets raise
 kiln.InputError with the CLI's one-line message; Ctrl-C (SIGINT) and a progress callback that
-raises stop a render early. Run by CTest with PYTHONPATH at the build's module."""
+raises stop a render early; threads writing one path each leave a complete file. Run by CTest with
+PYTHONPATH at the build's module."""
 import os
+import re
 import signal
 import subprocess
 import tempfile
@@ -342,3 +344,38 @@ def test_a_working_space_converts_like_the_cli_and_tags_the_exr(tmp_path):
     assert not np.array_equal(aces.aovs["beauty"], kiln.render(CORNELL, **view).aovs["beauty"])
     with pytest.raises(kiln.InputError, match="no-such-space"):
         kiln.render(CORNELL, working_space="no-such-space", **view)
+
+
+def without_capture_date(data):
+    """An EXR's bytes with its capDate value (the second it was written) blanked."""
+    return re.sub(rb"(capDate\x00string\x00\x13\x00\x00\x00).{19}", rb"\1" + b"?" * 19, data, flags=re.DOTALL)
+
+
+def test_threads_writing_one_path_each_succeed_and_leave_one_complete_result(tmp_path):
+    """Each write has a temporary file of its own: four threads writing one path all succeed, and
+    the file left is always exactly one of the complete results, byte for byte but for the date."""
+    view = dict(width=160, height=120, quiet=True)
+    results = [kiln.render(CORNELL, spp=1, **view), kiln.render(CORNELL, spp=2, **view)]
+    expected = []
+    for i, result in enumerate(results):
+        result.write(str(tmp_path / f"alone{i}.exr"))
+        expected.append(without_capture_date((tmp_path / f"alone{i}.exr").read_bytes()))
+    assert expected[0] != expected[1]
+    out = str(tmp_path / "shared.exr")
+    for trial in range(10):
+        errors = []
+
+        def write(result):
+            try:
+                result.write(out)
+            except Exception as e:  # noqa: BLE001 (collected for the assertion below)
+                errors.append(str(e))
+
+        threads = [threading.Thread(target=write, args=(results[t % 2],)) for t in range(4)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        assert errors == [], trial
+        assert without_capture_date((tmp_path / "shared.exr").read_bytes()) in expected, trial
+    assert sorted(os.listdir(tmp_path)) == ["alone0.exr", "alone1.exr", "shared.exr"]

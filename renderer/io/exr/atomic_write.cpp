@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -17,14 +18,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Flushes a closed file's data to the disk. The writer has closed its descriptor, so the
-// file is opened again: fsync on any descriptor of the file syncs its data. Without this a crash
-// right after the rename can leave the target name pointing at an empty or partial file.
-bool sync_to_disk(const std::string& path, int flags) {
-  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool ok = ::fsync(fd) == 0;
-  return ::close(fd) == 0 && ok;
+// Flushes the rename in path's folder to the disk, best effort (some file systems refuse).
+void sync_folder_of(const std::string& path) {
+  const std::string folder =
+      fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string();
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
 }
 
 // The temporary files being written, for remove_temporary_files_in_progress: a fixed table of
@@ -37,7 +38,7 @@ std::atomic<int> slot_state[slot_count];
 static_assert(std::atomic<int>::is_always_lock_free);
 
 // Holds a slot for one temporary file while it exists; none when the table is full or the path
-// too long (the file is then only cleaned up by the next run, as after SIGKILL).
+// too long (the file is then only cleaned up by the next write of its target, as after SIGKILL).
 class registration {
  public:
   explicit registration(const std::string& path) {
@@ -61,6 +62,12 @@ class registration {
   int slot_ = -1;
 };
 
+// Closes a descriptor when the write ends, however it ends.
+struct descriptor_guard {
+  int fd;
+  ~descriptor_guard() { ::close(fd); }
+};
+
 std::string host_name() {
   char name[256] = {};
   if (::gethostname(name, sizeof name - 1) != 0 || !name[0]) return "host";
@@ -70,33 +77,72 @@ std::string host_name() {
   return host;
 }
 
-// Removes ".NAME.tmp-HOST-PID" files in folder whose HOST is this one and whose PID names no
-// process: what a SIGKILL during a write leaves. Another host's files are never touched (a farm
-// writes into shared folders from many hosts, and their PIDs mean nothing here).
-void remove_stale_temporaries(const fs::path& folder) {
-  const std::string marker = ".tmp-" + host_name() + "-";
+// ".NAME.kiln-tmp-HOST-": what every temporary file of path on this host begins with.
+std::string temporary_prefix(const std::string& path) {
+  return "." + fs::path(path).filename().string() + ".kiln-tmp-" + host_name() + "-";
+}
+
+bool all_digits(const std::string& s, size_t most) {
+  return !s.empty() && s.size() <= most && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// The process id in name when name is exactly prefix + "PID-N"; 0 otherwise.
+pid_t writer_of(const std::string& name, const std::string& prefix) {
+  if (name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string rest = name.substr(prefix.size());
+  const size_t dash = rest.find('-');
+  if (dash == std::string::npos || !all_digits(rest.substr(0, dash), 9) ||
+      !all_digits(rest.substr(dash + 1), 20))
+    return 0;
+  return pid_t(std::stol(rest.substr(0, dash)));
+}
+
+// Removes the temporary files of path that a process of this host left and no longer runs: what
+// a SIGKILL during a write leaves. Only what kiln can prove its own goes: the exact name of a
+// temporary file of this very path, a regular file (never a link) of this user. Another host's
+// files are never touched (a farm writes into shared folders from many hosts, and their PIDs mean
+// nothing here), nor a name kiln would not have made (a user's ".notes.tmp-HOST-PID").
+void remove_dead_temporaries(const std::string& path) {
+  const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  const std::string prefix = temporary_prefix(path);
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    const size_t at = name.rfind(marker);
-    if (name.empty() || name[0] != '.' || at == std::string::npos) continue;
-    const std::string digits = name.substr(at + marker.size());
-    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
-      continue;
-    const pid_t pid = pid_t(std::stol(digits));
-    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
-    std::error_code ignored;
-    fs::remove(it->path(), ignored);
+    const pid_t pid = writer_of(it->path().filename().string(), prefix);
+    if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH)
+      continue;  // alive, or not ours
+    struct stat s {};
+    if (::lstat(it->path().c_str(), &s) != 0 || !S_ISREG(s.st_mode) || s.st_uid != ::geteuid()) continue;
+    ::unlink(it->path().c_str());
   }
 }
 
+// Numbers this process's temporary files: with the pid, a name no other write has.
+std::atomic<unsigned long> temporary_count{0};
+
 }  // namespace
 
-std::string temporary_path(const std::string& path) {
-  fs::path target(path);
-  std::string name =
-      "." + target.filename().string() + ".tmp-" + host_name() + "-" + std::to_string(::getpid());
-  return (target.parent_path() / name).string();
+int create_temporary_file(const std::string& path, std::string& temporary) {
+  const fs::path folder = fs::path(path).parent_path();
+  const std::string prefix = temporary_prefix(path) + std::to_string(::getpid()) + "-";
+  // A name can be taken by a file an earlier process with this pid left, or by another copy of this
+  // code in the process (the image codecs module counts on its own): then the next number.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    temporary = (folder / (prefix + std::to_string(temporary_count.fetch_add(1)))).string();
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST) return fd;
+  }
+  return -1;  // errno is EEXIST
+}
+
+std::string write_all(int fd, const void* data, size_t size) {
+  const char* bytes = static_cast<const char*>(data);
+  for (size_t done = 0; done < size;) {
+    const ssize_t n = ::write(fd, bytes + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return n < 0 ? std::strerror(errno) : "nothing written";
+    done += size_t(n);
+  }
+  return "";
 }
 
 void remove_temporary_files_in_progress() {
@@ -105,41 +151,36 @@ void remove_temporary_files_in_progress() {
 }
 
 void write_atomically(const std::string& path, const std::string& what,
-                      const std::function<std::string(const std::string& temporary)>& write,
+                      const std::function<std::string(const temporary_file& temporary)>& write,
                       const std::atomic<bool>* cancel) {
-  const std::string temporary = temporary_path(path);
-  remove_stale_temporaries(fs::path(path).parent_path().empty() ? fs::path(".")
-                                                                : fs::path(path).parent_path());
-  const registration registered(temporary);
+  remove_dead_temporaries(path);
+  temporary_file temporary;
+  temporary.fd = create_temporary_file(path, temporary.path);
+  if (temporary.fd < 0)
+    throw io_error(path, "cannot write " + what + ": cannot create the file (" + std::strerror(errno) + ")");
+  const descriptor_guard closed_at_end{temporary.fd};
+  const registration registered(temporary.path);
   std::string reason;
   try {
     reason = write(temporary);
   } catch (...) {
-    std::error_code ec;
-    fs::remove(temporary, ec);
+    ::unlink(temporary.path.c_str());
     throw;
   }
-  bool ok = reason.empty();
-  if (ok && cancel && cancel->load()) {
-    std::error_code ec;
-    fs::remove(temporary, ec);
+  if (reason.empty() && cancel && cancel->load()) {
+    ::unlink(temporary.path.c_str());
     throw error(error_kind::interrupted, path, "", "interrupted while writing, nothing written");
   }
-  if (ok && !sync_to_disk(temporary, O_RDONLY)) {
-    ok = false;
-    reason = "cannot flush the file to disk";
+  // Without the fsync a crash right after the rename can leave path naming an empty or partial file.
+  if (reason.empty() && ::fsync(temporary.fd) != 0)
+    reason = std::string("cannot flush the file to disk (") + std::strerror(errno) + ")";
+  if (reason.empty() && ::rename(temporary.path.c_str(), path.c_str()) != 0)
+    reason = std::string("cannot rename the finished file into place (") + std::strerror(errno) + ")";
+  if (!reason.empty()) {
+    ::unlink(temporary.path.c_str());
+    throw io_error(path, "cannot write " + what + ": " + reason);
   }
-  std::error_code ec;
-  if (ok) fs::rename(temporary, path, ec);
-  // The rename itself lives in the folder: sync it too, best effort (some file systems refuse).
-  if (ok && !ec)
-    sync_to_disk(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(),
-                 O_RDONLY | O_DIRECTORY);
-  if (!ok || ec) {
-    fs::remove(temporary, ec);
-    throw io_error(path,
-                   "cannot write " + what + ": " + (reason.empty() ? std::string("rename failed") : reason));
-  }
+  sync_folder_of(path);
 }
 
 }  // namespace kiln

@@ -15,8 +15,8 @@ void write_exr_atomically(const std::string& path, const std::string& what,
   use_exr_threads();
   write_atomically(
       path, what,
-      [&](const std::string& temporary) -> std::string {
-        exr_file_stream stream(temporary);
+      [&](const temporary_file& temporary) -> std::string {
+        exr_file_stream stream(temporary.fd, temporary.path);
         if (!stream.error().empty()) return stream.error();
         try {
           // The files' destructors write the offset tables; a failure there reaches only the stream.
@@ -27,7 +27,7 @@ void write_exr_atomically(const std::string& path, const std::string& what,
           throw error(error_kind::interrupted, path, "", "interrupted while writing, nothing written");
         } catch (const std::exception& e) {
           const std::string reason =
-              stream.error().empty() ? exr_message(e.what(), temporary) : stream.error();
+              stream.error().empty() ? exr_message(e.what(), temporary.path) : stream.error();
           stream.close();
           return reason;
         }

@@ -1,15 +1,22 @@
 #include "io/exr/exr_file_stream.h"
 
 #include <OpenEXR/Iex.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 
 namespace kiln {
 
-exr_file_stream::exr_file_stream(const std::string& path) : Imf::OStream(path.c_str()) {
-  file_ = std::fopen(path.c_str(), "wbe");  // "e": close-on-exec, like every descriptor kiln opens
-  if (!file_) error_ = std::string("cannot create the file (") + std::strerror(errno) + ")";
+exr_file_stream::exr_file_stream(int fd, const std::string& path) : Imf::OStream(path.c_str()) {
+  // A duplicate, so that closing the stream leaves fd to its owner, who syncs it; close-on-exec,
+  // like every descriptor kiln opens. Never the path: what is at the name may have changed since.
+  const int own = ::fcntl(fd, F_DUPFD_CLOEXEC, 0);
+  file_ = own < 0 ? nullptr : ::fdopen(own, "wb");
+  if (file_) return;
+  error_ = std::string("cannot open the file (") + std::strerror(errno) + ")";
+  if (own >= 0) ::close(own);
 }
 
 exr_file_stream::~exr_file_stream() {

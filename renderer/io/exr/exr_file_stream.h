@@ -13,8 +13,10 @@ namespace kiln {
 
 class exr_file_stream final : public Imf::OStream {
  public:
-  // Creates (or truncates) path; error() says why when it could not.
-  explicit exr_file_stream(const std::string& path);
+  // Writes through a duplicate of fd, a file made for the write (io/exr/atomic_write.h), from its
+  // current offset; fd itself stays open. path names the file in OpenEXR's messages. error() says
+  // why when fd cannot be used.
+  exr_file_stream(int fd, const std::string& path);
   ~exr_file_stream() override;
   exr_file_stream(const exr_file_stream&) = delete;
   exr_file_stream& operator=(const exr_file_stream&) = delete;

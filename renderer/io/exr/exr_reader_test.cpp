@@ -1,5 +1,6 @@
 #include "io/exr/exr_reader.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -94,16 +95,19 @@ TEST(exr_reader, files_that_are_not_exr_are_input_errors) {
 // that failure for the writer to report.
 TEST(exr_file_stream, a_full_disk_is_reported_even_when_the_failing_write_was_buffered) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
-  exr_file_stream stream("/dev/full");
+  const int fd = ::open("/dev/full", O_WRONLY | O_CLOEXEC);
+  ASSERT_GE(fd, 0);
+  exr_file_stream stream(fd, "/dev/full");
   ASSERT_EQ(stream.error(), "");
   stream.write("0123456789", 10);  // lands in the buffer
   const std::string reason = stream.close();
   EXPECT_NE(reason.find("No space left on device"), std::string::npos) << reason;
+  ::close(fd);
 }
 
-TEST(exr_file_stream, an_uncreatable_file_is_reported_before_any_write) {
-  exr_file_stream stream((scratch_dir() / "no_such_folder" / "x.exr").string());
-  EXPECT_NE(stream.error().find("cannot create the file"), std::string::npos) << stream.error();
+TEST(exr_file_stream, an_unusable_descriptor_is_reported_before_any_write) {
+  exr_file_stream stream(-1, (scratch_dir() / "x.exr").string());
+  EXPECT_NE(stream.error().find("cannot open the file"), std::string::npos) << stream.error();
   EXPECT_ANY_THROW(stream.write("x", 1));
   EXPECT_EQ(stream.close(), stream.error());
 }

@@ -13,7 +13,6 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfTiledOutputPart.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -421,14 +420,12 @@ void check_output_writable(const std::string& path) {
   if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
     throw io_error(path, "output exists and is not a regular file");
   // access() answers yes to root for any folder, including /proc and /sys where nothing can be
-  // created, so create the temporary file the writer will use, and remove it again.
-  const std::string probe = temporary_path(path);
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    if (errno == EEXIST) return;  // a stale temporary of this process id: the writer replaces it
+  // created, so create a temporary file as the writer will, and remove it again.
+  std::string probe;
+  const int fd = create_temporary_file(path, probe);
+  if (fd < 0)
     throw io_error(path,
                    "output folder is not writable: " + folder.string() + " (" + std::strerror(errno) + ")");
-  }
   ::close(fd);
   ::unlink(probe.c_str());
 }

@@ -2,13 +2,9 @@
 // OpenImageIO (which also reads the EXR here, so the module needs nothing from kiln's EXR code).
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <vector>
 
@@ -60,25 +56,6 @@ std::vector<unsigned char> encode(const std::string& format, const OIIO::ImageSp
   ok = out->close() && ok;
   if (!ok) throw io_error("", "cannot encode " + format + ": " + out->geterror());
   return bytes;
-}
-
-// Writes bytes to a new file at path; "" or the reason it failed (a short write is a failure).
-std::string write_bytes(const std::string& path, const std::vector<unsigned char>& bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return std::strerror(errno);
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string reason = n < 0 ? std::strerror(errno) : "nothing written";
-      ::close(fd);
-      return reason;
-    }
-    done += size_t(n);
-  }
-  if (::close(fd) != 0) return std::strerror(errno);
-  return "";
 }
 
 }  // namespace
@@ -157,8 +134,9 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
   // report a write that fails (a full disk), which would rename a truncated file into place.
   const std::vector<unsigned char> encoded = encode(format, out_spec, codes);
   // The error names the format as earlier kilns did ("cannot write png: ...").
-  write_atomically(preview_path, format,
-                   [&](const std::string& temporary) { return write_bytes(temporary, encoded); });
+  write_atomically(preview_path, format, [&](const temporary_file& temporary) {
+    return write_all(temporary.fd, encoded.data(), encoded.size());
+  });
 }
 
 }  // namespace kiln::codecs_module
