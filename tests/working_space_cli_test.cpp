@@ -4,14 +4,16 @@
 // coloured light meets a coloured surface they differ, because (M·a) ⊙ (M·b) ≠ M·(a ⊙ b): the
 // test measures by how much, material by material. The EXR carries the space (chromaticities,
 // colorspace, oiio:ColorSpace); without the option nothing changes; a sequence's frames equal
-// single frames; bad configs and spaces are one line and exit 2 with nothing written; the preview
-// goes through OCIO only when asked.
+// single frames; bad configs and spaces are one line and exit 2 with nothing written, configs whose
+// references loop, nest too deep or branch too widely for OpenColorIO included; the preview goes
+// through OCIO only when asked.
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenEXR/ImfChromaticitiesAttribute.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +22,12 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 
 #include "support/channel_exr.h"
 #include "support/gltf_builder.h"
+#include "support/kiln_process.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -309,6 +314,164 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
   expect_refused(with({"--working-space", "ACEScg"}), out,
                  "broken.ocio: $OCIO: not a valid OpenColorIO config");
   ::unsetenv("OCIO");
+}
+
+// The config `from` (kiln's by default) with its first `line` replaced by `with`, written as dir/name.
+std::string config_variant(const std::string& dir, const std::string& name, const std::string& line,
+                           const std::string& with, const std::string& from = config) {
+  std::ifstream in(from);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const size_t at = yaml.find(line);
+  EXPECT_NE(at, std::string::npos) << line;
+  if (at != std::string::npos) yaml.replace(at, line.size(), with);
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << yaml;
+  return path;
+}
+
+// The start of ACEScg's matrix to the reference (ACES2065-1), the line a variant replaces.
+const std::string acescg_to_reference =
+    "    to_scene_reference: !<MatrixTransform> {matrix: [0.69545224135745176, 0.14067869647029421, "
+    "0.16386906217225414, 0, 0.044794563372037771, 0.85967111845642197, 0.095534318171540414, 0, "
+    "-0.0055258825581135434, 0.0040252103059786612, 1.0015006722521351, 0, 0, 0, 0, 1]}";
+
+// Colour spaces c0 ... c<count - 1>, each converting to the reference through the next in `fan`
+// ColorSpaceTransforms, the last (alias lin_rec709, glTF's space) a plain matrix.
+std::string chain_config(const std::string& dir, const std::string& name, int count, int fan) {
+  std::string yaml =
+      "ocio_profile_version: 2\nroles:\n  default: c0\n  scene_linear: c0\n"
+      "displays:\n  sRGB:\n    - !<View> {name: Raw, colorspace: c0}\ncolorspaces:\n";
+  for (int i = 0; i < count; ++i) {
+    yaml += "  - !<ColorSpace>\n    name: c" + std::to_string(i) + "\n";
+    if (i + 1 == count) {
+      yaml += "    aliases: [lin_rec709]\n    to_scene_reference: !<MatrixTransform> {}\n";
+      continue;
+    }
+    std::string children;
+    for (int k = 0; k < fan; ++k)
+      children += std::string(k ? ", " : "") + "!<ColorSpaceTransform> {src: c" + std::to_string(count - 1) +
+                  ", dst: c" + std::to_string(i + 1) + "}";
+    yaml += "    to_scene_reference: !<GroupTransform> {children: [" + children + "]}\n";
+  }
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << yaml;
+  return path;
+}
+
+// Runs kiln with a deadline and, when stack_bytes is set, that stack limit: before the configs
+// below were checked, OpenColorIO crashed or ran for hours on them, and neither may stop the suite.
+testing::command_result run_kiln_at_most(const std::vector<std::string>& args, const std::string& dir,
+                                         double seconds, rlim_t stack_bytes = 0) {
+  const testing::child_process child = testing::start_kiln(args, dir, [stack_bytes] {
+    if (!stack_bytes) return;
+    const rlimit limit{stack_bytes, stack_bytes};
+    ::setrlimit(RLIMIT_STACK, &limit);
+  });
+  const std::optional<int> code = child.wait_at_most(seconds);
+  return {code ? *code : -1000, code ? child.stderr_text() : "still running after the deadline"};
+}
+
+void expect_refused_in_time(const std::vector<std::string>& args, const std::string& dir,
+                            const std::string& names, rlim_t stack_bytes = 0) {
+  const auto result = run_kiln_at_most(args, dir, 30.0, stack_bytes);
+  EXPECT_EQ(result.exit_code, 2) << result.stderr_text;
+  EXPECT_EQ(testing::lines(result.stderr_text).size(), 1u) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find(names), std::string::npos) << result.stderr_text;
+}
+
+TEST(working_space_cli, a_config_whose_references_loop_is_one_line_exit_2_not_a_crash) {
+  const std::string dir = scratch_folder("working_space_loops");
+  const std::string scene = testing::copy_scene(dir);
+  const std::string out = dir + "/out.exr";
+  auto render = [&](const std::string& cfg) {
+    return std::vector<std::string>{
+        "render",          scene,   "-o", out, "--width", "8", "--height", "8", "-q", "--ocio-config", cfg,
+        "--working-space", "ACEScg"};
+  };
+  // ACEScg through a ColorSpaceTransform from itself.
+  const std::string self =
+      config_variant(dir, "self.ocio", acescg_to_reference,
+                     "    to_scene_reference: !<ColorSpaceTransform> {src: ACEScg, dst: ACES2065-1}");
+  expect_refused_in_time(render(self), dir,
+                         "self.ocio: colour space 'ACEScg': its references loop back to it (colour space "
+                         "'ACEScg' [to_scene_reference: ColorSpaceTransform src] -> colour space 'ACEScg')");
+  // ACEScg to ACES2065-1 (by an alias, in a group) and back (by a role).
+  std::string pair = config_variant(dir, "pair.ocio", acescg_to_reference,
+                                    "    to_scene_reference: !<GroupTransform> {children: "
+                                    "[!<ColorSpaceTransform> {src: lin_ap0, dst: lin_ap0}]}");
+  pair = config_variant(dir, "pair.ocio", "    allocation: uniform\n\n  - !<ColorSpace>\n    name: ACEScg",
+                        "    allocation: uniform\n    to_scene_reference: !<ColorSpaceTransform> "
+                        "{src: compositing_linear, dst: ACES2065-1}\n\n  - !<ColorSpace>\n    name: ACEScg",
+                        pair);
+  expect_refused_in_time(
+      render(pair), dir,
+      "colour space 'ACES2065-1' [to_scene_reference: ColorSpaceTransform src] -> colour space 'ACEScg'");
+  // Through a look whose process space is ACEScg itself.
+  std::string look = config_variant(
+      dir, "look.ocio", acescg_to_reference,
+      "    to_scene_reference: !<LookTransform> {src: ACES2065-1, dst: ACES2065-1, looks: +grade}");
+  look = config_variant(dir, "look.ocio", "\ncolorspaces:\n",
+                        "\nlooks:\n  - !<Look>\n    name: grade\n    process_space: ACEScg\n"
+                        "    transform: !<MatrixTransform> {}\n\ncolorspaces:\n",
+                        look);
+  expect_refused_in_time(render(look), dir, "look 'grade' [process_space] -> colour space 'ACEScg'");
+  // The preview's view, from $OCIO: the sRGB display converts from the reference through itself.
+  const std::string display =
+      config_variant(dir, "display.ocio", "offset: [0.055, 0.055, 0.055, 0], direction: inverse}",
+                     "offset: [0.055, 0.055, 0.055, 0], direction: inverse}\n"
+                     "        - !<ColorSpaceTransform> {src: ACES2065-1, dst: srgb_display}");
+  ::setenv("OCIO", display.c_str(), 1);
+  expect_refused_in_time(
+      {"render", scene, "-o", out, "--width", "8", "--height", "8", "-q", "--preview", dir + "/p.png"}, dir,
+      "display.ocio: colour space 'sRGB - Display': its references loop back to it");
+  ::unsetenv("OCIO");
+  EXPECT_FALSE(fs::exists(out)) << out;
+  // A batch's plan is made in one process: it is written, the job left to fail alone when it runs.
+  ::setenv("OCIO", self.c_str(), 1);
+  const auto planned = run_kiln_at_most({"batch", scene, "--out-dir", dir + "/batch", "--plan-only",
+                                         dir + "/plan.json", "--working-space", "ACEScg"},
+                                        dir, 30.0);
+  ::unsetenv("OCIO");
+  EXPECT_EQ(planned.exit_code, 0) << planned.stderr_text;
+  EXPECT_TRUE(fs::exists(dir + "/plan.json"));
+}
+
+TEST(working_space_cli, references_nested_too_deep_or_branching_too_wide_are_refused_in_time) {
+  const std::string dir = scratch_folder("working_space_deep");
+  const std::string scene = testing::copy_scene(dir);
+  auto render = [&](const std::string& cfg) {
+    return std::vector<std::string>{
+        "render", scene,           "-o", dir + "/out.exr",  "--width", "8", "--height",
+        "8",      "--ocio-config", cfg,  "--working-space", "c0"};
+  };
+  // 600 colour spaces deep overflow a 1 MiB stack inside OpenColorIO (threads get less than 8 MiB).
+  expect_refused_in_time(render(chain_config(dir, "deep.ocio", 600, 1)), dir,
+                         "deep.ocio: colour space 'c0': its references nest more than 100 deep", 1 << 20);
+  // 30 levels of two references each: OpenColorIO would follow 2^30 paths (2^20 take it 4 s).
+  expect_refused_in_time(render(chain_config(dir, "wide.ocio", 30, 2)), dir,
+                         "its references branch into more than 100000 paths");
+  // A few levels and branches are fine.
+  const auto small = run_kiln_at_most(render(chain_config(dir, "small.ocio", 8, 2)), dir, 30.0);
+  EXPECT_EQ(small.exit_code, 0) << small.stderr_text;
+}
+
+// Reading and validating a looping config does not follow its references (only building a
+// processor does), so kiln may read it before checking: run in a child, a crash fails the test.
+TEST(working_space_cli, opencolorio_reads_and_validates_a_looping_config_without_recursing) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // the process has OpenImageIO's threads by now
+  const std::string dir = scratch_folder("working_space_loop_read");
+  const std::string self =
+      config_variant(dir, "self.ocio", acescg_to_reference,
+                     "    to_scene_reference: !<ColorSpaceTransform> {src: ACEScg, dst: ACES2065-1}");
+  EXPECT_EXIT(
+      {
+        OCIO::Config::CreateFromFile(self.c_str())->validate();
+        // Not exit(): a forked child would wait in log4cplus's finaliser for a thread it lacks.
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(working_space_cli, opencolorio_is_opened_only_when_a_render_names_a_working_space) {

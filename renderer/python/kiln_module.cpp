@@ -8,10 +8,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <chrono>
 #include <exception>
 #include <functional>
 #include <future>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -125,7 +127,27 @@ std::string aov_name(const std::string& part) {
   return part;
 }
 
+// NumPy's C API, loaded by the first render that makes arrays. pybind11 2.10 keeps it in a
+// function-local static whose initialiser imports numpy; the import lets other threads run, and one
+// that reaches the same static waits there holding the GIL the import needs back: every thread
+// hangs, past Ctrl-C. So the first load happens here, behind a mutex waited for without the GIL.
+// (The mutex and flag are constant-initialised: no guard of their own.)
+void load_numpy_api() {
+  static std::atomic<bool> loaded{false};
+  static std::mutex loading;
+  if (loaded.load(std::memory_order_acquire)) return;
+  std::unique_lock<std::mutex> lock(loading, std::defer_lock);
+  {
+    py::gil_scoped_release unlocked;
+    lock.lock();
+  }
+  if (loaded.load(std::memory_order_relaxed)) return;
+  py::detail::npy_api::get();  // throws error_already_set without numpy; the next call tries again
+  loaded.store(true, std::memory_order_release);
+}
+
 void fill_arrays(python_result& out) {
+  load_numpy_api();
   const film& f = out.result.image;
   for (stored_layer& layer : stored_layers(f, out.result.storage)) {
     const py::ssize_t c = py::ssize_t(layer.channels.size());

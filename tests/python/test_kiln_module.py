@@ -7,6 +7,7 @@ import os
 import re
 import signal
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -379,3 +380,89 @@ def test_threads_writing_one_path_each_succeed_and_leave_one_complete_result(tmp
         assert errors == [], trial
         assert without_capture_date((tmp_path / "shared.exr").read_bytes()) in expected, trial
     assert sorted(os.listdir(tmp_path)) == ["alone0.exr", "alone1.exr", "shared.exr"]
+
+
+def run_child(script, timeout=120):
+    """Runs script in a fresh interpreter (kiln's first calls, a crash that would take pytest down)
+    and returns its result; a hang fails the test at the deadline instead of stalling the suite."""
+    try:
+        return subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        pytest.fail(f"still running after {timeout} s (deadlocked?)")
+
+
+FIRST_RENDERS = """
+import sys, threading
+import kiln
+assert "numpy" not in sys.modules  # the first render imports it, under this test's threads
+barrier = threading.Barrier(8)
+results, errors = [None] * 8, []
+def render(i):
+    try:
+        barrier.wait()
+        results[i] = kiln.render(sys.argv[1], width=24, height=16, spp=2, threads=1).aovs["beauty"]
+    except BaseException as e:
+        errors.append(repr(e))
+threads = [threading.Thread(target=render, args=(i,)) for i in range(8)]
+for t in threads: t.start()
+for t in threads: t.join()
+assert not errors, errors
+assert all((r == results[0]).all() for r in results)
+print("rendered", len(results))
+"""
+
+
+def test_first_renders_from_many_threads_at_once_do_not_deadlock():
+    # Eight threads reach kiln's first NumPy arrays together: each run used to hang (one thread
+    # in pybind11's NumPy initialiser, holding the GIL the other's numpy import waited for).
+    for _ in range(3):
+        done = run_child(FIRST_RENDERS.replace("sys.argv[1]", repr(CORNELL)), timeout=60)
+        assert done.returncode == 0, done.stderr
+        assert done.stdout.strip() == "rendered 8"
+
+
+def test_concurrent_renders_equal_renders_one_at_a_time():
+    jobs = [(CORNELL, dict(width=24, height=16, spp=2)), (GLASS, dict(width=20, height=20, spp=1)),
+            (CORNELL, dict(width=16, height=16, spp=1, aovs=["beauty", "Z", "N"])),
+            (GLASS, dict(width=24, height=12, spp=2, working_space="ACEScg"))] * 3
+    alone = [kiln.render(asset, threads=1, **options) for asset, options in jobs]
+    together = [None] * len(jobs)
+
+    def render(i):
+        asset, options = jobs[i]
+        together[i] = kiln.render(asset, threads=2, **options)
+
+    threads = [threading.Thread(target=render, args=(i,)) for i in range(len(jobs))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+        assert not t.is_alive()
+    for a, b in zip(alone, together):
+        assert a.aovs.keys() == b.aovs.keys()
+        for name in a.aovs:
+            assert np.array_equal(a.aovs[name], b.aovs[name]), name
+
+
+def test_a_looping_ocio_config_raises_input_error_not_a_crash(tmp_path):
+    # ACEScg converted to the reference through itself: OpenColorIO would recurse until the
+    # interpreter died (SIGSEGV), so the call runs in a child.
+    with open(os.path.join(SOURCE, "share", "ocio", "kiln.ocio")) as f:
+        config = f.read()
+    looping = re.sub(r"to_scene_reference: !<MatrixTransform> \{matrix: \[0\.6954.*\]\}",
+                     "to_scene_reference: !<ColorSpaceTransform> {src: ACEScg, dst: ACES2065-1}", config)
+    assert looping != config
+    path = tmp_path / "loop.ocio"
+    path.write_text(looping)
+    done = run_child(f"""
+import kiln
+try:
+    kiln.render({CORNELL!r}, width=8, height=8, ocio_config={str(path)!r}, working_space="ACEScg")
+except kiln.InputError as e:
+    print(e.file, e.location, sep="\\n")
+    print(e.reason)
+""")
+    assert done.returncode == 0, f"exit {done.returncode}: {done.stderr}"
+    file, location, reason = done.stdout.splitlines()
+    assert (file, location) == (str(path), "colour space 'ACEScg'")
+    assert reason.startswith("its references loop back to it")

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/message_text.h"
+#include "io/colour/module/ocio_references.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -46,15 +47,28 @@ OCIO::ConstConfigRcPtr read_config(const colour_config_source& config) {
   }
 }
 
+// The config's processor for conversion, once the config objects it reaches are checked: reading
+// a config does not follow its references, building a processor does, and a loop among them
+// takes the process down with a stack overflow.
+OCIO::ConstProcessorRcPtr checked_processor(const OCIO::ConstConfigRcPtr& cfg,
+                                            const OCIO::ConstTransformRcPtr& conversion,
+                                            const colour_config_source& config) {
+  check_references(*cfg, conversion, config);
+  return cfg->getProcessor(conversion);
+}
+
 // The processor from glTF's linear Rec.709 to space: from the config's own Rec.709 space when it
 // has one, else through its aces_interchange role (ACES2065-1) and OCIO's builtin Bradford
 // transforms (AP1 to Rec.709, ACEScg to ACES2065-1).
-OCIO::ConstProcessorRcPtr from_rec709(const OCIO::ConstConfigRcPtr& cfg, const std::string& space,
-                                      std::string& source) {
+OCIO::ConstProcessorRcPtr from_rec709(const OCIO::ConstConfigRcPtr& cfg, const colour_config_source& config,
+                                      const std::string& space, std::string& source) {
   for (const char* name : rec709_names)
     if (OCIO::ConstColorSpaceRcPtr cs = cfg->getColorSpace(name)) {
       source = cs->getName();
-      return cfg->getProcessor(source.c_str(), space.c_str());
+      auto to_space = OCIO::ColorSpaceTransform::Create();
+      to_space->setSrc(source.c_str());
+      to_space->setDst(space.c_str());
+      return checked_processor(cfg, to_space, config);
     }
   if (!cfg->hasRole("aces_interchange")) return nullptr;
   auto rec709_to_ap1 = OCIO::BuiltinTransform::Create();
@@ -70,7 +84,7 @@ OCIO::ConstProcessorRcPtr from_rec709(const OCIO::ConstConfigRcPtr& cfg, const s
   group->appendTransform(ap1_to_ap0);
   group->appendTransform(to_space);
   source = "linear Rec.709 through the aces_interchange role";
-  return cfg->getProcessor(group);
+  return checked_processor(cfg, group, config);
 }
 
 std::array<double, 3> apply(const OCIO::ConstCPUProcessorRcPtr& cpu, std::array<double, 3> v) {
@@ -95,7 +109,7 @@ working_space_info working_space(const colour_config_source& config, const std::
   working_space_info info;
   info.name = target->getName();
   try {
-    const OCIO::ConstProcessorRcPtr processor = from_rec709(cfg, info.name, info.source);
+    const OCIO::ConstProcessorRcPtr processor = from_rec709(cfg, config, info.name, info.source);
     if (!processor)
       throw input_error(config.path, "--working-space",
                         "the config has no linear Rec.709 colour space (such as \"Linear Rec.709 (sRGB)\" "
@@ -159,10 +173,12 @@ display_transform display_view(const colour_config_source& config, const std::st
         config.path, "--view",
         "the display " + kiln::quoted(chosen_display) + " has no view " + kiln::quoted(chosen_view));
   try {
+    auto to_view = OCIO::DisplayViewTransform::Create();
+    to_view->setSrc(from.c_str());
+    to_view->setDisplay(chosen_display.c_str());
+    to_view->setView(chosen_view.c_str());
     const OCIO::ConstCPUProcessorRcPtr cpu =
-        cfg->getProcessor(from.c_str(), chosen_display.c_str(), chosen_view.c_str(),
-                          OCIO::TRANSFORM_DIR_FORWARD)
-            ->getDefaultCPUProcessor();
+        checked_processor(cfg, to_view, config)->getDefaultCPUProcessor();
     return [cpu](float* rgb, size_t count) {
       OCIO::PackedImageDesc pixels(rgb, long(count), 1, 3);
       cpu->apply(pixels);
