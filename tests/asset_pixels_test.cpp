@@ -108,7 +108,8 @@ rendering render(const fs::path& file, const std::string& name, int width, int h
   std::string out = testing::scratch_folder("pixels_" + name) + "/out.exr";
   std::vector<std::string> args = {
       "render",   file.string(),          "-o",        out, "--width", std::to_string(width),
-      "--height", std::to_string(height), "--threads", "2", "-q"};
+      "--height", std::to_string(height), "--threads", "2", "-q",      "--lighting",
+      "headlight"};
   args.insert(args.end(), extra.begin(), extra.end());
   auto result = testing::run_kiln(args);
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;

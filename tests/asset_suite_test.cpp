@@ -135,7 +135,7 @@ TEST(asset_renders, quantized_duck_renders_like_the_float_duck) {
   for (int i = 0; i < 2; ++i) {
     const std::string out = folder + "/duck" + std::to_string(i) + ".exr";
     auto result = testing::run_kiln({"render", (root / files[i]).string(), "-o", out, "--width", "128",
-                                     "--height", "128", "--threads", "2", "-q"});
+                                     "--height", "128", "--threads", "2", "-q", "--lighting", "headlight"});
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     images[i] = read_rgb(out);
     ASSERT_EQ(images[i].size(), size_t(128) * 128 * 3);

@@ -701,8 +701,13 @@ TEST(batch_cli, progress_lines_reach_a_log_with_sane_etas_and_batch_lines_name_t
   }
   EXPECT_GE(progress_lines, 2u);
   ASSERT_FALSE(batch_lines.empty());
-  // The asset has no lights: the render's note about the headlight names the job.
-  EXPECT_EQ(batch_lines[0].text,
+  // The asset has no lights: under --lighting headlight the render's note about it names the job.
+  const std::vector<timed_line> noted =
+      run_kiln_timed({"batch", asset, "--out-dir", (dir / "noted").string(), "--width", "8", "--height", "8",
+                      "--lighting", "headlight"},
+                     seconds);
+  ASSERT_FALSE(noted.empty());
+  EXPECT_EQ(noted[0].text,
             "kiln batch: [1/1] uniform: the file has no lights; using a headlight at the camera");
 }
 

@@ -146,7 +146,8 @@ TEST_F(cli_view, scene_option_renders_another_scene_and_refuses_a_missing_one) {
 }
 
 TEST_F(cli_view, headlight_lights_a_file_without_lights_and_degenerate_triangles_are_reported) {
-  auto result = run_kiln({"render", scene_, "-o", out("lit"), "--width", "32", "--height", "16"});
+  auto result = run_kiln(
+      {"render", scene_, "-o", out("lit"), "--width", "32", "--height", "16", "--lighting", "headlight"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("headlight"), std::string::npos) << result.stderr_text;
   EXPECT_NE(result.stderr_text.find("dropped 1 degenerate triangle "), std::string::npos)

@@ -56,11 +56,12 @@ std::string write_scene(const std::string& path, bool with_triangle = true) {
 
 image render(const std::string& scene, const std::string& dir, const std::string& name,
              std::vector<std::string> extra) {
-  std::vector<std::string> args = {"render",   scene,
-                                   "-o",       dir + "/" + name,
-                                   "--width",  std::to_string(size),
-                                   "--height", std::to_string(size),
-                                   "-q",       "--float"};
+  std::vector<std::string> args = {"render",     scene,
+                                   "-o",         dir + "/" + name,
+                                   "--width",    std::to_string(size),
+                                   "--height",   std::to_string(size),
+                                   "-q",         "--float",
+                                   "--lighting", "file"};
   args.insert(args.end(), extra.begin(), extra.end());
   const auto result = run_kiln(args);
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;

@@ -35,10 +35,13 @@ using image = testing::channel_exr;
 
 size_t pixel(int x, int y) { return size_t(y) * size + size_t(x); }
 
-// Renders scene to dir/name at 40x40, 32-bit float, with the given options.
+// Renders scene to dir/name at 40x40, 32-bit float, with the given options, lit by the file's lights
+// alone (the closed forms below are the punctual lights').
 image render(const std::string& scene, const std::string& dir, const std::string& name,
              const std::vector<std::string>& extra) {
-  return image{testing::render_float_exr(scene, dir + "/" + name, size, size, extra)};
+  std::vector<std::string> args = {"--lighting", "file"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return image{testing::render_float_exr(scene, dir + "/" + name, size, size, args)};
 }
 
 // A quad in the plane z, spanning [x0, x1] × [y0, y1], facing +z (or -z when facing_back).

@@ -133,7 +133,8 @@ std::vector<rgb> render_quad_centres() {
   const std::string scene = write_scene(dir), out = dir + "/out.exr";
   const int width = 40 * quad_count, height = 40;  // the camera's aspect xmag / ymag
   auto result = testing::run_kiln({"render", scene, "-o", out, "--width", std::to_string(width), "--height",
-                                   std::to_string(height), "--float", "--threads", "2", "-q"});
+                                   std::to_string(height), "--float", "--threads", "2", "-q", "--lighting",
+                                   "headlight"});
   EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
   std::vector<rgb> centres;
   auto in = OIIO::ImageInput::open(out);

@@ -125,7 +125,7 @@ TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
   EXPECT_EQ(aov_list_name(a.aovs), "beauty,Z");
   EXPECT_EQ(jobs[1].error, "");
   EXPECT_EQ(jobs[1].options.samples_per_pixel, 1);  // empty cells leave the defaults
-  EXPECT_EQ(jobs[1].options.background, vec3(0.5f, 0.25f, 0.0f));
+  EXPECT_EQ(jobs[1].options.background, std::optional<vec3>(vec3(0.5f, 0.25f, 0.0f)));
   EXPECT_EQ(jobs[1].options.up, dvec3(0.0, 0.0, 1.0));  // a quoted argument inside the overrides
   EXPECT_EQ(jobs[2].options.input, (dir / "c, d.gltf").string());
   EXPECT_EQ(jobs[2].options.output, (dir / "out/c, d_1.exr").string());

@@ -19,6 +19,7 @@
 #include "job/frame_motion.h"
 #include "job/holdouts.h"
 #include "job/job_stop.h"
+#include "job/lighting.h"
 #include "job/memory_estimates.h"
 #include "job/memory_limit.h"
 #include "job/option_table.h"
@@ -137,20 +138,6 @@ view_camera job_view(const render_options& options, const scene& world, std::str
 
 namespace {
 
-// When a file has no light, a point light at the camera (a headlight) keeps assets visible: its
-// intensity is chosen so a white surface facing it at the scene centre reflects radiance ≈ 1.
-void add_default_light(scene& world, const view_camera& cam) {
-  bounds3 b = world_bounds(world);
-  double distance = b.empty() ? 1.0 : std::max(glm::length(b.center() - cam.eye), 1e-6);
-  light headlight;
-  headlight.name = "headlight";  // its light group is lightgroup_headlight
-  headlight.kind = light_kind::point;
-  headlight.position = cam.eye;
-  headlight.intensity = float(pi * distance * distance);
-  headlight.casts_shadows = false;
-  world.lights.push_back(headlight);
-}
-
 // "gaussian 1.5" (the filter and its radius), or "threshold 0.1, depth 2" for adaptive sampling.
 std::string sampling_description(const render_settings& s, bool adaptive) {
   std::ostringstream out;
@@ -195,6 +182,7 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
   const std::vector<std::pair<std::string, std::string>> resolved = {
       {"kiln/scene_file", options.input},
       {"kiln/camera", prepared.camera_description},
+      {"kiln/lighting", prepared.lighting},
       {"kiln/filter", sampling_description(settings, false)},
       {"kiln/adaptive", adaptive ? sampling_description(settings, true) : "off"},
       {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
@@ -276,10 +264,11 @@ gltf_load_options job_load_options(const render_options& options, const std::ato
 void finish_loaded_scene(const render_options& options, prepared_scene& p,
                          const std::function<void(const std::string&)>& warn, image* environment_map,
                          const std::vector<uint32_t>* posed_meshes) {
-  p.world.env.color = options.background;
-  if (!options.environment.empty()) {
+  p.world.env.color = options.background.value_or(vec3(0.0f));
+  const std::string environment_file = job_environment_file(options);
+  if (!environment_file.empty()) {
     p.world.images.push_back(environment_map ? std::move(*environment_map)
-                                             : read_environment_image(options.environment));
+                                             : read_environment_image(environment_file));
     p.world.env.map_image = int32_t(p.world.images.size() - 1);
     p.world.env.rotation = float(glm::radians(options.environment_rotation_degrees));
     p.world.env.intensity = options.environment_intensity;
@@ -306,11 +295,9 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
     check_view_range(p.world, p.cam, "", "--look-from");
   else
     check_view_range(p.world, p.cam, p.world.source, "camera " + quoted(p.camera_description));
-  if (p.world.lights.empty()) {
-    add_default_light(p.world, p.cam);
-    if (warn && !p.headlight_noted) warn("the file has no lights; using a headlight at the camera");
-    p.headlight_noted = true;
-  }
+  // Notes about the lighting are given once per sequence.
+  p.lighting = apply_lighting(options, p.world, p.cam, p.headlight_noted ? nullptr : warn);
+  p.headlight_noted = true;
   // The frame's own pose for motion vectors, in world space like its neighbours'.
   if (p.motion) {
     p.motion->current = current_pose(p.world, p.cam);
@@ -362,6 +349,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.max_depth = options.max_depth;
   settings.shading.min_throughput = options.min_throughput;
   settings.shading.max_rays_per_sample = options.max_rays_per_sample;
+  settings.shading.environment_samples = options.environment_samples;
   settings.packets = options.packets;
   settings.aovs = options.aovs;
   return settings;

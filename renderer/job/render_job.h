@@ -48,7 +48,8 @@ struct prepared_scene {
   // The job's memory budget (--max-memory), holding what the scene's meshes and images were
   // estimated to take; the render stage charges its own allocations to it.
   std::shared_ptr<memory_budget> memory;
-  bool headlight_noted = false;  // the headlight's note was given (once per sequence)
+  bool headlight_noted = false;  // the lighting's notes were given (once per sequence)
+  std::string lighting;          // what lights the render (job/lighting.h's apply_lighting)
   // With the motion AOV: the scene at the neighbouring frames (job/frame_motion.h); else null.
   std::shared_ptr<scene_motion> motion;
   std::shared_ptr<memory_charge> motion_memory;   // what motion holds, charged to memory

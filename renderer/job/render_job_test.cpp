@@ -78,8 +78,9 @@ TEST(render_job, a_raised_cancel_flag_stops_the_job_and_writes_nothing) {
 }
 
 TEST(render_job, warnings_reach_the_callback) {
-  // One triangle and no light: the job adds the headlight, and says so.
+  // One triangle and no light: under --lighting headlight the job adds the headlight, and says so.
   render_job job = small_job();
+  job.options.lighting = "headlight";
   job.options.input =
       (fs::temp_directory_path() / ("kiln_job_" + std::to_string(::getpid()) + ".gltf")).string();
   std::ofstream(job.options.input) << R"({"asset": {"version": "2.0"},

@@ -75,7 +75,7 @@ struct render_options {
   aov_set aovs;                        // --aovs; the default is beauty, Z and N
   std::optional<pixel_rect> crop;      // --crop x0,y0,x1,y1; checked against the image size once it is known
   int band_index = 0, band_count = 0;  // --band i/N: band i of N (render/frame_bands.h); 0 bands: off
-  vec3 background{0.0f};
+  std::optional<vec3> background;      // --background R,G,B: a constant environment; empty: not given
   bool show_background = false;
   std::string transmission_alpha = "opaque";    // --transmission-alpha opaque|transparent
   std::string holdout;                          // --holdout NODE,...: node names or globs held out
@@ -86,8 +86,10 @@ struct render_options {
   embree_options embree;                        // --bvh-quality, --bvh-compact
   bool packets = false;                         // --packets on|off: trace each tile's camera rays together
   std::string environment;                      // equirectangular map file; empty: the --background colour
+  std::string lighting = "auto";                // --lighting auto|studio|headlight|file (job/lighting.h)
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
+  int environment_samples = 1;  // --environment-samples: pairs of environment samples per shading point
   int max_depth = 8;
   float min_throughput = 1e-3f;
   uint64_t max_rays_per_sample = shading_options{}.max_rays_per_sample;  // --max-rays-per-sample

@@ -11,6 +11,7 @@
 #include "job/frame_motion.h"
 #include "job/frame_range.h"
 #include "job/job_stop.h"
+#include "job/lighting.h"
 #include "job/option_values.h"
 #include "job/render_job_steps.h"
 
@@ -139,8 +140,8 @@ void run_sequence(const render_job& job,
     if (!first_options.preview.empty()) preview_view(first_options);  // and the preview's view
     st.asset = std::make_unique<gltf_sequence>(
         first_options.input, job_load_options(first_options, stop, st.prepared.memory.get()));
-    if (!first_options.environment.empty())
-      st.environment = read_environment_image(first_options.environment);
+    if (const std::string file = job_environment_file(first_options); !file.empty())
+      st.environment = read_environment_image(file);
     first.pose_seconds = seconds_since(load_start);
     return 0;
   });

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "job/lighting.h"
 #include "job/option_entries.h"
 
 namespace kiln::option_entries {
@@ -11,19 +12,37 @@ namespace kiln::option_entries {
 void add_trace_options(std::vector<option_spec>& t) {
   // Settings of one view like the first part's (a batch job may override them per view).
   const scoped_adder add{t, option_scope::view};
-  add(file_option("environment", &render_options::environment,
-                  "Equirectangular environment map (EXR, HDR, ...; linear radiance) seen by rays that leave "
-                  "the scene"));
+  add(file_option(
+          "environment", &render_options::environment,
+          "Equirectangular environment map (EXR, HDR, ...; linear radiance): lights every surface and "
+          "is seen by rays that leave the scene"))
+      .recorded_as = "kiln/environment";
+  add(choice_option(
+          "lighting", [](render_options & o) -> auto& { return o.lighting; }, lighting_choices(), "studio",
+          "What lights the scene: auto (the file's lights, and --environment or --background when given, "
+          "else kiln's studio environment), studio (the studio environment alone), headlight (the "
+          "file's lights, or a light at the camera when it has none) or file (the file's lights and the "
+          "environment given, nothing added)"))
+      .recorded_as = "kiln/lighting_mode";
   add(number_option<double>(
-      "environment-rotation", [](render_options & o) -> auto& { return o.environment_rotation_degrees; },
-      -36000.0, 36000.0, "90",
-      "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)"));
+          "environment-rotation", [](render_options & o) -> auto& { return o.environment_rotation_degrees; },
+          -36000.0, 36000.0, "90",
+          "Turn the environment map about +Y by DEG degrees (counter-clockwise seen from above)"))
+      .recorded_as = "kiln/environment_rotation";
   add(number_option<float>(
-      "environment-intensity", [](render_options & o) -> auto& { return o.environment_intensity; }, 0.0, 1e9,
-      "2", "Scale of the environment map's radiance"));
+          "environment-intensity", [](render_options & o) -> auto& { return o.environment_intensity; }, 0.0,
+          1e9, "2", "Scale of the environment map's radiance"))
+      .recorded_as = "kiln/environment_intensity";
+  add(integer_option<int>(
+          "environment-samples", [](render_options & o) -> auto& { return o.environment_samples; }, 1, 1024,
+          "4",
+          "Environment light samples per shading point (each a pair: one drawn from the map, one from "
+          "the material's lobes, combined by multiple importance sampling)"))
+      .recorded_as = "kiln/environment_samples";
   add(flag_option(
-      "show-background", [](render_options & o) -> auto& { return o.show_background; },
-      "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)"));
+          "show-background", [](render_options & o) -> auto& { return o.show_background; },
+          "Camera rays that miss see the environment colour with alpha 1 (default: transparent, alpha 0)"))
+      .recorded_as = "kiln/show_background";
   add(choice_option(
           "transmission-alpha", [](render_options & o) -> auto& { return o.transmission_alpha; },
           {"opaque", "transparent"}, "transparent",

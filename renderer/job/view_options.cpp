@@ -170,8 +170,12 @@ void add_view_options(std::vector<option_spec>& t) {
               throw input_error("", "--background", "colour must be non-negative, got '" + text + "'");
             o.background = vec3(c);
           },
-          [](const render_options& o) -> std::optional<std::string> { return triple_text(o.background); },
-          "0.5,0.5,0.5", "Environment colour R,G,B (linear), seen by reflections (default 0,0,0)"))
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.background ? std::optional<std::string>(triple_text(*o.background)) : std::nullopt;
+          },
+          "0.5,0.5,0.5",
+          "A constant environment R,G,B (linear radiance): lights every surface and is seen by rays that "
+          "leave the scene (default: none; see --lighting)"))
       .recorded_as = "kiln/background";
 }
 

@@ -1,7 +1,9 @@
 #include "render/camera_sample.h"
 
 #include <algorithm>
+#include <cstring>
 
+#include "core/hash_random.h"
 #include "shade/environment.h"
 #include "shade/material_eval.h"
 
@@ -76,6 +78,20 @@ void record_hit(const shading_context& ctx, const hit& h, const shading_point& p
   }
 }
 
+// The seed of a camera sample's random numbers: a hash of its ray's bits (origin, direction and time),
+// which its film position and time alone decide.
+uint32_t camera_ray_seed(const ray& r) {
+  const float parts[7] = {r.origin.x,    r.origin.y,    r.origin.z, r.direction.x,
+                          r.direction.y, r.direction.z, r.time};
+  uint32_t seed = 0x2C1B3C6Du;
+  for (float p : parts) {
+    uint32_t bits;
+    std::memcpy(&bits, &p, sizeof bits);
+    seed = hash_u32(seed ^ bits);
+  }
+  return seed;
+}
+
 // The colour, alpha and mattes of the camera path that starts at the visible hit p of r (at_hit:
 // the ray's cone there; camera: the camera ray's origin, from which deep surfaces are measured).
 // The sample's ray tree gets its own budget.
@@ -96,6 +112,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   state.groups = s.groups.empty() ? nullptr : s.groups.data();
   state.passes = outputs.passes ? &s.passes : nullptr;
   state.memo = outputs.memo;
+  state.seed = camera_ray_seed(r);
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;

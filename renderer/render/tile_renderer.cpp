@@ -359,7 +359,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   shading.highlight_footprint_scale =
       adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
   // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
-  shading_context ctx{world, accel, shading, scene_has_see_through(world), textures.get(), settings.cancel};
+  const environment_light environment = make_environment_light(world);
+  shading_context ctx{world,          accel,           shading,     scene_has_see_through(world),
+                      textures.get(), settings.cancel, &environment};
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 

@@ -326,7 +326,7 @@ float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
 }
 
 brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                         float footprint_alpha, bool& zero) {
+                         float footprint_alpha, bool& zero, const glossy_weights* weights = nullptr) {
   const material_layers& L = layers_of(mp);
   brdf_lobes out;
   zero = true;
@@ -348,8 +348,10 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
     const vec3 fresnel = mp.specular_weight * dielectric_fresnel(mp, v_dot_h);
     const vec3 diffuse = mp.base_color * ((1.0f - mp.transmission) * (1.0f - L.diffuse_transmission) / pi);
     out.diffuse = ((1.0f - max3(fresnel)) * diffuse) * (1.0f - mp.metallic);
-    out.specular =
-        (fresnel * specular) * (1.0f - mp.metallic) + (metal_fresnel(mp, v_dot_h) * specular) * mp.metallic;
+    out.specular = weights ? (fresnel * specular) * ((1.0f - mp.metallic) * weights->dielectric) +
+                                 (metal_fresnel(mp, v_dot_h) * specular) * (mp.metallic * weights->metal)
+                           : (fresnel * specular) * (1.0f - mp.metallic) +
+                                 (metal_fresnel(mp, v_dot_h) * specular) * mp.metallic;
     if (L.sheen_color != vec3(0.0f)) {
       const float scaling = sheen_scaling(mp, n_dot_v, n_dot_l);
       out.diffuse *= scaling;
@@ -368,8 +370,9 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
     out.specular *= 1.0f - weight;
     if (coat_v > 0.0f && coat_l > 0.0f) {
       zero = false;
-      out.specular += vec3(weight * ggx_lobe(L.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v,
-                                             coat_l, footprint_alpha));
+      out.specular += vec3(
+          weight * (weights ? weights->coat : 1.0f) *
+          ggx_lobe(L.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v, coat_l, footprint_alpha));
     }
   }
   return out;
@@ -389,6 +392,14 @@ brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const ve
                                float footprint_alpha) {
   bool zero = true;
   const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint_alpha, zero);
+  if (zero) return {};
+  return t;
+}
+
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               const glossy_weights& weights) {
+  bool zero = true;
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, 0.0f, zero, &weights);
   if (zero) return {};
   return t;
 }

@@ -177,6 +177,16 @@ inline vec3 coat_normal_or(const material_point& mp, const vec3& n) {
   return !mp.layers || mp.layers->clearcoat_normal == vec3(0.0f) ? n : mp.layers->clearcoat_normal;
 }
 
+// How much of each glossy lobe a light lights. Punctual lights light all of them; the environment
+// lights the part of a smooth surface's reflection that is not traced as a mirror ray (which sees
+// the environment itself), and none of the dielectric's transmissive share, whose reflection is
+// always traced (shade/whitted.h).
+struct glossy_weights {
+  float dielectric = 1.0f;  // the dielectric GGX lobe
+  float metal = 1.0f;       // the metal's GGX lobe
+  float coat = 1.0f;        // the clearcoat's GGX lobe
+};
+
 // BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.
 // footprint_alpha widens the GGX lobe to sqrt(α² + footprint_alpha²) (see highlight_footprint_alpha).
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
@@ -196,6 +206,10 @@ struct brdf_lobes {
 };
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                                float footprint_alpha = 0.0f);
+
+// evaluate_brdf_lobes with the glossy lobes weighted by weights (no footprint widening).
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               const glossy_weights& weights);
 
 // The albedo a denoiser divides out (Open Image Denoise's auxiliary albedo: the surface's
 // reflectance independent of light and view, within [0, 1]): the base colour for the diffuse

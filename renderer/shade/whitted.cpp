@@ -3,8 +3,9 @@
 #include <algorithm>
 
 #include "core/float_bits.h"
+#include "core/hash_random.h"
+#include "shade/direct_light.h"
 #include "shade/environment.h"
-#include "shade/lights.h"
 #include "shade/material_eval.h"
 #include "shade/material_lobes.h"
 #include "shade/normal_mapping.h"
@@ -14,11 +15,6 @@
 namespace kiln {
 
 namespace {
-
-// Shadow rays stop just short of the light so that a light placed on a surface
-// is not shadowed by that surface; the margin is relative, so it holds at any
-// scene scale.
-constexpr float shadow_length_fraction = 1.0f - 1e-4f;
 
 // A ray passing more culled back faces than this is treated as a miss (bounds the work).
 constexpr int max_culled_crossings = 16;
@@ -35,119 +31,6 @@ bool back_face_culled(const scene& s, const hit& h, const ray& r) {
   const material& m = s.materials[inst.material];
   if (m.double_sided || m.transmission_factor > 0.0f) return false;
   return glm::dot(h.geometric_normal, r.direction) > 0.0f;
-}
-
-// Visibility of a light along a shadow ray. Without see-through materials one occlusion query
-// answers it. With them the walk that attenuates by transmission colours runs directly: its first
-// closest-hit query finds nothing exactly when occluded() would say the segment is clear (the
-// accelerator tests hold the two queries to agree), so a separate occluded() first would only
-// repeat that query's traversal for every blocked ray.
-vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts& counts) {
-  if (!ctx.see_through_shadows) {
-    ++counts.shadow;
-    return ctx.accel.occluded(shadow) ? vec3(0.0f) : vec3(1.0f);
-  }
-  return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
-}
-
-// Rec.709 luminance, for the shadow mattes.
-float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// Files one light's direct light at a camera-path surface into the passes (s.passes is set): its
-// lobes, shadowed by visibility, and the share of its unshadowed luminance that is blocked.
-void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes,
-                      const vec3& unshadowed_light, const vec3& visibility) {
-  camera_passes& p = *s.passes;
-  p.diffuse += s.share * (lobes.diffuse * unshadowed_light * visibility);
-  p.specular += s.share * (lobes.specular * unshadowed_light * visibility);
-  if (p.shadow.empty()) return;
-  const float unshadowed = luminance((lobes.diffuse + lobes.specular) * unshadowed_light);
-  if (!(unshadowed > 0.0f)) return;
-  const float lit = luminance((lobes.diffuse + lobes.specular) * unshadowed_light * visibility);
-  p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
-}
-
-// The shadow ray from origin toward light l (sampled as ls), stopping just short of it.
-ray shadow_ray(const vec3& origin, const light& l, const light_sample& ls, float time) {
-  ray shadow;
-  shadow.origin = origin;
-  shadow.direction = ls.direction;
-  shadow.kind = ray_kind::shadow;
-  shadow.time = time;
-  shadow.tmax =
-      std::isinf(ls.distance) ? inf : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
-  return shadow;
-}
-
-// A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
-// its Lambert transmission, shadowed along a ray that leaves from the back of the surface.
-vec3 back_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                const vec3& to_viewer, const light& l, const light_sample& ls, ray_counts& counts) {
-  const float cos_theta = -glm::dot(sp.shading_normal, ls.direction);
-  if (!(cos_theta > 0.0f)) return vec3(0.0f);
-  const vec3 f = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction);
-  if (f == vec3(0.0f)) return vec3(0.0f);
-  vec3 visibility(1.0f);
-  if (l.casts_shadows) {
-    const vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
-    visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
-  }
-  return f * ls.irradiance * cos_theta * visibility;
-}
-
-// Direct light from every punctual light; with light groups, each light's share is filed in its
-// group (times the ray's tint); on the camera's path with passes, by lobe and as shadow mattes.
-vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                  const vec3& to_viewer, const path_state& s, ray_counts& counts) {
-  const ray_cone& cone = s.cone;
-  vec3 total(0.0f);
-  auto add = [&](size_t i, const vec3& light) {
-    total += light;
-    if (s.groups) s.groups[i] += s.tint * light;
-  };
-  for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
-    const light& l = ctx.world.lights[i];
-    light_sample ls = sample_light(l, sp.position);
-    if (ls.irradiance == vec3(0.0f)) continue;
-    // A light behind the surface cannot reach it, whatever the shading normal says. The surface is
-    // the smooth one the vertex normals describe, not the flat facet: facets just past a low-poly
-    // mesh's terminator still face the light there, and their shadow rays start on that smooth
-    // surface (sp.smooth_position), above the neighbouring facets.
-    if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) {
-      // ...except through a surface that transmits diffusely: then it lights the far side.
-      if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
-      const vec3 through = back_light(ctx, sp, mp, to_viewer, l, ls, counts);
-      add(i, through);
-      if (s.passes) s.passes->diffuse += s.share * through;
-      continue;
-    }
-    float cos_theta = glm::dot(sp.shading_normal, ls.direction);
-    if (cos_theta <= 0.0f) continue;
-    const float scale = ctx.options.highlight_footprint_scale;
-    const float footprint_alpha =
-        highlight_footprint_alpha(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
-    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha);
-    if (f == vec3(0.0f)) continue;
-    // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
-    const brdf_lobes lobes =
-        s.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
-                 : brdf_lobes{};
-
-    if (!l.casts_shadows) {
-      add(i, f * ls.irradiance * cos_theta);
-      if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
-      continue;
-    }
-    // Always off the facet's front: a light just below the facet's plane is still above the smooth
-    // surface the ray starts on.
-    const vec3 origin =
-        offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
-    vec3 visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
-    if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
-    if (visibility == vec3(0.0f)) continue;
-    add(i, f * ls.irradiance * cos_theta * visibility);
-  }
-  return total;
 }
 
 // Weight of the perfect-mirror term for the opaque part of a surface: the BRDF's Fresnel at the
@@ -272,9 +155,19 @@ void add_to_group(const path_state& s, size_t group, const vec3& radiance) {
   if (s.groups) s.groups[group] += s.tint * radiance;
 }
 
+// Which of the rays a shading point spawns a child is (its random numbers are its own).
+enum class spawned : uint32_t { mirror = 1, coat_mirror, behind, refraction };
+
+// The seed of a ray spawned by the ray with seed `seed` (channel: a dispersive refraction's, else -1).
+uint32_t child_seed(uint32_t seed, spawned which, int channel = -1) {
+  return hash_u32(seed ^ hash_u32(uint32_t(which) * 4u + uint32_t(channel + 1)));
+}
+
 // The state of a secondary ray spawned by s: one bounce deeper, off the camera's path.
-path_state secondary(const path_state& s, float throughput, const medium_stack& media, const ray_cone& cone) {
+path_state secondary(const path_state& s, float throughput, const medium_stack& media, const ray_cone& cone,
+                     uint32_t seed) {
   path_state next = s;
+  next.seed = seed;
   ++next.depth;
   next.throughput = throughput;
   next.media = media;
@@ -290,7 +183,8 @@ path_state secondary(const path_state& s, float throughput, const medium_stack& 
 // else as an ordinary secondary ray that sees the environment.
 path_state refracted_state(const path_state& s, float throughput, const medium_stack& beyond,
                            const ray_cone& cone, const vec3& weight) {
-  path_state next = secondary(s, throughput, beyond, cone);
+  path_state next =
+      secondary(s, throughput, beyond, cone, child_seed(s.seed, spawned::refraction, s.channel));
   if (!s.camera || !s.camera->transmission_transparent) return next;
   next.camera = s.camera;
   next.share = s.share * mean_component(weight);
@@ -379,7 +273,8 @@ vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, con
 // The mirror ray with weight reflect_weight, traced (when the throughput and the budget allow) and
 // filed under the split's reflection.
 vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& normal,
-                  const vec3& incident, const vec3& reflect_weight, const path_state& s, ray_counts& counts) {
+                  const vec3& incident, const vec3& reflect_weight, const path_state& s, spawned which,
+                  ray_counts& counts) {
   const float next_throughput = s.throughput * max_component(reflect_weight);
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   vec3 direction = glm::reflect(incident, normal);
@@ -393,7 +288,7 @@ vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec
   reflected.time = sp.time;
   ++counts.reflection;
   // A reflected ray stays in the medium it came from.
-  path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone));
+  path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone), child_seed(s.seed, which));
   next.tint = s.tint * reflect_weight;
   const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, next, counts);
   if (s.split) s.split->reflection += s.share * reflection;
@@ -428,8 +323,10 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   const float coat_mirror = coat_mirror_weight(ctx.options, mp, coat_cos_theta);
   const bool separate_coat = coat_mirror > 0.0f && coat_normal != sp.shading_normal;
   if (!separate_coat) reflect_weight += vec3(coat_mirror);
-  radiance += trace_mirror(ctx, sp, sp.shading_normal, incident, reflect_weight, s, counts);
-  if (separate_coat) radiance += trace_mirror(ctx, sp, coat_normal, incident, vec3(coat_mirror), s, counts);
+  radiance += trace_mirror(ctx, sp, sp.shading_normal, incident, reflect_weight, s, spawned::mirror, counts);
+  if (separate_coat)
+    radiance +=
+        trace_mirror(ctx, sp, coat_normal, incident, vec3(coat_mirror), s, spawned::coat_mirror, counts);
   return radiance;
 }
 
@@ -458,6 +355,7 @@ vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surfa
 vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point& sp, float alpha,
                   const path_state& s, ray_counts& counts) {
   path_state next = s;
+  next.seed = child_seed(s.seed, spawned::behind);
   next.throughput = s.throughput * (1.0f - alpha);
   next.share = s.share * (1.0f - alpha);
   next.tint = s.tint * (1.0f - alpha);

@@ -10,6 +10,7 @@
 #include "accel/accelerator.h"
 #include "scene/scene.h"
 #include "shade/dielectric.h"
+#include "shade/environment_light.h"
 #include "shade/material_eval.h"
 #include "shade/ray_budget.h"
 #include "shade/ray_cone.h"
@@ -37,6 +38,9 @@ struct shading_options {
   // highlight_footprint_alpha), not a supersample's: the ray cones shrink by 1/√spp, so the
   // renderer sets this to the inverse of that factor. A highlight then converges with spp.
   float highlight_footprint_scale = 1.0f;
+  // Pairs of environment samples (one from the map's importance, one from the material's lobes) each
+  // shading point takes when the environment lights the scene (--environment-samples).
+  int environment_samples = 1;
 };
 
 // Rays traced by kind, for statistics and benchmarks.
@@ -70,6 +74,9 @@ struct shading_context {
   const texture_filter* textures = nullptr;
   // Raised (from another thread): camera samples stop spawning rays (see ray_budget.h).
   const std::atomic<bool>* cancel = nullptr;
+  // The environment as a light (shade/environment_light.h); null or dark: it lights nothing, and is
+  // seen only by rays that leave the scene.
+  const environment_light* environment = nullptr;
 };
 
 // True when some material can pass light through itself (transmission or alphaMode BLEND), so
@@ -195,6 +202,9 @@ struct path_state {
   int channel = -1;
   // The caller's triangle constants (shade/surface.h), shared by every ray of the tree; null: none.
   triangle_memo* memo = nullptr;
+  // Where this ray's random numbers come from (core/hash_random.h): the camera sample's (a hash of
+  // its ray), and each ray spawned from it its own, derived from its parent's and which ray it is.
+  uint32_t seed = 0;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.

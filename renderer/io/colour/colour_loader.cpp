@@ -1,14 +1,12 @@
 #include "io/colour/colour_loader.h"
 
 #include <cstdlib>
-#include <filesystem>
-#include <system_error>
 
 #include "core/error.h"
+#include "io/file/shipped_file.h"
 #include "io/plugin/plugin_module.h"
 
 namespace kiln {
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -39,15 +37,6 @@ colour_config_source find_colour_config(const std::string& config_option) {
   return {shipped_colour_config(), "kiln's own config"};
 }
 
-std::string shipped_colour_config() {
-  const fs::path relative = fs::path("ocio") / "kiln.ocio";
-  std::error_code ec;
-  const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && executable.has_parent_path()) {
-    const fs::path installed = executable.parent_path() / ".." / "share" / "kiln" / relative;
-    if (fs::is_regular_file(installed, ec)) return installed.lexically_normal().string();
-  }
-  return (fs::path(KILN_SOURCE_SHARE) / relative).string();
-}
+std::string shipped_colour_config() { return shipped_file("ocio/kiln.ocio"); }
 
 }  // namespace kiln

@@ -1,6 +1,11 @@
 #include "io/exr/environment_reader.h"
 
+#include <OpenEXR/ImfRgbaFile.h>
+
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <vector>
 
 #include "core/error.h"
 #include "io/file/input_file.h"
@@ -13,13 +18,59 @@ namespace {
 // Largest environment kiln reads (a 16k x 8k map); a header claiming more is treated as corrupt.
 constexpr uint64_t max_texels = uint64_t(1) << 27;
 
+// Whether the file starts with OpenEXR's magic number.
+bool is_exr(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0;
+}
+
+// An OpenEXR map read through OpenEXR itself (RGB, alpha ignored), so the studio environment of every
+// default render, and any EXR map, costs no image codecs module.
+image read_exr_environment(const std::string& path) {
+  try {
+    Imf::RgbaInputFile file(path.c_str());
+    const Imath::Box2i window = file.dataWindow();
+    const uint64_t width = uint64_t(int64_t(window.max.x) - window.min.x + 1);
+    const uint64_t height = uint64_t(int64_t(window.max.y) - window.min.y + 1);
+    if (window.max.x < window.min.x || window.max.y < window.min.y || width * height > max_texels)
+      throw input_error(path, "--environment",
+                        "the image is " + std::to_string(width) + "x" + std::to_string(height) +
+                            ", more than the largest environment map (2^27 texels)");
+    std::vector<Imf::Rgba> pixels(width * height);
+    file.setFrameBuffer(pixels.data() - window.min.x - int64_t(window.min.y) * int64_t(width), 1, width);
+    file.readPixels(window.min.y, window.max.y);
+    image out;
+    out.name = path;
+    out.width = int(width);
+    out.height = int(height);
+    out.texels32.resize(width * height * 4);
+    for (uint64_t y = 0; y < height; ++y)
+      for (uint64_t x = 0; x < width; ++x) {
+        const Imf::Rgba& p = pixels[y * width + x];
+        float* t = &out.texels32[(y * width + x) * 4];
+        t[0] = p.r;
+        t[1] = p.g;
+        t[2] = p.b;
+        t[3] = 1.0f;
+      }
+    return out;
+  } catch (const error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw input_error(path, "--environment", std::string("not a readable OpenEXR image: ") + e.what());
+  }
+}
+
 }  // namespace
 
 image read_environment_image(const std::string& path) {
   if (const std::string why = input_file_problem(path, max_environment_file_bytes); !why.empty())
     throw input_error(path, "--environment", why);
   image out =
-      load_image_codecs("an environment map needs").read_float_rgba(path, "--environment", max_texels);
+      is_exr(path)
+          ? read_exr_environment(path)
+          : load_image_codecs("an environment map needs").read_float_rgba(path, "--environment", max_texels);
   // Radiance is finite and not negative; anything else is a broken texel, read as black.
   for (size_t i = 0; i < out.texels32.size(); i += 4) {
     for (size_t c = 0; c < 3; ++c) {

@@ -1,0 +1,240 @@
+#include "shade/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/float_bits.h"
+#include "core/hash_random.h"
+#include "shade/environment.h"
+#include "shade/environment_light.h"
+#include "shade/lights.h"
+#include "shade/lobe_sampling.h"
+#include "shade/shadow_transmittance.h"
+
+namespace kiln {
+
+namespace {
+
+// Shadow rays stop just short of the light so that a light placed on a surface
+// is not shadowed by that surface; the margin is relative, so it holds at any
+// scene scale.
+constexpr float shadow_length_fraction = 1.0f - 1e-4f;
+
+// Visibility of a light along a shadow ray. Without see-through materials one occlusion query
+// answers it. With them the walk that attenuates by transmission colours runs directly: its first
+// closest-hit query finds nothing exactly when occluded() would say the segment is clear (the
+// accelerator tests hold the two queries to agree), so a separate occluded() first would only
+// repeat that query's traversal for every blocked ray.
+vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts& counts) {
+  if (!ctx.see_through_shadows) {
+    ++counts.shadow;
+    return ctx.accel.occluded(shadow) ? vec3(0.0f) : vec3(1.0f);
+  }
+  return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
+}
+
+// Files one light's direct light at a camera-path surface into the passes (s.passes is set): its
+// lobes, shadowed by visibility, and the share of its unshadowed luminance that is blocked.
+void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes,
+                      const vec3& unshadowed_light, const vec3& visibility) {
+  camera_passes& p = *s.passes;
+  p.diffuse += s.share * (lobes.diffuse * unshadowed_light * visibility);
+  p.specular += s.share * (lobes.specular * unshadowed_light * visibility);
+  if (p.shadow.empty()) return;
+  const float unshadowed = luminance((lobes.diffuse + lobes.specular) * unshadowed_light);
+  if (!(unshadowed > 0.0f)) return;
+  const float lit = luminance((lobes.diffuse + lobes.specular) * unshadowed_light * visibility);
+  p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
+}
+
+// The shadow ray from origin toward light l (sampled as ls), stopping just short of it.
+ray shadow_ray(const vec3& origin, const light& l, const light_sample& ls, float time) {
+  ray shadow;
+  shadow.origin = origin;
+  shadow.direction = ls.direction;
+  shadow.kind = ray_kind::shadow;
+  shadow.time = time;
+  shadow.tmax =
+      std::isinf(ls.distance) ? inf : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
+  return shadow;
+}
+
+// A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
+// its Lambert transmission, shadowed along a ray that leaves from the back of the surface.
+vec3 back_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                const vec3& to_viewer, const light& l, const light_sample& ls, ray_counts& counts) {
+  const float cos_theta = -glm::dot(sp.shading_normal, ls.direction);
+  if (!(cos_theta > 0.0f)) return vec3(0.0f);
+  const vec3 f = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction);
+  if (f == vec3(0.0f)) return vec3(0.0f);
+  vec3 visibility(1.0f);
+  if (l.casts_shadows) {
+    const vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
+    visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
+  }
+  return f * ls.irradiance * cos_theta * visibility;
+}
+
+// Direct light from every punctual light; with light groups, each light's share is filed in its
+// group (times the ray's tint); on the camera's path with passes, by lobe and as shadow mattes.
+vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                    const vec3& to_viewer, const path_state& s, ray_counts& counts) {
+  const ray_cone& cone = s.cone;
+  vec3 total(0.0f);
+  auto add = [&](size_t i, const vec3& light) {
+    total += light;
+    if (s.groups) s.groups[i] += s.tint * light;
+  };
+  for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
+    const light& l = ctx.world.lights[i];
+    light_sample ls = sample_light(l, sp.position);
+    if (ls.irradiance == vec3(0.0f)) continue;
+    // A light behind the surface cannot reach it, whatever the shading normal says. The surface is
+    // the smooth one the vertex normals describe, not the flat facet: facets just past a low-poly
+    // mesh's terminator still face the light there, and their shadow rays start on that smooth
+    // surface (sp.smooth_position), above the neighbouring facets.
+    if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) {
+      // ...except through a surface that transmits diffusely: then it lights the far side.
+      if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
+      const vec3 through = back_light(ctx, sp, mp, to_viewer, l, ls, counts);
+      add(i, through);
+      if (s.passes) s.passes->diffuse += s.share * through;
+      continue;
+    }
+    float cos_theta = glm::dot(sp.shading_normal, ls.direction);
+    if (cos_theta <= 0.0f) continue;
+    const float scale = ctx.options.highlight_footprint_scale;
+    const float footprint_alpha =
+        highlight_footprint_alpha(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
+    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha);
+    if (f == vec3(0.0f)) continue;
+    // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
+    const brdf_lobes lobes =
+        s.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
+                 : brdf_lobes{};
+
+    if (!l.casts_shadows) {
+      add(i, f * ls.irradiance * cos_theta);
+      if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
+      continue;
+    }
+    // Always off the facet's front: a light just below the facet's plane is still above the smooth
+    // surface the ray starts on.
+    const vec3 origin =
+        offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
+    vec3 visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
+    if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
+    if (visibility == vec3(0.0f)) continue;
+    add(i, f * ls.irradiance * cos_theta * visibility);
+  }
+  return total;
+}
+
+// What the environment's samples at one shading point gather: the light by lobe, and the
+// luminance arriving before and after the shadow rays (for the shadow matte).
+struct environment_tally {
+  vec3 diffuse{0.0f};
+  vec3 specular{0.0f};
+  float unshadowed = 0.0f;
+  float lit = 0.0f;
+};
+
+// Veach's power heuristic (β = 2) for a sample drawn with density pdf against another strategy's
+// other, in the form that cannot overflow.
+float power_heuristic(float pdf, float other) {
+  if (!(pdf > 0.0f)) return 0.0f;
+  const float ratio = other / pdf;
+  return 1.0f / (1.0f + ratio * ratio);
+}
+
+// Adds the environment's light arriving along the unit direction l, times weight (the sample's MIS
+// weight over its density), with its shadow ray: the lobes above the smooth surface, the diffuse
+// transmission below it (from the back, as back_light lights it).
+void add_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                               const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
+                               float weight, environment_tally& tally, ray_counts& counts) {
+  const bool above = glm::dot(sp.smooth_normal, l) > 0.0f;
+  const float cos_theta = above ? glm::dot(sp.shading_normal, l) : -glm::dot(sp.shading_normal, l);
+  if (!(cos_theta > 0.0f) || !(weight > 0.0f)) return;
+  brdf_lobes f;
+  if (above)
+    f = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, l, glossy);
+  else if (diffuse_see_through_weight(mp) > 0.0f)
+    f.diffuse = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, l);
+  if (f.diffuse == vec3(0.0f) && f.specular == vec3(0.0f)) return;
+  const vec3 arriving = environment_radiance(ctx.world, l) * (cos_theta * weight);
+  if (arriving == vec3(0.0f)) return;
+  ray shadow;
+  shadow.origin = above ? offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal,
+                                            sp.geometric_normal)
+                        : offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, l);
+  shadow.direction = l;
+  shadow.kind = ray_kind::shadow;
+  shadow.time = sp.time;
+  const vec3 visibility = shadow_visibility(ctx, shadow, counts);
+  tally.diffuse += f.diffuse * arriving * visibility;
+  tally.specular += f.specular * arriving * visibility;
+  const vec3 unshadowed = (f.diffuse + f.specular) * arriving;
+  tally.unshadowed += luminance(unshadowed);
+  tally.lit += luminance(unshadowed * visibility);
+}
+
+// The environment's direct light: environment_samples pairs of samples, one drawn from the map's
+// importance and one from the material's lobes, each weighed against the other's density. The
+// pairs are stratified over the map's rows and over the choice of lobe.
+vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                          const vec3& to_viewer, const path_state& s, ray_counts& counts) {
+  const environment_light& e = *ctx.environment;
+  const glossy_weights glossy = environment_glossy_weights(ctx.options, mp);
+  const lobe_sampler lobes = make_lobe_sampler(mp, sp.shading_normal, to_viewer, glossy);
+  const int n = std::max(ctx.options.environment_samples, 1);
+  environment_tally tally;
+  for (int i = 0; i < n; ++i) {
+    const auto next = [&s, i](uint32_t dimension) { return hash_to_unit(s.seed, uint32_t(i), dimension); };
+    const float stratum = float(i);
+    const environment_sample es =
+        sample_environment(e, vec2(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f)));
+    if (es.pdf > 0.0f) {
+      const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
+      add_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, weight, tally, counts);
+    }
+    const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), next(4), next(5));
+    if (const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u)) {
+      const float pdf = lobe_pdf(lobes, to_viewer, *l);
+      if (pdf > 0.0f) {
+        const float weight = power_heuristic(pdf, environment_pdf(e, *l)) / pdf;
+        add_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, weight, tally, counts);
+      }
+    }
+  }
+  const float scale = 1.0f / float(n);
+  const vec3 light = (tally.diffuse + tally.specular) * scale;
+  if (s.groups) s.groups[environment_group(ctx.world)] += s.tint * light;
+  if (s.passes) {
+    s.passes->diffuse += s.share * (tally.diffuse * scale);
+    s.passes->specular += s.share * (tally.specular * scale);
+    if (s.passes->shadow.size() > ctx.world.lights.size() && tally.unshadowed > 0.0f)
+      s.passes->shadow[ctx.world.lights.size()] +=
+          s.share * std::clamp(1.0f - tally.lit / tally.unshadowed, 0.0f, 1.0f);
+  }
+  return light;
+}
+
+}  // namespace
+
+glossy_weights environment_glossy_weights(const shading_options& options, const material_point& mp) {
+  const float limit = options.mirror_roughness_limit;
+  const float base = limit > 0.0f ? std::min(mp.roughness / limit, 1.0f) : 1.0f;
+  const float coat = limit > 0.0f ? std::min(layers_of(mp).clearcoat_roughness / limit, 1.0f) : 1.0f;
+  return {(1.0f - mp.transmission) * base, base, coat};
+}
+
+vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                  const vec3& to_viewer, const path_state& s, ray_counts& counts) {
+  vec3 total = punctual_light(ctx, sp, mp, to_viewer, s, counts);
+  if (ctx.environment && ctx.environment->lights)
+    total += environment_light_at(ctx, sp, mp, to_viewer, s, counts);
+  return total;
+}
+
+}  // namespace kiln

@@ -1,0 +1,123 @@
+#include "shade/environment_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shade/environment.h"
+
+namespace kiln {
+
+namespace {
+
+// The linear RGB of texel (x, y) of a float or 8-bit linear image.
+vec3 texel_rgb(const image& im, size_t x, size_t y) {
+  const size_t i = (y * size_t(im.width) + x) * 4;
+  if (!im.texels32.empty()) return vec3(im.texels32[i], im.texels32[i + 1], im.texels32[i + 2]);
+  return vec3(im.texels8[i], im.texels8[i + 1], im.texels8[i + 2]) * (1.0f / 255.0f);
+}
+
+// Turns weights into a cumulative distribution from 0 to 1 (one entry more than weights), summed in
+// double so a 16k-texel row keeps its small texels. Returns the sum; all-zero weights give a CDF
+// that rises evenly, never drawn from (its row's marginal weight is 0).
+double make_cdf(const float* weights, size_t n, float* cdf) {
+  double sum = 0.0;
+  cdf[0] = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    sum += weights[i];
+    cdf[i + 1] = float(sum);
+  }
+  for (size_t i = 1; i <= n; ++i) cdf[i] = sum > 0.0 ? float(double(cdf[i]) / sum) : float(i) / float(n);
+  cdf[n] = 1.0f;
+  return sum;
+}
+
+// The interval [cdf[k], cdf[k+1]) holding u, and u's place in it (in [0, 1)). Empty intervals are
+// never chosen: upper_bound lands past every entry equal to u.
+size_t find_interval(const float* cdf, size_t n, float u, float& within) {
+  const size_t k = size_t(std::upper_bound(cdf + 1, cdf + n, u) - (cdf + 1));
+  const float width = cdf[k + 1] - cdf[k];
+  within = width > 0.0f ? std::clamp((u - cdf[k]) / width, 0.0f, 0.99999994f) : 0.5f;
+  return k;
+}
+
+// The map's weights: each texel's luminance times the solid angle it spans (sin θ at its row).
+void build_map_distribution(const image& im, environment_light& e) {
+  const size_t w = size_t(im.width), h = size_t(im.height);
+  e.width = im.width;
+  e.height = im.height;
+  e.texel_density.resize(w * h);
+  e.column_cdf.resize((w + 1) * h);
+  e.row_cdf.resize(h + 1);
+  std::vector<float> row_weight(h);
+  for (size_t y = 0; y < h; ++y) {
+    const float sin_theta = std::sin(pi * (float(y) + 0.5f) / float(h));
+    float* weights = &e.texel_density[y * w];
+    for (size_t x = 0; x < w; ++x) weights[x] = std::max(luminance(texel_rgb(im, x, y)), 0.0f) * sin_theta;
+    row_weight[y] = float(make_cdf(weights, w, &e.column_cdf[y * (w + 1)]));
+  }
+  const double total = make_cdf(row_weight.data(), h, e.row_cdf.data());
+  e.lights = total > 0.0;
+  if (!e.lights) return;
+  // Density over (u, v) in [0,1]²: weight / (total / texel count).
+  const double scale = double(w) * double(h) / total;
+  for (float& d : e.texel_density) d = float(d * scale);
+}
+
+}  // namespace
+
+environment_light make_environment_light(const scene& s) {
+  environment_light e;
+  const environment& env = s.env;
+  if (!env.has_map()) {
+    e.lights = env.color.x > 0.0f || env.color.y > 0.0f || env.color.z > 0.0f;
+    return e;
+  }
+  const image& im = s.images[size_t(env.map_image)];
+  if (!(env.intensity > 0.0f) || im.width <= 0 || im.height <= 0) return e;
+  e.uniform = false;
+  e.rotation = env.rotation;
+  build_map_distribution(im, e);
+  return e;
+}
+
+vec3 environment_direction(const vec2& uv, float rotation_radians) {
+  const float phi = (uv.x - 0.5f) * (2.0f * pi) + rotation_radians;
+  const float theta = uv.y * pi;
+  const float sin_theta = std::sin(theta);
+  return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
+}
+
+environment_sample sample_environment(const environment_light& e, const vec2& u) {
+  environment_sample out;
+  if (e.uniform) {
+    const float y = 1.0f - 2.0f * u.x;
+    const float r = std::sqrt(std::max(1.0f - y * y, 0.0f));
+    const float phi = 2.0f * pi * u.y;
+    out.direction = {r * std::cos(phi), y, r * std::sin(phi)};
+    out.pdf = 1.0f / (4.0f * pi);
+    return out;
+  }
+  const size_t w = size_t(e.width), h = size_t(e.height);
+  float dv = 0.0f, du = 0.0f;
+  const size_t y = find_interval(e.row_cdf.data(), h, u.y, dv);
+  const size_t x = find_interval(&e.column_cdf[y * (w + 1)], w, u.x, du);
+  const vec2 uv((float(x) + du) / float(w), (float(y) + dv) / float(h));
+  out.direction = environment_direction(uv, e.rotation);
+  const float sin_theta = std::sin(pi * uv.y);
+  if (!(sin_theta > 0.0f)) return out;
+  out.pdf = e.texel_density[y * w + x] / (2.0f * pi * pi * sin_theta);
+  return out;
+}
+
+float environment_pdf(const environment_light& e, const vec3& d) {
+  if (!e.lights) return 0.0f;
+  if (e.uniform) return 1.0f / (4.0f * pi);
+  const vec2 uv = environment_uv(d, e.rotation);
+  const float sin_theta = std::sqrt(std::max(1.0f - d.y * d.y, 0.0f));
+  if (!(sin_theta > 0.0f)) return 0.0f;
+  const size_t x = std::min(size_t(uv.x * float(e.width)), size_t(e.width) - 1);
+  const size_t y = std::min(size_t(uv.y * float(e.height)), size_t(e.height) - 1);
+  return e.texel_density[y * size_t(e.width) + x] / (2.0f * pi * pi * sin_theta);
+}
+
+}  // namespace kiln

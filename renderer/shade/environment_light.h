@@ -1,0 +1,44 @@
+// The environment as a light: directions drawn in proportion to the radiance it sends (a constant
+// environment uniformly over the sphere; a map by its luminance × solid angle, as a 2D
+// piecewise-constant distribution over the equirectangular image: a row by its marginal, then a
+// texel in the row, then a point in the texel), and the density of any direction under that
+// drawing, for multiple importance sampling against the BSDF. Depends on scene only.
+#pragma once
+
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace kiln {
+
+struct environment_light {
+  bool lights = false;  // some direction sends radiance: shading samples it
+  bool uniform = true;  // a constant colour (no map)
+  int width = 0;        // the map's texels, when not uniform
+  int height = 0;
+  float rotation = 0.0f;  // the map's turn about +Y (environment::rotation)
+  // The density over the map's [0,1]² (u, v) of each texel, row-major: its weight / mean weight.
+  std::vector<float> texel_density;
+  std::vector<float> row_cdf;     // height + 1 entries, from 0 to 1
+  std::vector<float> column_cdf;  // per row, width + 1 entries from 0 to 1
+};
+
+// The environment light of s's environment (lights false when it is black everywhere).
+environment_light make_environment_light(const scene& s);
+
+// A direction drawn from e (lights) by two uniform numbers in [0, 1), and its density per
+// steradian (0 for a direction that cannot be drawn, such as a map's pole).
+struct environment_sample {
+  vec3 direction{0.0f, 1.0f, 0.0f};
+  float pdf = 0.0f;
+};
+environment_sample sample_environment(const environment_light& e, const vec2& u);
+
+// The density per steradian with which sample_environment draws the unit direction d.
+float environment_pdf(const environment_light& e, const vec3& d);
+
+// The world direction of equirectangular coordinates (u, v) for a map turned by rotation: the
+// inverse of environment.h's environment_uv.
+vec3 environment_direction(const vec2& uv, float rotation_radians);
+
+}  // namespace kiln
