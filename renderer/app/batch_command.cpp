@@ -18,6 +18,7 @@
 #include "app/text_output.h"
 #include "core/error.h"
 #include "io/exr/exr_writer.h"
+#include "io/exr/preview_codes.h"
 #include "io/gltf/gltf_loader.h"
 #include "job/asset_file.h"
 #include "job/deep_output.h"
@@ -95,9 +96,10 @@ std::string render_command_line(const render_options& o) {
   return line;
 }
 
-// Every job's EXR and preview against every file any job reads (one job's output must not replace
-// another's asset, buffer or environment map) and the rules of kiln render: .exr, no symlink.
-void check_batch_outputs(const std::vector<batch_job>& jobs) {
+// Every job's EXR and preview, and the contact sheet, against every file any job reads (one job's
+// output must not replace another's asset, buffer or environment map) and the rules of kiln
+// render: .exr, no symlink.
+void check_batch_outputs(const std::vector<batch_job>& jobs, const std::string& contact_sheet) {
   std::vector<input_file> files;
   for (const batch_job& job : jobs) {
     std::vector<input_file> read = render_input_files(job.options, &interrupt_requested());
@@ -120,6 +122,14 @@ void check_batch_outputs(const std::vector<batch_job>& jobs) {
       throw input_error("", job.where, e.what());
     }
   }
+  if (contact_sheet.empty()) return;
+  check_output_spares_inputs(contact_sheet, "--contact-sheet", inputs);
+  check_not_symlink(contact_sheet, "--contact-sheet");
+  const fs::path sheet = fs::absolute(contact_sheet).lexically_normal();
+  for (const batch_job& job : jobs)
+    for (const std::string& written : {job.options.output, job.options.preview})
+      if (!written.empty() && fs::path(written).lexically_normal() == sheet)
+        throw input_error("", "--contact-sheet", "'" + contact_sheet + "' is also written by " + job.where);
 }
 
 // A job's plan-time estimate for the farm (job/plan_estimate.h); null when its asset cannot be
@@ -180,6 +190,10 @@ void add_batch_options(CLI::App& app, batch_options& o) {
   app.add_option("--summary", o.summary,
                  "Write a JSON summary of every job (also after a failure or a signal)");
   app.add_option("--plan-only", o.plan, "Write the resolved job plan as JSON and render nothing");
+  app.add_option(
+      "--contact-sheet", o.contact_sheet,
+      "After the jobs, write FILE.png or FILE.jpg: every job's beauty in a grid, its name under it, "
+      "failed jobs marked");
   app.add_flag_callback(
       "--no-estimates", [&o] { o.plan_estimates = false; },
       "With --plan-only: leave out the per-job estimates of time and memory (each costs a load and a small "
@@ -314,7 +328,7 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     } catch (const CLI::ParseError& e) {
       job.error = std::string("bad render options: ") + e.what();
     }
-    const bool sequence = !job.options.frames.empty() && job.error.empty();
+    const bool sequence = renders_sequence(job.options) && job.error.empty();
     const fs::path output = out_dir / (spec.output.empty() ? default_output(spec, sequence) : spec.output);
     job.options.output = output.lexically_normal().string();
     for (batch_job& one : variant_jobs(std::move(job), spec)) {
@@ -327,8 +341,14 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
         add_planned_job(std::move(one), out_dir, spec.where, jobs, writers, names);
         continue;
       }
-      // A sequence is one job per frame, each with its own output, resume state and farm task.
-      const std::vector<long long> frames = frame_numbers(parse_frame_range(one.options.frames));
+      // A sequence (--frames, --turntable) is one job per frame, each with its own output, resume
+      // state and farm task.
+      std::vector<long long> frames;
+      try {
+        frames = sequence_frames(one.options);
+      } catch (const error& e) {
+        throw input_error("", spec.where, e.what());
+      }
       if (frames.size() > 1 && !has_frame_placeholder(one.options.output))
         throw input_error("", spec.where,
                           "output " + one.options.output +
@@ -340,11 +360,20 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
       }
     }
   }
-  check_batch_outputs(jobs);
+  check_batch_outputs(jobs, options.contact_sheet);
   return jobs;
 }
 
 int run_batch(const batch_options& options) {
+  if (!options.contact_sheet.empty()) {
+    if (!options.plan.empty())
+      throw input_error("", "--contact-sheet",
+                        "a plan renders nothing; make the sheet with the batch that renders");
+    if (preview_format(options.contact_sheet).empty())
+      throw input_error(
+          "", "--contact-sheet",
+          "a contact sheet must end in .png, .jpg or .jpeg, got '" + options.contact_sheet + "'");
+  }
   if (!options.plan.empty()) {
     check_output_writable(options.plan);
     write_text_atomically(options.plan,
@@ -353,11 +382,12 @@ int run_batch(const batch_options& options) {
   }
   std::vector<batch_job> jobs = plan_batch(options);
   if (!options.summary.empty()) check_output_writable(options.summary);
+  if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
   const output_folder_lock lock(absolute_path(options.out_dir), options.wait_for_lock);
-  return run_batch_jobs(jobs, options.resume, options.summary, options.defaults.quiet);
+  return run_batch_jobs(jobs, options.resume, options.summary, options.contact_sheet, options.defaults.quiet);
 }
 
 }  // namespace kiln

@@ -24,6 +24,7 @@ struct batch_options {
   bool wait_for_lock = false;  // another batch holds --out-dir: wait instead of refusing
   std::string summary;         // JSON summary path; empty: none
   std::string plan;            // --plan-only: write the job plan here and render nothing
+  std::string contact_sheet;   // --contact-sheet FILE.png|FILE.jpg: every job's image in a grid; empty: none
   bool plan_estimates = true;  // the plan carries each job's estimate (--no-estimates: not)
 };
 

@@ -17,11 +17,13 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 const char* const job_fields =
-    "asset, camera, resolution, spp, frames, fps, animation, variants, output, overrides";
+    "asset, camera, resolution, spp, frames, fps, animation, turntable, variants, output, overrides";
 
 // The job fields that are render options of the same name (a sequence's time: --frames, --fps,
-// --animation), written as a string or a number.
-bool is_time_field(const std::string& key) { return key == "frames" || key == "fps" || key == "animation"; }
+// --animation, --turntable), written as a string or a number.
+bool is_time_field(const std::string& key) {
+  return key == "frames" || key == "fps" || key == "animation" || key == "turntable";
+}
 
 // Larger manifests are refused: millions of jobs fit in far less.
 constexpr uint64_t max_manifest_bytes = uint64_t(512) << 20;
@@ -118,7 +120,7 @@ batch_job_spec json_job(const json& job, const std::string& file, const std::str
       throw input_error(file, where + "/spp", "expected an integer, got " + spp.dump());
     spec.arguments.insert(spec.arguments.end(), {"--spp", spp.dump()});
   }
-  for (const char* key : {"frames", "fps", "animation"}) {
+  for (const char* key : {"frames", "fps", "animation", "turntable"}) {
     if (!job.contains(key)) continue;
     const json& value = job[key];
     if (!value.is_string() && !value.is_number())

@@ -143,7 +143,7 @@ TEST_F(manifest, bad_csv_rows_are_refused_with_file_and_line) {
   EXPECT_EQ(error_for("d.csv", "asset,colour\nx.gltf,red\n"),
             (dir / "d.csv").string() +
                 ": line 1: unknown column 'colour' (expected asset, camera, resolution, spp, frames, fps, "
-                "animation, variants, output, overrides)");
+                "animation, turntable, variants, output, overrides)");
   EXPECT_EQ(error_for("e.csv", header + ",Cam,,,,\n"),
             (dir / "e.csv").string() + ": line 2: empty asset path");
   EXPECT_EQ(error_for("f.csv", header + "\"x.gltf,,,,,\n"),
@@ -160,7 +160,7 @@ TEST_F(manifest, bad_json_is_refused_with_file_and_json_pointer) {
   EXPECT_EQ(error_for("d.json", R"({"jobs": [{"asset": "x.gltf", "sp": 3}]})"),
             (dir / "d.json").string() +
                 ": /jobs/0/sp: unknown job field (expected asset, camera, resolution, spp, frames, fps, "
-                "animation, variants, output, overrides)");
+                "animation, turntable, variants, output, overrides)");
   EXPECT_EQ(error_for("e.json", R"({"jobs": [{"asset": "x.gltf", "overrides": {"aovs": ["beauty"]}}]})"),
             (dir / "e.json").string() +
                 ": /jobs/0/overrides/aovs: expected a string, number or boolean, got array");

@@ -11,6 +11,7 @@
 #include "app/interrupt.h"
 #include "app/text_output.h"
 #include "core/error.h"
+#include "io/exr/contact_sheet.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/preview_writer.h"
 #include "job/deep_output.h"
@@ -150,7 +151,29 @@ bool output_up_to_date(const std::string& output, const render_fingerprint& fing
   }
 }
 
-int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary, bool quiet) {
+namespace {
+
+// The contact sheet of a batch that ran to its end: each job's EXR (rendered or skipped as up to
+// date) under its name, failed and crashed jobs marked.
+void write_batch_contact_sheet(const std::string& path, const std::vector<batch_job>& jobs,
+                               const std::vector<job_result>& results) {
+  std::vector<contact_sheet_cell> cells;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    contact_sheet_cell cell;
+    cell.label = jobs[i].name;
+    cell.exposure = jobs[i].options.preview_exposure;
+    const job_status status = results[i].status;
+    cell.failed = status == job_status::failed || status == job_status::crashed;
+    if (status == job_status::rendered || status == job_status::skipped) cell.exr = jobs[i].options.output;
+    cells.push_back(std::move(cell));
+  }
+  write_contact_sheet(path, cells);
+}
+
+}  // namespace
+
+int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary,
+                   const std::string& contact_sheet, bool quiet) {
   const auto batch_start = std::chrono::steady_clock::now();
   std::vector<job_result> results(jobs.size());
   size_t done = 0, rendered = 0, failed = 0;
@@ -185,9 +208,17 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
       std::fprintf(stderr, "kiln batch: %zu/%zu done, %zu failed, ETA unknown\n", done, jobs.size(), failed);
   }
   if (interrupt_requested()) interrupted = true;
-  const int exit_code = interrupted ? 128 + (interrupt_signal() ? interrupt_signal() : SIGINT)
-                        : failed    ? 1
-                                    : 0;
+  int exit_code = interrupted ? 128 + (interrupt_signal() ? interrupt_signal() : SIGINT) : failed ? 1 : 0;
+  // A stopped batch makes no sheet: --resume finishes the jobs, and its sheet shows them all.
+  if (!contact_sheet.empty() && !interrupted) {
+    try {
+      write_batch_contact_sheet(contact_sheet, jobs, results);
+      if (!quiet) std::fprintf(stderr, "kiln batch: contact sheet -> %s\n", contact_sheet.c_str());
+    } catch (const error& e) {
+      std::fprintf(stderr, "kiln: %s\n", e.what());
+      if (!exit_code) exit_code = 1;
+    }
+  }
   if (!summary.empty()) {
     try {
       write_text_atomically(summary,

@@ -21,8 +21,11 @@ enum class job_status { rendered, skipped, failed, crashed, interrupted, not_sta
 bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
                        const std::string& preview);
 
-// Runs the jobs; writes the summary (when summary is not empty) whatever happens. Returns the exit
-// code: 0 all rendered or skipped, 1 any failed or crashed, 128 + signal when interrupted.
-int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary, bool quiet);
+// Runs the jobs; writes the contact sheet (when contact_sheet is not empty) unless a signal stopped
+// the batch, and the summary (when summary is not empty) whatever happens. Returns the exit code: 0
+// all rendered or skipped, 1 any failed or crashed (or the sheet could not be written), 128 + signal
+// when interrupted.
+int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary,
+                   const std::string& contact_sheet, bool quiet);
 
 }  // namespace kiln

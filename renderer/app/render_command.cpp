@@ -96,7 +96,7 @@ render_job cli_job(const render_options& options, const render_fingerprint* know
   return job;
 }
 
-// --frames: every frame rendered and written in turn, one summary line each.
+// --frames, --turntable: every frame rendered and written in turn, one summary line each.
 void run_render_sequence(const render_options& options, const render_fingerprint* known) {
   for (long long number : check_sequence(options)) check_outputs_unlocked(frame_options(options, number));
   render_progress progress;
@@ -115,7 +115,7 @@ void run_render_sequence(const render_options& options, const render_fingerprint
 }  // namespace
 
 void run_render(const render_options& options, const render_fingerprint* known) {
-  if (!options.frames.empty()) return run_render_sequence(options, known);
+  if (renders_sequence(options)) return run_render_sequence(options, known);
   check_outputs_unlocked(options);
   render_progress progress;
   const render_job job = cli_job(options, known, progress);

@@ -2,6 +2,7 @@
 
 #include "job/render_job_steps.h"
 #include "job/shutter_poses.h"
+#include "job/turntable.h"
 
 namespace kiln {
 
@@ -27,9 +28,19 @@ void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& optio
     return;
   }
   auto motion = std::make_shared<scene_motion>();
-  if (!asset.animated()) {
+  // A turntable's neighbours are its frames before and after: the camera turns between them.
+  const render_options options_before = turntable_neighbour(options, -1);
+  const render_options options_after = turntable_neighbour(options, 1);
+  const bounds3* framing = p.framing ? &*p.framing : nullptr;
+  if (!asset.animated() || turntable_holds_pose(options)) {
     p.world = asset.pose(time, previous, posed);
     p.motion = motion;  // finish_loaded_scene copies the frame's own pose to both sides
+    if (options.turntable > 0) {
+      // The asset holds still; only the view moves.
+      std::string description;
+      motion->previous = current_pose(p.world, job_view(options_before, p.world, description, framing));
+      motion->next = current_pose(p.world, job_view(options_after, p.world, description, framing));
+    }
     return;
   }
   // Each pose takes over what the last one built and no animation changes (rigid meshes,
@@ -39,10 +50,9 @@ void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& optio
   std::string description;
   std::vector<uint32_t> deformed_before, deformed_after;
   scene before = asset.pose(time - step, previous, &deformed_before);
-  const bounds3* framing = p.framing ? &*p.framing : nullptr;
-  const view_camera view_before = job_view(options, before, description, framing);
+  const view_camera view_before = job_view(options_before, before, description, framing);
   scene after = asset.pose(time + step, &before, &deformed_after);
-  const view_camera view_after = job_view(options, after, description, framing);
+  const view_camera view_after = job_view(options_after, after, description, framing);
   p.world = asset.pose(time, &after, posed);
   motion->previous = neighbour_pose(p.world, before, view_before, deformed_before);
   motion->next = neighbour_pose(p.world, after, view_after, deformed_after);
@@ -56,13 +66,18 @@ void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& optio
 
 // The default camera of an animated file frames the union of its bounds at evenly spaced times of
 // the animation, so it stands still through a shot and frame N looks the same rendered alone or in
-// a sequence. Poses chain (each takes over what the last built); `held` keeps the last.
+// a sequence; so do the orbit views (--camera-view, --turntable), which ignore the file's cameras, and
+// keep one distance all the way round. A held turntable frames the one pose it shows. Poses chain
+// (each takes over what the last built); `held` keeps the last.
 constexpr int framing_poses = 9;
 
 void find_framing(gltf_sequence& asset, const render_options& options, scene*& previous, scene& held,
                   prepared_scene& p) {
   p.framing_checked = true;
-  if (options.look_from || options.look_at || !options.camera.empty() || !asset.animated()) return;
+  if (options.look_from || options.look_at || !options.camera.empty() || !asset.animated() ||
+      turntable_holds_pose(options))
+    return;
+  const bool orbit = uses_orbit_view(options);
   const auto [first, last] = asset.time_range();
   bounds3 framing;
   for (int k = 0; k < framing_poses; ++k) {
@@ -72,7 +87,7 @@ void find_framing(gltf_sequence& asset, const render_options& options, scene*& p
     framing.extend(world_bounds(posed));
     held = std::move(posed);  // what previous held is in it now
     previous = &held;
-    if (has_camera) return;  // the file's own camera is the view
+    if (has_camera && !orbit) return;  // the file's own camera is the view
   }
   if (!framing.empty()) p.framing = framing;
 }

@@ -79,6 +79,58 @@ void add_image_options(std::vector<option_spec>& t) {
           "Render frames FIRST-LAST[:STEP] in one process, each to -o with its #### (or %04d) replaced "
           "by the frame number; the asset loads once and only what moves is updated"))
       .effect = option_effect::none;
+  // A turntable (job/turntable.h) is a sequence too; each frame's --frame turns its camera.
+  add(custom_option(
+          "turntable",
+          [](render_options& o, const std::string& text) {
+            o.turntable = parse_integer(text, "--turntable", 1, max_sequence_frames);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.turntable > 0 ? std::optional<std::string>(std::to_string(o.turntable)) : std::nullopt;
+          },
+          "24",
+          "Render N frames orbiting the asset about +Y through its bounds' centre, framed like the default "
+          "camera at every angle, each to -o with its #### replaced (as --frames); an animation plays along"))
+      .recorded_as = "kiln/turntable";
+  t.back().type = option_type::integer;
+  add(custom_option(
+          "turntable-elevation",
+          [](render_options& o, const std::string& text) {
+            o.turntable_elevation = parse_number(text, "--turntable-elevation", -90.0, 90.0);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.turntable_elevation ? std::optional<std::string>(exact_text(*o.turntable_elevation))
+                                         : std::nullopt;
+          },
+          "35",
+          "Turntable: the camera's elevation above the asset's centre in degrees, -90 to 90 (default 20)"))
+      .recorded_as = "kiln/turntable_elevation";
+  t.back().type = option_type::number;
+  add(custom_option(
+          "turntable-start",
+          [](render_options& o, const std::string& text) {
+            o.turntable_start = parse_number(text, "--turntable-start", -1e6, 1e6);
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.turntable_start ? std::optional<std::string>(exact_text(*o.turntable_start))
+                                     : std::nullopt;
+          },
+          "90",
+          "Turntable: the first frame's azimuth in degrees, from the front (+Z) towards +X (default 0); "
+          "frame i is at start + 360 i / N"))
+      .recorded_as = "kiln/turntable_start";
+  t.back().type = option_type::number;
+  add(custom_option(
+          "turntable-animation",
+          [](render_options& o, const std::string& text) {
+            check_choice(text, "--turntable-animation", {"play", "hold"});
+            o.turntable_animation = text;
+          },
+          [](const render_options& o) -> std::optional<std::string> { return o.turntable_animation; }, "hold",
+          "Turntable of an animated asset: play (default: frame N poses the animation at frame N) or hold "
+          "(the pose at --time, default 0, while the camera turns)"))
+      .recorded_as = "kiln/turntable_animation";
+  t.back().choices = {"play", "hold"};
   option_spec& preview = add(custom_option(
       "preview",
       [](render_options& o, const std::string& text) {

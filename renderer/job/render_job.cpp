@@ -27,6 +27,7 @@
 #include "job/output_guard.h"
 #include "job/render_fingerprint.h"
 #include "job/render_job_steps.h"
+#include "job/turntable.h"
 #include "render/frame_bands.h"
 #include "render/light_groups.h"
 #include "render/render_space.h"
@@ -102,6 +103,7 @@ void resolve_image_size(const render_options& options, float camera_aspect, int&
 
 view_camera job_view(const render_options& options, const scene& world, std::string& description,
                      const bounds3* framing) {
+  const std::optional<orbit_angles> orbit = job_orbit(options);  // refuses it beside --look-from, --camera
   if (options.look_from || options.look_at) {
     if (!options.look_from || !options.look_at)
       throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
@@ -110,6 +112,17 @@ view_camera job_view(const render_options& options, const scene& world, std::str
     description = "look-at";
     return make_look_at_camera(*options.look_from, *options.look_at, options.up, options.fov_degrees, width,
                                height);
+  }
+  if (orbit) {
+    int width = 0, height = 0;
+    resolve_image_size(options, 0.0f, width, height);
+    description = orbit->description;
+    try {
+      return make_orbit_camera(framing ? *framing : world_bounds(world), orbit->azimuth, orbit->elevation,
+                               options.fov_degrees, width, height);
+    } catch (const error& e) {
+      throw input_error(world.source, e.location(), e.reason());
+    }
   }
   if (!options.camera.empty() || !world.cameras.empty()) {
     const camera& c = options.camera.empty() ? world.cameras.front() : select_camera(world, options.camera);
@@ -237,6 +250,8 @@ void throw_if_cancelled(const std::atomic<bool>* cancel, const std::string& outp
 }
 
 double scene_time(const render_options& options) {
+  // A held turntable's frame turns the camera only; the asset keeps the pose at --time.
+  if (turntable_holds_pose(options)) return options.time.value_or(0.0);
   if (options.time && options.frame)
     throw input_error("", "--time", "--time and --frame both choose the time; give one of them");
   if (!options.frame && (options.fps || options.frame_start))
@@ -360,12 +375,14 @@ std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const rend
 }
 
 void check_job(const render_options& options) {
-  if (!options.frames.empty())
-    throw input_error("", "--frames",
-                      "a job renders one frame; a sequence runs through run_sequence (kiln render --frames, "
-                      "kiln.render_sequence)");
+  if (!options.frames.empty() || (options.turntable > 0 && !options.frame))
+    throw input_error(
+        "", options.frames.empty() ? "--turntable" : "--frames",
+        "a job renders one frame; a sequence runs through run_sequence (kiln render --frames or "
+        "--turntable, kiln.render_sequence)");
   check_asset_file(options.input);  // before the fingerprint reads it
   scene_time(options);
+  check_turntable_frame(options);  // and --camera-view's options
   if (options.crop && options.band_count > 0)
     throw input_error("", "--crop", "--crop and --band both choose the region; give one of them");
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.

@@ -31,9 +31,10 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
                          image* environment_map = nullptr,
                          const std::vector<uint32_t>* posed_meshes = nullptr);
 
-// The view the job renders world through: --look-from/--look-at, the --camera (default: the
-// first glTF camera), or the default camera, which frames `framing` when given (an animated
-// file's every pose) and else world's bounds; description names it. Throws kiln::error (input).
+// The view the job renders world through: --look-from/--look-at, an orbit view (--camera-view, a
+// --turntable frame; job/turntable.h), the --camera (default: the first glTF camera), or the
+// default camera; the orbit and default cameras frame `framing` when given (an animated file's every
+// pose) and else world's bounds; description names it. Throws kiln::error (input).
 view_camera job_view(const render_options& options, const scene& world, std::string& description,
                      const bounds3* framing = nullptr);
 

@@ -56,6 +56,16 @@ struct render_options {
   // --frames FIRST-LAST[:STEP]: a sequence (job/render_sequence.h), each frame its own --frame
   // and output; empty: one image.
   std::string frames;
+  // --camera-view front|three-quarter|top|AZIMUTH,ELEVATION: the default camera's framing seen from
+  // another direction (job/turntable.h); empty: the default camera (or the file's).
+  std::string camera_view;
+  // --turntable N: N frames orbiting the asset about +Y through its bounds' centre (job/turntable.h);
+  // 0: none. Its elevation and start azimuth in degrees (defaults 20 and 0) and whether the animation
+  // plays along (play, the default) or holds its pose (hold), each unset until given.
+  long long turntable = 0;
+  std::optional<double> turntable_elevation;
+  std::optional<double> turntable_start;
+  std::optional<std::string> turntable_animation;
   bool full_float = false;      // --float: every colour-like layer float
   std::string channel_formats;  // --channel-format AOV=half|float,... (checked when parsed)
   // --compression, --compression-level, --multipart; the formats come from resolve_exr_settings.

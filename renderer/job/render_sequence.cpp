@@ -14,6 +14,7 @@
 #include "job/lighting.h"
 #include "job/option_values.h"
 #include "job/render_job_steps.h"
+#include "job/turntable.h"
 
 namespace kiln {
 
@@ -102,18 +103,30 @@ render_options frame_options(const render_options& sequence, long long frame) {
   return o;
 }
 
+bool renders_sequence(const render_options& options) {
+  return !options.frames.empty() || (options.turntable > 0 && !options.frame);
+}
+
+std::vector<long long> sequence_frames(const render_options& options) {
+  if (!options.frames.empty()) return frame_numbers(parse_frame_range(options.frames));
+  return frame_numbers(turntable_frames(options));
+}
+
 std::vector<long long> check_sequence(const render_options& options) {
-  const std::vector<long long> frames = frame_numbers(parse_frame_range(options.frames));
-  if (options.time)
-    throw input_error("", "--time", "--time and --frames both choose the time; give one of them");
+  const std::vector<long long> frames = sequence_frames(options);
+  const char* sequence = options.frames.empty() ? "--turntable" : "--frames";
+  if (options.time && !turntable_holds_pose(options))
+    throw input_error(
+        "", "--time",
+        std::string("--time and ") + sequence + " both choose the time; give one of them" +
+            (options.turntable > 0 ? " (--turntable-animation hold keeps the pose at --time)" : ""));
   if (options.frame)
     throw input_error("", "--frame", "--frame and --frames both choose the frame; give one of them");
   if (frames.size() > 1 && !options.output.empty()) {  // no output: a benchmark's frames
     if (!has_frame_placeholder(options.output))
       throw input_error("", "-o",
-                        "'" + options.output +
-                            "' has no frame placeholder: with several --frames, name the output like "
-                            "shot.####.exr or shot.%04d.exr");
+                        "'" + options.output + "' has no frame placeholder: with several frames (" +
+                            sequence + "), name the output like shot.####.exr or shot.%04d.exr");
     if (!options.preview.empty() && !has_frame_placeholder(options.preview))
       throw input_error("", "--preview",
                         "'" + options.preview + "' has no frame placeholder (e.g. shot.####.png)");

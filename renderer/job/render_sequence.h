@@ -13,13 +13,20 @@
 
 namespace kiln {
 
+// Whether the options render a sequence: --frames, or --turntable without --frame (all its frames).
+bool renders_sequence(const render_options& options);
+
+// The sequence's frames: those --frames names, else the turntable's (job/turntable.h). Throws
+// kiln::error (input) for a bad range.
+std::vector<long long> sequence_frames(const render_options& options);
+
 // The options of one frame of a sequence: --frame N, the outputs with the frame placeholder
 // filled in, and no --frames.
 render_options frame_options(const render_options& sequence, long long frame);
 
-// The frames options.frames names, after checking the sequence's options: no --time or --frame
-// beside --frames, a frame placeholder in -o (and --preview) when there is more than one frame,
-// and every frame's own checks (check_job). Throws kiln::error (input or io).
+// The frames of the sequence, after checking its options: no --time (except to hold a turntable's
+// pose) or --frame beside them, a frame placeholder in -o (and --preview) when there is more than one
+// frame, and every frame's own checks (check_job). Throws kiln::error (input or io).
 std::vector<long long> check_sequence(const render_options& options);
 
 // How a sequence's frame was made: rendered with a backend built for it, or with the last frame's
@@ -31,7 +38,7 @@ struct frame_report {
   double update_seconds = 0.0;  // building or updating the backend
 };
 
-// Renders every frame of job.options.frames in order and hands each to on_frame (which writes
+// Renders every frame of the sequence (sequence_frames) in order and hands each to on_frame (which writes
 // it) before the next starts; an error stops the sequence there (earlier frames stay written).
 // Throws like run_job; --time-limit applies to each frame.
 void run_sequence(const render_job& job,

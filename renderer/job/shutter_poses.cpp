@@ -5,6 +5,7 @@
 
 #include "job/frame_motion.h"
 #include "job/render_job_steps.h"
+#include "job/turntable.h"
 
 namespace kiln {
 
@@ -180,9 +181,11 @@ void attach_shutter_motion(scene& world, const std::vector<shutter_step>& steps)
 
 std::vector<view_camera> shutter_camera_steps(const render_options& options, const scene& world,
                                               const std::vector<shutter_step>& steps) {
-  // Only a glTF camera follows the animation; the default camera frames each pose anew, which is
-  // not a camera moving.
-  if (options.look_from || (options.camera.empty() && world.cameras.empty()) || steps.size() < 2) return {};
+  // Only a glTF camera follows the animation; the default and orbit cameras frame each pose anew,
+  // which is not a camera moving.
+  if (options.look_from || uses_orbit_view(options) || (options.camera.empty() && world.cameras.empty()) ||
+      steps.size() < 2)
+    return {};
   std::vector<view_camera> views;
   for (const shutter_step& step : steps) views.push_back(step.view);
   const auto same = [&](const view_camera& v) {

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "job/option_entries.h"
+#include "job/turntable.h"
 #include "render/adaptive_sampling.h"
 
 namespace kiln::option_entries {
@@ -74,7 +75,21 @@ void add_view_options(std::vector<option_spec>& t) {
       "Look-at camera up vector X,Y,Z (default 0,1,0)"));
   add(number_option<double>(
       "fov", [](render_options & o) -> auto& { return o.fov_degrees; }, 1e-3, 179.999, "30",
-      "Look-at camera vertical field of view in degrees"));
+      "Vertical field of view in degrees of a look-at camera, --camera-view and --turntable"));
+  add(custom_option(
+          "camera-view",
+          [](render_options& o, const std::string& text) {
+            parse_camera_view(text);
+            o.camera_view = text;
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return o.camera_view.empty() ? std::nullopt : std::optional<std::string>(o.camera_view);
+          },
+          "three-quarter",
+          "Frame the asset like the default camera but from another direction: front, three-quarter (azimuth "
+          "45, elevation 25), top, or AZIMUTH,ELEVATION in degrees (azimuth from +Z towards +X); --fov sets "
+          "its lens (default 45)"))
+      .recorded_as = "kiln/camera_view";
   option_spec& scene = add(custom_option(
       "scene",
       [](render_options& o, const std::string& text) {

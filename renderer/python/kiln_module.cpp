@@ -241,8 +241,8 @@ render_job python_job(const std::string& asset, const py::object& output, const 
 py::list render_sequence(const std::string& asset, const py::object& output, const py::object& progress,
                          const py::kwargs& kwargs) {
   render_job job = python_job(asset, output, kwargs);
-  if (job.options.frames.empty())
-    throw input_error("", "frames", "render_sequence needs frames= (e.g. frames=\"1-24\")");
+  if (!renders_sequence(job.options))
+    throw input_error("", "frames", "render_sequence needs frames= (e.g. frames=\"1-24\") or turntable=N");
   using frames = std::vector<std::pair<render_job_result, render_options>>;
   frames rendered = run_watched<frames>(job, progress, [&job] {
     frames out;
@@ -362,8 +362,8 @@ PYBIND11_MODULE(kiln, m) {
   m.def("render_sequence", &render_sequence, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
         "render_sequence(asset, *, frames, output=None, progress=None, **options) -> list[Result]\n\n"
-        "Renders the frames of frames=\"FIRST-LAST[:STEP]\" as kiln render --frames does: the asset loads\n"
-        "once, each frame is posed and the backend updated in place. output= (with #### or %04d) writes\n"
-        "each frame as it finishes. Returns one Result per frame, in order.");
+        "Renders the frames of frames=\"FIRST-LAST[:STEP]\" (or turntable=N) as kiln render does: the\n"
+        "asset loads once, each frame is posed and the backend updated in place. output= (with ####\n"
+        "or %04d) writes each frame as it finishes. Returns one Result per frame, in order.");
   m.def("options", &option_list, "Every render option: name, option, type, help, choices, default");
 }

@@ -1,7 +1,9 @@
 #include "render/view_camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <utility>
 
 #include "core/error.h"
 #include "core/message_text.h"
@@ -90,20 +92,59 @@ view_camera make_gltf_camera(const camera& c, int width, int height) {
   return cam;
 }
 
+namespace {
+
+// The sphere about the bounds' centre through their corners (radius 1 about the origin for empty
+// bounds), and how far from its centre a camera of vertical field of view yfov_degrees must stand for
+// the sphere to fit the narrower of the two half-angles, so a portrait image frames the scene as
+// well as a landscape one. The sphere frames the scene from every direction.
+struct framing_sphere {
+  dvec3 centre{0.0};
+  double radius = 1.0;
+  double distance = 1.0;
+};
+
+framing_sphere frame_bounds(const bounds3& scene_bounds, double yfov_degrees, int width, int height) {
+  framing_sphere s;
+  if (!scene_bounds.empty()) {
+    s.centre = scene_bounds.center();
+    s.radius = std::max(0.5 * glm::length(scene_bounds.diagonal()), 1e-6);
+  }
+  const double half_vertical = glm::radians(0.5 * yfov_degrees);
+  const double half_horizontal = std::atan(std::tan(half_vertical) * double(width) / double(height));
+  s.distance = s.radius / std::sin(std::min(half_vertical, half_horizontal));
+  return s;
+}
+
+// Bounds near double's range overflow the distance (the loader keeps coordinates within 1e15;
+// this names the cause should any scene get past it).
+void check_framed(const bounds3& scene_bounds, const framing_sphere& s, const dvec3& eye, const char* which) {
+  if (!is_finite(eye) || !is_finite(s.centre) || !std::isfinite(s.radius))
+    throw input_error("", which,
+                      "the scene's bounds reach " + format_coordinate(max_abs_coordinate(scene_bounds)) +
+                          ", too far to frame (give --look-from and --look-at)");
+}
+
+// sin and cos of an angle in degrees, exact at multiples of 90° (a front or top view has no
+// 6e-17 tilt).
+std::pair<double, double> sin_cos_degrees(double degrees) {
+  const double turned = std::fmod(degrees, 360.0);
+  const double quarter = turned / 90.0;
+  if (quarter == std::floor(quarter)) {
+    static const double sines[4] = {0.0, 1.0, 0.0, -1.0};
+    const int k = (int(quarter) % 4 + 4) % 4;
+    return {sines[k], sines[(k + 1) % 4]};
+  }
+  const double radians = glm::radians(turned);
+  return {std::sin(radians), std::cos(radians)};
+}
+
+}  // namespace
+
 view_camera make_default_camera(const bounds3& scene_bounds, int width, int height) {
   check_image_size(width, height);
-  dvec3 centre(0.0);
-  double radius = 1.0;
-  if (!scene_bounds.empty()) {
-    centre = scene_bounds.center();
-    radius = std::max(0.5 * glm::length(scene_bounds.diagonal()), 1e-6);
-  }
-  // The bounding sphere fits in the narrower of the two half-angles, so a portrait image frames
-  // the scene as well as a landscape one.
   const double yfov = 45.0;
-  const double half_vertical = glm::radians(0.5 * yfov);
-  const double half_horizontal = std::atan(std::tan(half_vertical) * double(width) / double(height));
-  double distance = radius / std::sin(std::min(half_vertical, half_horizontal));
+  const framing_sphere s = frame_bounds(scene_bounds, yfov, width, height);
   // A flat scene seen edge-on would show nothing: such a scene is looked at from above (flat in
   // x-z, e.g. a ground plane) or from +X (flat in y-z) instead.
   dvec3 from(0, 0, 1), up(0, 1, 0);
@@ -117,14 +158,39 @@ view_camera make_default_camera(const bounds3& scene_bounds, int width, int heig
       from = dvec3(1, 0, 0);
     }
   }
-  // Bounds near double's range overflow the distance (the loader keeps coordinates within 1e15;
-  // this names the cause should any scene get past it).
-  const dvec3 eye = centre + distance * from;
-  if (!is_finite(eye) || !is_finite(centre) || !std::isfinite(radius))
-    throw input_error("", "default camera",
-                      "the scene's bounds reach " + format_coordinate(max_abs_coordinate(scene_bounds)) +
-                          ", too far to frame (give --look-from and --look-at)");
-  return make_look_at_camera(eye, centre, up, yfov, width, height);
+  const dvec3 eye = s.centre + s.distance * from;
+  check_framed(scene_bounds, s, eye, "default camera");
+  return make_look_at_camera(eye, s.centre, up, yfov, width, height);
+}
+
+dvec3 orbit_direction(double azimuth_degrees, double elevation_degrees) {
+  const auto [sin_azimuth, cos_azimuth] = sin_cos_degrees(azimuth_degrees);
+  const auto [sin_elevation, cos_elevation] = sin_cos_degrees(elevation_degrees);
+  return {sin_azimuth * cos_elevation, sin_elevation, cos_azimuth * cos_elevation};
+}
+
+view_camera make_orbit_camera(const bounds3& scene_bounds, double azimuth_degrees, double elevation_degrees,
+                              double yfov_degrees, int width, int height) {
+  check_image_size(width, height);
+  if (!std::isfinite(azimuth_degrees) || !(std::abs(elevation_degrees) <= 90.0))
+    throw input_error("", "camera", "orbit angles must be finite, the elevation within ±90 degrees");
+  if (!(yfov_degrees > 0.0 && yfov_degrees < 180.0))
+    throw input_error("", "camera",
+                      "field of view must be between 0 and 180 degrees, got " + std::to_string(yfov_degrees));
+  const framing_sphere s = frame_bounds(scene_bounds, yfov_degrees, width, height);
+  const dvec3 from = orbit_direction(azimuth_degrees, elevation_degrees);
+  // +Y is up; looking nearly straight down or up, the image's up is the direction the elevation
+  // turns the view towards (at +90° the side facing azimuth + 180°: -Z for a top view from the
+  // front), which is what +Y gives in the limit, so the two agree where they meet.
+  dvec3 up(0, 1, 0);
+  if (std::abs(elevation_degrees) > 80.0) {
+    const auto [sin_azimuth, cos_azimuth] = sin_cos_degrees(azimuth_degrees);
+    const auto [sin_elevation, cos_elevation] = sin_cos_degrees(elevation_degrees);
+    up = dvec3(-sin_azimuth * sin_elevation, cos_elevation, -cos_azimuth * sin_elevation);
+  }
+  const dvec3 eye = s.centre + s.distance * from;
+  check_framed(scene_bounds, s, eye, "camera");
+  return make_look_at_camera(eye, s.centre, up, yfov_degrees, width, height);
 }
 
 view_camera view_at_time(const std::vector<view_camera>& steps, float time) {

@@ -36,6 +36,18 @@ view_camera make_gltf_camera(const camera& c, int width, int height);
 // far enough that the bounding sphere fills a 45° vertical field of view.
 view_camera make_default_camera(const bounds3& scene_bounds, int width, int height);
 
+// The unit direction from an orbit's centre to its camera: azimuth about +Y from +Z towards +X
+// (counter-clockwise seen from above), elevation above the x-z plane. Exact at multiples of 90°.
+dvec3 orbit_direction(double azimuth_degrees, double elevation_degrees);
+
+// The default camera's framing from another direction: it looks at the centre of the scene bounds
+// from orbit_direction(azimuth, elevation), as far back as the bounding sphere needs to fit the
+// narrower half-angle of a yfov_degrees vertical field of view, so the whole scene is in view from
+// any direction. Up is +Y (towards -Z, the far side, seen from straight above). Throws kiln::error
+// (input) for an elevation past ±90°, a bad field of view or bounds too far to frame.
+view_camera make_orbit_camera(const bounds3& scene_bounds, double azimuth_degrees, double elevation_degrees,
+                              double yfov_degrees, int width, int height);
+
 // The camera at `time` in the shutter (motion blur) among `steps` views evenly spaced over it: the
 // eye and the window interpolated linearly, the orientation by shortest-path slerp, so the camera
 // turns rigidly between steps. The views share projection and image size.

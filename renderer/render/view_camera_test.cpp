@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
@@ -206,6 +207,76 @@ TEST(view_camera, pixel_cone_is_one_pixel) {
   const ray r0 = generate_camera_ray(ortho, 10.0, 10.0), r1 = generate_camera_ray(ortho, 10.0, 11.0);
   EXPECT_NEAR(camera_pixel_cone(ortho).width, glm::length(r1.origin - r0.origin), 1e-5);
   EXPECT_EQ(camera_pixel_cone(ortho).spread, 0.0);
+}
+
+}  // namespace
+}  // namespace kiln
+
+namespace kiln {
+namespace {
+
+// Every corner of box inside the image of cam.
+void expect_corners_in_view(const view_camera& cam, const bounds3& box) {
+  const dmat4 ndc = world_to_ndc(cam);
+  for (int corner = 0; corner < 8; ++corner) {
+    const dvec3 p((corner & 1) ? box.upper.x : box.lower.x, (corner & 2) ? box.upper.y : box.lower.y,
+                  (corner & 4) ? box.upper.z : box.lower.z);
+    const dvec4 h = ndc * dvec4(p, 1.0);
+    ASSERT_GT(h.w, 0.0) << "corner " << corner << " is behind the camera";
+    EXPECT_LE(std::abs(h.x / h.w - 0.5), 0.5) << "corner " << corner << " leaves the image sideways";
+    EXPECT_LE(std::abs(h.y / h.w - 0.5), 0.5) << "corner " << corner << " leaves the image vertically";
+  }
+}
+
+TEST(view_camera, orbit_camera_frames_every_corner_from_every_direction) {
+  bounds3 box;
+  box.extend(dvec3(-3, -1, -2));
+  box.extend(dvec3(5, 2, 1));
+  for (double elevation : {-90.0, -45.0, 0.0, 20.0, 85.0, 90.0})
+    for (double azimuth = -180.0; azimuth < 360.0; azimuth += 22.5) {
+      SCOPED_TRACE(std::to_string(azimuth) + ", " + std::to_string(elevation));
+      const view_camera cam = make_orbit_camera(box, azimuth, elevation, 45.0, 48, 32);
+      expect_corners_in_view(cam, box);
+      // From the orbit's direction at one distance, looking at the centre.
+      const dvec3 offset = cam.eye - box.center();
+      EXPECT_NEAR(glm::dot(glm::normalize(offset), orbit_direction(azimuth, elevation)), 1.0, 1e-12);
+      EXPECT_NEAR(glm::dot(cam.view, -glm::normalize(offset)), 1.0, 1e-12);
+      EXPECT_NEAR(glm::length(offset),
+                  glm::length(make_orbit_camera(box, 0, 0, 45.0, 48, 32).eye - box.center()), 1e-9);
+    }
+}
+
+TEST(view_camera, orbit_camera_from_the_front_is_the_default_camera) {
+  bounds3 box;
+  box.extend(dvec3(-3, -1, -2));
+  box.extend(dvec3(5, 2, 1));
+  const view_camera front = make_orbit_camera(box, 0.0, 0.0, 45.0, 64, 48);
+  const view_camera standard = make_default_camera(box, 64, 48);
+  EXPECT_EQ(world_to_camera(front), world_to_camera(standard));
+  EXPECT_EQ(world_to_ndc(front), world_to_ndc(standard));
+}
+
+TEST(view_camera, orbit_directions_and_ups) {
+  EXPECT_EQ(orbit_direction(0, 0), dvec3(0, 0, 1));
+  EXPECT_EQ(orbit_direction(90, 0), dvec3(1, 0, 0));
+  EXPECT_EQ(orbit_direction(-90, 0), dvec3(-1, 0, 0));
+  EXPECT_EQ(orbit_direction(180, 0), dvec3(0, 0, -1));
+  EXPECT_EQ(orbit_direction(0, 90), dvec3(0, 1, 0));
+  const double r = std::sqrt(0.5);
+  EXPECT_NEAR(glm::length(orbit_direction(45, 0) - dvec3(r, 0, r)), 0.0, 1e-15);
+  bounds3 box;
+  box.extend(dvec3(-1, -1, -1));
+  box.extend(dvec3(1, 1, 1));
+  // From above, the front (+Z) at the bottom of the image: up is -Z.
+  const view_camera top = make_orbit_camera(box, 0, 90, 45.0, 32, 32);
+  EXPECT_EQ(top.view, dvec3(0, -1, 0));
+  EXPECT_EQ(top.up, dvec3(0, 0, -1));
+  // Seen from the side, +Y stays up.
+  const view_camera side = make_orbit_camera(box, 90, 30, 45.0, 32, 32);
+  EXPECT_GT(side.up.y, 0.8);
+  EXPECT_NEAR(side.right.y, 0.0, 1e-12);  // no roll
+  EXPECT_THROW(make_orbit_camera(box, 0, 91, 45.0, 32, 32), error);
+  EXPECT_THROW(make_orbit_camera(box, std::nan(""), 0, 45.0, 32, 32), error);
 }
 
 }  // namespace

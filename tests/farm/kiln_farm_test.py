@@ -333,6 +333,46 @@ class FarmTest(unittest.TestCase):
         for name in ("j0", "j1", "j2"):  # task 0 never ran
             self.assertIn("never ran to the end", report[name]["problems"][0])
 
+    def test_a_turntable_splits_into_a_job_per_frame_whose_bands_stitch_into_the_sequences_frames(self):
+        # kiln batch --plan-only turns a manifest job's "turntable" into one job per frame, each with
+        # --turntable N --frame F; the farm renders each in bands, and the stitched frames are
+        # those of `kiln render --turntable N`.
+        manifest = os.path.join(self.dir, "shots.json")
+        with open(manifest, "w") as f:
+            json.dump({"defaults": {"width": 16, "height": 8, "spp": 1},
+                       "jobs": [{"asset": CORNELL, "turntable": 3}]}, f)
+        work = os.path.join(self.dir, "work")
+        out_dir = os.path.join(self.dir, "renders")
+        os.makedirs(work)
+        plan_path = os.path.join(work, "plan.json")
+        kiln_farm.plan_from_manifest(KILN, manifest, out_dir, ["--no-estimates"], plan_path)
+        plan = kiln_farm.load_plan(plan_path)
+        self.assertEqual([j["name"] for j in plan["jobs"]], ["cornell_box.0001", "cornell_box.0002",
+                                                            "cornell_box.0003"])
+        for frame, job in enumerate(plan["jobs"], 1):
+            args = job["render_args"]
+            self.assertEqual(kiln_farm.option_value(args, "--turntable"), "3")
+            self.assertEqual(kiln_farm.option_value(args, "--frame"), str(frame))
+        options = kiln_farm.parse_args(["submit", "--plan", plan_path, "--work-dir", work, "--tiles", "2",
+                                        "--kiln", KILN])
+        tasks = kiln_farm.build_tasks(plan, KILN, 2, 1, work)
+        self.assertEqual(len(tasks), 6)
+        kiln_farm.write_work_dir(options, plan, tasks)
+        with open(os.path.join(work, "tasks.txt")) as f:
+            for line in f.read().splitlines():
+                subprocess.run(shlex.split(line) + ["-q"], check=True)
+        rc, _, err = run_main(["finalize", "--work-dir", work])
+        self.assertEqual(rc, 0, err)
+        sequence = os.path.join(self.dir, "seq.####.exr")
+        subprocess.run([KILN, "render", CORNELL, "-o", sequence, "--turntable", "3", "--width", "16", "--height", "8",
+                        "--spp", "1", "--threads", "1", "-q"], check=True)
+        for frame in (1, 2, 3):
+            stitched = os.path.join(out_dir, f"cornell_box.{frame:04d}.exr")
+            alone = os.path.join(self.dir, f"seq.{frame:04d}.exr")
+            diff = subprocess.run(["idiff", "-q", "-fail", "0", "-failpercent", "0", "-warn", "0", "-a", alone,
+                                   stitched], capture_output=True)
+            self.assertEqual(diff.returncode, 0, diff.stdout)
+
     def test_header_reader_refuses_what_is_not_exr(self):
         path = os.path.join(self.dir, "x.exr")
         with open(path, "wb") as f:

@@ -277,6 +277,24 @@ def test_render_sequence_returns_and_writes_each_frame_as_the_cli_does(tmp_path)
         kiln.render_sequence(CESIUM_MAN, frames="1-3", output=str(tmp_path / "plain.exr"), **view)
 
 
+def test_a_turntable_is_a_sequence_whose_frames_render_alone_as_the_cli_does(tmp_path):
+    view = dict(width=16, height=12, spp=1, quiet=True)
+    frames = kiln.render_sequence(CORNELL, turntable=3, turntable_elevation=30,
+                                  output=str(tmp_path / "tt.####.exr"), **view)
+    assert [f.metadata["kiln/frame"] for f in frames] == ["1", "2", "3"]
+    assert frames[1].metadata["kiln/camera"] == "turntable frame 2 of 3 (azimuth 120, elevation 30)"
+    alone = kiln.render(CORNELL, turntable=3, turntable_elevation=30, frame=2, **view)
+    assert np.array_equal(frames[1].aovs["beauty"], alone.aovs["beauty"])
+    out = tmp_path / "cli.exr"
+    assert cli(["render", CORNELL, "-o", str(out), "--turntable", "3", "--turntable-elevation", "30",
+                "--frame", "2", "--width", "16", "--height", "12", "--spp", "1", "-q"]).returncode == 0
+    assert np.array_equal(read_channels(str(out))["R"], alone.aovs["beauty"][:, :, 0])
+    with pytest.raises(kiln.InputError, match="turntable"):
+        kiln.render(CORNELL, turntable=3, **view)
+    view_three_quarter = kiln.render(CORNELL, camera_view="three-quarter", **view)
+    assert view_three_quarter.metadata["kiln/camera"] == "three-quarter view (azimuth 45, elevation 25)"
+
+
 SHOE = os.path.join(SOURCE, "..", "shared", "assets", "MaterialsVariantsShoe", "glTF", "MaterialsVariantsShoe.gltf")
 
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/colour/colour_module.h"
 #include "io/exr/preview_codes.h"
@@ -20,6 +21,13 @@ namespace kiln {
 // preview_code, and its code values are round(255 · clamp(v, 0, 1)).
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
                    const display_transform* view = nullptr);
+
+// Writes width x height 8-bit code values (row 0 at the top; channels 3, R G B, or 4, R G B and
+// straight A; a JPEG drops A) as the PNG or JPEG path's extension names, atomically, through the
+// image codecs module. Throws kiln::error (input) for another extension, (io) when the file cannot
+// be written or the module cannot be loaded.
+void write_preview_image(const std::string& path, int width, int height, int channels,
+                         const std::vector<unsigned char>& codes);
 
 // True when preview_path is a complete preview of a width x height data window: its format is the
 // one its extension names, its size is right, it ends with the format's closing marker (PNG IEND,

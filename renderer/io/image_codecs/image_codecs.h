@@ -13,7 +13,7 @@
 namespace kiln {
 
 // Bumped whenever the table below changes; kiln refuses a module built with another value.
-constexpr uint32_t image_codecs_abi = 2;
+constexpr uint32_t image_codecs_abi = 3;
 
 struct image_codecs {
   uint32_t abi = image_codecs_abi;
@@ -34,6 +34,9 @@ struct image_codecs {
   void (*write_preview)(const std::string& exr_path, const std::string& preview_path, double exposure,
                         const display_transform* view) = nullptr;
   bool (*preview_complete)(const std::string& preview_path, int width, int height) = nullptr;
+  // io/exr/preview_writer.h's write_preview_image, same contract.
+  void (*write_preview_image)(const std::string& path, int width, int height, int channels,
+                              const unsigned char* codes) = nullptr;
 };
 
 }  // namespace kiln

@@ -11,6 +11,7 @@ kiln::image_codecs make_table() {
   table.read_float_rgba = &kiln::codecs_module::read_float_rgba;
   table.write_preview = &kiln::codecs_module::write_preview;
   table.preview_complete = &kiln::codecs_module::preview_complete;
+  table.write_preview_image = &kiln::codecs_module::write_preview_image;
   return table;
 }
 

@@ -58,6 +58,20 @@ std::vector<unsigned char> encode(const std::string& format, const OIIO::ImageSp
   return bytes;
 }
 
+// Encodes 8-bit sRGB codes (straight alpha when the spec has it) and writes them to path atomically.
+void write_encoded(const std::string& path, const std::string& format, OIIO::ImageSpec spec,
+                   const std::vector<unsigned char>& codes) {
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  if (format == "jpeg") spec.attribute("Compression", "jpeg:95");
+  // Encoded in memory, then written with every write checked: OpenImageIO's PNG writer does not
+  // report a write that fails (a full disk), which would rename a truncated file into place.
+  const std::vector<unsigned char> encoded = encode(format, spec, codes);
+  // The error names the format as earlier kilns did ("cannot write png: ...").
+  write_atomically(path, format, [&](const temporary_file& temporary) {
+    return write_all(temporary.fd, encoded.data(), encoded.size());
+  });
+}
+
 }  // namespace
 
 bool preview_complete(const std::string& preview_path, int width, int height) {
@@ -128,15 +142,29 @@ void write_preview(const std::string& exr_path, const std::string& preview_path,
     // The codes are already straight: without this OpenImageIO would divide colour by alpha again.
     out_spec.attribute("oiio:UnassociatedAlpha", 1);
   }
-  out_spec.attribute("oiio:ColorSpace", "sRGB");
-  if (format == "jpeg") out_spec.attribute("Compression", "jpeg:95");
-  // Encoded in memory, then written with every write checked: OpenImageIO's PNG writer does not
-  // report a write that fails (a full disk), which would rename a truncated file into place.
-  const std::vector<unsigned char> encoded = encode(format, out_spec, codes);
-  // The error names the format as earlier kilns did ("cannot write png: ...").
-  write_atomically(preview_path, format, [&](const temporary_file& temporary) {
-    return write_all(temporary.fd, encoded.data(), encoded.size());
-  });
+  write_encoded(preview_path, format, out_spec, codes);
+}
+
+void write_preview_image(const std::string& path, int width, int height, int channels,
+                         const unsigned char* codes) {
+  const std::string format = preview_format(path);
+  if (format.empty()) throw input_error(path, "", "an image must end in .png, .jpg or .jpeg");
+  if (width <= 0 || height <= 0 || (channels != 3 && channels != 4))
+    throw io_error(path, "cannot encode a " + std::to_string(width) + "x" + std::to_string(height) +
+                             " image of " + std::to_string(channels) + " channels");
+  // JPEG has no alpha: a fourth channel is dropped.
+  const int stored = format == "jpeg" ? 3 : channels;
+  const size_t pixels = size_t(width) * size_t(height);
+  std::vector<unsigned char> kept(pixels * size_t(stored));
+  for (size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < stored; ++c)
+      kept[i * size_t(stored) + size_t(c)] = codes[i * size_t(channels) + size_t(c)];
+  OIIO::ImageSpec spec(width, height, stored, OIIO::TypeDesc::UINT8);
+  if (stored == 4) {
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+  }
+  write_encoded(path, format, spec, kept);
 }
 
 }  // namespace kiln::codecs_module
