@@ -104,8 +104,8 @@ TEST(faults, sigint_stops_a_render_of_65536_samples_a_pixel_within_a_second) {
 
 // Writing 800x800 one-pixel tiles takes seconds: long enough to signal kiln mid-write.
 std::vector<std::string> long_write(const std::string& output) {
-  return {"render",          demo_scene, "-o",     output,   "--width",   "800", "--height", "800",
-          "--exr-tile-size", "1",        "--aovs", "beauty", "--threads", "2",   "-q"};
+  return {"render", demo_scene, "-o",     output,      "--width", "800", "--height", "800", "--exr-tile-size",
+          "1",      "--aovs",   "beauty", "--threads", "2",       "-q",  "--spp",    "1"};
 }
 
 // The temporary file kiln writes beside output (".frame.exr.kiln-tmp-HOST-PID-N"), once it exists.

@@ -288,8 +288,9 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
                 "beauty,albedo_filtered,N_filtered,diffuse,specular,shadow", "--multipart"});
   ASSERT_EQ(multipart.exit_code, 0) << multipart.stderr_text;
   const std::set<std::string> parts = testing::exr_part_names_in(dir + "/parts.exr");
-  EXPECT_EQ(parts, (std::set<std::string>{"rgba", "albedo_filtered", "N_filtered", "diffuse", "specular",
-                                          "shadow_ceiling_light", "shadow_fill_light"}));
+  EXPECT_EQ(parts,
+            (std::set<std::string>{"rgba", "albedo_filtered", "N_filtered", "diffuse", "specular",
+                                   "shadow_ceiling_light", "shadow_fill_light", "shadow_environment"}));
 }
 
 // The memory estimate counts the passes' buffers: film_bytes equals the bytes the film allocates.
@@ -304,9 +305,10 @@ TEST(passes_cli, film_bytes_count_the_pass_buffers) {
       (f.albedo_filtered.size() + f.normal_filtered.size() + f.diffuse.size() + f.specular.size()) *
           sizeof(vec3) +
       f.shadow.size() * sizeof(float);
-  EXPECT_EQ(f.shadow.size(), size_t(7 * 5 * 3));
+  EXPECT_EQ(f.shadow.size(), size_t(7 * 5 * 4));  // three lights and the environment
   EXPECT_EQ(film_bytes(7, 5, a, int(groups.size())), allocated);
   EXPECT_EQ(f.shadow_layer(1), "shadow_b");
+  EXPECT_EQ(f.shadow_layer(3), "shadow_environment");
 }
 
 }  // namespace

@@ -198,9 +198,10 @@ TEST(sequence_cli, a_batch_job_with_frames_plans_renders_and_resumes_each_frame)
   const std::string scene = moving_quads(dir);
   std::ofstream(dir + "/jobs.json") << nlohmann::json(
       {{"jobs", {{{"asset", scene}, {"frames", "1-3"}, {"fps", fps}, {"resolution", "8x8"}}}}});
-  const std::vector<std::string> batch = {"batch",      "--manifest", dir + "/jobs.json",    "--out-dir",
-                                          dir + "/out", "--summary",  dir + "/summary.json", "--resume",
-                                          "-q"};
+  const std::vector<std::string> batch = {
+      "batch",     "--manifest",          dir + "/jobs.json", "--out-dir", dir + "/out",
+      "--summary", dir + "/summary.json", "--resume",         "-q",        "--spp",
+      "1"};
   std::vector<std::string> plan = batch;
   plan.insert(plan.end(), {"--plan-only", dir + "/plan.json"});
   const auto planning = run_kiln(plan);

@@ -97,7 +97,8 @@ TEST(variants_cli, a_batch_job_with_all_variants_renders_every_colourway) {
   const std::string dir = scratch_folder("variants_batch");
   std::ofstream(dir + "/jobs.json") << nlohmann::json(
       {{"jobs", {{{"asset", shoe}, {"variants", "all"}, {"resolution", "48x48"}}}}});
-  const auto result = run_kiln({"batch", "--manifest", dir + "/jobs.json", "--out-dir", dir + "/out", "-q"});
+  const auto result =
+      run_kiln({"batch", "--manifest", dir + "/jobs.json", "--out-dir", dir + "/out", "-q", "--spp", "1"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   for (const char* variant : {"midnight", "beach", "street"}) {
     SCOPED_TRACE(variant);

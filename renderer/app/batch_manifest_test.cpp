@@ -73,7 +73,7 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
   EXPECT_EQ(a.camera, "Cam");
   EXPECT_EQ(a.width, 640);
   EXPECT_EQ(a.height, 480);
-  EXPECT_EQ(a.samples_per_pixel, 16);
+  EXPECT_EQ(samples_per_pixel_of(a), 16);
   EXPECT_EQ(a.max_depth, 4);
   EXPECT_FALSE(a.show_background);
   EXPECT_EQ(aov_list_name(a.aovs), "beauty,Z");
@@ -82,7 +82,7 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
   const render_options& b = jobs[1].options;
   EXPECT_EQ(b.input, (dir / "b.glb").string());
   EXPECT_EQ(b.output, (dir / "out/b_2.exr").string());  // asset stem + _camera
-  EXPECT_EQ(b.samples_per_pixel, 4);                    // the manifest's default
+  EXPECT_EQ(samples_per_pixel_of(b), 4);                // the manifest's default
   EXPECT_EQ(b.max_depth, 6);
   EXPECT_TRUE(b.show_background);
   EXPECT_FALSE(b.width.has_value());
@@ -101,7 +101,7 @@ TEST_F(manifest, a_bare_json_array_is_a_list_of_jobs) {
       plan(write("m.json", R"([{"asset": "x.gltf"}, {"asset": "y.gltf", "spp": 2}])"));
   ASSERT_EQ(jobs.size(), 2u);
   EXPECT_EQ(jobs[0].options.output, (dir / "out/x.exr").string());
-  EXPECT_EQ(jobs[1].options.samples_per_pixel, 2);
+  EXPECT_EQ(samples_per_pixel_of(jobs[1].options), 2);
 }
 
 TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
@@ -120,11 +120,12 @@ TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
   EXPECT_EQ(a.camera, "Cam");
   EXPECT_EQ(a.width, 320);
   EXPECT_EQ(a.height, 240);
-  EXPECT_EQ(a.samples_per_pixel, 8);
+  EXPECT_EQ(samples_per_pixel_of(a), 8);
   EXPECT_EQ(a.max_depth, 4);
   EXPECT_EQ(aov_list_name(a.aovs), "beauty,Z");
   EXPECT_EQ(jobs[1].error, "");
-  EXPECT_EQ(jobs[1].options.samples_per_pixel, 1);  // empty cells leave the defaults
+  EXPECT_EQ(samples_per_pixel_of(jobs[1].options),
+            default_samples_per_pixel);  // empty cells leave the defaults
   EXPECT_EQ(jobs[1].options.background, std::optional<vec3>(vec3(0.5f, 0.25f, 0.0f)));
   EXPECT_EQ(jobs[1].options.up, dvec3(0.0, 0.0, 1.0));  // a quoted argument inside the overrides
   EXPECT_EQ(jobs[2].options.input, (dir / "c, d.gltf").string());

@@ -95,7 +95,7 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
           {"camera", p.camera_description},
           {"width", p.cam.width},
           {"height", p.cam.height},
-          {"samples_per_pixel", o.view.samples_per_pixel},
+          {"samples_per_pixel", samples_per_pixel_of(o.view)},
           {"repeats", o.repeats},
           {"triangles", {{"unique", m.unique_triangles}, {"placed", m.placed_triangles}}},
           {"instances", m.instances},

@@ -113,7 +113,7 @@ nlohmann::json report_json(const compare_options& o, const view_camera& cam, con
           {"against", o.against},
           {"width", cam.width},
           {"height", cam.height},
-          {"samples_per_pixel", o.view.samples_per_pixel},
+          {"samples_per_pixel", samples_per_pixel_of(o.view)},
           {"grid_options", grid_options_json(o.view.grid)},
           {"structure", {{"accel", structure_json(tested)}, {"against", structure_json(reference)}}},
           {"rays", kinds},

@@ -24,7 +24,7 @@ void print_summary(const render_job_result& result, const render_options& option
   for (const auto& [key, value] : result.metadata.attributes) {
     if (adaptive && key == "kiln/adaptive") sampling = "adaptive " + value;
     if (!adaptive && key == "kiln/filter")
-      sampling = std::to_string(options.samples_per_pixel) + " spp, " + value + " filter";
+      sampling = std::to_string(samples_per_pixel_of(options)) + " spp, " + value + " filter";
   }
   const render_statistics& stats = result.stats;
   std::fprintf(stderr,

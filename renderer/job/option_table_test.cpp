@@ -124,7 +124,7 @@ TEST(option_table, bad_text_is_refused_in_the_options_name) {
 
 TEST(option_table, recorded_options_are_the_exr_attributes) {
   render_options o;
-  o.samples_per_pixel = 4;
+  o.spp_given = 4;
   o.embree.compact = true;
   std::map<std::string, std::string> attributes;
   for (const auto& [key, value] : recorded_option_attributes(o)) attributes[key] = value;

@@ -37,7 +37,7 @@ plan_estimate estimate_job(const render_options& options, int probe_pixels) {
   // Two probes, the same view on smaller images (the window does not depend on the pixel count):
   // a render costs a part fixed per call (the textures' mip pyramids, the film, the threads, cold
   // caches), which a one-pixel probe measures, and a part per sample, from the larger probe.
-  settings.samples_per_pixel = std::min(options.samples_per_pixel, 4);
+  settings.samples_per_pixel = std::min(samples_per_pixel_of(options), 4);
   settings.threads = 1;
   settings.motion = prepared.motion.get();
   if (!prepared.camera_steps.empty()) settings.camera_steps = &prepared.camera_steps;
@@ -63,7 +63,7 @@ plan_estimate estimate_job(const render_options& options, int probe_pixels) {
   e.probe_spp = settings.samples_per_pixel;
   // Timing noise on a busy machine can make the larger probe no slower than the one-pixel one:
   // then at least a twentieth of its time counts as per sample.
-  const double samples = double(width) * height * std::max(options.samples_per_pixel, 1);
+  const double samples = double(width) * height * std::max(samples_per_pixel_of(options), 1);
   const double fixed = std::min(probe_seconds[0], 0.95 * probe_seconds[1]);
   const double per_sample = (probe_seconds[1] - fixed) / std::max(probe_samples[1] - probe_samples[0], 1.0);
   e.render_seconds = fixed + per_sample * samples;

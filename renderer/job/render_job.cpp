@@ -32,6 +32,7 @@
 #include "render/light_groups.h"
 #include "render/render_space.h"
 #include "render/view_range.h"
+#include "shade/environment_light.h"
 #include "shade/texture_filter.h"
 
 namespace kiln {
@@ -231,7 +232,7 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
     const size_t steps = std::max<size_t>(prepared.world.shutter.steps, prepared.camera_steps.size());
     metadata.attributes.emplace_back("kiln/shutter_steps", std::to_string(steps));
   }
-  metadata.int_attributes = {{"samplesPerPixel", options.samples_per_pixel}};
+  metadata.int_attributes = {{"samplesPerPixel", samples_per_pixel_of(options)}};
   return metadata;
 }
 
@@ -340,14 +341,14 @@ prepared_scene prepare_scene(const render_options& options, const std::atomic<bo
 
 render_settings make_render_settings(const render_options& options) {
   render_settings settings;
-  settings.samples_per_pixel = options.samples_per_pixel;
+  settings.samples_per_pixel = samples_per_pixel_of(options);
   settings.random_samples = options.sampler == "random";
   settings.filter.kind = parse_filter_kind(options.filter).value_or(filter_kind::box);
   settings.filter.radius = options.filter_radius.value_or(default_filter_radius(settings.filter.kind));
   settings.adaptive.threshold = options.adaptive_threshold;
   settings.adaptive.max_depth = options.adaptive_depth;
   // Adaptive sampling places its own samples and averages them over the pixel's square.
-  if (options.adaptive_threshold > 0.0f && options.samples_per_pixel != 1)
+  if (options.adaptive_threshold > 0.0f && options.spp_given > 1)
     throw input_error("", "--adaptive-threshold", "adaptive supersampling replaces --spp; give one of them");
   if (options.adaptive_threshold > 0.0f && (options.filter != "box" || options.filter_radius))
     throw input_error("", "--adaptive-threshold",
@@ -406,6 +407,7 @@ void charge_render_memory(const prepared_scene& prepared, const render_settings&
   pixel_rect region = settings.crop;
   if (region.width() <= 0) region = {0, 0, prepared.cam.width, prepared.cam.height};
   memory.charge(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
+  memory.charge(environment_light_bytes(prepared.world), file, "the environment's sampling distribution");
   memory.charge(accelerator_bytes(prepared.world), file, "the acceleration structures");
   memory.charge(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
                 "the film and AOV buffers");

@@ -28,7 +28,7 @@ struct render_options {
   std::string output;
   std::optional<int> width;
   std::optional<int> height;
-  int samples_per_pixel = 1;
+  int spp_given = 0;                   // --spp; 0: not given (samples_per_pixel_of gives the default)
   std::string filter = "box";          // box | tent | gaussian | blackman-harris
   std::string sampler = "stratified";  // stratified | random (sample positions inside a pixel)
   std::optional<float> filter_radius;  // empty: the filter's default radius
@@ -99,7 +99,7 @@ struct render_options {
   std::string lighting = "auto";                // --lighting auto|studio|headlight|file (job/lighting.h)
   double environment_rotation_degrees = 0.0;
   float environment_intensity = 1.0f;
-  int environment_samples = 1;  // --environment-samples: pairs of environment samples per shading point
+  int environment_samples = 2;  // --environment-samples: pairs of environment samples per shading point
   int max_depth = 8;
   float min_throughput = 1e-3f;
   uint64_t max_rays_per_sample = shading_options{}.max_rays_per_sample;  // --max-rays-per-sample
@@ -115,5 +115,16 @@ struct render_options {
   bool batch_job = false;          // run by `kiln batch` as one of its jobs (hidden --batch-command-line)
   std::string command_line;
 };
+
+// Samples per pixel when --spp is not given: enough for anti-aliased edges and an environment's light
+// without visible noise on the shipped assets (README "Anti-aliasing" has the measurements).
+constexpr int default_samples_per_pixel = 16;
+
+// The samples per pixel a render takes: --spp, else the default (1 under adaptive supersampling,
+// which places its own samples).
+inline int samples_per_pixel_of(const render_options& o) {
+  if (o.spp_given > 0) return o.spp_given;
+  return o.adaptive_threshold > 0.0f ? 1 : default_samples_per_pixel;
+}
 
 }  // namespace kiln

@@ -17,10 +17,17 @@ void add_view_options(std::vector<option_spec>& t) {
   add(optional_side(
       "height", [](render_options & o) -> auto& { return o.height; }, "48",
       "Image height in pixels (default 480, or from the camera's aspect ratio)"));
-  add(integer_option<int>(
-          "spp", [](render_options & o) -> auto& { return o.samples_per_pixel; }, 1, 1 << 16, "4",
-          "Samples per pixel, stratified and jittered (1 = pixel centre)"))
+  add(custom_option(
+          "spp",
+          [](render_options& o, const std::string& text) {
+            o.spp_given = int(parse_integer(text, "--spp", 1, 1 << 16));
+          },
+          [](const render_options& o) -> std::optional<std::string> {
+            return std::to_string(samples_per_pixel_of(o));
+          },
+          "4", "Samples per pixel, stratified and jittered (default 16; 1 = pixel centre)"))
       .recorded_as = "kiln/samples_per_pixel";
+  t.back().type = option_type::integer;
   add(choice_option(
           "sampler", [](render_options & o) -> auto& { return o.sampler; }, {"stratified", "random"},
           "random",

@@ -64,9 +64,10 @@ TEST(aov_list, pass_names_and_part_counts) {
   ASSERT_TRUE(aovs);
   EXPECT_TRUE(wants_camera_passes(*aovs));
   EXPECT_EQ(aov_list_name(*aovs), "beauty,albedo_filtered,N_filtered,diffuse,specular,shadow");
-  // 4 lights + emission + environment: two shadow parts (lights 0-2, 3).
+  // 4 lights + emission + environment: two shadow parts (lights 0-2; light 3 and the environment).
   EXPECT_EQ(beauty_part_count(*aovs, 6), 4 + 2);
-  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 5), 1);  // 3 lights
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 5), 2);  // 3 lights + the environment
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 4), 1);  // 2 lights + the environment
   EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow,direct,lightgroups", nullptr), 3), 1 + 3 + 3);
   EXPECT_FALSE(wants_camera_passes(*parse_aov_list("beauty,lightgroups,albedo", nullptr)));
   std::string bad;

@@ -113,6 +113,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   state.passes = outputs.passes ? &s.passes : nullptr;
   state.memo = outputs.memo;
   state.seed = camera_ray_seed(r);
+  state.stratum = outputs.stratum;
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
@@ -134,7 +135,7 @@ camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& ca
   camera_sample s;
   if (outputs.surfaces) outputs.surfaces->clear();  // a miss shades no surface
   if (outputs.groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
-  if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size(), 0.0f);
+  if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size() + 1, 0.0f);
   ray r = start;  // find_visible_hit moves the origin past culled back faces
   // Orthographic rays run along the view axis from the window plane: their distance is planar.
   if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));

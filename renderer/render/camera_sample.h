@@ -64,6 +64,8 @@ struct sample_outputs {
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point
   // The caller's triangle constants, kept from sample to sample (null: none); see triangle_memo.
   triangle_memo* memo = nullptr;
+  // The sample's place in its pixel (count 0: not known, as for adaptive sampling's corners).
+  pixel_stratum stratum;
 };
 
 // The sample outputs a film with aovs needs.

@@ -58,7 +58,7 @@ struct film {
   std::vector<std::string> light_group_layers;
   std::vector<vec3> light_groups;
   // The camera path's passes (shade/whitted.h's camera_passes), filtered like the beauty; empty
-  // unless asked for. shadow holds light_count() mattes per pixel.
+  // unless asked for. shadow holds shadow_count() mattes per pixel.
   std::vector<vec3> albedo_filtered;
   std::vector<vec3> normal_filtered;
   std::vector<vec3> diffuse;
@@ -91,7 +91,7 @@ struct film {
     if (a.normal_filtered) normal_filtered.assign(n, vec3(0.0f));
     if (a.diffuse) diffuse.assign(n, vec3(0.0f));
     if (a.specular) specular.assign(n, vec3(0.0f));
-    if (a.shadow) shadow.assign(n * size_t(light_count()), 0.0f);
+    if (a.shadow) shadow.assign(n * size_t(shadow_count()), 0.0f);
     if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
     if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
@@ -100,9 +100,13 @@ struct film {
   int light_group_count() const { return int(light_group_layers.size()); }
   // The punctual lights: every group but emission and environment.
   int light_count() const { return std::max(light_group_count() - 2, 0); }
-  // The shadow matte layer of light i: "shadow_" + its group's name ("lightgroup_<name>").
+  // The shadow mattes: one per punctual light, then the environment's (every group but emission).
+  int shadow_count() const { return std::max(light_group_count() - 1, 0); }
+  // The shadow matte layer i: "shadow_" + its group's name ("lightgroup_<name>"): light i's, and
+  // after the lights the environment's.
   std::string shadow_layer(int i) const {
-    const std::string& group = light_group_layers[size_t(i)];
+    const int lights = light_count();
+    const std::string& group = light_group_layers[size_t(i < lights ? i : lights + 1)];
     const size_t prefix = group.find('_');
     return "shadow" + (prefix == std::string::npos ? "_" + group : group.substr(prefix));
   }
@@ -116,7 +120,7 @@ inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0)
                      a.normal_filtered, a.diffuse, a.specular})
     per_pixel += three ? sizeof(vec3) : 0;
   per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
-  per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 2, 0)) : 0;
+  per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 1, 0)) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;
   per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
   per_pixel += a.motion ? sizeof(vec4) : 0;

@@ -199,10 +199,10 @@ void store_beauty_parts(film& out, size_t p, const vec3* parts) {
   if (!out.albedo_filtered.empty()) out.albedo_filtered[p] = glm::clamp(*parts++, 0.0f, 1.0f);
   for (std::vector<vec3>* pass : {&out.normal_filtered, &out.diffuse, &out.specular})
     if (!pass->empty()) (*pass)[p] = *parts++;
-  const size_t lights = size_t(out.light_count());
+  const size_t mattes = size_t(out.shadow_count());
   if (out.aovs.shadow)
-    for (size_t i = 0; i < lights; ++i)
-      out.shadow[p * lights + i] = std::clamp(parts[i / 3][int(i % 3)], 0.0f, 1.0f);
+    for (size_t i = 0; i < mattes; ++i)
+      out.shadow[p * mattes + i] = std::clamp(parts[i / 3][int(i % 3)], 0.0f, 1.0f);
 }
 
 namespace {

@@ -79,7 +79,7 @@ film crop_film(const film& from, const pixel_rect& to) {
         std::copy_n(src.begin() + from.index(x - from.x0, y - from.y0) * per_pixel, per_pixel,
                     dst.begin() + out.index(x - to.x0, y - to.y0) * per_pixel);
   };
-  copy_runs(from.shadow, out.shadow, size_t(from.light_count()));
+  copy_runs(from.shadow, out.shadow, size_t(from.shadow_count()));
   copy_runs(from.light_groups, out.light_groups, size_t(from.light_group_count()));
   const size_t depth = size_t(from.aovs.crypto_depth);
   copy_runs(from.crypto_object, out.crypto_object, depth);
@@ -132,6 +132,14 @@ bool wants_beauty_parts(const aov_set& aovs) {
   return wants_light_split(aovs) || aovs.light_groups || wants_camera_passes(aovs);
 }
 
+// Sample s of pixel (x, y)'s place among the pixel's spp samples, for stratifying what its shading
+// draws (shade/whitted.h's pixel_stratum): the index shuffled per pixel, so the order of the film
+// positions' strata does not pair with the order of the shading's.
+inline pixel_stratum sample_stratum(int x, int y, int s, int spp) {
+  const uint32_t pixel = hash_u32(uint32_t(x) * 0x9E3779B1U + hash_u32(uint32_t(y)) + 0x5BD1E995U);
+  return {pixel, permuted_index(uint32_t(s), uint32_t(spp), pixel), uint32_t(spp)};
+}
+
 // Shades every stratified sample of one pixel from its camera ray and closest hit (made and traced
 // by the camera-ray stage, rays) and splats it through the filter. The nearest sample decides depth,
 // normal and the other AOVs (never filtered, so they stay valid for compositing).
@@ -150,6 +158,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     if (s % 64 == 63 && cancel_requested(settings)) break;
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
+    outputs.stratum = sample_stratum(x, y, s, settings.samples_per_pixel);
     camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
                                         source.cone, counts, outputs);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):

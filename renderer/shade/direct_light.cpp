@@ -192,13 +192,21 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
   for (int i = 0; i < n; ++i) {
     const auto next = [&s, i](uint32_t dimension) { return hash_to_unit(s.seed, uint32_t(i), dimension); };
     const float stratum = float(i);
-    const environment_sample es =
-        sample_environment(e, vec2(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f)));
+    vec2 light_u(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f));
+    vec2 lobe_u(next(4), next(5));
+    if (s.stratum.count > 0) {
+      // The camera's first surface: its pixel's samples × n pairs take consecutive points of a
+      // scrambled (0, 2)-sequence, so the pixel's estimate is stratified over both domains.
+      const uint32_t point = s.stratum.index * uint32_t(n) + uint32_t(i), key = s.stratum.scramble;
+      sobol_2d(point, hash_u32(key ^ 0x1B56C4E9U), hash_u32(key ^ 0x27D4EB2FU), light_u.x, light_u.y);
+      sobol_2d(point, hash_u32(key ^ 0x165667B1U), hash_u32(key ^ 0x61C88647U), lobe_u.x, lobe_u.y);
+    }
+    const environment_sample es = sample_environment(e, light_u);
     if (es.pdf > 0.0f) {
       const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
       add_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, weight, tally, counts);
     }
-    const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), next(4), next(5));
+    const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), lobe_u.x, lobe_u.y);
     if (const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u)) {
       const float pdf = lobe_pdf(lobes, to_viewer, *l);
       if (pdf > 0.0f) {

@@ -65,6 +65,12 @@ void build_map_distribution(const image& im, environment_light& e) {
 
 }  // namespace
 
+uint64_t environment_light_bytes(const scene& s) {
+  if (!s.env.has_map()) return 0;
+  const image& im = s.images[size_t(s.env.map_image)];
+  return uint64_t(std::max(im.width, 0) + 1) * uint64_t(std::max(im.height, 0) + 1) * 2 * sizeof(float);
+}
+
 environment_light make_environment_light(const scene& s) {
   environment_light e;
   const environment& env = s.env;

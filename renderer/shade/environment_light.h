@@ -5,6 +5,7 @@
 // drawing, for multiple importance sampling against the BSDF. Depends on scene only.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "scene/scene.h"
@@ -22,6 +23,10 @@ struct environment_light {
   std::vector<float> row_cdf;     // height + 1 entries, from 0 to 1
   std::vector<float> column_cdf;  // per row, width + 1 entries from 0 to 1
 };
+
+// The bytes make_environment_light(s) allocates: two floats a texel of a map (its density and its
+// row's CDF), for the job's memory budget.
+uint64_t environment_light_bytes(const scene& s);
 
 // The environment light of s's environment (lights false when it is black everywhere).
 environment_light make_environment_light(const scene& s);

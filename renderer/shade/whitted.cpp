@@ -168,6 +168,7 @@ path_state secondary(const path_state& s, float throughput, const medium_stack& 
                      uint32_t seed) {
   path_state next = s;
   next.seed = seed;
+  next.stratum = {};
   ++next.depth;
   next.throughput = throughput;
   next.media = media;
@@ -356,6 +357,7 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
                   const path_state& s, ray_counts& counts) {
   path_state next = s;
   next.seed = child_seed(s.seed, spawned::behind);
+  next.stratum = {};
   next.throughput = s.throughput * (1.0f - alpha);
   next.share = s.share * (1.0f - alpha);
   next.tint = s.tint * (1.0f - alpha);

@@ -40,7 +40,7 @@ struct shading_options {
   float highlight_footprint_scale = 1.0f;
   // Pairs of environment samples (one from the map's importance, one from the material's lobes) each
   // shading point takes when the environment lights the scene (--environment-samples).
-  int environment_samples = 1;
+  int environment_samples = 2;
 };
 
 // Rays traced by kind, for statistics and benchmarks.
@@ -117,12 +117,13 @@ struct light_split {
 // the surface covers, so a pixel's filtered value is premultiplied by coverage like R G B:
 // - albedo: the surface's denoising albedo (material_eval.h's denoising_albedo), normal: the shading
 //   normal the N AOV holds (normal map applied, bent toward the viewer);
-// - diffuse, specular: the punctual lights' direct light there by lobe of the BRDF (Lambert, and
-//   GGX for dielectric and metal), shadowed as the beauty is; their sum plus the emission and the
-//   background the path sees is the light split's direct;
-// - shadow (one per light, empty unless kept): the luminance share of that light's unshadowed
-//   direct light that its shadow ray finds blocked, 1 − Y(shadowed)/Y(unshadowed), 0 where the light
-//   adds nothing (behind the surface, zero BRDF, or a light that casts no shadows).
+// - diffuse, specular: the punctual lights' and the environment's direct light there by lobe of the
+//   BRDF (Lambert, and GGX for dielectric and metal), shadowed as the beauty is; their sum plus the
+//   emission and the background the path sees is the light split's direct;
+// - shadow (one per light, then the environment's; empty unless kept): the luminance share of that
+//   source's unshadowed direct light that its shadow rays find blocked, 1 − Y(shadowed)/Y(unshadowed),
+//   0 where it adds nothing (behind the surface, zero BRDF, a light that casts no shadows, a dark
+//   environment).
 struct camera_passes {
   vec3 albedo{0.0f};
   vec3 normal{0.0f};
@@ -173,6 +174,14 @@ struct camera_path {
   void add_surface(uint32_t instance, const vec3& position, const vec3& radiance, float coverage);
 };
 
+// A camera sample's place among its pixel's samples, which stratifies the environment samples of the
+// surface it sees first across the pixel (count 0: none, the samples are independent).
+struct pixel_stratum {
+  uint32_t scramble = 0;  // the pixel's, from a hash of its coordinates
+  uint32_t index = 0;     // the sample's index, 0 to count - 1, shuffled per pixel
+  uint32_t count = 0;     // the pixel's samples
+};
+
 // What one ray of a camera sample's tree carries down the Whitted recursion. Passed by value: a
 // branch changes its own copy, so nothing is changed and restored around a recursive call.
 struct path_state {
@@ -205,6 +214,8 @@ struct path_state {
   // Where this ray's random numbers come from (core/hash_random.h): the camera sample's (a hash of
   // its ray), and each ray spawned from it its own, derived from its parent's and which ray it is.
   uint32_t seed = 0;
+  // Set on the camera's own first shading point only (shade/direct_light.h stratifies by it).
+  pixel_stratum stratum;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.

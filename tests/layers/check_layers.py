@@ -21,7 +21,7 @@ ALLOWED = {
     "render": {"core", "scene", "geometry", "accel", "shade"},
     "io/file": {"core"},
     "io/plugin": {"core"},
-    "io/colour": {"core", "io/plugin"},
+    "io/colour": {"core", "io/file", "io/plugin"},
     "io/image_codecs": {"core", "scene", "io/file", "io/exr", "io/plugin", "io/colour"},
     "io/gltf": {"core", "scene", "geometry", "io/file", "io/image_codecs"},
     "io/exr": {"core", "scene", "render", "io/file", "io/image_codecs", "io/colour"},

@@ -125,7 +125,7 @@ def test_denoiser_and_relighting_passes_are_arrays():
         assert result.aovs[name].shape == (24, 32, 3), name
     assert result.channels["N_filtered"] == ["N_filtered.X", "N_filtered.Y", "N_filtered.Z"]
     mattes = sorted(name for name in result.aovs if name.startswith("shadow_"))
-    assert mattes == ["shadow_ceiling_light", "shadow_fill_light"]
+    assert mattes == ["shadow_ceiling_light", "shadow_environment", "shadow_fill_light"]
     for name in mattes:
         matte = result.aovs[name]
         assert matte.shape == (24, 32, 1) and result.channels[name] == [name + ".A"]
@@ -237,7 +237,7 @@ def test_options_are_the_clis():
             assert name in help_text, name
     assert {"--spp", "--aovs", "--band", "--look-from"} <= names
     spp = next(o for o in kiln.options() if o["name"] == "spp")
-    assert spp["type"] == "int" and spp["default"] == "1"
+    assert spp["type"] == "int" and spp["default"] == "16"
 
 
 CESIUM_MAN = os.path.join(SOURCE, "..", "shared", "assets", "CesiumMan", "glTF-Binary", "CesiumMan.glb")

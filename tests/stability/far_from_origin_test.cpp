@@ -69,6 +69,7 @@ film render_scene(double offset, const std::string& name, const char* accel) {
   o.height = image_side;
   o.quiet = true;
   o.lighting = "file";  // the file's light alone: its closed form, no sampled environment
+  o.spp_given = 1;
   o.aovs.ids = true;
   o.aovs.position = true;
   const prepared_scene p = prepare_scene(o);

@@ -207,14 +207,14 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
                             }});
     out.push_back(std::move(l));
   }
-  // Shadow mattes: one single-channel layer (and with --multipart one part) per light, named
-  // after its light group.
+  // Shadow mattes: one single-channel layer (and with --multipart one part) per light and one for
+  // the environment, named after their light groups.
   if (a.shadow) {
-    const size_t lights = size_t(f.light_count());
-    for (size_t g = 0; g < lights; ++g) {
+    const size_t mattes = size_t(f.shadow_count());
+    for (size_t g = 0; g < mattes; ++g) {
       const std::string name = f.shadow_layer(int(g));
       layer l{name, type_of(formats.shadow), false, {}};
-      l.channels.push_back({name + ".A", [&f, lights, g](size_t i) { return f.shadow[i * lights + g]; }});
+      l.channels.push_back({name + ".A", [&f, mattes, g](size_t i) { return f.shadow[i * mattes + g]; }});
       out.push_back(std::move(l));
     }
   }
