@@ -58,7 +58,7 @@ add_library(kiln::ocio ALIAS kiln_ocio)
 # EXR files are read and written through OpenEXR alone: linking it costs a process start next to
 # nothing, where OpenImageIO's ~260 libraries cost 0.3-2 s.
 add_library(kiln_openexr INTERFACE)
-target_link_libraries(kiln_openexr INTERFACE OpenEXR::OpenEXR)
+target_link_libraries(kiln_openexr INTERFACE OpenEXR::OpenEXR OpenEXR::OpenEXRCore)
 add_library(kiln::openexr ALIAS kiln_openexr)
 
 # Debian ships tinygltf as a shared library: never define TINYGLTF_IMPLEMENTATION here.

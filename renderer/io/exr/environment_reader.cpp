@@ -1,6 +1,7 @@
 #include "io/exr/environment_reader.h"
 
 #include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/openexr.h>
 
 #include <cmath>
 #include <cstring>
@@ -25,9 +26,31 @@ bool is_exr(const std::string& path) {
   return in.read(magic, 4) && std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0;
 }
 
+// The texels an OpenEXR file's header claims, read by OpenEXR's core library (the header alone:
+// the C++ reader would first read a line offset table as long as the claimed height). 0 when the
+// header cannot be read.
+uint64_t claimed_exr_texels(const std::string& path) {
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char*) {};  // reported below
+  exr_context_t context = nullptr;
+  uint64_t texels = 0;
+  exr_attr_box2i_t window{};
+  if (exr_start_read(&context, path.c_str(), &init) == EXR_ERR_SUCCESS &&
+      exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS && window.max.x >= window.min.x &&
+      window.max.y >= window.min.y)
+    texels = uint64_t(int64_t(window.max.x) - window.min.x + 1) *
+             uint64_t(int64_t(window.max.y) - window.min.y + 1);
+  exr_finish(&context);
+  return texels;
+}
+
 // An OpenEXR map read through OpenEXR itself (RGB, alpha ignored), so the studio environment of every
 // default render, and any EXR map, costs no image codecs module.
 image read_exr_environment(const std::string& path) {
+  if (const uint64_t claimed = claimed_exr_texels(path); claimed > max_texels)
+    throw input_error(path, "--environment",
+                      "the image claims " + std::to_string(claimed) +
+                          " texels, more than the largest environment map (2^27 texels)");
   try {
     Imf::RgbaInputFile file(path.c_str());
     const Imath::Box2i window = file.dataWindow();
