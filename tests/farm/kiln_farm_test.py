@@ -2,8 +2,10 @@
 """tools/farm/kiln_farm.py without a cluster: plan checking, the task list and sbatch scripts of
 --dry-run and a written work folder, the EXR header reader against kiln's own --tile bands,
 finalize's report on missing and damaged bands, how units are packed into tasks and tasks split
-into arrays, --time and --mem from estimates, and a packed task's script run without Slurm.
-Usage: kiln_farm_test.py SOURCE_DIR KILN_BINARY"""
+into arrays, --time and --mem from estimates, and a packed task's script run without Slurm;
+options and paths that reach the scripts (refused with one line before anything is written, or
+quoted so that sbatch and bash read them as given), and files written past links planted in the
+work folder. Usage: kiln_farm_test.py SOURCE_DIR KILN_BINARY"""
 
 import contextlib
 import io
@@ -27,6 +29,49 @@ def run_main(args):
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         rc = kiln_farm.main(args)
     return rc, out.getvalue(), err.getvalue()
+
+
+def sbatch_directives(script, legacy=False):
+    """The options sbatch reads from a script's #SBATCH lines, split as Slurm's sbatch splits them
+    (src/sbatch/opt.c, _get_argument): whitespace separates, '...' and "..." group, a backslash
+    takes the next character as it is, an unquoted # starts a comment (Slurm 22.05). legacy: as
+    older Slurm, where only "..." groups and a # ends the line even inside quotes."""
+    args = []
+    for line in script.splitlines()[1:]:
+        if not line.startswith("#"):
+            break  # sbatch stops at the first command
+        if not line.startswith("#SBATCH"):
+            continue
+        rest, i = line[len("#SBATCH"):], 0
+        while True:
+            while i < len(rest) and rest[i].isspace():
+                i += 1
+            arg, quote, escape = "", None, False
+            while i < len(rest) and (quote or not rest[i].isspace()):
+                c = rest[i]
+                i += 1
+                if escape:
+                    escape = False
+                elif c == "\\":
+                    escape = True
+                    continue
+                elif c == "#" and (legacy or not quote):
+                    i = len(rest)
+                    break
+                elif quote:
+                    if c == quote:
+                        quote = None
+                        continue
+                elif c == '"' or (c == "'" and not legacy):
+                    quote = c
+                    continue
+                arg += c
+            if quote:
+                raise ValueError(f"unmatched {quote} in {line!r}")
+            if not arg:
+                break
+            args.append(arg)
+    return args
 
 
 class FarmTest(unittest.TestCase):
@@ -372,6 +417,199 @@ class FarmTest(unittest.TestCase):
             diff = subprocess.run(["idiff", "-q", "-fail", "0", "-failpercent", "0", "-warn", "0", "-a", alone,
                                    stitched], capture_output=True)
             self.assertEqual(diff.returncode, 0, diff.stdout)
+
+    # Options and paths that reach the generated scripts (issue 43, item 7).
+
+    def fake_slurm(self):
+        """A PATH folder whose sbatch records each call's arguments (one JSON list a line) and
+        answers a job id, and whose scancel does nothing: submit runs without a cluster."""
+        folder = os.path.join(self.dir, "fake_bin")
+        os.makedirs(folder, exist_ok=True)
+        calls = os.path.join(self.dir, "sbatch_calls")
+        with open(os.path.join(folder, "sbatch"), "w") as f:
+            f.write("#!/usr/bin/env python3\nimport json, sys\n"
+                    f"with open({calls!r}, 'a') as f:\n    f.write(json.dumps(sys.argv[1:]) + '\\n')\n"
+                    f"print(sum(1 for _ in open({calls!r})))\n")
+        with open(os.path.join(folder, "scancel"), "w") as f:
+            f.write("#!/bin/sh\nexit 0\n")
+        for name in ("sbatch", "scancel"):
+            os.chmod(os.path.join(folder, name), 0o755)
+        return folder, calls
+
+    def submit_with_fake_slurm(self, args):
+        folder, calls = self.fake_slurm()
+        path = os.environ["PATH"]
+        os.environ["PATH"] = folder + os.pathsep + path
+        try:
+            rc, out, err = run_main(["submit", "--max-array-size", "1001"] + args)
+        finally:
+            os.environ["PATH"] = path
+        submitted = []
+        if os.path.exists(calls):
+            with open(calls) as f:
+                submitted = [json.loads(line) for line in f]
+        return rc, out, err, submitted
+
+    def assert_option_refused(self, args, option, problem, work):
+        rc, out, err, submitted = self.submit_with_fake_slurm(args)
+        self.assertEqual(rc, 2, out + err)
+        self.assertEqual(err.count("\n"), 1, err)
+        self.assertTrue(err.startswith(f"kiln farm: {option} "), err)
+        self.assertIn(problem, err)
+        self.assertEqual(submitted, [])
+        self.assertFalse(os.path.lexists(work), f"{work} was written")
+
+    def test_a_newline_in_an_option_is_refused_before_anything_is_written(self):
+        # Each of these became a line of render.sbatch/finalize.sbatch (or of tasks.txt): a
+        # newline in one ran the rest as a command on the node.
+        plan = self.write_plan({"version": 1, "jobs": [self.job()]})
+        marker = os.path.join(self.dir, "pwned")
+        inject = f"\ntouch {marker}\n"
+        work = os.path.join(self.dir, "work")
+        base = ["--plan", plan, "--kiln", KILN, "--time", "5:00", "--mem", "1G"]
+        for option in ("--job-name", "--time", "--mem", "--partition", "--kiln"):
+            value = {"--job-name": "kiln", "--time": "5:00", "--mem": "1G", "--partition": "render",
+                     "--kiln": KILN}[option] + inject
+            with self.subTest(option=option):
+                self.assert_option_refused(base + ["--work-dir", work, option, value], option,
+                                           "contains a newline", work)
+        with self.subTest(option="--work-dir"):
+            bad_work = os.path.join(self.dir, "work" + inject.rstrip("\n"))
+            self.assert_option_refused(base + ["--work-dir", bad_work], "--work-dir", "contains a newline", bad_work)
+            self.assertEqual(sorted(os.listdir(self.dir)), ["fake_bin", "plan.json"])
+        with self.subTest(option="--out-dir"):
+            kiln = self.fake_kiln(with_plan_only=True)
+            self.assert_option_refused(["--manifest", "shots.csv", "--out-dir", "renders" + inject, "--kiln", kiln,
+                                        "--work-dir", work], "--out-dir", "contains a newline", work)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "batch_args")))  # kiln batch never ran
+        with self.subTest(option="kiln batch defaults"):
+            self.assert_option_refused(["--manifest", "shots.csv", "--out-dir", "renders", "--kiln", kiln,
+                                        "--work-dir", work, "--", "--environment", "sky.hdr" + inject],
+                                       "kiln batch default", "contains a newline", work)
+        self.assertFalse(os.path.exists(marker))
+
+    def test_slurm_values_are_checked_against_what_slurm_accepts(self):
+        plan = self.write_plan({"version": 1, "jobs": [self.job()]})
+        work = os.path.join(self.dir, "work")
+        base = ["--plan", plan, "--kiln", KILN, "--work-dir", work]
+        refused = [("--time", "1h", "not a Slurm time"), ("--time", "1:2:3:4", "not a Slurm time"),
+                   ("--time", "5 ", "not a Slurm time"), ("--time", "1-2-3", "not a Slurm time"),
+                   ("--mem", "1.5G", "not a Slurm memory size"), ("--mem", "4GB", "not a Slurm memory size"),
+                   ("--mem", "", "not a Slurm memory size"),
+                   ("--partition", "a b", "not a Slurm partition name"),
+                   ("--partition", "render;touch x", "not a Slurm partition name"),
+                   ("--partition", "a,", "not a Slurm partition name"),
+                   ("--job-name", "", "is empty"), ("--job-name", "a\tb", "contains a control character"),
+                   ("--job-name", "a\rb", "contains a control character"),
+                   ("--work-dir", os.path.join(self.dir, "a\\b"), "contains a backslash")]
+        for option, value, problem in refused:
+            with self.subTest(option=option, value=value):
+                args = base + [option, value] if option != "--work-dir" else base[:-1] + [value]
+                self.assert_option_refused(args, option, problem, work if option != "--work-dir" else value)
+        accepted = [("--time", t) for t in ("5", "5:30", "1:00:00", "2-0", "2-12:30", "2-12:30:15", "UNLIMITED",
+                                            "infinite")]
+        accepted += [("--mem", m) for m in ("4096", "500M", "4G", "1T", "64k", "2g")]
+        accepted += [("--partition", p) for p in ("render", "gpu_a100.long-2", "short,long")]
+        for option, value in accepted:
+            with self.subTest(option=option, value=value):
+                rc, out, err = run_main(["submit", "--dry-run", "--max-array-size", "1001"] + base + [option, value])
+                self.assertEqual(rc, 0, err)
+                self.assertIn(f"#SBATCH {option}={value}\n", out)
+
+    def test_scripts_with_hostile_paths_and_names_parse_and_run_no_injected_command(self):
+        # Quotes, $(...), backticks, #, % and spaces in the job name, the work folder, the kiln
+        # binary's path, the asset's and the output's: the scripts are valid bash, sbatch reads
+        # the job name and log path exactly, and running them renders and verifies the job
+        # without running any of the embedded commands.
+        # Each embedded command would create pwnedN in the folder the scripts run in (self.dir).
+        hostile = lambda i: f"a b 'q\" $(touch pwned{i}) `touch pwned{i}` #x %j ;"
+        folder = os.path.join(self.dir, hostile(0))
+        os.makedirs(os.path.join(folder, "assets"))
+        for name in ("cornell_box.gltf", "cornell_box.bin", "checker.png"):
+            with open(os.path.join(SOURCE_DIR, "scenes", name), "rb") as src, \
+                    open(os.path.join(folder, "assets", name), "wb") as dst:
+                dst.write(src.read())
+        asset = os.path.join(folder, "assets", "cornell_box.gltf")
+        kiln = os.path.join(folder, hostile(1) + " kiln")
+        os.symlink(KILN, kiln)
+        job = self.job(hostile(2), asset=asset, output=os.path.join(folder, "out " + hostile(3), "o.exr"))
+        plan = self.write_plan({"version": 1, "jobs": [job]})
+        work = os.path.join(folder, "work " + hostile(4))
+        job_name = "shot " + hostile(5)
+        rc, out, err, submitted = self.submit_with_fake_slurm(
+            ["--plan", plan, "--kiln", kiln, "--work-dir", work, "--job-name", job_name, "--tiles", "2",
+             "--time", "1-0:05", "--mem", "2G", "--partition", "render,short", "--max-retries", "0"])
+        self.assertEqual(rc, 0, err)
+        render, finalize = (os.path.join(work, n) for n in ("render.sbatch", "finalize.sbatch"))
+        self.assertEqual(submitted, [["--parsable", "--array=0-1", "--export=ALL,KILN_FARM_FIRST_TASK=0", render],
+                                     ["--parsable", "--dependency=afterany:1", "--kill-on-invalid-dep=no", finalize]])
+        logs = os.path.join(work.replace("%", "%%"), "logs")
+        for script, name, log, extra in ((render, "render", "render.%A_%a.log",
+                                          ["--array=0-1", "--cpus-per-task=1", "--ntasks=1", "--nodes=1", "--requeue",
+                                           "--open-mode=append"]),
+                                         (finalize, "stitch", "finalize.%j.log",
+                                          ["--cpus-per-task=1", "--ntasks=1", "--nodes=1"])):
+            with open(script) as f:
+                text = f.read()
+            check = subprocess.run(["bash", "-n", script], capture_output=True, text=True)
+            self.assertEqual(check.returncode, 0, check.stderr)
+            expected = [f"--job-name={job_name}-{name}", "--partition=render,short", "--time=1-0:05", "--mem=2G"] + \
+                extra + [f"--output={os.path.join(logs, log)}"]
+            for legacy in (False, True):
+                self.assertEqual(sbatch_directives(text, legacy), expected)
+        env = dict(os.environ, SLURM_ARRAY_TASK_ID="0")
+        for task in ("0", "1"):
+            run = subprocess.run(["bash", render], env=dict(env, SLURM_ARRAY_TASK_ID=task), capture_output=True,
+                                 text=True, cwd=self.dir)
+            self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        run = subprocess.run(["bash", finalize], capture_output=True, text=True, cwd=self.dir)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        with open(os.path.join(work, "verify.json")) as f:
+            report = json.load(f)
+        self.assertTrue(report["ok"], report)
+        self.assertEqual(report["jobs"][0]["name"], job["name"])
+        self.assertEqual(kiln_farm.read_exr_header(job["output"])["data_window"], [0, 0, 39, 9])
+        self.assertEqual([os.path.join(d, n) for d, dirs, files in os.walk(self.dir) for n in dirs + files
+                          if n.startswith("pwned")], [])
+        # The dry run's sbatch lines are shell words too.
+        rc, out, _ = self.submit_with_fake_slurm(["--plan", plan, "--kiln", kiln, "--work-dir", work, "--dry-run"])[:3]
+        line = next(l for l in out.splitlines() if l.startswith("# sbatch --parsable --array"))
+        self.assertEqual(shlex.split(line[2:])[-1], render)
+
+    def test_files_in_the_work_folder_are_not_written_through_planted_links(self):
+        # Someone who can write to the work folder plants links at the names the farm writes; each
+        # write goes to a file of its own renamed into place, so the links' targets stay as they were.
+        path = self.write_plan({"version": 1, "jobs": [self.job()]})
+        work = os.path.join(self.dir, "work")
+        os.makedirs(os.path.join(work, "status"))
+        victim = os.path.join(self.dir, "victim")
+        with open(victim, "w") as f:
+            f.write("precious\n")
+        names = ["tasks.txt", "packs.txt", "farm.json", "plan.json", "kiln_farm.py", "render.sbatch",
+                 "finalize.sbatch", "submission.json", "verify.json.tmp"]
+        for name in names:
+            os.symlink(victim, os.path.join(work, name))
+        rc, _, err, _ = self.submit_with_fake_slurm(["--plan", path, "--kiln", KILN, "--work-dir", work,
+                                                     "--max-retries", "0", "--time", "5", "--mem", "1G"])
+        self.assertEqual(rc, 0, err)
+        with open(victim) as f:
+            self.assertEqual(f.read(), "precious\n")
+        # After submitting: the unit's status file and verify.json are written on the node.
+        for name in ("status/0.rc", "verify.json", "verify.json.tmp"):
+            if os.path.lexists(os.path.join(work, name)):
+                os.remove(os.path.join(work, name))
+            os.symlink(victim, os.path.join(work, name))
+        run = subprocess.run(["bash", os.path.join(work, "render.sbatch")], capture_output=True, text=True,
+                             env=dict(os.environ, SLURM_ARRAY_TASK_ID="0"))
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        rc, _, err = run_main(["finalize", "--work-dir", work])
+        self.assertEqual(rc, 0, err)
+        with open(victim) as f:
+            self.assertEqual(f.read(), "precious\n")
+        for name in names[:-1] + ["status/0.rc", "verify.json"]:
+            self.assertFalse(os.path.islink(os.path.join(work, name)), name)
+        self.assertEqual(sorted(n for n in os.listdir(work) if n.startswith(".")), [])  # no temporary left
+        self.assertEqual(sorted(n for n in os.listdir(os.path.join(work, "status")) if n.startswith(".")), [])
 
     def test_header_reader_refuses_what_is_not_exr(self):
         path = os.path.join(self.dir, "x.exr")

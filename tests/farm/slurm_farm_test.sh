@@ -7,8 +7,9 @@
 # reported in verify.json (band missing, exit 2) with the finalize job failing. The cluster's
 # MaxArraySize is 5, so every submission of more than 5 tasks is split into several arrays; a batch
 # of 40 small jobs (and one missing asset) is packed 3 jobs a task: 14 tasks in 3 arrays, each job
-# verified on its own. When `kiln batch --help` offers --plan-only, a submission goes through
-# --manifest.
+# verified on its own. A work folder, asset, output, kiln path and job name full of spaces, quotes,
+# $(...), backticks, # and % go through sbatch intact and run none of what they hold. When
+# `kiln batch --help` offers --plan-only, a submission goes through --manifest.
 # Needs root (it starts munged, slurmctld and slurmd); exits 77 (skipped) otherwise.
 # Usage: slurm_farm_test.sh SOURCE_DIR KILN_BINARY
 set -euo pipefail
@@ -190,6 +191,38 @@ for array, index, code in ((1, 1, "2:0"), (1, 0, "0:0"), (2, 3, "0:0")):
     assert re.search(rf"\bExitCode={code}\b", out), (array, index, out)
 PY
 echo "farm: 41 small jobs packed into 14 tasks in 3 arrays, 40 verified, the lost one reported in $(($(date +%s) - start)) s"
+
+# Names and paths that reach the generated scripts (issue 43, item 7): the work folder, the asset's
+# folder, the output's, the kiln binary's path and the job name hold spaces, quotes, $(...),
+# backticks, # and %. sbatch takes both scripts, the jobs carry the name exactly, the logs land in
+# the work folder (its % taken literally, not as a file name pattern), the output is verified, and
+# none of the embedded commands runs: each would create "pwned" in the jobs' working folder.
+hostile="a b 'q\" \$(touch pwned) \`touch pwned\` #x %j ;"
+odd="$scratch/odd $hostile"
+mkdir -p "$odd/assets" "$scratch/jobs cwd"
+cp "$scenes/cornell_box.gltf" "$scenes/cornell_box.bin" "$scenes/checker.png" "$odd/assets/"
+ln -s "$kiln" "$odd/kiln $hostile"
+write_plan "$scratch/plan6.json" "$odd/out $hostile" "job $hostile|$odd/assets/cornell_box.gltf|${size[*]} --spp 1"
+(cd "$scratch/jobs cwd" && python3 "$farm/kiln_farm.py" submit --plan "$scratch/plan6.json" --kiln "$odd/kiln $hostile" \
+  --work-dir "$odd/work $hostile" --job-name "farm $hostile" --partition test --tiles 2 --mem 256M --time 5:00 \
+  --wait) || fail "the run with odd paths and names did not complete: $(cat "$odd/work $hostile"/logs/*.log)"
+python3 - "$odd/work $hostile" "farm $hostile" <<'PY2' || fail "the run with odd paths and names is not as it should be"
+import json, os, re, subprocess, sys
+w, name = sys.argv[1], sys.argv[2]
+r = json.load(open(f"{w}/verify.json"))
+assert r["ok"] and len(r["jobs"]) == 1 and (r["jobs"][0]["width"], r["jobs"][0]["height"]) == (96, 64), r
+s = json.load(open(f"{w}/submission.json"))
+for job, suffix, logs in ((s["render_jobs"][0], "render", [f"render.{s['render_jobs'][0]}_{i}.log" for i in (0, 1)]),
+                          (s["finalize_job"], "stitch", [f"finalize.{s['finalize_job']}.log"])):
+    out = subprocess.run(["scontrol", "show", "job", "-o", job], capture_output=True, text=True).stdout
+    m = re.search(r"\bJobName=(.*?) UserId=", out)
+    assert m and m.group(1) == f"{name}-{suffix}", out
+    for log in logs:
+        assert os.path.isfile(os.path.join(w, "logs", log)), (log, os.listdir(os.path.join(w, "logs")))
+PY2
+compare_to_reference "job $hostile" "$odd/out $hostile/job $hostile.exr" "$scratch/plan6.json"
+[ -z "$(find "$scratch" -name 'pwned*')" ] || fail "a command embedded in a name or path ran: $(find "$scratch" -name 'pwned*')"
+echo "farm: spaces, quotes, \$(...), backticks, # and % in the work folder, paths and job name reach Slurm intact"
 
 # kiln batch --plan-only resolves a manifest into the same plan format: run it when available.
 if "$kiln" batch --help 2>&1 | grep -q -- --plan-only; then

@@ -19,9 +19,11 @@ Python 3 standard library only.
 """
 
 import argparse
+import errno
 import json
 import os
 import re
+import secrets
 import shlex
 import shutil
 import struct
@@ -36,6 +38,12 @@ TERMINAL_STATES = {"COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", "NODE_FAIL", "
 # keeps two names that map alike apart).
 FILE_NAME_UNSAFE = re.compile(r"[^A-Za-z0-9_.+-]")
 CONTROL = re.compile(r"[\x00-\x1f\x7f]")
+# What sbatch accepts for --time: minutes, minutes:seconds, hours:minutes:seconds, days-hours,
+# days-hours:minutes, days-hours:minutes:seconds (or no limit); for --mem: a number with an optional
+# K, M, G or T suffix (megabytes without); for --partition: one name or several, comma-separated.
+SLURM_TIME = re.compile(r"(\d+(:\d+){0,2}|\d+-\d+(:\d+){0,2}|(?i:infinite|unlimited))\Z")
+SLURM_MEM = re.compile(r"\d+[KMGTkmgt]?\Z")
+SLURM_PARTITION = re.compile(r"[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*\Z")
 
 
 class InputError(Exception):
@@ -73,6 +81,8 @@ def load_plan(path):
             # tasks.txt holds one shell-quoted command a line; any other character is quoted.
             if CONTROL.search(job[key]):
                 raise InputError(f"{where}/{key}: {json.dumps(job[key])} contains a control character")
+            if not encodable(job[key]):
+                raise InputError(f"{where}/{key}: {json.dumps(job[key])} is not valid Unicode text")
         if job["name"] in names:
             raise InputError(f"{where}/name: '{job['name']}' is not unique")
         names.add(job["name"])
@@ -88,6 +98,8 @@ def load_plan(path):
         for j, a in enumerate(args):
             if "\n" in a or "\0" in a:
                 raise InputError(f"{where}/render_args/{j}: contains a newline or NUL")
+            if not encodable(a):
+                raise InputError(f"{where}/render_args/{j}: is not valid Unicode text")
             if a in ("--band", "--tile", "--crop", "-o", "--output") or a.startswith(
                     ("--band=", "--tile=", "--crop=", "--output=")):
                 raise InputError(f"{where}/render_args/{j}: '{a}' is set by the farm, not the plan")
@@ -101,6 +113,57 @@ def load_plan(path):
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1e18:
                     raise InputError(f"{where}/estimate/{key}: expected a non-negative number")
     return plan
+
+
+def encodable(text):
+    """Whether text can be written as UTF-8 (a name read from a non-UTF-8 command line or a JSON
+    lone surrogate cannot)."""
+    try:
+        text.encode("utf-8")
+        return True
+    except UnicodeEncodeError:
+        return False
+
+
+def check_submit_options(options):
+    """Refuses, as an InputError naming the option, every value that would reach a generated
+    script, tasks.txt or an #SBATCH line and that Slurm or the scripts cannot hold: one line, before
+    anything is written or submitted. What passes is quoted where it is written (shlex.quote in the
+    shell lines, sbatch_value in the #SBATCH lines)."""
+    def refuse(option, value, problem):
+        raise InputError(f"{option} {json.dumps(value)}: {problem}")
+
+    def text(option, value):
+        if "\n" in value:
+            refuse(option, value, "contains a newline (each line of the generated scripts is a command)")
+        if CONTROL.search(value):
+            refuse(option, value, "contains a control character")
+        if not encodable(value):
+            refuse(option, value, "is not valid Unicode text")
+
+    for option, value in (("--work-dir", options.work_dir), ("--kiln", options.kiln),
+                          ("--out-dir", options.out_dir), ("--job-name", options.job_name),
+                          ("--time", options.time), ("--mem", options.mem), ("--partition", options.partition)):
+        if value is not None:
+            text(option, value)
+    for value in options.batch_args:
+        text("kiln batch default", value)
+    if not options.job_name:
+        refuse("--job-name", options.job_name, "is empty")
+    if not options.job_name.isprintable():
+        refuse("--job-name", options.job_name, "contains a character that is not printable")
+    # slurmd drops every backslash of an --output path and then leaves its %A/%a/%j unexpanded.
+    if "\\" in options.work_dir:
+        refuse("--work-dir", options.work_dir, "contains a backslash, which Slurm's --output log paths cannot hold")
+    if options.time is not None and not SLURM_TIME.match(options.time):
+        refuse("--time", options.time, "not a Slurm time (minutes, minutes:seconds, hours:minutes:seconds, "
+               "days-hours, days-hours:minutes, days-hours:minutes:seconds or UNLIMITED)")
+    if options.mem is not None and not SLURM_MEM.match(options.mem):
+        refuse("--mem", options.mem, "not a Slurm memory size (a whole number, megabytes, or with a K, M, G "
+               "or T suffix)")
+    if options.partition is not None and not SLURM_PARTITION.match(options.partition):
+        refuse("--partition", options.partition, "not a Slurm partition name (letters, digits, _ . -; "
+               "several separated by commas)")
 
 
 def option_value(args, name):
@@ -132,6 +195,67 @@ def plan_from_manifest(kiln, manifest, out_dir, extra, plan_path):
     if result.returncode != 0:
         sys.stderr.write(result.stderr)
         raise InputError(f"{manifest}: kiln batch --plan-only exited {result.returncode}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Writing into folders others may write to
+
+
+def exclusive_temporary(path):
+    """Creates a new file beside path, under a name of its own (.NAME.kiln-farm-tmp-PID-RANDOM),
+    exclusively: whatever was planted at any name (a link, a file) is never opened. Returns the
+    open binary file and its name."""
+    folder, name = os.path.split(path)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+    while True:
+        temporary = os.path.join(folder, f".{name}.kiln-farm-tmp-{os.getpid()}-{secrets.token_hex(6)}")
+        try:
+            return os.fdopen(os.open(temporary, flags, 0o666), "wb"), temporary
+        except FileExistsError:
+            continue
+
+
+def replace_file(path, fill):
+    """Writes path whole: fill(binary file) writes a temporary file of its own, which then
+    replaces path by rename (a link planted at path is replaced, not written through; a reader
+    sees the old file or the new one)."""
+    f, temporary = exclusive_temporary(path)
+    try:
+        with f:
+            fill(f)
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
+
+
+def write_text(path, text):
+    replace_file(path, lambda f: f.write(text.encode("utf-8")))
+
+
+def write_json(path, value):
+    write_text(path, json.dumps(value, indent=2))
+
+
+def move_file(source, target):
+    """Renames source to target; across filesystems, copies it through a temporary file of its
+    own beside target, renamed into place, then removes source."""
+    try:
+        os.replace(source, target)
+        return
+    except OSError as e:
+        if e.errno != errno.EXDEV:
+            raise
+    with open(source, "rb") as src:
+        replace_file(target, lambda f: shutil.copyfileobj(src, f, 1 << 20))
+    os.remove(source)
+
+
+def shell_words(argv):
+    return " ".join(shlex.quote(a) for a in argv)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -269,13 +393,32 @@ def size_resources(options, estimates, packs):
             options.mem = "2G"
 
 
+def sbatch_value(text):
+    """text as one argument of an #SBATCH line. sbatch splits those lines itself (no shell): at
+    whitespace, with "..." and '...' grouping, a backslash taking the next character as it is and
+    an unquoted # starting a comment (older Slurm: only "..." groups, and any # ends the line). A
+    value with any of these goes in double quotes with \\ before each backslash, quote and #, which
+    every version reads alike."""
+    if text and not re.search(r"[\s\\\"'#]", text):
+        return text
+    return '"' + re.sub(r"([\\\"'#])", r"\\\1", text) + '"'
+
+
+def slurm_file_name(path):
+    """A path as a literal part of an --output file name pattern: % doubled."""
+    return path.replace("%", "%%")
+
+
 def sbatch_header(options, job_name, log_name, extra):
-    lines = ["#!/bin/bash", f"#SBATCH --job-name={job_name}"]
+    """The #SBATCH lines: --time, --mem and --partition as check_submit_options let them through
+    (nothing to quote), the job name and the log path quoted for sbatch."""
+    lines = ["#!/bin/bash", f"#SBATCH --job-name={sbatch_value(job_name)}"]
     if options.partition:
         lines.append(f"#SBATCH --partition={options.partition}")
     lines += [f"#SBATCH --time={options.time}", f"#SBATCH --mem={options.mem}"]
     lines += [f"#SBATCH {e}" for e in extra]
-    lines.append(f"#SBATCH --output={os.path.join(options.work_dir, 'logs', log_name)}")
+    log = os.path.join(slurm_file_name(options.work_dir), "logs", log_name)
+    lines.append(f"#SBATCH --output={sbatch_value(log)}")
     return lines
 
 
@@ -299,6 +442,15 @@ def render_script(options, task_count):
         "set -uo pipefail",
         f"work_dir={w}",
         f"max_retries={options.max_retries}",
+        "# status/UNIT.rc goes through a new file of its own (noclobber: created exclusively, never",
+        "# through a link planted there), renamed over the old one (mv -T: a planted folder or link",
+        "# is not entered).",
+        "record() {",
+        '  local tmp',
+        '  tmp=$(mktemp -u "$work_dir/status/.$1.rc.XXXXXXXXXX") &&',
+        '    (set -C && echo "$2" >"$tmp") && mv -f -T "$tmp" "$work_dir/status/$1.rc" ||',
+        '    echo "kiln farm: cannot record unit $1\'s exit status $2 in $work_dir/status" >&2',
+        "}",
         'index="${SLURM_ARRAY_TASK_ID:?not an array task}"',
         'task=$((${KILN_FARM_FIRST_TASK:-0} + index))',
         'units=$(sed -n "$((task + 1))p" "$work_dir/packs.txt")',
@@ -315,7 +467,7 @@ def render_script(options, task_count):
         '    echo "kiln farm: task $task attempt $attempt (unit $unit) on $(hostname): ${argv[*]}"',
         '    "${argv[@]}"',
         "    rc=$?",
-        '    echo "$rc" >"$work_dir/status/$unit.rc"',
+        '    record "$unit" "$rc"',
         '    [ "$rc" -eq 0 ] && break',
         "    # 2 is bad input or a usage error, the same on every attempt; 130/143 is a signal (scancel,",
         "    # the time limit), where Slurm decides. Anything else (1: I/O, a crash) is worth retrying.",
@@ -339,7 +491,7 @@ def finalize_script(options):
     lines += [
         "# Runs after every render task ended (afterany), stitches each job's bands into its output,",
         "# verifies every output and writes verify.json; exits 1 when anything is missing or wrong.",
-        f"exec python3 {shlex.quote(w)} finalize --work-dir {shlex.quote(options.work_dir)}",
+        f"exec python3 {shell_words([w, 'finalize', '--work-dir', options.work_dir])}",
     ]
     return "\n".join(lines) + "\n"
 
@@ -350,12 +502,9 @@ def write_work_dir(options, plan, tasks, packs=None, arrays=None):
     arrays = arrays or [(0, len(packs))]
     for sub in ("tiles", "logs", "status"):
         os.makedirs(os.path.join(w, sub), exist_ok=True)
-    with open(os.path.join(w, "tasks.txt"), "w", encoding="utf-8") as f:
-        for _, _, argv in tasks:
-            f.write(" ".join(shlex.quote(a) for a in argv) + "\n")
-    with open(os.path.join(w, "packs.txt"), "w", encoding="utf-8") as f:
-        for pack in packs:
-            f.write(" ".join(str(u) for u in pack) + "\n")
+    # Every file goes through a temporary file of its own renamed into place (replace_file).
+    write_text(os.path.join(w, "tasks.txt"), "".join(shell_words(argv) + "\n" for _, _, argv in tasks))
+    write_text(os.path.join(w, "packs.txt"), "".join(" ".join(str(u) for u in pack) + "\n" for pack in packs))
     task_of = {u: t for t, pack in enumerate(packs) for u in pack}
     farm = {"version": 1, "kiln": options.kiln, "tiles": options.tiles,
             "arrays": [{"first_task": first, "tasks": count} for first, count in arrays], "jobs": []}
@@ -368,21 +517,21 @@ def write_work_dir(options, plan, tasks, packs=None, arrays=None):
             "tiles": [tile_path(w, band_stem(index, job["name"]), i, options.tiles) for i in range(options.tiles)],
             "units": units, "tasks": [task_of[u] for u in units],
         })
-    with open(os.path.join(w, "farm.json"), "w", encoding="utf-8") as f:
-        json.dump(farm, f, indent=2)
-    with open(os.path.join(w, "plan.json"), "w", encoding="utf-8") as f:
-        json.dump(plan, f, indent=2)
-    shutil.copyfile(os.path.abspath(__file__), os.path.join(w, "kiln_farm.py"))
-    # A band, status or report left by an earlier submission must not pass for this one's.
+    write_json(os.path.join(w, "farm.json"), farm)
+    write_json(os.path.join(w, "plan.json"), plan)
+    with open(os.path.abspath(__file__), "rb") as source:
+        replace_file(os.path.join(w, "kiln_farm.py"), lambda f: shutil.copyfileobj(source, f))
+    # A band, status or report left by an earlier submission must not pass for this one's (nor a
+    # link planted in its place).
     for job in farm["jobs"]:
         for t in job["tiles"]:
-            if os.path.exists(t):
+            if os.path.lexists(t):
                 os.remove(t)
     for name in os.listdir(os.path.join(w, "status")):
         if name.endswith(".rc"):
             os.remove(os.path.join(w, "status", name))
     for name in ("verify.json", "submission.json"):
-        if os.path.exists(os.path.join(w, name)):
+        if os.path.lexists(os.path.join(w, name)):
             os.remove(os.path.join(w, name))
     for job in plan["jobs"]:
         os.makedirs(os.path.dirname(job["output"]), exist_ok=True)
@@ -395,7 +544,7 @@ def sbatch(args, cancel_on_failure=()):
     if result.returncode != 0:
         if cancel_on_failure:
             subprocess.run(["scancel"] + list(cancel_on_failure))
-        sys.exit(f"kiln farm: sbatch {' '.join(args)} failed: {result.stderr.strip()}")
+        sys.exit(f"kiln farm: sbatch {shell_words(args)} failed: {result.stderr.strip()}")
     return result.stdout.strip().split(";")[0]
 
 
@@ -424,6 +573,7 @@ def wait_for(job_id, work_dir, poll_seconds=2.0):
 def submit(options):
     options.work_dir = os.path.abspath(options.work_dir)
     options.kiln = os.path.abspath(options.kiln)
+    check_submit_options(options)
     plan_path = options.plan
     if options.manifest:
         os.makedirs(options.work_dir, exist_ok=True)
@@ -458,22 +608,22 @@ def submit(options):
         print(f"# {finalize_path}")
         print(finalize)
         for args in array_args:
-            print(f"# sbatch --parsable {' '.join(args)}")
+            print(f"# sbatch --parsable {shell_words(args)}")
         dependency = ":".join(f"<render job id {i}>" for i in range(len(arrays)))
-        print(f"# sbatch --parsable --dependency=afterany:{dependency} --kill-on-invalid-dep=no {finalize_path}")
+        print(f"# sbatch --parsable --dependency=afterany:{dependency} --kill-on-invalid-dep=no "
+              f"{shlex.quote(finalize_path)}")
         return 0
     write_work_dir(options, plan, tasks, packs, arrays)
     for path, text in ((render_path, render), (finalize_path, finalize)):
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(text)
+        write_text(path, text)
     array_ids = []
     for args in array_args:
         array_ids.append(sbatch(args, cancel_on_failure=array_ids))
     final_id = sbatch([f"--dependency=afterany:{':'.join(array_ids)}", "--kill-on-invalid-dep=no", finalize_path],
                       cancel_on_failure=array_ids)
-    with open(os.path.join(options.work_dir, "submission.json"), "w", encoding="utf-8") as f:
-        json.dump({"render_job": array_ids[0], "render_jobs": array_ids, "finalize_job": final_id,
-                   "tasks": len(packs), "units": len(tasks), "max_array_size": max_array_size}, f, indent=2)
+    write_json(os.path.join(options.work_dir, "submission.json"),
+               {"render_job": array_ids[0], "render_jobs": array_ids, "finalize_job": final_id,
+                "tasks": len(packs), "units": len(tasks), "max_array_size": max_array_size})
     print(f"kiln farm: render array jobs {' '.join(array_ids)}: {summary}; finalize job {final_id}; "
           f"report: {os.path.join(options.work_dir, 'verify.json')}")
     if not options.wait:
@@ -628,7 +778,10 @@ def finalize_job(farm, job, work_dir):
         headers.append(header)
     if not problems:
         if n == 1:
-            shutil.move(job["tiles"][0], job["output"])
+            try:
+                move_file(job["tiles"][0], job["output"])
+            except OSError as e:
+                problems.append(f"cannot move {job['tiles'][0]} to the output: {e.strerror}")
         else:
             result = subprocess.run([farm["kiln"], "stitch", job["output"]] + job["tiles"],
                                     capture_output=True, text=True)
@@ -645,9 +798,7 @@ def finalize_job(farm, job, work_dir):
 def write_report(work_dir, reports):
     report = {"ok": all(r["ok"] for r in reports), "jobs": reports}
     path = os.path.join(work_dir, "verify.json")
-    with open(path + ".tmp", "w", encoding="utf-8") as f:
-        json.dump(report, f, indent=2)
-    os.replace(path + ".tmp", path)
+    write_json(path, report)
     for r in reports:
         for p in r["problems"]:
             print(f"kiln farm: {r['name']}: {p}", file=sys.stderr)
