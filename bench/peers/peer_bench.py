@@ -5,9 +5,15 @@ POV-Ray 3.7. A measurement, never a test: nothing here asserts a speed.
 Cases (640x480, 2 threads by default):
   toycar-16spp    ToyCar (../shared/assets) through a wrapper glTF that keeps the asset's first
                   camera (Camera001) and adds one point light: kiln and Cycles (POV-Ray reads no glTF)
+                  (this case and the quadrics run kiln with --lighting file: the file's lights alone)
   quadrics-16spp  scenes/peer_quadrics.gltf and bench/peers/peer_quadrics.pov, written together by
                   tools/make_peer_quadric_scene.py: kiln and POV-Ray (Cycles has no analytic quadrics)
   quadrics-1spp   the same at 1 sample per pixel (POV-Ray without antialiasing)
+  helmet-env-16spp  DamagedHelmet (../shared/assets) lit by kiln's studio environment alone
+                  (share/environments/studio.exr): kiln `--lighting studio`, Cycles with the same EXR
+                  as its World (bench/peers/blender_environment.py: diffuse bounces 0, the importer's
+                  materials) through kiln's camera, read from a 1-spp kiln render's EXR before the
+                  rounds (how far the two images agree: bench/peers/environment_compare.py)
 
 Each round runs every case with kiln, then Cycles, then POV-Ray, so machine load drifts over all
 renderers alike; medians over rounds are reported. A peer that is not installed is skipped with a
@@ -22,7 +28,8 @@ chart.png, images/ (the last round's renders as PNG and side-by-side comparisons
 
 Usage: /usr/bin/python3 bench/peers/peer_bench.py [--kiln build/renderer/app/kiln]
            [--out build/bench-results/peers] [--rounds 3] [--quick] [--cases a,b]
-Needs python3-matplotlib and python3-numpy for the chart, oiiotool for the PNGs.
+Needs python3-matplotlib and python3-numpy for the chart, oiiotool for the PNGs, and
+python3-openimageio for the helmet-env case's camera.
 """
 
 import argparse
@@ -41,6 +48,10 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 RENDERERS = ["kiln", "cycles", "povray"]
+
+# The file's lights and nothing else, as the peers are set up: kiln's default (--lighting auto) adds its
+# studio environment to a file's lights, where Cycles' world is black here and POV-Ray has none.
+FILE_LIGHTS_ONLY = ["--lighting", "file"]
 
 # ToyCar's light: above and to the camera's right, so the car casts a shadow on its cloth.
 TOYCAR_LIGHT = {"position": [0.03, 0.09, 0.06], "intensity": 0.06, "color": [1.0, 1.0, 1.0]}
@@ -107,6 +118,20 @@ def toycar_wrapper(asset, folder, width, height):
     return path
 
 
+def environment_case(args, asset, folder, width, height):
+    """kiln's camera for an asset without one of its own, as blender_environment.py takes it: from the
+    worldToCamera and worldToNDC of a 1-spp kiln render (numpy and OpenImageIO needed here only)."""
+    import environment_compare
+    exr = os.path.join(folder, "helmet-env-camera.exr")
+    run_timed([args.kiln, "render", asset, "-o", exr, "--width", str(width), "--height", str(height), "--spp", "1",
+               "--lighting", "studio"])
+    camera = environment_compare.blender_camera(environment_compare.read_exr(exr)[2], width, height)
+    path = os.path.join(folder, "helmet-env-camera.json")
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(camera, f)
+    return path
+
+
 def find_toycar(assets):
     path = os.path.join(assets, "ToyCar", "glTF", "ToyCar.gltf")
     return path if os.path.isfile(path) else None
@@ -124,6 +149,7 @@ def run_kiln(args, case, out_exr, log_path):
            "--progress-interval", "1000"]
     if case.get("outside"):
         cmd.append("--allow-outside-files")
+    cmd += case.get("kiln_args", [])
     wall, cpu, text = run_timed(cmd, log_path=log_path)
     m = KILN_SUMMARY.search(text)
     if not m:
@@ -135,10 +161,13 @@ def run_kiln(args, case, out_exr, log_path):
 
 def run_cycles(args, case, out_exr, log_path):
     stats = out_exr[:-4] + ".stats.json"
+    script = "blender_environment.py" if case.get("environment") else "blender_render.py"
     cmd = [args.blender, "-b", "--factory-startup", "-noaudio", "-t", str(args.threads), "--python",
-           os.path.join(HERE, "blender_render.py"), "--", case["gltf"], out_exr, stats,
+           os.path.join(HERE, script), "--", case["gltf"], out_exr, stats,
            "--width", str(case["width"]), "--height", str(case["height"]), "--spp", str(case["spp"]),
            "--threads", str(args.threads)]
+    if case.get("environment"):
+        cmd += ["--environment", case["environment"], "--camera", case["camera_json"]]
     wall, cpu, text = run_timed(cmd, log_path=log_path)
     if not os.path.isfile(stats):
         raise RuntimeError("Blender wrote no statistics; see " + log_path)
@@ -402,7 +431,7 @@ def main():
     ap.add_argument("--width", type=int, default=640)
     ap.add_argument("--height", type=int, default=480)
     ap.add_argument("--spp", type=int, default=16, help="samples per pixel (a square number for POV-Ray's +R)")
-    ap.add_argument("--cases", default="toycar-16spp,quadrics-16spp,quadrics-1spp")
+    ap.add_argument("--cases", default="toycar-16spp,quadrics-16spp,quadrics-1spp,helmet-env-16spp")
     ap.add_argument("--renderers", default=",".join(RENDERERS))
     ap.add_argument("--quick", action="store_true", help="320x240, 1 round: a check that everything runs")
     ap.add_argument("--from-runs", metavar="RUNS_JSON", help="rewrite the tables and chart in --out from an "
@@ -453,10 +482,21 @@ def main():
                 skipped.append("%s: ToyCar not found under %s" % (name, args.assets))
                 continue
             cases.append({"name": name, "gltf": toycar_wrapper(asset, work, args.width, args.height), "outside": True,
-                          "spp": spp, "renderers": ["kiln", "cycles"]})
+                          "spp": spp, "renderers": ["kiln", "cycles"], "kiln_args": FILE_LIGHTS_ONLY})
+            skipped.append("%s: POV-Ray reads no glTF" % name)
+        elif name.startswith("helmet-env"):
+            asset = os.path.join(args.assets, "DamagedHelmet", "glTF-Binary", "DamagedHelmet.glb")
+            if not os.path.isfile(asset):
+                skipped.append("%s: DamagedHelmet not found under %s" % (name, args.assets))
+                continue
+            cases.append({"name": name, "gltf": asset, "spp": spp, "renderers": ["kiln", "cycles"],
+                          "kiln_args": ["--lighting", "studio"],
+                          "environment": os.path.join(ROOT, "share", "environments", "studio.exr"),
+                          "camera_json": environment_case(args, asset, work, args.width, args.height)})
             skipped.append("%s: POV-Ray reads no glTF" % name)
         elif name.startswith("quadrics"):
-            cases.append({"name": name, "gltf": quadrics, "pov": pov, "spp": spp, "renderers": ["kiln", "povray"]})
+            cases.append({"name": name, "gltf": quadrics, "pov": pov, "spp": spp, "renderers": ["kiln", "povray"],
+                          "kiln_args": FILE_LIGHTS_ONLY})
             skipped.append("%s: Cycles has no analytic quadrics (KILN_quadric)" % name)
         else:
             sys.exit("peer_bench.py: unknown case %r" % name)
@@ -491,7 +531,8 @@ def main():
     summary = summarise(runs)
     meta = {"rounds": args.rounds, "machine": machine_info(args, versions), "skipped": skipped,
             "settings": "%dx%d, %d threads, %d spp (1 for the -1spp case); kiln --max-depth 8; Cycles Whitted-like "
-                        "(bench/peers/blender_render.py); POV-Ray +A0.0 +AM1 +R%d (-A at 1 spp), max_trace_level 9."
+                        "(bench/peers/blender_render.py; helmet-env: bench/peers/blender_environment.py); "
+                        "POV-Ray +A0.0 +AM1 +R%d (-A at 1 spp), max_trace_level 9."
                         % (args.width, args.height, args.threads, args.spp, int(round(math.sqrt(args.spp)))),
             "load_avg_after": os.getloadavg()}
     loads = [r["load_avg_1min_before"] for r in runs]
