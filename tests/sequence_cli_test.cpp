@@ -193,6 +193,22 @@ TEST(sequence_cli, bad_ranges_and_outputs_exit_2_with_one_line_and_write_nothing
 
 // A manifest job with frames is one job per frame: each its own output (the default name gains
 // .####), plan entry and resume state, and each frame the pixels of `kiln render --frame N`.
+// A still scene of quadrics: each frame updates the backend built for the first in place, and its
+// quadrics' intersection callbacks must read this frame's definitions, not the last frame's (freed
+// with that frame's scene: AddressSanitizer's heap-use-after-free before the fix).
+TEST(sequence_cli, a_sequence_of_quadrics_updates_its_backend_from_each_frames_scene) {
+  const std::string dir = scratch_folder("sequence_quadrics");
+  const std::string scene = std::string(KILN_SOURCE_DIR) + "/scenes/quadric_showcase.gltf";
+  std::vector<std::string> args = render_args(scene, dir + "/q.####.exr");
+  args.insert(args.end(), {"--frames", "1-3", "-q"});
+  const auto result = run_kiln(args);
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  std::vector<std::string> single = render_args(scene, dir + "/single.exr");
+  single.insert(single.end(), {"--frame", "3", "-q"});
+  ASSERT_EQ(run_kiln(single).exit_code, 0);
+  EXPECT_EQ(read_exr(dir + "/q.0003.exr").values, read_exr(dir + "/single.exr").values);
+}
+
 TEST(sequence_cli, a_batch_job_with_frames_plans_renders_and_resumes_each_frame) {
   const std::string dir = scratch_folder("sequence_batch");
   const std::string scene = moving_quads(dir);

@@ -289,6 +289,10 @@ bool embree_accelerator::update(const std::vector<uint32_t>& changed_meshes) {
   if (s.meshes.size() != st.mesh_scenes.size() || s.instances.size() != st.placed.size()) return false;
   for (size_t i = 0; i < s.instances.size(); ++i)
     if (st.placed[i] != std::make_pair(s.instances[i].kind, s.instances[i].shape)) return false;
+  if (s.quadrics.size() != st.quadric_forms.size()) return false;
+  // A frame's scene holds its own copy of the (never animated) quadric definitions: the callbacks'
+  // forms must point at this frame's, not the last frame's, which are gone.
+  for (size_t i = 0; i < s.quadrics.size(); ++i) st.quadric_forms[i].shape = &s.quadrics[i];
   embree_error_scope scope(st.errors);
   const std::vector<bool> masked = meshes_needing_alpha_filter(s);
   std::vector<bool> rebuilt(s.meshes.size(), false);
