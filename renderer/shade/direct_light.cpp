@@ -179,15 +179,20 @@ void add_environment_direction(const shading_context& ctx, const surface_point& 
   tally.lit += luminance(unshadowed * visibility);
 }
 
-// The environment's direct light: environment_samples pairs of samples, one drawn from the map's
-// importance and one from the material's lobes, each weighed against the other's density. The
+// The environment's direct light: environment_samples pairs of samples (half as many off the
+// camera's path), one drawn from the map's importance and one from the material's lobes, each
+// weighed against the other's density. The
 // pairs are stratified over the map's rows and over the choice of lobe.
 vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                           const vec3& to_viewer, const path_state& s, ray_counts& counts) {
   const environment_light& e = *ctx.environment;
   const glossy_weights glossy = environment_glossy_weights(ctx.options, mp);
   const lobe_sampler lobes = make_lobe_sampler(mp, sp.shading_normal, to_viewer, glossy);
-  const int n = std::max(ctx.options.environment_samples, 1);
+  // Surfaces seen in mirrors and through glass take half as many: their light reaches the camera
+  // weighted down by Fresnel and transmission, and there are as many of them as camera surfaces in
+  // a scene of glass and chrome.
+  const int asked = std::max(ctx.options.environment_samples, 1);
+  const int n = s.camera ? asked : (asked + 1) / 2;
   environment_tally tally;
   for (int i = 0; i < n; ++i) {
     const auto next = [&s, i](uint32_t dimension) { return hash_to_unit(s.seed, uint32_t(i), dimension); };
