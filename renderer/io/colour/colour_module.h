@@ -16,6 +16,10 @@ namespace kiln {
 // Bumped whenever the table below changes; kiln refuses a module built with another value.
 constexpr uint32_t colour_module_abi = 1;
 
+// The largest config file kiln reads (the ACES studio config is 75 KB, ACES 1.2's 170 KB): a larger
+// one is refused before a byte of it is read.
+constexpr uint64_t max_colour_config_bytes = uint64_t(4) << 20;
+
 // Where a config came from, for messages: the file and the option or variable that named it.
 struct colour_config_source {
   std::string path;

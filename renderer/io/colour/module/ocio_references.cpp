@@ -72,19 +72,62 @@ class reference_finder {
 
   std::vector<reference> operator()(const config_object& o) const {
     std::vector<reference> out;
+    for (const auto& [where, t] : transforms_of(o)) transform(t, where, 0, out);
     switch (o.kind) {
       case object_kind::colour_space:
-        colour_space(o.name, out);
-        break;
-      case object_kind::named_transform:
-        named_transform(o.name, out);
+        // A conversion between the two reference spaces goes through the default view transform.
+        if (cfg_.getColorSpace(o.name.c_str())->getReferenceSpaceType() == OCIO::REFERENCE_SPACE_DISPLAY)
+          if (const OCIO::ConstViewTransformRcPtr vt = cfg_.getDefaultSceneToDisplayViewTransform())
+            add(out, object_kind::view_transform, vt->getName(),
+                "display reference: the default view transform", 0);
         break;
       case object_kind::look:
-        look(o.name, out);
+        named(cfg_.getLook(o.name.c_str())->getProcessSpace(), "process_space", 0, out);
         break;
+      case object_kind::named_transform:
       case object_kind::view_transform:
-        view_transform(o.name, out);
         break;
+    }
+    return out;
+  }
+
+  // The transforms o holds, each with the key it is written under (null ones left out).
+  std::vector<std::pair<std::string, OCIO::ConstTransformRcPtr>> transforms_of(const config_object& o) const {
+    std::vector<std::pair<std::string, OCIO::ConstTransformRcPtr>> out;
+    auto keep = [&out](const char* where, const OCIO::ConstTransformRcPtr& t) {
+      if (t) out.emplace_back(where, t);
+    };
+    switch (o.kind) {
+      case object_kind::colour_space: {
+        const OCIO::ConstColorSpaceRcPtr cs = cfg_.getColorSpace(o.name.c_str());
+        const bool scene = cs->getReferenceSpaceType() == OCIO::REFERENCE_SPACE_SCENE;
+        keep(scene ? "to_scene_reference" : "to_display_reference",
+             cs->getTransform(OCIO::COLORSPACE_DIR_TO_REFERENCE));
+        keep(scene ? "from_scene_reference" : "from_display_reference",
+             cs->getTransform(OCIO::COLORSPACE_DIR_FROM_REFERENCE));
+        break;
+      }
+      case object_kind::named_transform: {
+        const OCIO::ConstNamedTransformRcPtr nt = cfg_.getNamedTransform(o.name.c_str());
+        keep("transform", nt->getTransform(OCIO::TRANSFORM_DIR_FORWARD));
+        keep("inverse_transform", nt->getTransform(OCIO::TRANSFORM_DIR_INVERSE));
+        break;
+      }
+      case object_kind::look: {
+        const OCIO::ConstLookRcPtr lk = cfg_.getLook(o.name.c_str());
+        keep("transform", lk->getTransform());
+        keep("inverse_transform", lk->getInverseTransform());
+        break;
+      }
+      case object_kind::view_transform: {
+        const OCIO::ConstViewTransformRcPtr vt = cfg_.getViewTransform(o.name.c_str());
+        const bool scene = vt->getReferenceSpaceType() == OCIO::REFERENCE_SPACE_SCENE;
+        keep(scene ? "to_scene_reference" : "to_display_reference",
+             vt->getTransform(OCIO::VIEWTRANSFORM_DIR_TO_REFERENCE));
+        keep(scene ? "from_scene_reference" : "from_display_reference",
+             vt->getTransform(OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE));
+        break;
+      }
     }
     return out;
   }
@@ -97,42 +140,6 @@ class reference_finder {
   }
 
  private:
-  void colour_space(const std::string& name, std::vector<reference>& out) const {
-    const OCIO::ConstColorSpaceRcPtr cs = cfg_.getColorSpace(name.c_str());
-    const bool scene = cs->getReferenceSpaceType() == OCIO::REFERENCE_SPACE_SCENE;
-    transform(cs->getTransform(OCIO::COLORSPACE_DIR_TO_REFERENCE),
-              scene ? "to_scene_reference" : "to_display_reference", 0, out);
-    transform(cs->getTransform(OCIO::COLORSPACE_DIR_FROM_REFERENCE),
-              scene ? "from_scene_reference" : "from_display_reference", 0, out);
-    // A conversion between the two reference spaces goes through the default view transform.
-    if (!scene)
-      if (const OCIO::ConstViewTransformRcPtr vt = cfg_.getDefaultSceneToDisplayViewTransform())
-        add(out, object_kind::view_transform, vt->getName(), "display reference: the default view transform",
-            0);
-  }
-
-  void named_transform(const std::string& name, std::vector<reference>& out) const {
-    const OCIO::ConstNamedTransformRcPtr nt = cfg_.getNamedTransform(name.c_str());
-    transform(nt->getTransform(OCIO::TRANSFORM_DIR_FORWARD), "transform", 0, out);
-    transform(nt->getTransform(OCIO::TRANSFORM_DIR_INVERSE), "inverse_transform", 0, out);
-  }
-
-  void look(const std::string& name, std::vector<reference>& out) const {
-    const OCIO::ConstLookRcPtr lk = cfg_.getLook(name.c_str());
-    transform(lk->getTransform(), "transform", 0, out);
-    transform(lk->getInverseTransform(), "inverse_transform", 0, out);
-    named(lk->getProcessSpace(), "process_space", 0, out);
-  }
-
-  void view_transform(const std::string& name, std::vector<reference>& out) const {
-    const OCIO::ConstViewTransformRcPtr vt = cfg_.getViewTransform(name.c_str());
-    const bool scene = vt->getReferenceSpaceType() == OCIO::REFERENCE_SPACE_SCENE;
-    transform(vt->getTransform(OCIO::VIEWTRANSFORM_DIR_TO_REFERENCE),
-              scene ? "to_scene_reference" : "to_display_reference", 0, out);
-    transform(vt->getTransform(OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE),
-              scene ? "from_scene_reference" : "from_display_reference", 0, out);
-  }
-
   // The transforms that name other objects; the rest (matrices, curves, files) name none.
   void transform(const OCIO::ConstTransformRcPtr& t, const std::string& where, int nesting,
                  std::vector<reference>& out) const {
@@ -231,6 +238,7 @@ class reference_walk {
       throw refused(describe(o),
                     "its references branch into more than " + std::to_string(max_walk) + " paths");
     finished_.emplace(name, extent);
+    reached_.push_back(o);
     return extent;
   }
 
@@ -238,6 +246,15 @@ class reference_walk {
     if (below(find_(conversion), 0).references > max_walk)
       throw refused("kiln's conversion",
                     "the references it reaches branch into more than " + std::to_string(max_walk) + " paths");
+  }
+
+  // The transforms of every object the walk reached, in the order it finished them.
+  std::vector<held_transform> held() const {
+    std::vector<held_transform> out;
+    for (const config_object& o : reached_)
+      for (const auto& [where, t] : find_.transforms_of(o))
+        out.push_back({t, describe(o) + " [" + where + "]"});
+    return out;
   }
 
  private:
@@ -287,13 +304,19 @@ class reference_walk {
   const colour_config_source& config_;
   std::map<std::string, walk_extent> finished_;
   std::vector<std::pair<config_object, std::string>> chain_;  // each object and the reference taken from it
+  std::vector<config_object> reached_;                        // each finished object, once
 };
 
 }  // namespace
 
-void check_references(const OCIO::Config& cfg, const OCIO::ConstTransformRcPtr& conversion,
-                      const colour_config_source& config) {
-  reference_walk(cfg, config).check_conversion(conversion);
+std::vector<held_transform> check_references(const OCIO::Config& cfg,
+                                             const OCIO::ConstTransformRcPtr& conversion,
+                                             const colour_config_source& config) {
+  reference_walk walk(cfg, config);
+  walk.check_conversion(conversion);
+  std::vector<held_transform> out{{conversion, "kiln's conversion"}};
+  for (held_transform& h : walk.held()) out.push_back(std::move(h));
+  return out;
 }
 
 }  // namespace kiln::colour_module

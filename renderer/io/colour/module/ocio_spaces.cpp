@@ -6,12 +6,12 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <mutex>
 
 #include "core/error.h"
 #include "core/message_text.h"
+#include "io/colour/module/ocio_inputs.h"
 #include "io/colour/module/ocio_references.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -34,11 +34,8 @@ OCIO::ConstConfigRcPtr read_config(const colour_config_source& config) {
   static std::map<std::string, OCIO::ConstConfigRcPtr> configs;
   const std::lock_guard<std::mutex> lock(mutex);
   if (auto found = configs.find(config.path); found != configs.end()) return found->second;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(config.path, ec))
-    throw input_error(config.path, config.named_by, "no such OpenColorIO config file");
   try {
-    OCIO::ConstConfigRcPtr read = OCIO::Config::CreateFromFile(config.path.c_str());
+    OCIO::ConstConfigRcPtr read = read_checked_config(config);
     read->validate();
     configs.emplace(config.path, read);
     return read;
@@ -49,11 +46,12 @@ OCIO::ConstConfigRcPtr read_config(const colour_config_source& config) {
 
 // The config's processor for conversion, once the config objects it reaches are checked: reading
 // a config does not follow its references, building a processor does, and a loop among them
-// takes the process down with a stack overflow.
+// takes the process down with a stack overflow; it also reads the files they name, and a FIFO
+// among them blocks it forever.
 OCIO::ConstProcessorRcPtr checked_processor(const OCIO::ConstConfigRcPtr& cfg,
                                             const OCIO::ConstTransformRcPtr& conversion,
                                             const colour_config_source& config) {
-  check_references(*cfg, conversion, config);
+  check_transform_inputs(*cfg, check_references(*cfg, conversion, config), config);
   return cfg->getProcessor(conversion);
 }
 
@@ -122,6 +120,13 @@ working_space_info working_space(const colour_config_source& config, const std::
       const std::array<double, 3> column = apply(cpu, unit);
       for (int r = 0; r < 3; ++r) info.working_from_rec709[size_t(r * 3 + c)] = column[size_t(r)];
     }
+    // Whatever transform brought them (a matrix, a CDL, an exponent), NaN or infinity in the
+    // matrix would reach every converted colour, and the render would discard those samples.
+    for (const double m : info.working_from_rec709)
+      if (!std::isfinite(m))
+        throw input_error(config.path, "--working-space",
+                          "this config converts linear Rec.709 to " + kiln::quoted(info.name) +
+                              " through non-finite numbers (" + std::to_string(m) + ")");
     // A matrix maps any colour as it maps the three primaries; a curve, an offset or a clamp
     // does not, and kiln converts factors and texels by the matrix alone.
     for (const std::array<double, 3> probe :
@@ -133,7 +138,7 @@ working_space_info working_space(const colour_config_source& config, const std::
           expected += info.working_from_rec709[size_t(r * 3 + c)] * probe[size_t(c)];
           size += std::abs(info.working_from_rec709[size_t(r * 3 + c)] * probe[size_t(c)]);
         }
-        if (std::abs(got[size_t(r)] - expected) > 1e-5 * size + 1e-9)
+        if (!(std::abs(got[size_t(r)] - expected) <= 1e-5 * size + 1e-9))  // NaN fails too
           throw input_error(config.path, "--working-space",
                             kiln::quoted(info.name) +
                                 " is not a linear (3x3 matrix) transform of linear Rec.709 " +
