@@ -83,7 +83,7 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
     const colour_config_source config = find_colour_config(options.ocio_config);
     inputs.add("ocio_config");
     fnv1a bytes;
-    add_file(bytes, config.path, max_environment_file_bytes, cancel, config.named_by);
+    add_file(bytes, config.path, max_colour_config_bytes, cancel, config.named_by);
     inputs.add(bytes.hex());
   }
   render_fingerprint hashed;
