@@ -24,7 +24,7 @@ for arg in "$@"; do
     *) seconds="$arg" ;;
   esac
 done
-targets=(gltf_loader quadric image_header image_decode transforms draco_stream)
+targets=(gltf_loader quadric image_header image_decode transforms draco_stream ocio_config_text)
 [[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
@@ -88,13 +88,19 @@ seed_draco_stream() {
   done
 }
 
+# Seeds for fuzz_ocio_config_text: kiln's own OpenColorIO config.
+seed_ocio_config_text() {
+  cp share/ocio/kiln.ocio "$1/kiln.ocio"
+}
+
 for t in "${targets[@]}"; do
   corpus="fuzz/corpus/$t"
   mkdir -p "$corpus"
   "seed_$t" "$corpus"
   dict=(-dict=fuzz/gltf.dict)
   [[ "$t" == quadric ]] && dict=(-dict=fuzz/quadric.dict)
-  [[ "$t" == image_header || "$t" == image_decode || "$t" == transforms || "$t" == draco_stream ]] && dict=()
+  [[ "$t" == image_header || "$t" == image_decode || "$t" == transforms || "$t" == draco_stream ||
+     "$t" == ocio_config_text ]] && dict=()
   echo "kiln: fuzzing $t for $seconds s" >&2
   set +e
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \
