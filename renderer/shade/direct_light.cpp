@@ -10,6 +10,7 @@
 #include "shade/lights.h"
 #include "shade/lobe_sampling.h"
 #include "shade/shadow_transmittance.h"
+#include "shade/spawn_ray.h"
 
 namespace kiln {
 
@@ -47,16 +48,10 @@ void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes
   p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
 }
 
-// The shadow ray from origin toward light l (sampled as ls), stopping just short of it.
-ray shadow_ray(const vec3& origin, const light& l, const light_sample& ls, float time) {
-  ray shadow;
-  shadow.origin = origin;
-  shadow.direction = ls.direction;
-  shadow.kind = ray_kind::shadow;
-  shadow.time = time;
-  shadow.tmax =
-      std::isinf(ls.distance) ? inf : glm::length(vec3(l.position) - shadow.origin) * shadow_length_fraction;
-  return shadow;
+// The distance a shadow ray from r's origin toward light l (sampled as ls) runs: just short of the
+// light, or on forever toward a directional light.
+void stop_short_of_light(const light& l, const light_sample& ls, ray& r) {
+  r.tmax = std::isinf(ls.distance) ? inf : glm::length(vec3(l.position) - r.origin) * shadow_length_fraction;
 }
 
 // A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
@@ -69,8 +64,9 @@ vec3 back_light(const shading_context& ctx, const surface_point& sp, const mater
   if (f == vec3(0.0f)) return vec3(0.0f);
   vec3 visibility(1.0f);
   if (l.casts_shadows) {
-    const vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, ls.direction);
-    visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
+    ray shadow = spawn_ray(sp, ls.direction, ray_kind::shadow);
+    stop_short_of_light(l, ls, shadow);
+    visibility = shadow_visibility(ctx, shadow, counts);
   }
   return f * ls.irradiance * cos_theta * visibility;
 }
@@ -118,11 +114,9 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
       if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
       continue;
     }
-    // Always off the facet's front: a light just below the facet's plane is still above the smooth
-    // surface the ray starts on.
-    const vec3 origin =
-        offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
-    vec3 visibility = shadow_visibility(ctx, shadow_ray(origin, l, ls, sp.time), counts);
+    ray shadow = spawn_shadow_ray_above(sp, ls.direction);
+    stop_short_of_light(l, ls, shadow);
+    vec3 visibility = shadow_visibility(ctx, shadow, counts);
     if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
     if (visibility == vec3(0.0f)) continue;
     add(i, f * ls.irradiance * cos_theta * visibility);
@@ -164,13 +158,7 @@ void add_environment_direction(const shading_context& ctx, const surface_point& 
   if (f.diffuse == vec3(0.0f) && f.specular == vec3(0.0f)) return;
   const vec3 arriving = environment_radiance(ctx.world, l) * (cos_theta * weight);
   if (arriving == vec3(0.0f)) return;
-  ray shadow;
-  shadow.origin = above ? offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal,
-                                            sp.geometric_normal)
-                        : offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, l);
-  shadow.direction = l;
-  shadow.kind = ray_kind::shadow;
-  shadow.time = sp.time;
+  const ray shadow = above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow);
   const vec3 visibility = shadow_visibility(ctx, shadow, counts);
   tally.diffuse += f.diffuse * arriving * visibility;
   tally.specular += f.specular * arriving * visibility;

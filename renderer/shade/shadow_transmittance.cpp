@@ -2,6 +2,7 @@
 
 #include "core/float_bits.h"
 #include "shade/material_eval.h"
+#include "shade/spawn_ray.h"
 
 namespace kiln {
 
@@ -54,12 +55,7 @@ vec3 shadow_transmittance(const scene& s, const accelerator& accel, const ray& s
       rest = shadow;
       segment = &rest;
     }
-    vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, rest.direction);
-    if (!std::isinf(rest.tmax)) {
-      rest.tmax -= glm::length(origin - rest.origin);
-      if (rest.tmax <= 0.0f) return transmittance;
-    }
-    rest.origin = origin;
+    if (!continue_past(sp, rest)) return transmittance;
   }
   return vec3(0.0f);
 }

@@ -4,6 +4,7 @@
 
 #include "core/float_bits.h"
 #include "core/hash_random.h"
+#include "shade/delta_lobes.h"
 #include "shade/direct_light.h"
 #include "shade/environment.h"
 #include "shade/material_eval.h"
@@ -11,6 +12,7 @@
 #include "shade/normal_mapping.h"
 #include "shade/shading_normal.h"
 #include "shade/shadow_transmittance.h"
+#include "shade/spawn_ray.h"
 
 namespace kiln {
 
@@ -31,76 +33,6 @@ bool back_face_culled(const scene& s, const hit& h, const ray& r) {
   const material& m = s.materials[inst.material];
   if (m.double_sided || m.transmission_factor > 0.0f) return false;
   return glm::dot(h.geometric_normal, r.direction) > 0.0f;
-}
-
-// Weight of the perfect-mirror term for the opaque part of a surface: the BRDF's Fresnel at the
-// view (linear in F0, so metal and dielectric mix; iridescent where the material is), faded out
-// with roughness (see shading_options), seen through the sheen and the coat. The transmissive part
-// reflects by exact Fresnel instead (see shade_surface); the coat's own mirror is coat_mirror_weight.
-vec3 mirror_weight(const shading_options& options, const material_point& mp, float cos_theta) {
-  if (mp.roughness >= options.mirror_roughness_limit) return vec3(0.0f);
-  float fade = 1.0f - mp.roughness / options.mirror_roughness_limit;
-  vec3 metal = metal_fresnel(mp, cos_theta) * mp.metallic;
-  vec3 dielectric = mp.specular_weight * dielectric_fresnel(mp, cos_theta) *
-                    ((1.0f - mp.metallic) * (1.0f - mp.transmission));
-  return (metal + dielectric) * fade;
-}
-
-// The share of the base's reflection and transmission that reaches the viewer through the layers
-// above it: the sheen's albedo scaling at the view and 1 − the coat's Fresnel weight.
-float through_layers(const material_point& mp, float cos_theta, float coat_cos_theta) {
-  if (!mp.layers) return 1.0f;
-  const material_layers& L = *mp.layers;
-  float share = 1.0f - clearcoat_weight(mp, coat_cos_theta);
-  if (L.sheen_color != vec3(0.0f))
-    share *= std::max(1.0f - std::max({L.sheen_color.x, L.sheen_color.y, L.sheen_color.z}) *
-                                 sheen_directional_albedo(cos_theta, L.sheen_roughness),
-                      0.0f);
-  return share;
-}
-
-// The clearcoat's mirror: its Fresnel weight, faded out with the coat's roughness like the base's.
-float coat_mirror_weight(const shading_options& options, const material_point& mp, float coat_cos_theta) {
-  const material_layers& L = layers_of(mp);
-  if (!(L.clearcoat > 0.0f) || L.clearcoat_roughness >= options.mirror_roughness_limit) return 0.0f;
-  return clearcoat_weight(mp, coat_cos_theta) *
-         (1.0f - L.clearcoat_roughness / options.mirror_roughness_limit);
-}
-
-// The refraction event at a transmissive surface: the ior pair, the media on
-// the far side, and whether the ray bends (a thin-walled surface has no volume:
-// rays pass straight through).
-struct interface_crossing {
-  float eta = 1.0f;  // n_incident / n_transmitted
-  medium_stack beyond;
-  bool bends = true;
-};
-
-// Entering or leaving is decided by the geometric normal's side
-// (sp.front_face), never by the shading normal. A back-face hit on a volume not
-// in the stack (a camera inside glass, an open mesh) still counts as leaving
-// that material.
-interface_crossing cross_interface(const scene& s, const surface_point& sp, const medium_stack& media,
-                                   int channel) {
-  interface_crossing c;
-  const material& m = s.materials[sp.material];
-  // A ray of one colour channel refracts by that channel's ior (KHR_materials_dispersion); the
-  // media around the surface keep their single ior.
-  const float ior = channel >= 0 ? dispersed_ior(material_ior(m), m.dispersion)[channel] : material_ior(m);
-  if (!m.has_volume()) {
-    c.eta = media.ior(s) / ior;
-    c.beyond = media;
-    c.bends = false;
-    return c;
-  }
-  if (sp.front_face) {
-    c.eta = media.ior(s) / ior;
-    c.beyond = media.with(sp.material);
-  } else {
-    c.beyond = media.without(sp.material);
-    c.eta = ior / c.beyond.ior(s);
-  }
-  return c;
 }
 
 }  // namespace
@@ -124,10 +56,7 @@ std::optional<hit> find_visible_hit_from(const shading_context& ctx, ray& r, std
   for (int i = 0; i < max_culled_crossings; ++i) {
     if (i > 0) h = ctx.accel.intersect(r);
     if (!h || !back_face_culled(ctx.world, *h, r)) return h;
-    surface_point sp = make_surface_point(ctx.world, *h, r);
-    vec3 origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, r.direction);
-    if (!std::isinf(r.tmax)) r.tmax = std::max(r.tmax - glm::length(origin - r.origin), 0.0f);
-    r.origin = origin;
+    continue_past(make_surface_point(ctx.world, *h, r), r);
     ++counts.transparency;
   }
   return std::nullopt;
@@ -194,106 +123,33 @@ path_state refracted_state(const path_state& s, float throughput, const medium_s
   return next;
 }
 
-// The direction a refracted ray leaves in (empty: total internal reflection). Thin walls pass light
-// on unbent; volumes bend it by Snell's law about the shading normal, falling back to the geometric
-// normal when that would not cross the surface.
-std::optional<vec3> refraction_direction(const surface_point& sp, const vec3& incident,
-                                         const interface_crossing& crossing) {
-  if (!crossing.bends) return incident;
-  std::optional<vec3> direction = refract_direction(incident, sp.shading_normal, crossing.eta);
-  if (direction && glm::dot(*direction, sp.geometric_normal) >= 0.0f)
-    direction = refract_direction(incident, sp.geometric_normal, crossing.eta);
-  return direction;
-}
-
-// The refracted ray through a transmissive surface with weight `weight`, traced (when the throughput
-// and the budget allow) and filed under the split's refraction.
-vec3 trace_refracted(const shading_context& ctx, const surface_point& sp, const vec3& incident,
-                     const vec3& direction, const interface_crossing& crossing, const vec3& weight,
-                     const path_state& s, ray_counts& counts) {
-  const float next_throughput = s.throughput * max_component(weight);
+// The ray of delta lobe `lobe` at sp, traced (when the throughput and the budget allow) and filed
+// under the split's reflection or refraction; its radiance times the lobe's weight.
+vec3 trace_delta_lobe(const shading_context& ctx, const surface_point& sp, const vec3& incident,
+                      const delta_lobe& lobe, const path_state& s, ray_counts& counts) {
+  const float next_throughput = s.throughput * max_component(lobe.weight);
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
-  ray refracted;
-  refracted.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
-  refracted.direction = direction;
-  refracted.kind = ray_kind::refraction;
-  refracted.time = sp.time;
-  ++counts.refraction;
-  const ray_cone bent = crossing.bends
-                            ? refracted_cone(s.cone, crossing.eta, glm::dot(incident, sp.geometric_normal),
-                                             glm::dot(direction, sp.geometric_normal))
-                            : s.cone;
-  path_state next = refracted_state(s, next_throughput, crossing.beyond, bent, weight);
-  next.tint = s.tint * weight;
-  const vec3 refraction = weight * trace_radiance(ctx, refracted, next, counts);
-  if (s.split) s.split->refraction += s.share * refraction;
-  return refraction;
-}
-
-// The refracted part of a transmissive surface for one crossing (channel -1: all three colours,
-// else that channel alone): exact Fresnel splits it into the refracted ray traced here and a
-// reflected part added to reflect_weight (all of it under total internal reflection). layers: the
-// share seen through the sheen and the coat.
-vec3 refract_channel(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                     const vec3& incident, float cos_theta, float layers, int channel, const path_state& s,
-                     vec3& reflect_weight, ray_counts& counts) {
-  const float see_through = see_through_weight(mp) * layers;
-  const vec3 mask = channel < 0 ? vec3(1.0f) : vec3(channel == 0, channel == 1, channel == 2);
-  const interface_crossing crossing = cross_interface(ctx.world, sp, s.media, channel);
-  const float fresnel = fresnel_dielectric(cos_theta, crossing.eta);
-  reflect_weight += mask * (see_through * mp.specular_weight * fresnel);
-  const std::optional<vec3> direction = refraction_direction(sp, incident, crossing);
-  if (!direction) {
-    reflect_weight += mask * (see_through * (1.0f - mp.specular_weight * fresnel));
-    return vec3(0.0f);
+  const bool refracts = lobe.kind == delta_kind::refraction;
+  const ray spawned_ray = spawn_ray(sp, lobe.direction, refracts ? ray_kind::refraction : ray_kind::reflection);
+  path_state next;
+  if (refracts) {
+    ++counts.refraction;
+    const ray_cone bent = lobe.bends ? refracted_cone(s.cone, lobe.eta, glm::dot(incident, sp.geometric_normal),
+                                                      glm::dot(lobe.direction, sp.geometric_normal))
+                                     : s.cone;
+    path_state channel_state = s;
+    channel_state.channel = lobe.channel;
+    next = refracted_state(channel_state, next_throughput, lobe.media, bent, lobe.weight);
+  } else {
+    ++counts.reflection;
+    // A reflected ray stays in the medium it came from.
+    const spawned which = lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror;
+    next = secondary(s, next_throughput, lobe.media, reflected_cone(s.cone), child_seed(s.seed, which));
   }
-  const vec3 weight = mask * mp.base_color * (see_through * (1.0f - fresnel));
-  if (channel == s.channel)
-    return trace_refracted(ctx, sp, incident, *direction, crossing, weight, s, counts);
-  path_state channel_state = s;
-  channel_state.channel = channel;
-  return trace_refracted(ctx, sp, incident, *direction, crossing, weight, channel_state, counts);
-}
-
-// The transmissive share of a surface: a smooth dielectric whatever its roughness (Whitted has no
-// blurred refraction). A dispersive volume (KHR_materials_dispersion) entered by a ray of all
-// colours splits it into one refracted ray per channel, each bent by its own ior.
-vec3 shade_transmission(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                        const vec3& incident, float cos_theta, float layers, const path_state& s,
-                        vec3& reflect_weight, ray_counts& counts) {
-  if (!(see_through_weight(mp) > 0.0f)) return vec3(0.0f);
-  const material& m = ctx.world.materials[sp.material];
-  if (s.channel >= 0 || !(m.dispersion > 0.0f) || !m.has_volume())
-    return refract_channel(ctx, sp, mp, incident, cos_theta, layers, s.channel, s, reflect_weight, counts);
-  vec3 radiance(0.0f);
-  for (int channel = 0; channel < 3; ++channel)
-    radiance += refract_channel(ctx, sp, mp, incident, cos_theta, layers, channel, s, reflect_weight, counts);
+  next.tint = s.tint * lobe.weight;
+  const vec3 radiance = lobe.weight * trace_radiance(ctx, spawned_ray, next, counts);
+  if (s.split) (refracts ? s.split->refraction : s.split->reflection) += s.share * radiance;
   return radiance;
-}
-
-// The mirror ray with weight reflect_weight, traced (when the throughput and the budget allow) and
-// filed under the split's reflection.
-vec3 trace_mirror(const shading_context& ctx, const surface_point& sp, const vec3& normal,
-                  const vec3& incident, const vec3& reflect_weight, const path_state& s, spawned which,
-                  ray_counts& counts) {
-  const float next_throughput = s.throughput * max_component(reflect_weight);
-  if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
-  vec3 direction = glm::reflect(incident, normal);
-  // An interpolated normal can send the mirror ray below the surface; use the true plane then.
-  if (glm::dot(direction, sp.geometric_normal) <= 0.0f)
-    direction = glm::reflect(incident, sp.geometric_normal);
-  ray reflected;
-  reflected.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, direction);
-  reflected.direction = glm::normalize(direction);
-  reflected.kind = ray_kind::reflection;
-  reflected.time = sp.time;
-  ++counts.reflection;
-  // A reflected ray stays in the medium it came from.
-  path_state next = secondary(s, next_throughput, s.media, reflected_cone(s.cone), child_seed(s.seed, which));
-  next.tint = s.tint * reflect_weight;
-  const vec3 reflection = reflect_weight * trace_radiance(ctx, reflected, next, counts);
-  if (s.split) s.split->reflection += s.share * reflection;
-  return reflection;
 }
 
 // Emission, direct light, mirror and refraction at a fully covering surface.
@@ -307,9 +163,7 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   }
   const vec3 incident = glm::normalize(r.direction);
   const vec3 to_viewer = -incident;
-  const float cos_theta = std::max(glm::dot(sp.shading_normal, to_viewer), 0.0f);
-  const vec3 coat_normal = coat_normal_or(mp, sp.shading_normal);
-  const float coat_cos_theta = std::max(glm::dot(coat_normal, to_viewer), 0.0f);
+  const float coat_cos_theta = std::max(glm::dot(coat_normal_or(mp, sp.shading_normal), to_viewer), 0.0f);
   // KHR_materials_clearcoat: the coat lies over the emission too.
   const vec3 emission = mp.emission * (1.0f - clearcoat_weight(mp, coat_cos_theta));
   add_to_group(s, emission_group(ctx.world), emission);
@@ -317,17 +171,16 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   add_direct(s, radiance);
   if (s.depth >= ctx.options.max_depth) return radiance;
 
-  const float layers = through_layers(mp, cos_theta, coat_cos_theta);
-  vec3 reflect_weight = mirror_weight(ctx.options, mp, cos_theta) * layers;
-  radiance += shade_transmission(ctx, sp, mp, incident, cos_theta, layers, s, reflect_weight, counts);
-  // The coat's mirror joins the base's when both reflect about the same normal.
-  const float coat_mirror = coat_mirror_weight(ctx.options, mp, coat_cos_theta);
-  const bool separate_coat = coat_mirror > 0.0f && coat_normal != sp.shading_normal;
-  if (!separate_coat) reflect_weight += vec3(coat_mirror);
-  radiance += trace_mirror(ctx, sp, sp.shading_normal, incident, reflect_weight, s, spawned::mirror, counts);
-  if (separate_coat)
-    radiance +=
-        trace_mirror(ctx, sp, coat_normal, incident, vec3(coat_mirror), s, spawned::coat_mirror, counts);
+  // The BSDF's delta lobes, traced in its order; the refractions (three through a dispersive
+  // volume) are summed apart first, so their sum is the same whatever follows.
+  const delta_lobes deltas = delta_lobes_at(ctx.world, ctx.options.mirror_roughness_limit, sp, mp, incident,
+                                            s.media, s.channel);
+  vec3 refracted(0.0f);
+  int i = 0;
+  for (; i < deltas.count && deltas.lobes[i].kind == delta_kind::refraction; ++i)
+    refracted += trace_delta_lobe(ctx, sp, incident, deltas.lobes[i], s, counts);
+  radiance += refracted;
+  for (; i < deltas.count; ++i) radiance += trace_delta_lobe(ctx, sp, incident, deltas.lobes[i], s, counts);
   return radiance;
 }
 
@@ -371,11 +224,8 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
     }
     return vec3(0.0f);
   }
-  ray through;
-  through.direction = glm::normalize(r.direction);
-  through.kind = r.kind;  // the same ray, continued behind a partly transparent surface
-  through.time = r.time;
-  through.origin = offset_ray_origin(sp.position, sp.position_error, sp.geometric_normal, through.direction);
+  // The same ray (its kind kept), continued behind a partly transparent surface.
+  const ray through = spawn_ray(sp, glm::normalize(r.direction), r.kind);
   ++counts.transparency;
   // The continued ray starts where this cone ends: its width so far carries on. It is still the
   // camera's ray, so its path (split, alpha, mattes) follows it to the surface behind.
