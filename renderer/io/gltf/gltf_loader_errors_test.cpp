@@ -313,6 +313,49 @@ TEST(GltfLoaderErrors, RequiredBasisuTexturesAreRefusedWithTheReason) {
                 "required extension KHR_texture_basisu is not supported: no KTX2/Basis Universal decoder"});
 }
 
+// Materials hold floats: a number a double holds but a float does not would shade as infinity
+// or NaN (an emissiveStrength of 3.5e38 lost every sample that saw it), so it is refused.
+TEST(GltfLoaderErrors, MaterialValuesPastTheLargestFloatAreRefused) {
+  const auto with_material = [](const json& material) {
+    gltf_builder b = single_triangle();
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["materials"] = json::array({material});
+    return b;
+  };
+  const json strength = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3.5e38}}}};
+  expect_error(with_material({{"extensions", strength}}),
+               {"/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength",
+                "emissiveStrength 3.5e+38 is past the largest float (3.40282e+38)"});
+  // Each fits a float, their product does not.
+  expect_error(
+      with_material({{"emissiveFactor", {0.5, 2, 0}},
+                     {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3e38}}}}}}),
+      {"/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength",
+       "emissiveStrength 3e+38 times emissiveFactor is 6e+38, past the largest float"});
+  expect_error(with_material({{"emissiveFactor", {1e39, 0, 0}}}), {"/materials/0/emissiveFactor"});
+  expect_error(with_material({{"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1e300, 1}}}}}),
+               {"/materials/0/pbrMetallicRoughness/baseColorFactor"});
+  expect_error(
+      with_material({{"extensions", {{"KHR_materials_specular", {{"specularColorFactor", {1, 1e39, 1}}}}}}}),
+      {"/materials/0/extensions/KHR_materials_specular/specularColorFactor"});
+  expect_error(with_material({{"extensions", {{"KHR_materials_volume", {{"thicknessFactor", 1e300}}}}}}),
+               {"/materials/0/extensions/KHR_materials_volume/thicknessFactor", "in [0, 3.40282e+38]"});
+}
+
+// KHR_materials_ior sets no maximum: an ior of 1e308 is valid glTF. It is kept as the largest
+// float, the same fully reflecting surface, instead of infinity (which shaded as NaN).
+TEST(GltfLoaderErrors, AnIorPastTheLargestFloatIsKeptAtIt) {
+  for (const double ior : {1e308, 1e39}) {
+    gltf_builder b = single_triangle();
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["materials"] = json::array({json{{"extensions", {{"KHR_materials_ior", {{"ior", ior}}}}}}});
+    temp_folder dir;
+    const scene s = load_gltf(b.write(dir.file("ior.gltf")));
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_EQ(s.materials[0].ior, std::numeric_limits<float>::max()) << ior;
+  }
+}
+
 TEST(GltfLoaderErrors, BadCameras) {
   {
     gltf_builder b = single_triangle();

@@ -6,11 +6,20 @@
 
 #include <tiny_gltf.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "io/gltf/gltf_materials.h"
 
 namespace kiln::gltf_internal {
+
+// Materials hold floats: a glTF number past this rounds to infinity when stored (an ior of 1e308
+// or an emissiveStrength of 3.5e38 shaded as NaN), so no member may exceed it.
+constexpr double largest_material_value = std::numeric_limits<float>::max();
+
+// True when v is finite and stays finite as a float.
+inline bool fits_float(double v) { return std::abs(v) <= largest_material_value; }
 
 // Throws input_error(file, where, reason) unless ok.
 void require(bool ok, const std::string& file, const std::string& where, const std::string& reason);
@@ -21,11 +30,12 @@ const tinygltf::Value* find_extension(const tinygltf::Material& m, const char* n
 // Reads a number member of an extension object; false when absent or not a number.
 bool extension_number(const tinygltf::Value& object, const char* key, double& out);
 
-// Reads a number member that must lie in [low, high] when present; false when absent.
+// Reads a number member that must lie in [low, high] when present; false when absent. high is at
+// most largest_material_value.
 bool bounded_number(const tinygltf::Value& object, const char* key, double low, double high, double& out,
                     const std::string& file, const std::string& where);
 
-// Reads an RGB member ([r, g, b], finite, not negative) when present.
+// Reads an RGB member ([r, g, b], each a float, not negative) when present.
 void color_member(const tinygltf::Value& object, const char* key, vec3& out, const std::string& file,
                   const std::string& where);
 

@@ -1,15 +1,10 @@
 #include "io/gltf/gltf_material_lobes.h"
 
-#include <limits>
-
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_material_fields.h"
 
 namespace kiln::gltf_internal {
 namespace {
-
-// Values are stored as float: larger ones would turn into infinities.
-constexpr double largest = std::numeric_limits<float>::max();
 
 // Reads a number member in [low, high] into out when present.
 void read_number(const tinygltf::Value& ext, const char* key, double low, double high, float& out,
@@ -40,9 +35,11 @@ void convert_iridescence(const tinygltf::Model& model, const tinygltf::Value& ex
                          texture_remap& remap, scene& out, const std::string& file, const std::string& at) {
   read_number(ext, "iridescenceFactor", 0.0, 1.0, m.iridescence_factor, file, at);
   m.iridescence_texture = extension_texture(model, ext, "iridescenceTexture", remap, out, file, at);
-  read_number(ext, "iridescenceIor", 1.0, largest, m.iridescence_ior, file, at);
-  read_number(ext, "iridescenceThicknessMinimum", 0.0, largest, m.iridescence_thickness_minimum, file, at);
-  read_number(ext, "iridescenceThicknessMaximum", 0.0, largest, m.iridescence_thickness_maximum, file, at);
+  read_number(ext, "iridescenceIor", 1.0, largest_material_value, m.iridescence_ior, file, at);
+  read_number(ext, "iridescenceThicknessMinimum", 0.0, largest_material_value,
+              m.iridescence_thickness_minimum, file, at);
+  read_number(ext, "iridescenceThicknessMaximum", 0.0, largest_material_value,
+              m.iridescence_thickness_maximum, file, at);
   m.iridescence_thickness_texture =
       extension_texture(model, ext, "iridescenceThicknessTexture", remap, out, file, at);
 }
@@ -85,7 +82,7 @@ void convert_material_lobes(const tinygltf::Model& model, const tinygltf::Materi
       read(model, *ext, m, remap, out, file, at);
     }
   if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_dispersion"))
-    read_number(*ext, "dispersion", 0.0, largest, m.dispersion, file,
+    read_number(*ext, "dispersion", 0.0, largest_material_value, m.dispersion, file,
                 pointer_join(ext_where, "KHR_materials_dispersion"));
 }
 

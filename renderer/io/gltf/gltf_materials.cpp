@@ -1,9 +1,11 @@
 #include "io/gltf/gltf_materials.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "core/message_text.h"
 #include "io/gltf/gltf_common.h"
 #include "io/gltf/gltf_images.h"
@@ -245,9 +247,9 @@ bool bounded_number(const tinygltf::Value& object, const char* key, double low, 
   const std::string at = pointer_join(where, key);
   require(v.IsNumber(), file, at, std::string(key) + " must be a number");
   out = v.GetNumberAsDouble();
-  require(std::isfinite(out) && out >= low && out <= high, file, at,
-          std::string(key) + " must be finite and in [" + std::to_string(low) + ", " + std::to_string(high) +
-              "]");
+  require(std::isfinite(out) && out >= low && out <= std::min(high, largest_material_value), file, at,
+          std::string(key) + " must be finite and in [" + format_number(low) + ", " +
+              format_number(std::min(high, largest_material_value)) + "]");
   return true;
 }
 
@@ -259,7 +261,7 @@ void color_member(const tinygltf::Value& object, const char* key, vec3& out, con
   require(color.IsArray() && color.ArrayLen() == 3, file, at, std::string(key) + " must have 3 numbers");
   for (int i = 0; i < 3; ++i) {
     const tinygltf::Value& c = color.Get(i);
-    require(c.IsNumber() && std::isfinite(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file, at,
+    require(c.IsNumber() && fits_float(c.GetNumberAsDouble()) && c.GetNumberAsDouble() >= 0.0, file, at,
             std::string(key) + " must be finite and not negative");
     out[i] = static_cast<float>(c.GetNumberAsDouble());
   }
@@ -304,11 +306,10 @@ void convert_transmission(const tinygltf::Model& model, const tinygltf::Material
   }
   if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_volume")) {
     const std::string at = pointer_join(ext_where, "KHR_materials_volume");
-    const double largest = std::numeric_limits<double>::max();
     double value = 0.0;
-    if (bounded_number(*ext, "thicknessFactor", 0.0, largest, value, file, at))
+    if (bounded_number(*ext, "thicknessFactor", 0.0, largest_material_value, value, file, at))
       m.thickness_factor = static_cast<float>(value);
-    if (bounded_number(*ext, "attenuationDistance", 0.0, largest, value, file, at)) {
+    if (bounded_number(*ext, "attenuationDistance", 0.0, largest_material_value, value, file, at)) {
       require(value > 0.0, file, pointer_join(at, "attenuationDistance"),
               "attenuationDistance must be positive");
       m.attenuation_distance = static_cast<float>(value);
@@ -353,11 +354,10 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
           "baseColorFactor must have 4 numbers");
   for (int i = 0; i < 4; ++i) {
     const double v = pbr.baseColorFactor[static_cast<size_t>(i)];
-    require(std::isfinite(v), file, pointer_join(pbr_where, "baseColorFactor"),
-            "baseColorFactor is not finite");
+    require(fits_float(v), file, pointer_join(pbr_where, "baseColorFactor"), "baseColorFactor is not finite");
     m.base_color_factor[i] = static_cast<float>(v);
   }
-  require(std::isfinite(pbr.metallicFactor) && std::isfinite(pbr.roughnessFactor), file, pbr_where,
+  require(fits_float(pbr.metallicFactor) && fits_float(pbr.roughnessFactor), file, pbr_where,
           "metallicFactor and roughnessFactor must be finite");
   m.metallic_factor = static_cast<float>(pbr.metallicFactor);
   m.roughness_factor = static_cast<float>(pbr.roughnessFactor);
@@ -365,7 +365,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
           "emissiveFactor must have 3 numbers");
   for (int i = 0; i < 3; ++i) {
     const double v = src.emissiveFactor[static_cast<size_t>(i)];
-    require(std::isfinite(v) && v >= 0.0, file, pointer_join(where, "emissiveFactor"),
+    require(fits_float(v) && v >= 0.0, file, pointer_join(where, "emissiveFactor"),
             "emissiveFactor must be finite and not negative");
     m.emissive_factor[i] = static_cast<float>(v);
   }
@@ -376,7 +376,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
                                           pbr.metallicRoughnessTexture.texCoord, 1.0, remap, out, file);
   m.emissive_texture =
       make_ref(model, src.emissiveTexture.index, src.emissiveTexture.texCoord, 1.0, remap, out, file);
-  require(std::isfinite(src.normalTexture.scale) && std::isfinite(src.occlusionTexture.strength), file, where,
+  require(fits_float(src.normalTexture.scale) && fits_float(src.occlusionTexture.strength), file, where,
           "normalTexture.scale and occlusionTexture.strength must be finite");
   m.normal_texture = make_ref(model, src.normalTexture.index, src.normalTexture.texCoord,
                               src.normalTexture.scale, remap, out, file);
@@ -402,7 +402,7 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
     m.alpha = alpha_mode::blend;
   else
     throw input_error(file, pointer_join(where, "alphaMode"), "unknown alphaMode " + quoted(src.alphaMode));
-  require(std::isfinite(src.alphaCutoff) && src.alphaCutoff >= 0.0, file, pointer_join(where, "alphaCutoff"),
+  require(fits_float(src.alphaCutoff) && src.alphaCutoff >= 0.0, file, pointer_join(where, "alphaCutoff"),
           "alphaCutoff must be finite and not negative");
   m.alpha_cutoff = static_cast<float>(src.alphaCutoff);
   m.double_sided = src.doubleSided;
@@ -411,9 +411,20 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
   if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_emissive_strength")) {
     double strength = 1.0;
     if (extension_number(*ext, "emissiveStrength", strength)) {
-      require(std::isfinite(strength) && strength >= 0.0, file,
-              pointer_join(pointer_join(ext_where, "KHR_materials_emissive_strength"), "emissiveStrength"),
+      const std::string at =
+          pointer_join(pointer_join(ext_where, "KHR_materials_emissive_strength"), "emissiveStrength");
+      require(std::isfinite(strength) && strength >= 0.0, file, at,
               "emissiveStrength must be finite and not negative");
+      // The emitted radiance is emissiveFactor × emissiveStrength, carried as float: past the
+      // largest float it is infinite, and every sample that sees it is lost.
+      const std::string largest = " past the largest float (" + format_number(largest_material_value) + ")";
+      require(fits_float(strength), file, at,
+              "emissiveStrength " + format_number(strength) + " is" + largest);
+      const double radiance =
+          strength * std::max({m.emissive_factor.x, m.emissive_factor.y, m.emissive_factor.z});
+      require(fits_float(radiance), file, at,
+              "emissiveStrength " + format_number(strength) + " times emissiveFactor is " +
+                  format_number(radiance) + "," + largest);
       m.emissive_strength = static_cast<float>(strength);
     }
   }
@@ -423,14 +434,16 @@ material convert_material(const tinygltf::Model& model, int index, texture_remap
       require(std::isfinite(ior) && (ior == 0.0 || ior >= 1.0), file,
               pointer_join(pointer_join(ext_where, "KHR_materials_ior"), "ior"),
               "ior must be 0 or at least 1");
-      m.ior = static_cast<float>(ior);
+      // KHR_materials_ior sets no maximum, so a huge ior is valid: it is kept at the largest float,
+      // where reflectance has long been 1 in float (from an ior of about 1e8), the same surface.
+      m.ior = static_cast<float>(std::min(ior, largest_material_value));
     }
   }
   if (const tinygltf::Value* ext = find_extension(src, "KHR_materials_specular")) {
     const std::string at = pointer_join(ext_where, "KHR_materials_specular");
     double factor = 1.0;
     if (extension_number(*ext, "specularFactor", factor)) {
-      require(std::isfinite(factor) && factor >= 0.0, file, pointer_join(at, "specularFactor"),
+      require(fits_float(factor) && factor >= 0.0, file, pointer_join(at, "specularFactor"),
               "specularFactor must be finite and not negative");
       m.specular_factor = static_cast<float>(factor);
     }
