@@ -385,5 +385,31 @@ TEST(meshopt, filter_stride_is_checked) {
       << message;
 }
 
+// tinygltf keeps an extension's integers in an int: 2^32 + n read as n, so a count or byteStride
+// past 32 bits decoded as its low bits and the file loaded. It is refused, naming the member.
+TEST(meshopt, counts_and_strides_past_32_bits_are_refused) {
+  files f;
+  const std::string path = write_compressed(make_sphere(6, 8), f.at("compressed.gltf"));
+  const json doc = json::parse(std::ifstream(path));
+  const std::string at = "/bufferViews/0/extensions/EXT_meshopt_compression/";
+  for (const char* key : {"count", "byteStride", "byteLength", "byteOffset"}) {
+    json wide = doc;
+    json& member = wide["bufferViews"][0]["extensions"]["EXT_meshopt_compression"][key];
+    const uint64_t value = member.get<uint64_t>() + (uint64_t(1) << 32);
+    member = value;
+    std::ofstream(f.at("wide.gltf")) << wide.dump();
+    const std::string message = error_of(f.at("wide.gltf"));
+    EXPECT_NE(message.find(at + key + ": " + key + " is " + std::to_string(value) +
+                           ", larger than kiln reads (at most 2147483647)"),
+              std::string::npos)
+        << message;
+  }
+  json wide = doc;
+  wide["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["buffer"] = (uint64_t(1) << 32) + 1;
+  std::ofstream(f.at("wide.gltf")) << wide.dump();
+  const std::string message = error_of(f.at("wide.gltf"));
+  EXPECT_NE(message.find(at + "buffer: /buffers/4294967297 does not exist"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace kiln

@@ -41,7 +41,10 @@ const collection accessors{{"accessors"}, "accessors"}, buffers{{"buffers"}, "bu
     lights{{"extensions", "KHR_lights_punctual", "lights"}, "lights"},
     quadrics{{"extensions", "KILN_quadric", "primitives"},
              "extensions/KILN_quadric/primitives",
-             "quadric definitions"};
+             "quadric definitions"},
+    variants{{"extensions", "KHR_materials_variants", "variants"},
+             "extensions/KHR_materials_variants/variants",
+             "variants"};
 
 std::vector<integer_rule> make_rules() {
   std::vector<integer_rule> rules = {
@@ -63,12 +66,20 @@ std::vector<integer_rule> make_rules() {
       {"bufferViews/*/byteOffset", nullptr, 0, wide_max},
       {"bufferViews/*/byteLength", nullptr, 1, wide_max},
       {"bufferViews/*/target", nullptr, no_minimum},
+      // Extension objects reach the loader as tinygltf Values, whose integers are ints too.
+      {"bufferViews/*/extensions/EXT_meshopt_compression/buffer", &buffers},
+      {"bufferViews/*/extensions/EXT_meshopt_compression/byteOffset"},
+      {"bufferViews/*/extensions/EXT_meshopt_compression/byteLength"},
+      {"bufferViews/*/extensions/EXT_meshopt_compression/byteStride"},
+      {"bufferViews/*/extensions/EXT_meshopt_compression/count"},
       {"images/*/bufferView", &buffer_views},
       {"meshes/*/primitives/*/attributes/*", &accessors},
       {"meshes/*/primitives/*/indices", &accessors},
       {"meshes/*/primitives/*/material", &materials},
       {"meshes/*/primitives/*/mode", nullptr, no_minimum},
       {"meshes/*/primitives/*/targets/*/*", &accessors},
+      {"meshes/*/primitives/*/extensions/KHR_materials_variants/mappings/*/material", &materials},
+      {"meshes/*/primitives/*/extensions/KHR_materials_variants/mappings/*/variants/*", &variants},
       {"nodes/*/camera", &cameras},
       {"nodes/*/children/*", &nodes},
       {"nodes/*/skin", &skins},

@@ -68,13 +68,31 @@ TEST(GltfVariants, UnknownVariantsAndBadMappingsAreRefused) {
       9;
   EXPECT_EQ(error_of([&] { load_variant(bad_material, dir, ""); }),
             dir.file("variants.gltf") + ": " + mapping +
-                "/material: material 9 does not exist (file has 3 materials)");
+                "/material: /materials/9 does not exist (file has 3 materials)");
   gltf_builder bad_variant = variant_triangle();
   bad_variant.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][1]
                  ["variants"] = {5};
-  EXPECT_EQ(error_of([&] { load_variant(bad_variant, dir, "red"); }),
-            dir.file("variants.gltf") + ": " + mapping +
-                "/variants/0: variant 5 does not exist (file has 2 variants)");
+  EXPECT_EQ(
+      error_of([&] { load_variant(bad_variant, dir, "red"); }),
+      dir.file("variants.gltf") + ": " + mapping +
+          "/variants/0: /extensions/KHR_materials_variants/variants/5 does not exist (file has 2 variants)");
+  // tinygltf keeps integers in an int, where 2^32 + 1 reads as 1: such indices chose the
+  // "textured" variant or material 1 until they were checked on the JSON itself.
+  gltf_builder wide_variant = variant_triangle();
+  wide_variant.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][0]
+                  ["variants"] = {(uint64_t(1) << 32) + 1};
+  EXPECT_EQ(
+      error_of([&] { load_variant(wide_variant, dir, "textured"); }),
+      dir.file("variants.gltf") + ": " +
+          "/meshes/0/primitives/0/extensions/KHR_materials_variants/mappings/0/variants/0: "
+          "/extensions/KHR_materials_variants/variants/4294967297 does not exist (file has 2 variants)");
+  gltf_builder wide_material = variant_triangle();
+  wide_material
+      .doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][0]["material"] =
+      (uint64_t(1) << 32) + 1;
+  EXPECT_EQ(error_of([&] { load_variant(wide_material, dir, "red"); }),
+            dir.file("variants.gltf") + ": " + mapping.substr(0, mapping.size() - 1) +
+                "0/material: /materials/4294967297 does not exist (file has 3 materials)");
   gltf_builder unnamed = variant_triangle();
   unnamed.doc["extensions"]["KHR_materials_variants"]["variants"][1] = {{"name", 3}};
   EXPECT_EQ(error_of([&] { load_variant(unnamed, dir, ""); }),
