@@ -169,15 +169,20 @@ TEST(GltfImageUse, RequiredWebpWithoutFallbackLoads) {
   expect_green_4x4(load_gltf(b.write(dir.file("webp.gltf"))));
 }
 
-TEST(GltfImageUse, WebpSourceOutOfRangeIsRefused) {
-  temp_folder dir;
-  gltf_builder b = triangle_with_images(json::array({png_image(), webp_image(dir)}));
-  b.doc["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 5}}}};
-  const std::string message = error_of([&] { load_gltf(b.write(dir.file("webp.gltf"))); });
-  EXPECT_NE(
-      message.find("/textures/0/extensions/EXT_texture_webp/source: needs the index of an existing image"),
-      std::string::npos)
-      << message;
+// A source past the images is refused like the core source, for either extension: basisu's is
+// never decoded, but it was ignored, and 2^32 (an int's 0 to tinygltf) read as image 0.
+TEST(GltfImageUse, ExtensionSourcesOutOfRangeAreRefused) {
+  for (const char* extension : {"EXT_texture_webp", "KHR_texture_basisu"})
+    for (const uint64_t source : {uint64_t(5), uint64_t(1) << 32}) {
+      temp_folder dir;
+      gltf_builder b = triangle_with_images(json::array({png_image(), webp_image(dir)}));
+      b.doc["textures"][0]["extensions"] = {{extension, {{"source", source}}}};
+      b.doc["extensionsUsed"] = {extension};
+      const std::string path = b.write(dir.file("source.gltf"));
+      const std::string message = error_of([&] { load_gltf(path); });
+      EXPECT_EQ(message, path + ": /textures/0/extensions/" + extension + "/source: /images/" +
+                             std::to_string(source) + " does not exist (file has 2 images)");
+    }
 }
 
 TEST(GltfImageUse, OptionalBasisuFallsBackToThePngSource) {

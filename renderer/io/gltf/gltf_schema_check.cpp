@@ -99,6 +99,9 @@ std::vector<integer_rule> make_rules() {
       {"skins/*/joints/*", &nodes},
       {"textures/*/sampler", &samplers},
       {"textures/*/source", &images},
+      {"textures/*/extensions/EXT_texture_webp/source", &images},
+      // Never decoded, but an index all the same: one past the images is a broken file.
+      {"textures/*/extensions/KHR_texture_basisu/source", &images},
   };
   // Every textureInfo a material may hold, with KHR_texture_transform's texCoord override.
   for (const char* info :
