@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "core/message_text.h"
 
 namespace kiln {
 
@@ -18,7 +19,13 @@ const char* kind_of(mode_t mode) {
 
 }  // namespace
 
+void check_no_nul(const std::string& path, const std::string& where) {
+  if (path.find('\0') != std::string::npos)
+    throw input_error("", where, quoted(path) + " holds a NUL character, which no file name can");
+}
+
 void check_asset_file(const std::string& path, const std::string& where) {
+  check_no_nul(path, where.empty() ? "asset" : where);
   struct stat s {};
   if (::stat(path.c_str(), &s) != 0 || S_ISREG(s.st_mode)) return;
   const std::string reason = std::string(kind_of(s.st_mode)) + ", not a glTF file (.gltf or .glb)";

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "io/exr/preview_codes.h"
+#include "job/asset_file.h"
 #include "job/exr_storage_options.h"
 #include "job/frame_range.h"
 #include "job/option_entries.h"
@@ -134,6 +135,7 @@ void add_image_options(std::vector<option_spec>& t) {
   option_spec& preview = add(custom_option(
       "preview",
       [](render_options& o, const std::string& text) {
+        check_no_nul(text, "--preview");
         if (preview_format(text).empty())
           throw input_error("", "--preview", "a preview must end in .png, .jpg or .jpeg, got '" + text + "'");
         o.preview = text;

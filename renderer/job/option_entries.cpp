@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "job/asset_file.h"
 
 namespace kiln::option_entries {
 
@@ -14,6 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 
 void check_existing_file(const std::string& path, const std::string& option) {
+  check_no_nul(path, option);
   struct stat s {};
   if (::stat(path.c_str(), &s) != 0) throw input_error("", option, "no such file '" + path + "'");
   if (S_ISDIR(s.st_mode)) throw input_error("", option, "'" + path + "' is a folder, not a file");

@@ -388,6 +388,8 @@ void check_job(const render_options& options) {
     throw input_error("", "--crop", "--crop and --band both choose the region; give one of them");
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
   if (options.width && options.height) check_pixel_count(*options.width, *options.height, options.max_pixels);
+  check_no_nul(options.output, "-o");
+  check_no_nul(options.preview, "--preview");
   if (!options.output.empty()) {
     check_render_outputs(options);  // never a file the render reads, never through a symlink
     check_output_writable(options.output);
@@ -491,7 +493,7 @@ void write_job_outputs(const render_job_result& result, const render_options& op
   try {
     if (!options.preview.empty()) {
       const std::optional<display_transform> view = preview_view(options);
-      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr);
+      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr, cancel);
     }
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the preview");

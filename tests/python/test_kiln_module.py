@@ -484,3 +484,26 @@ except kiln.InputError as e:
     file, location, reason = done.stdout.splitlines()
     assert (file, location) == (str(path), "colour space 'ACEScg'")
     assert reason.startswith("its references loop back to it")
+
+
+def test_a_nul_in_a_path_raises_input_error_instead_of_naming_another_file(tmp_path):
+    # The system reads a path up to its first NUL: the asset rendered the Cornell box, and the
+    # output went to x.exr.
+    out = tmp_path / "x.exr"
+    with pytest.raises(kiln.InputError) as caught:
+        kiln.render(CORNELL + "\0.other", width=8, height=8, spp=1)
+    assert caught.value.location == "asset"
+    assert caught.value.reason == "'" + CORNELL + "\\x00.other' holds a NUL character, which no file name can"
+    for keywords, location in [({"output": str(out) + "\0.tmp"}, "-o"),
+                               ({"output": str(out), "preview": str(tmp_path / "x.png") + "\0"}, "--preview"),
+                               ({"environment": os.path.join(SOURCE, "scenes", "glass_showcase_sky.hdr") + "\0"},
+                                "--environment")]:
+        with pytest.raises(kiln.InputError) as caught:
+            kiln.render(CORNELL, width=8, height=8, spp=1, **keywords)
+        assert caught.value.location == location
+        assert "\\x00" in caught.value.reason
+        assert caught.value.reason.endswith("' holds a NUL character, which no file name can")
+    result = kiln.render(CORNELL, width=8, height=8, spp=1)
+    with pytest.raises(kiln.InputError, match="NUL"):
+        result.write(str(out) + "\0.tmp")
+    assert os.listdir(tmp_path) == []
