@@ -107,10 +107,10 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   path_state state;
   state.cone = at_hit;
   state.budget = &budget;
-  state.camera = &path;
-  state.split = outputs.split ? &s.split : nullptr;
-  state.groups = s.groups.empty() ? nullptr : s.groups.data();
-  state.passes = outputs.passes ? &s.passes : nullptr;
+  state.record.camera = &path;
+  state.record.split = outputs.split ? &s.split : nullptr;
+  state.record.groups = s.groups.empty() ? nullptr : s.groups.data();
+  state.record.passes = outputs.passes ? &s.passes : nullptr;
   state.memo = outputs.memo;
   state.seed = camera_ray_seed(r);
   state.stratum = outputs.stratum;

@@ -34,20 +34,6 @@ vec3 shadow_visibility(const shading_context& ctx, const ray& shadow, ray_counts
   return shadow_transmittance(ctx.world, ctx.accel, shadow, counts.shadow);
 }
 
-// Files one light's direct light at a camera-path surface into the passes (s.passes is set): its
-// lobes, shadowed by visibility, and the share of its unshadowed luminance that is blocked.
-void add_light_passes(const path_state& s, size_t light, const brdf_lobes& lobes,
-                      const vec3& unshadowed_light, const vec3& visibility) {
-  camera_passes& p = *s.passes;
-  p.diffuse += s.share * (lobes.diffuse * unshadowed_light * visibility);
-  p.specular += s.share * (lobes.specular * unshadowed_light * visibility);
-  if (p.shadow.empty()) return;
-  const float unshadowed = luminance((lobes.diffuse + lobes.specular) * unshadowed_light);
-  if (!(unshadowed > 0.0f)) return;
-  const float lit = luminance((lobes.diffuse + lobes.specular) * unshadowed_light * visibility);
-  p.shadow[light] += s.share * std::clamp(1.0f - lit / unshadowed, 0.0f, 1.0f);
-}
-
 // The distance a shadow ray from r's origin toward light l (sampled as ls) runs: just short of the
 // light, or on forever toward a directional light.
 void stop_short_of_light(const light& l, const light_sample& ls, ray& r) {
@@ -79,7 +65,7 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
   vec3 total(0.0f);
   auto add = [&](size_t i, const vec3& light) {
     total += light;
-    if (s.groups) s.groups[i] += s.tint * light;
+    record_group(s.record, i, light);
   };
   for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
     const light& l = ctx.world.lights[i];
@@ -94,7 +80,7 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
       if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
       const vec3 through = back_light(ctx, sp, mp, to_viewer, l, ls, counts);
       add(i, through);
-      if (s.passes) s.passes->diffuse += s.share * through;
+      record_diffuse(s.record, through);
       continue;
     }
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
@@ -106,18 +92,18 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
     if (f == vec3(0.0f)) continue;
     // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
     const brdf_lobes lobes =
-        s.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
+        s.record.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
                  : brdf_lobes{};
 
     if (!l.casts_shadows) {
       add(i, f * ls.irradiance * cos_theta);
-      if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
+      record_light_passes(s.record, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
       continue;
     }
     ray shadow = spawn_shadow_ray_above(sp, ls.direction);
     stop_short_of_light(l, ls, shadow);
     vec3 visibility = shadow_visibility(ctx, shadow, counts);
-    if (s.passes) add_light_passes(s, i, lobes, ls.irradiance * cos_theta, visibility);
+    record_light_passes(s.record, i, lobes, ls.irradiance * cos_theta, visibility);
     if (visibility == vec3(0.0f)) continue;
     add(i, f * ls.irradiance * cos_theta * visibility);
   }
@@ -180,7 +166,7 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
   // weighted down by Fresnel and transmission, and there are as many of them as camera surfaces in
   // a scene of glass and chrome.
   const int asked = std::max(ctx.options.environment_samples, 1);
-  const int n = s.camera ? asked : (asked + 1) / 2;
+  const int n = s.record.camera ? asked : (asked + 1) / 2;
   environment_tally tally;
   for (int i = 0; i < n; ++i) {
     const auto next = [&s, i](uint32_t dimension) { return hash_to_unit(s.seed, uint32_t(i), dimension); };
@@ -210,14 +196,9 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
   }
   const float scale = 1.0f / float(n);
   const vec3 light = (tally.diffuse + tally.specular) * scale;
-  if (s.groups) s.groups[environment_group(ctx.world)] += s.tint * light;
-  if (s.passes) {
-    s.passes->diffuse += s.share * (tally.diffuse * scale);
-    s.passes->specular += s.share * (tally.specular * scale);
-    if (s.passes->shadow.size() > ctx.world.lights.size() && tally.unshadowed > 0.0f)
-      s.passes->shadow[ctx.world.lights.size()] +=
-          s.share * std::clamp(1.0f - tally.lit / tally.unshadowed, 0.0f, 1.0f);
-  }
+  record_group(s.record, environment_group(ctx.world), light);
+  record_environment_passes(s.record, ctx.world.lights.size(), tally.diffuse * scale, tally.specular * scale,
+                            tally.unshadowed, tally.lit);
   return light;
 }
 

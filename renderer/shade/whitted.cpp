@@ -74,16 +74,6 @@ namespace {
 
 float mean_component(const vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
 
-// Adds what a camera path sees directly (emission, direct light, background) to its split.
-void add_direct(const path_state& s, const vec3& radiance) {
-  if (s.split) s.split->direct += s.share * radiance;
-}
-
-// Files light of a source group (emission, environment) that ray s adds.
-void add_to_group(const path_state& s, size_t group, const vec3& radiance) {
-  if (s.groups) s.groups[group] += s.tint * radiance;
-}
-
 // Which of the rays a shading point spawns a child is (its random numbers are its own).
 enum class spawned : uint32_t { mirror = 1, coat_mirror, behind, refraction };
 
@@ -92,34 +82,21 @@ uint32_t child_seed(uint32_t seed, spawned which, int channel = -1) {
   return hash_u32(seed ^ hash_u32(uint32_t(which) * 4u + uint32_t(channel + 1)));
 }
 
-// The state of a secondary ray spawned by s: one bounce deeper, off the camera's path.
-path_state secondary(const path_state& s, float throughput, const medium_stack& media, const ray_cone& cone,
-                     uint32_t seed) {
+// The state of a ray spawned by s with weight along delta lobe `lobe`: one bounce deeper, in the
+// lobe's media and channel, its record the lobe's (shade/path_record.h).
+path_state spawned_state(const path_state& s, const delta_lobe& lobe, float throughput, const ray_cone& cone) {
   path_state next = s;
-  next.seed = seed;
+  const bool refracts = lobe.kind == delta_kind::refraction;
+  next.seed = refracts ? child_seed(s.seed, spawned::refraction, lobe.channel)
+                       : child_seed(s.seed, lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror);
   next.stratum = {};
   ++next.depth;
   next.throughput = throughput;
-  next.media = media;
+  next.media = lobe.media;
   next.cone = cone;
-  next.camera = nullptr;
-  next.split = nullptr;
-  next.passes = nullptr;
-  return next;
-}
-
-// The refracted ray's state: traced as the camera's own path (so the background it reaches counts
-// as transparent, scaled by the share the refraction carries) when transmission is transparent,
-// else as an ordinary secondary ray that sees the environment.
-path_state refracted_state(const path_state& s, float throughput, const medium_stack& beyond,
-                           const ray_cone& cone, const vec3& weight) {
-  path_state next =
-      secondary(s, throughput, beyond, cone, child_seed(s.seed, spawned::refraction, s.channel));
-  if (!s.camera || !s.camera->transmission_transparent) return next;
-  next.camera = s.camera;
-  next.share = s.share * mean_component(weight);
-  next.record_layers = false;  // what glass shows bent belongs to the glass's matte; the caller
-                               // files all of its light under refraction
+  next.channel = lobe.channel;
+  next.record = refracts ? refracted_record(s.record, lobe.weight)
+                         : secondary_record(s.record, s.record.tint * lobe.weight);
   return next;
 }
 
@@ -131,24 +108,15 @@ vec3 trace_delta_lobe(const shading_context& ctx, const surface_point& sp, const
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   const bool refracts = lobe.kind == delta_kind::refraction;
   const ray spawned_ray = spawn_ray(sp, lobe.direction, refracts ? ray_kind::refraction : ray_kind::reflection);
-  path_state next;
-  if (refracts) {
-    ++counts.refraction;
-    const ray_cone bent = lobe.bends ? refracted_cone(s.cone, lobe.eta, glm::dot(incident, sp.geometric_normal),
-                                                      glm::dot(lobe.direction, sp.geometric_normal))
-                                     : s.cone;
-    path_state channel_state = s;
-    channel_state.channel = lobe.channel;
-    next = refracted_state(channel_state, next_throughput, lobe.media, bent, lobe.weight);
-  } else {
-    ++counts.reflection;
-    // A reflected ray stays in the medium it came from.
-    const spawned which = lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror;
-    next = secondary(s, next_throughput, lobe.media, reflected_cone(s.cone), child_seed(s.seed, which));
-  }
-  next.tint = s.tint * lobe.weight;
+  ++(refracts ? counts.refraction : counts.reflection);
+  const ray_cone cone =
+      !refracts ? reflected_cone(s.cone)
+      : lobe.bends ? refracted_cone(s.cone, lobe.eta, glm::dot(incident, sp.geometric_normal),
+                                    glm::dot(lobe.direction, sp.geometric_normal))
+                   : s.cone;
+  const path_state next = spawned_state(s, lobe, next_throughput, cone);
   const vec3 radiance = lobe.weight * trace_radiance(ctx, spawned_ray, next, counts);
-  if (s.split) (refracts ? s.split->refraction : s.split->reflection) += s.share * radiance;
+  record_branch(s.record, refracts, radiance);
   return radiance;
 }
 
@@ -157,8 +125,8 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
                    const material_point& mp, const path_state& s, ray_counts& counts) {
   // KHR_materials_unlit: the base colour is the outgoing radiance; no lights, mirror or refraction.
   if (mp.unlit) {
-    add_direct(s, mp.base_color);
-    add_to_group(s, emission_group(ctx.world), mp.base_color);
+    record_direct(s.record, mp.base_color);
+    record_group(s.record, emission_group(ctx.world), mp.base_color);
     return mp.base_color;
   }
   const vec3 incident = glm::normalize(r.direction);
@@ -166,9 +134,9 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   const float coat_cos_theta = std::max(glm::dot(coat_normal_or(mp, sp.shading_normal), to_viewer), 0.0f);
   // KHR_materials_clearcoat: the coat lies over the emission too.
   const vec3 emission = mp.emission * (1.0f - clearcoat_weight(mp, coat_cos_theta));
-  add_to_group(s, emission_group(ctx.world), emission);
+  record_group(s.record, emission_group(ctx.world), emission);
   vec3 radiance = emission + direct_light(ctx, sp, mp, to_viewer, s, counts);
-  add_direct(s, radiance);
+  record_direct(s.record, radiance);
   if (s.depth >= ctx.options.max_depth) return radiance;
 
   // The BSDF's delta lobes, traced in its order; the refractions (three through a dispersive
@@ -184,23 +152,13 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   return radiance;
 }
 
-// shade_covered on a camera path: the surface covers its share of the sample, less what escapes
+// shade_covered, and the surface recorded as covering its share of the sample, less what escapes
 // through it (transparent transmission) into the background.
 vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surface_point& sp,
                            const material_point& mp, const path_state& s, ray_counts& counts) {
-  if (!s.camera) return shade_covered(ctx, r, sp, mp, s, counts);
-  const float escaped_before = s.camera->transparency;
+  const float escaped_before = escaped_so_far(s.record);
   const vec3 radiance = shade_covered(ctx, r, sp, mp, s, counts);
-  const float covered = s.share - (s.camera->transparency - escaped_before);
-  if (s.record_layers) s.camera->cover(sp.instance, covered);
-  // The sample's radiance is Σ share · radiance over the surfaces its path covers (BLEND and
-  // trace_behind scale by the same shares), so each deep surface gets its own term.
-  if (s.record_layers) s.camera->add_surface(sp.instance, sp.position, s.share * radiance, covered);
-  // The denoiser's albedo and normal go by the surface's coverage, like its matte.
-  if (s.passes && s.record_layers && covered > 0.0f) {
-    s.passes->albedo += covered * denoising_albedo(mp);
-    if (is_finite(sp.shading_normal)) s.passes->normal += covered * sp.shading_normal;
-  }
+  record_covered(s.record, sp, mp, radiance, escaped_before);
   return radiance;
 }
 
@@ -212,16 +170,10 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   next.seed = child_seed(s.seed, spawned::behind);
   next.stratum = {};
   next.throughput = s.throughput * (1.0f - alpha);
-  next.share = s.share * (1.0f - alpha);
-  next.tint = s.tint * (1.0f - alpha);
+  next.record = scaled_record(s.record, 1.0f - alpha);
   if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||
       !spend_ray(s.budget)) {
-    // Not traced: the part behind stays covered by this surface, as opaque black, so the mattes
-    // still sum to alpha.
-    if (s.camera && s.record_layers) {
-      s.camera->cover(sp.instance, next.share);
-      s.camera->add_surface(sp.instance, sp.position, vec3(0.0f), next.share);
-    }
+    record_untraced_behind(s.record, sp, next.record.share);
     return vec3(0.0f);
   }
   // The same ray (its kind kept), continued behind a partly transparent surface.
@@ -236,10 +188,7 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
 // What a ray that leaves the scene brings back: the environment, except on a camera path that does
 // not show the background, where that share of the sample is transparent (alpha 0, no colour).
 vec3 escape(const shading_context& ctx, const ray& r, const path_state& s, float weight = 1.0f) {
-  if (s.camera && !s.camera->background_visible) {
-    s.camera->transparency += s.share * weight;
-    return vec3(0.0f);
-  }
+  if (record_escape(s.record, weight)) return vec3(0.0f);
   return environment_radiance(ctx.world, r.direction);
 }
 
@@ -262,50 +211,21 @@ vec3 trace_in_volume(const shading_context& ctx, const ray& r, const std::option
   vec3 arriving(0.0f);
   if (!h) {
     arriving = escape(ctx, r, at_hit, mean_component(absorption));
-    add_to_group(at_hit, environment_group(ctx.world), absorption * arriving);
+    record_group(at_hit.record, environment_group(ctx.world), absorption * arriving);
   } else {
     // The camera's path goes on through the volume, its share attenuated like its radiance; the
     // split files what arrives once, below.
     path_state next = at_hit;
     next.throughput = at_hit.throughput * max_component(absorption);
-    next.share = at_hit.share * mean_component(absorption);
-    next.split = nullptr;
-    next.passes = nullptr;
-    next.tint = at_hit.tint * absorption;
+    next.record = through_volume_record(at_hit.record, absorption);
     arriving = shade_hit(ctx, r, *h, next, counts);
   }
   // Camera rays start outside every volume; should one not, its light counts as direct.
-  add_direct(at_hit, absorption * arriving);
+  record_direct(at_hit.record, absorption * arriving);
   return absorption * arriving;
 }
 
 }  // namespace
-
-void camera_path::cover(uint32_t instance, float coverage) {
-  if (!(coverage > 0.0f)) return;
-  for (int i = 0; i < layer_count; ++i)
-    if (layers[i].instance == instance) {
-      layers[i].coverage += coverage;
-      return;
-    }
-  if (layer_count == max_path_layers) {
-    layers[layer_count - 1].coverage += coverage;  // deeper layers than that are folded into the last
-    return;
-  }
-  layers[layer_count++] = {instance, coverage};
-}
-
-void camera_path::add_surface(uint32_t instance, const vec3& position, const vec3& radiance, float coverage) {
-  if (!record_surfaces) return;
-  if (surface_count == max_path_layers) {
-    // Deeper surfaces than that fold into the last, so the colours still sum to the sample's.
-    path_surface& last = surfaces[surface_count - 1];
-    last.radiance += radiance;
-    last.coverage += coverage;
-    return;
-  }
-  surfaces[surface_count++] = {instance, glm::length(position - origin), radiance, coverage};
-}
 
 namespace {
 
@@ -358,10 +278,8 @@ vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_poin
                     const path_state& s, ray_counts& counts) {
   // A holdout on the camera's path: its share of the sample is transparent and brings no colour,
   // and nothing behind it is traced.
-  if (s.camera && ctx.world.instances[prepared.sp.instance].holdout != holdout_kind::none) {
-    s.camera->transparency += s.share;
+  if (ctx.world.instances[prepared.sp.instance].holdout != holdout_kind::none && record_holdout(s.record))
     return vec3(0.0f);
-  }
   const material& m = ctx.world.materials[prepared.sp.material];
   const surface_point& sp = prepared.sp;
   const material_point& mp = prepared.mp;
@@ -374,8 +292,7 @@ vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_poin
   if (alpha > 0.0f) {
     path_state covered = s;
     covered.throughput = s.throughput * alpha;
-    covered.share = s.share * alpha;
-    covered.tint = s.tint * alpha;
+    covered.record = scaled_record(s.record, alpha);
     radiance += alpha * shade_covered_on_path(ctx, r, sp, mp, covered, counts);
   }
   radiance += trace_behind(ctx, r, sp, alpha, s, counts);
@@ -394,8 +311,8 @@ vec3 trace_radiance(const shading_context& ctx, const ray& r_in, const path_stat
   if (!s.media.empty()) return trace_in_volume(ctx, r, h, at_hit, counts);
   if (h) return shade_hit(ctx, r, *h, at_hit, counts);
   const vec3 background = escape(ctx, r, s);
-  add_direct(s, background);
-  add_to_group(s, environment_group(ctx.world), background);
+  record_direct(s.record, background);
+  record_group(s.record, environment_group(ctx.world), background);
   return background;
 }
 

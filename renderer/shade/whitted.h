@@ -12,6 +12,7 @@
 #include "shade/dielectric.h"
 #include "shade/environment_light.h"
 #include "shade/material_eval.h"
+#include "shade/path_record.h"
 #include "shade/ray_budget.h"
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
@@ -35,7 +36,7 @@ struct shading_options {
   // transparent, so glass over nothing comps over a plate (Cycles' "transparent glass").
   bool transmission_transparent = false;
   // A punctual light's highlight is widened to the pixel's footprint (material_eval.h,
-  // highlight_footprint_alpha), not a supersample's: the ray cones shrink by 1/√spp, so the
+  // highlight_footprint_of), not a supersample's: the ray cones shrink by 1/√spp, so the
   // renderer sets this to the inverse of that factor. A highlight then converges with spp.
   float highlight_footprint_scale = 1.0f;
   // Pairs of environment samples (one from the map's importance, one from the material's lobes) each
@@ -103,77 +104,6 @@ const std::optional<hit>& visible_hit_from(const shading_context& ctx, ray& r,
 // culled back faces (the ray cone keeps widening across them).
 float distance_to_hit(const ray& start, const ray& r, const hit& h);
 
-// A camera sample's radiance split by its first event: direct (emission, direct light and what is
-// seen straight through BLEND surfaces or past the scene), reflection (all that arrives through the
-// first mirror ray) and refraction (through the first refracted ray). The three sum to the radiance.
-struct light_split {
-  vec3 direct{0.0f};
-  vec3 reflection{0.0f};
-  vec3 refraction{0.0f};
-};
-
-// What the camera's own path collects for a denoiser and for relighting, at the surfaces it covers
-// (the first visible surface, and those behind BLEND surfaces), each times the share of the sample
-// the surface covers, so a pixel's filtered value is premultiplied by coverage like R G B:
-// - albedo: the surface's denoising albedo (material_eval.h's denoising_albedo), normal: the shading
-//   normal the N AOV holds (normal map applied, bent toward the viewer);
-// - diffuse, specular: the punctual lights' and the environment's direct light there by lobe of the
-//   BRDF (Lambert, and GGX for dielectric and metal), shadowed as the beauty is; their sum plus the
-//   emission and the background the path sees is the light split's direct;
-// - shadow (one per light, then the environment's; empty unless kept): the luminance share of that
-//   source's unshadowed direct light that its shadow rays find blocked, 1 − Y(shadowed)/Y(unshadowed),
-//   0 where it adds nothing (behind the surface, zero BRDF, a light that casts no shadows, a dark
-//   environment).
-struct camera_passes {
-  vec3 albedo{0.0f};
-  vec3 normal{0.0f};
-  vec3 diffuse{0.0f};
-  vec3 specular{0.0f};
-  std::vector<float> shadow;
-};
-
-// A surface a camera sample covers, and how much of the sample it covers.
-struct path_layer {
-  uint32_t instance = 0;
-  float coverage = 0.0f;
-};
-constexpr int max_path_layers = 8;
-
-// A surface the camera's own path shades, for deep output: its distance from the camera along the
-// ray, the radiance it adds to the sample (already times the share of the sample it covers, so the
-// surfaces' radiance sums to the sample's) and its coverage (its layer's share, summing to alpha).
-struct path_surface {
-  uint32_t instance = 0;
-  float distance = 0.0f;
-  vec3 radiance{0.0f};
-  float coverage = 0.0f;
-};
-
-// What the camera's own path through a sample collects: the ray itself, its continuations behind
-// BLEND surfaces and, with transmission_transparent, its refractions. Alpha is coverage × opacity
-// along it: what reaches a background the camera does not show is transparency (no colour, alpha
-// 0), so a sample through BLEND layers α1, α2, ... over nothing has alpha 1 − Π(1 − αi). Every
-// surface met covers its share less what escapes through it, so the layers' coverages plus the
-// transparency sum to 1 and Cryptomatte coverage sums to alpha.
-struct camera_path {
-  bool background_visible = false;        // --show-background: the background is opaque, never escaped into
-  bool transmission_transparent = false;  // refraction that reaches the background is transparent too
-  float transparency = 0.0f;              // the part of the sample that escaped
-  path_layer layers[max_path_layers];     // in the order met; a deeper layer folds into the last
-  int layer_count = 0;
-  // Deep output only (record_surfaces): each surface shaded on the path, in the order met; a deeper
-  // one folds into the last. origin is the camera ray's, in render space, for the distances.
-  bool record_surfaces = false;
-  vec3 origin{0.0f};
-  path_surface surfaces[max_path_layers];
-  int surface_count = 0;
-
-  // Adds coverage to instance's layer.
-  void cover(uint32_t instance, float coverage);
-  // With record_surfaces: adds a surface at position (render space) with its radiance and coverage.
-  void add_surface(uint32_t instance, const vec3& position, const vec3& radiance, float coverage);
-};
-
 // A camera sample's place among its pixel's samples, which stratifies the environment samples of the
 // surface it sees first across the pixel (count 0: none, the samples are independent).
 struct pixel_stratum {
@@ -191,21 +121,9 @@ struct path_state {
   ray_cone cone;                 // the ray's cone: at its origin when traced, at the hit when shaded
   float time = 0.0f;             // the sample's time in the shutter; unused until motion blur
   ray_budget* budget = nullptr;  // the sample's rays left and cancel flag; null: unbounded
-  // On the camera's own path (null for a secondary ray): alpha and mattes go there.
-  camera_path* camera = nullptr;
-  float share = 1.0f;         // the part of the camera sample this ray carries (BLEND layers, glass)
-  bool record_layers = true;  // false inside a refraction: what glass shows is the glass's matte
-  // Where this ray's radiance is filed by first event (null: not kept, or the caller files it).
-  light_split* split = nullptr;
-  // The camera sample's light groups (null: not kept): one colour per scene light, then emission,
-  // then the environment (render/light_groups.h). Every ray of the tree files the light it adds,
-  // times tint: the colour its radiance is weighted by in the sample (mirror and refraction
-  // weights, BLEND alpha and absorption along the way).
-  vec3* groups = nullptr;
-  vec3 tint{1.0f};
-  // Where the camera path files its passes (null: not kept, or off the camera's path; nulled with
-  // split, so diffuse and specular are always the direct light of the split's direct).
-  camera_passes* passes = nullptr;
+  // What this ray's light and surfaces add to the camera sample's output layers (shade/path_record.h):
+  // its share of the sample and where its light is filed. Nothing of it changes the radiance.
+  path_record record;
   // KHR_materials_dispersion: the colour channel (0-2) a ray split off by a dispersive refraction
   // carries, whose ior it refracts by from then on; -1: all three.
   int channel = -1;
