@@ -2,7 +2,8 @@
 allows, and write timings as JSON. Run by bench/peers/peer_bench.py as
 
   blender -b --factory-startup --python bench/peers/blender_render.py -- \
-      SCENE.gltf OUT.exr STATS.json --width W --height H --spp N --threads T
+      SCENE.gltf OUT.exr STATS.json --width W --height H --spp N --threads T \
+      [--glossy-bounces 8 --float]
 
 The glTF file must hold exactly one camera and its point lights (peer_bench.py writes such a
 wrapper). Cycles settings: CPU, N samples, no adaptive sampling, no denoising, diffuse bounces 0
@@ -45,6 +46,9 @@ def parse_args():
     p.add_argument("--height", type=int, default=480)
     p.add_argument("--spp", type=int, default=16)
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--glossy-bounces", type=int, default=8,
+                   help="0: direct light alone on glossy surfaces (a highlight without its reflections)")
+    p.add_argument("--float", action="store_true", help="32-bit float EXR (default half)")
     return p.parse_args(argv)
 
 
@@ -65,7 +69,7 @@ def setup_cycles(scene, args):
     c.use_denoising = False
     c.max_bounces = 8
     c.diffuse_bounces = 0
-    c.glossy_bounces = 8
+    c.glossy_bounces = args.glossy_bounces
     c.transmission_bounces = 8
     c.transparent_max_bounces = 8
     c.volume_bounces = 0
@@ -86,7 +90,7 @@ def setup_cycles(scene, args):
     scene.view_settings.view_transform = "Standard"
     scene.view_settings.look = "None"
     scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "16"
+    scene.render.image_settings.color_depth = "32" if args.float else "16"
     scene.render.image_settings.exr_codec = "ZIP"
     if scene.world is None:
         scene.world = bpy.data.worlds.new("black")

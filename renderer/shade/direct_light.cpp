@@ -86,13 +86,13 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
     if (cos_theta <= 0.0f) continue;
     const float scale = ctx.options.highlight_footprint_scale;
-    const float footprint_alpha =
-        highlight_footprint_alpha(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
-    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha);
+    const highlight_footprint footprint =
+        highlight_footprint_of(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
+    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
     if (f == vec3(0.0f)) continue;
     // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
     const brdf_lobes lobes =
-        s.record.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint_alpha)
+        s.record.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint)
                  : brdf_lobes{};
 
     if (!l.casts_shadows) {

@@ -243,10 +243,13 @@ vec3 specular_f0(const material_point& mp) {
   return glm::mix(mp.dielectric_f0 * mp.specular_weight, mp.base_color, mp.metallic);
 }
 
-float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature) {
+highlight_footprint highlight_footprint_of(float spread, float width, float light_distance,
+                                           const surface_curvature& curvature) {
   const float light_angle =
       std::isinf(light_distance) || !(light_distance > 0.0f) ? 0.0f : width / light_distance;
-  return 0.25f * spread + 0.25f * light_angle + 0.5f * curvature * width;
+  const float every_way = 0.25f * spread + 0.25f * light_angle;
+  return {curvature.axis, every_way + 0.5f * curvature.major * width,
+          every_way + 0.5f * curvature.minor * width};
 }
 
 vec3 iridescent_fresnel(const material_point& mp, const vec3& f0, float cos_theta) {
@@ -262,51 +265,85 @@ namespace {
 
 float max3(const vec3& v) { return std::max({v.x, v.y, v.z}); }
 
-// GGX D · V (glTF appendix B: height-correlated Smith) for perceptual roughness r, widened by the
-// footprint (see highlight_footprint_alpha).
-[[gnu::always_inline]] inline float ggx_lobe(float roughness, float n_dot_h, float n_dot_v, float n_dot_l,
-                                             float footprint_alpha) {
+// The footprint's axis across the normal n as a unit tangent; zero when it has none (or it lies
+// along n).
+vec3 footprint_tangent(const highlight_footprint& f, const vec3& n) {
+  if (f.axis == vec3(0.0f) || f.along == f.across) return vec3(0.0f);
+  const vec3 t = f.axis - n * glm::dot(n, f.axis);
+  const float length = glm::length(t);
+  return length > 1e-4f ? t / length : vec3(0.0f);
+}
+
+// GGX D · V (glTF appendix B: height-correlated Smith) for perceptual roughness r around the unit
+// normal n, widened by the footprint f (see highlight_footprint_of).
+[[gnu::always_inline]] inline float ggx_lobe(float roughness, const vec3& n, const vec3& h, const vec3& v,
+                                             const vec3& l, float n_dot_h, float n_dot_v, float n_dot_l,
+                                             const highlight_footprint& f) {
   const float material_alpha = std::max(roughness * roughness, 1e-3f);
-  float alpha = material_alpha;
-  if (footprint_alpha > 0.0f)
-    alpha = std::min(std::sqrt(alpha * alpha + footprint_alpha * footprint_alpha), 1.0f);
-  float a2 = alpha * alpha;
-  float d_denominator = n_dot_h * n_dot_h * (a2 - 1.0f) + 1.0f;
-  float distribution = a2 / (pi * d_denominator * d_denominator);
-  if (alpha > material_alpha) {
+  float alpha_t = material_alpha, alpha_b = material_alpha;
+  if (f.along > 0.0f) {
+    alpha_t = std::min(std::sqrt(material_alpha * material_alpha + f.along * f.along), 1.0f);
+    alpha_b = std::min(std::sqrt(material_alpha * material_alpha + f.across * f.across), 1.0f);
+  }
+  const vec3 t = footprint_tangent(f, n);
+  if (t == vec3(0.0f)) alpha_b = alpha_t;  // every way alike
+  float distribution, visibility;
+  const float cos2 = n_dot_h * n_dot_h;
+  float slope2;  // the half vector's squared slopes over the lobe's: tan²θ_h / α² when round
+  if (alpha_t == alpha_b) {
+    const float a2 = alpha_t * alpha_t;
+    const float d_denominator = cos2 * (a2 - 1.0f) + 1.0f;
+    distribution = a2 / (pi * d_denominator * d_denominator);
+    const float visibility_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
+    const float visibility_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
+    visibility = 0.5f / std::max(visibility_l + visibility_v, 1e-8f);
+    slope2 = std::max(1.0f - cos2, 0.0f) / (std::max(cos2, 1e-12f) * a2);
+  } else {
+    const vec3 b = glm::cross(n, t);
+    const float t_dot_h = glm::dot(t, h), b_dot_h = glm::dot(b, h);
+    distribution = ggx_anisotropic_distribution(n_dot_h, t_dot_h, b_dot_h, alpha_t, alpha_b);
+    visibility = ggx_anisotropic_visibility(n_dot_l, n_dot_v, glm::dot(t, v), glm::dot(b, v), glm::dot(t, l),
+                                            glm::dot(b, l), alpha_t, alpha_b);
+    slope2 = (t_dot_h * t_dot_h / (alpha_t * alpha_t) + b_dot_h * b_dot_h / (alpha_b * alpha_b)) /
+             std::max(cos2, 1e-12f);
+  }
+  const float narrower = std::min(alpha_t, alpha_b);
+  if (narrower > material_alpha) {
     // The widening is a filter over the footprint, not roughness: its share of the lobe's variance
     // gets Beckmann's Gaussian slopes, whose tail ends within a few α, instead of GGX's long tail
     // (a chrome sphere under the sun would otherwise glow far beyond the footprint). Both are
-    // normalised, so the highlight keeps its energy.
-    const float filter_share = 1.0f - material_alpha * material_alpha / a2;
-    const float cos2 = n_dot_h * n_dot_h;
-    const float tan2 = std::max(1.0f - cos2, 0.0f) / std::max(cos2, 1e-12f);
-    const float beckmann = std::exp(-tan2 / a2) / (pi * a2 * std::max(cos2 * cos2, 1e-24f));
+    // normalised. The share is the narrower direction's: where the footprint does not widen the
+    // lobe, the material's own tail stays (Beckmann's short one kept light on a cylinder that GGX's
+    // spreads past its ends).
+    const float filter_share = 1.0f - material_alpha * material_alpha / (narrower * narrower);
+    const float beckmann = std::exp(-slope2) / (pi * alpha_t * alpha_b * std::max(cos2 * cos2, 1e-24f));
     distribution += filter_share * (beckmann - distribution);
   }
-  float visibility_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
-  float visibility_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
-  float visibility = 0.5f / std::max(visibility_l + visibility_v, 1e-8f);
   return distribution * visibility;
 }
 
 // KHR_materials_anisotropy's lobe: roughness α along the bitangent, mix(α, 1, strength²) along the
-// direction of anisotropy, both widened by the footprint in quadrature.
+// direction of anisotropy, both widened in quadrature by the footprint's width in their direction.
 float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, const vec3& l, const vec3& h,
-                       float footprint_alpha) {
+                       const highlight_footprint& footprint) {
   const material_layers& L = layers_of(mp);
   vec3 t = L.anisotropy_direction - n * glm::dot(n, L.anisotropy_direction);
   const float t_length = glm::length(t);
   const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
   const float n_dot_v = glm::dot(n, v), n_dot_l = glm::dot(n, l);
-  if (!(t_length > 1e-6f)) return ggx_lobe(mp.roughness, n_dot_h, n_dot_v, n_dot_l, footprint_alpha);
+  if (!(t_length > 1e-6f)) return ggx_lobe(mp.roughness, n, h, v, l, n_dot_h, n_dot_v, n_dot_l, footprint);
   t /= t_length;
   const vec3 b = glm::cross(n, t);
   const float alpha = std::max(mp.roughness * mp.roughness, 1e-3f);
   float at = glm::mix(alpha, 1.0f, L.anisotropy * L.anisotropy), ab = alpha;
-  const float widen = footprint_alpha * footprint_alpha;
-  at = std::min(std::sqrt(at * at + widen), 1.0f);
-  ab = std::min(std::sqrt(ab * ab + widen), 1.0f);
+  // The footprint's widths in the material's frame: its variance along t and along b.
+  const vec3 axis = footprint_tangent(footprint, n);
+  const float along2 = footprint.along * footprint.along, across2 = footprint.across * footprint.across;
+  const float share_t = axis == vec3(0.0f) ? 1.0f : glm::dot(axis, t) * glm::dot(axis, t);
+  const float widen_t = axis == vec3(0.0f) ? along2 : along2 * share_t + across2 * (1.0f - share_t);
+  const float widen_b = axis == vec3(0.0f) ? along2 : along2 * (1.0f - share_t) + across2 * share_t;
+  at = std::min(std::sqrt(at * at + widen_t), 1.0f);
+  ab = std::min(std::sqrt(ab * ab + widen_b), 1.0f);
   return ggx_anisotropic_distribution(n_dot_h, glm::dot(t, h), glm::dot(b, h), at, ab) *
          ggx_anisotropic_visibility(n_dot_l, n_dot_v, glm::dot(t, v), glm::dot(b, v), glm::dot(t, l),
                                     glm::dot(b, l), at, ab);
@@ -326,7 +363,8 @@ float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
 }
 
 brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                         float footprint_alpha, bool& zero, const glossy_weights* weights = nullptr) {
+                         const highlight_footprint& footprint, bool& zero,
+                         const glossy_weights* weights = nullptr) {
   const material_layers& L = layers_of(mp);
   brdf_lobes out;
   zero = true;
@@ -340,8 +378,8 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
     const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
     const float v_dot_h = std::max(glm::dot(v, h), 0.0f);
     const float specular = L.anisotropy > 0.0f && L.anisotropy_direction != vec3(0.0f)
-                               ? anisotropic_lobe(mp, n, v, l, h, footprint_alpha)
-                               : ggx_lobe(mp.roughness, n_dot_h, n_dot_v, n_dot_l, footprint_alpha);
+                               ? anisotropic_lobe(mp, n, v, l, h, footprint)
+                               : ggx_lobe(mp.roughness, n, h, v, l, n_dot_h, n_dot_v, n_dot_l, footprint);
     // Dielectric: KHR_materials_specular's fresnel_mix (the layer takes weight · F, the base what
     // the strongest channel leaves); metal: specular only, tinted by base colour. Transmitted light
     // (specular and diffuse) is traced or lit from the far side, so it leaves the diffuse lobe.
@@ -372,7 +410,7 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
       zero = false;
       out.specular += vec3(
           weight * (weights ? weights->coat : 1.0f) *
-          ggx_lobe(L.clearcoat_roughness, std::max(glm::dot(nc, h), 0.0f), coat_v, coat_l, footprint_alpha));
+          ggx_lobe(L.clearcoat_roughness, nc, h, v, l, std::max(glm::dot(nc, h), 0.0f), coat_v, coat_l, footprint));
     }
   }
   return out;
@@ -381,17 +419,17 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
 }  // namespace
 
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                   float footprint_alpha) {
+                   const highlight_footprint& footprint) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint_alpha, zero);
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint, zero);
   if (zero) return vec3(0.0f);
   return t.diffuse + t.specular;
 }
 
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                               float footprint_alpha) {
+                               const highlight_footprint& footprint) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint_alpha, zero);
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint, zero);
   if (zero) return {};
   return t;
 }
@@ -399,7 +437,7 @@ brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const ve
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                                const glossy_weights& weights) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, 0.0f, zero, &weights);
+  const brdf_lobes t = brdf_terms_at(mp, n, v, l, highlight_footprint{}, zero, &weights);
   if (zero) return {};
   return t;
 }

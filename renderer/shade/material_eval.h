@@ -187,10 +187,19 @@ struct glossy_weights {
   float coat = 1.0f;        // the clearcoat's GGX lobe
 };
 
-// BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon.
-// footprint_alpha widens the GGX lobe to sqrt(α² + footprint_alpha²) (see highlight_footprint_alpha).
+// How much a punctual light's GGX lobe is widened (see highlight_footprint_of): α becomes
+// sqrt(α² + along²) toward `axis` (unit, world, across the normal) and sqrt(α² + across²) at right
+// angles to it; with no axis, sqrt(α² + along²) every way. All zero: not widened.
+struct highlight_footprint {
+  vec3 axis{0.0f};
+  float along = 0.0f;
+  float across = 0.0f;
+};
+
+// BRDF value f(v, l) for unit vectors around the shading normal n; zero below the horizon, the GGX
+// lobes widened by footprint.
 vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                   float footprint_alpha = 0.0f);
+                   const highlight_footprint& footprint = {});
 
 // The diffuse transmission lobe (KHR_materials_diffuse_transmission) for a light on the far side
 // of the surface from the viewer (n·l < 0 < n·v): Lambert in the transmission colour, through the
@@ -205,7 +214,7 @@ struct brdf_lobes {
   vec3 specular{0.0f};
 };
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                               float footprint_alpha = 0.0f);
+                               const highlight_footprint& footprint = {});
 
 // evaluate_brdf_lobes with the glossy lobes weighted by weights (no footprint widening).
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
@@ -218,15 +227,19 @@ brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const ve
 // surfaces. Clamped to [0, 1].
 vec3 denoising_albedo(const material_point& mp);
 
-// The GGX alpha a punctual light's highlight needs so that it covers at least the footprint it is
+// The widening a punctual light's highlight needs so that it covers at least the footprint it is
 // seen through, instead of a sub-pixel spike of up to ~1e4 that no sample count resolves (a delta
 // light on a near-delta surface). Over the footprint the half vector turns by half the view's
-// spread and half the light's angle across the footprint's width, and the normal by curvature ×
-// width; the lobe's width is set to half of that range. spread, width: the ray cone at the hit
-// (radians, world units); light_distance: infinite for directional lights; curvature: 1 / length.
+// spread and half the light's angle across the footprint's width, every way, and the normal by
+// curvature × width in each principal direction; the lobe's width is set to half of that range,
+// direction by direction. spread, width: the ray cone at the hit (radians, world units);
+// light_distance: infinite for directional lights.
 // The widened lobe stays normalised (the footprint's share takes Beckmann's short-tailed slopes, see
-// evaluate_brdf), so a highlight's energy is kept, only spread over its footprint: images converge
-// with spp, and the highlight sharpens as the footprint shrinks (a larger image).
-float highlight_footprint_alpha(float spread, float width, float light_distance, float curvature);
+// evaluate_brdf), and it widens only as far as the normal really turns across the footprint: a
+// highlight is spread over the surface it would have lit, so its energy is kept (on a cylinder, a
+// lobe widened along the axis by the turn around it stretched the highlight off the cylinder's
+// ends). Images converge with spp, and the highlight sharpens as the footprint shrinks.
+highlight_footprint highlight_footprint_of(float spread, float width, float light_distance,
+                                           const surface_curvature& curvature);
 
 }  // namespace kiln

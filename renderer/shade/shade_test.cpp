@@ -132,8 +132,30 @@ TEST(surface, the_triangle_memo_changes_no_shading_point) {
   const surface_point with_memo = make_surface_point(s, h, r, 0.02f, &fresh);
   const surface_point without = make_surface_point(s, h, r, 0.02f);
   EXPECT_NE(without.footprint0.dx, vec2(0.0f));
-  EXPECT_GT(without.curvature, 0.0f);
+  EXPECT_GT(without.curvature.major, 0.0f);
   EXPECT_TRUE(same_point(with_memo, without));
+}
+
+TEST(surface, curvature_turns_around_a_cylinder_and_not_along_it) {
+  // A patch of the cylinder y² + z² = 4 along x: the normal turns at 1/2 per unit around the axis
+  // (tilting along z at the top) and not at all along it, whatever steps describe the patch.
+  const dvec3 n(0, 1, 0);
+  const double turn = 0.1;  // radians between the patch's normals
+  const dvec3 around = 2.0 * dvec3(0, std::cos(turn) - 1.0, std::sin(turn));
+  const dvec3 turned = dvec3(0, std::cos(turn), std::sin(turn)) - n;
+  const surface_curvature c =
+      curvature_from_differentials(n, dvec3(0.3, 0, 0) + around, dvec3(0.5, 0, 0), turned, dvec3(0.0));
+  EXPECT_NEAR(c.major, 0.5, 1e-3);
+  EXPECT_NEAR(c.minor, 0.0, 1e-3);
+  EXPECT_NEAR(std::abs(c.axis.z), 1.0, 1e-3);
+  // A sphere of radius 2 turns the same every way: no axis.
+  const surface_curvature sphere =
+      curvature_from_differentials(n, dvec3(0.2, 0, 0), dvec3(0, 0, 0.2), dvec3(0.1, 0, 0), dvec3(0, 0, 0.1));
+  EXPECT_NEAR(sphere.major, 0.5, 1e-6);
+  EXPECT_NEAR(sphere.minor, 0.5, 1e-6);
+  EXPECT_EQ(sphere.axis, vec3(0.0f));
+  // Parallel steps describe no patch.
+  EXPECT_EQ(curvature_from_differentials(n, dvec3(1, 0, 0), dvec3(2, 0, 0), dvec3(0.1), dvec3(0.2)).major, 0.0f);
 }
 
 TEST(surface, barycentric_interpolation_follows_embree_convention) {

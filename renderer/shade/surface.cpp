@@ -105,23 +105,37 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
         footprint_from_jacobian(dp_du, dp_dv, sp.geometric_normal, glm::normalize(r.direction), cone_width);
     sp.footprint1 = sp.footprint0;
   }
-  if (may_be_smooth(m)) sp.curvature = quadric_world_curvature(inst, q, h.primitive_id, object);
+  if (may_be_smooth(m)) {
+    // The quadric's largest turn, taken the same every way.
+    const float curvature = quadric_world_curvature(inst, q, h.primitive_id, object);
+    sp.curvature = {vec3(0.0f), curvature, curvature};
+  }
   return sp;
 }
 
-// The triangle's curvature as its vertex normals describe it: the largest turn of the normal per
-// unit length along an edge, in object space (glTF normals are unit), carried to world units by the
-// instance's mean scale (the cube root of its determinant; exact for uniform scales).
-float triangle_curvature(const instance& inst, const mesh& m, const uint32_t* idx) {
-  float curvature = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    const uint32_t a = idx[k], b = idx[(k + 1) % 3];
-    const float length = glm::length(m.positions[b] - m.positions[a]);
-    if (length > 0.0f) curvature = std::max(curvature, glm::length(m.normals[b] - m.normals[a]) / length);
-  }
+// The triangle's curvature as its vertex normals describe them (the normal interpolated across
+// it), in object space (glTF normals are unit), carried to world units by the instance's mean scale
+// (the cube root of its determinant; exact for uniform scales).
+surface_curvature triangle_curvature(const instance& inst, const mesh& m, const uint32_t* idx,
+                                     const dvec3 unit_normal[3]) {
+  const dvec3 p0(m.positions[idx[0]]);
+  const dvec3 mean = unit_normal[0] + unit_normal[1] + unit_normal[2];
+  const double mean_length = glm::length(mean);
+  if (!(mean_length > 0.0)) return {};
+  surface_curvature c = curvature_from_differentials(
+      mean / mean_length, dvec3(m.positions[idx[1]]) - p0, dvec3(m.positions[idx[2]]) - p0,
+      unit_normal[1] - unit_normal[0], unit_normal[2] - unit_normal[0]);
   const double scale = inst.mean_scale;
-  const float world = scale > 0.0 ? float(curvature / scale) : 0.0f;
-  return std::isfinite(world) ? world : 0.0f;
+  if (!(scale > 0.0)) return {};
+  c.major = float(c.major / scale);
+  c.minor = float(c.minor / scale);
+  if (c.axis != vec3(0.0f)) {
+    const dvec3 world_axis = transform_vector(inst.world_from_object, dvec3(c.axis));
+    const double length = glm::length(world_axis);
+    c.axis = length > 0.0 ? vec3(world_axis / length) : vec3(0.0f);
+  }
+  if (!std::isfinite(c.major) || !std::isfinite(c.minor)) return {};
+  return c;
 }
 
 // The constants of triangle idx of mesh m placed by inst (see triangle_constants), the footprint's
@@ -135,7 +149,8 @@ void fill_triangle_constants(const scene& s, const instance& inst, const mesh& m
     for (int k = 0; k < 3; ++k) c.unit_normal[k] = glm::normalize(dvec3(m.normals[idx[k]]));
   if (!footprint) return;
   const material& mat = s.materials[inst.material];
-  c.curvature = !m.normals.empty() && may_be_smooth(mat) ? triangle_curvature(inst, m, idx) : 0.0f;
+  c.curvature = !m.normals.empty() && may_be_smooth(mat) ? triangle_curvature(inst, m, idx, c.unit_normal)
+                                                         : surface_curvature{};
   // As for quadrics: the UV footprints only feed texture lookups, so an untextured material
   // (ToyCar's glass, say) skips them.
   if (!samples_textures(mat)) return;
@@ -326,6 +341,40 @@ surface_point surface_point_on(const scene& s, const instance& inst, bool moved,
 }
 
 }  // namespace
+
+surface_curvature curvature_from_differentials(const dvec3& n, const dvec3& dp1, const dvec3& dp2,
+                                               const dvec3& dn1, const dvec3& dn2) {
+  // An orthonormal basis (t, b) across n; the steps and normal changes in it.
+  dvec3 t = dp1 - n * glm::dot(n, dp1);
+  const double t_length = glm::length(t);
+  if (!(t_length > 0.0)) return {};
+  t /= t_length;
+  const dvec3 b = glm::cross(n, t);
+  const glm::dmat2 steps(glm::dot(dp1, t), glm::dot(dp1, b), glm::dot(dp2, t), glm::dot(dp2, b));
+  const glm::dmat2 turns(glm::dot(dn1, t), glm::dot(dn1, b), glm::dot(dn2, t), glm::dot(dn2, b));
+  const double det = glm::determinant(steps);
+  const double size = glm::length(dp1) * glm::length(dp2);
+  if (!(std::abs(det) > 1e-9 * size) || !std::isfinite(det)) return {};
+  // turn_per_length maps a step (in t, b) to the normal's change; its singular values are the
+  // square roots of the eigenvalues of the symmetric turn · turnᵀ, whose eigenvectors are the
+  // directions the normal tilts in.
+  const glm::dmat2 turn_per_length = turns * glm::inverse(steps);
+  const glm::dmat2 spread = turn_per_length * glm::transpose(turn_per_length);
+  const double a = spread[0][0], d = spread[1][1], off = spread[1][0];
+  const double half_trace = 0.5 * (a + d);
+  const double gap = std::sqrt(std::max(0.25 * (a - d) * (a - d) + off * off, 0.0));
+  const double largest = half_trace + gap, smallest = std::max(half_trace - gap, 0.0);
+  surface_curvature c;
+  c.major = float(std::sqrt(largest));
+  c.minor = float(std::sqrt(smallest));
+  // The eigenvector of the largest eigenvalue: (off, largest - a) or (largest - d, off), whichever
+  // is longer (both vanish when the turn is the same every way: no axis then).
+  glm::dvec2 e1(off, largest - a), e2(largest - d, off);
+  const glm::dvec2 e = glm::dot(e1, e1) > glm::dot(e2, e2) ? e1 : e2;
+  const double e_length = glm::length(e);
+  if (gap > 1e-6 * half_trace && e_length > 0.0) c.axis = vec3((t * e.x + b * e.y) / e_length);
+  return c;
+}
 
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width,
                                  triangle_memo* memo) {

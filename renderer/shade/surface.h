@@ -9,6 +9,28 @@
 
 namespace kiln {
 
+// How fast a surface's normal turns per world unit (1 / radius of curvature) in its two principal
+// directions: `major` where it turns fastest, tilting the normal toward `axis` (unit, world, across
+// the normal; zero when the turn is the same every way), and `minor` at right angles to it. A
+// cylinder turns at 1/r one way and not at all the other: a highlight widened by the larger turn
+// in both directions would stretch along the cylinder and lose what runs off its ends.
+struct surface_curvature {
+  vec3 axis{0.0f};
+  float major = 0.0f;
+  float minor = 0.0f;
+
+  bool operator==(const surface_curvature& o) const {
+    return axis == o.axis && major == o.major && minor == o.minor;
+  }
+};
+
+// The curvature of a patch whose unit normal changes by dn1, dn2 over the tangent displacements
+// dp1, dp2 (a triangle's edges and the differences of its vertex normals, or any two independent
+// steps), the normal taken as n (unit): the map from displacement to normal change in the tangent
+// plane, by its singular values and the direction of its largest. Zero when dp1, dp2 are parallel.
+surface_curvature curvature_from_differentials(const dvec3& n, const dvec3& dp1, const dvec3& dp2,
+                                               const dvec3& dn1, const dvec3& dn2);
+
 struct surface_point {
   vec3 position{0.0f};          // world space
   vec3 position_error{0.0f};    // per-axis bound on the rounding error of position
@@ -21,10 +43,9 @@ struct surface_point {
   // the Shadow Terminator", Ray Tracing Gems II, ch. 4); position elsewhere. Shadow rays start
   // here, so a low-poly convex mesh does not shadow itself along its terminator.
   vec3 smooth_position{0.0f};
-  // How fast the normal turns per world unit along the surface (1 / radius of curvature), for
-  // filtering sharp highlights over the ray cone's footprint; 0 when flat or not estimated (rough
-  // materials, no footprint).
-  float curvature = 0.0f;
+  // How fast the normal turns per world unit along the surface, for filtering sharp highlights
+  // over the ray cone's footprint; zero when flat or not estimated (rough materials, no footprint).
+  surface_curvature curvature;
   vec2 uv0{0.0f};
   vec2 uv1{0.0f};      // TEXCOORD_1 (TEXCOORD_0 when the mesh has none)
   vec4 color0{1.0f};   // COLOR_0, white when the mesh has none
@@ -52,7 +73,7 @@ struct triangle_constants {
   const uint32_t* idx = nullptr;
   bool footprint = false;
   dvec3 unit_normal[3];
-  float curvature = 0.0f;
+  surface_curvature curvature;
   vec3 dp_du[2];  // per UV set (TEXCOORD_0, TEXCOORD_1)
   vec3 dp_dv[2];
 };
