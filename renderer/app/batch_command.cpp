@@ -17,6 +17,7 @@
 #include "app/output_lock.h"
 #include "app/text_output.h"
 #include "core/error.h"
+#include "core/message_text.h"
 #include "io/exr/exr_writer.h"
 #include "io/exr/preview_codes.h"
 #include "io/gltf/gltf_loader.h"
@@ -291,6 +292,28 @@ void add_planned_job(batch_job job, const fs::path& out_dir, const std::string& 
   jobs.push_back(std::move(job));
 }
 
+// True when path lies below folder (both absolute and normal).
+bool lies_below(const fs::path& path, const fs::path& folder) {
+  const fs::path relative = path.lexically_relative(folder);
+  return !relative.empty() && relative != "." && *relative.begin() != "..";
+}
+
+// A manifest's output stays inside --out-dir, the folder the batch locks and owns: "../x.exr", an
+// absolute path elsewhere, or a subfolder that is a symbolic link out of it would let a manifest
+// from elsewhere write any file the batch's user can.
+void check_inside_out_dir(const fs::path& output, const fs::path& out_dir, const batch_job_spec& spec) {
+  std::error_code ec, dir_ec;
+  const fs::path resolved = fs::weakly_canonical(output, ec),
+                 resolved_dir = fs::weakly_canonical(out_dir, dir_ec);
+  const bool followed = ec || dir_ec || lies_below(resolved, resolved_dir);
+  if (lies_below(output, out_dir) && followed) return;
+  const fs::path shown_at = lies_below(output, out_dir) ? resolved : output;
+  throw input_error("", spec.where,
+                    "output " + quoted(spec.output) + " resolves to " + quoted(shown_at.string()) +
+                        ", outside --out-dir " + quoted(out_dir.string()) +
+                        " (outputs stay inside the folder the batch locks)");
+}
+
 std::vector<batch_job> plan_batch(const batch_options& options) {
   std::vector<batch_job_spec> specs;
   for (const std::string& argument : options.assets) {
@@ -330,6 +353,7 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     }
     const bool sequence = renders_sequence(job.options) && job.error.empty();
     const fs::path output = out_dir / (spec.output.empty() ? default_output(spec, sequence) : spec.output);
+    if (!spec.output.empty()) check_inside_out_dir(output.lexically_normal(), out_dir, spec);
     job.options.output = output.lexically_normal().string();
     for (batch_job& one : variant_jobs(std::move(job), spec)) {
       // --preview in a batch names the format only: each job's preview sits beside its EXR.
