@@ -1,20 +1,25 @@
 // OpenImageIO lives in the image codecs module, which kiln opens only when a render meets an
 // image that kiln does not decode itself (it decodes 8-bit PNG and JPEG, core glTF's formats):
 // with KILN_IMAGE_CODECS naming a file that does not exist, `kiln --version`, a render without
-// textures and one with PNG textures succeed (the module is never looked for), while a WebP
-// texture, an environment map or a preview fail with one line naming the path. Without the
+// textures, one with PNG textures, previews and contact sheets succeed (the module is never looked
+// for), while a WebP texture or an environment map fail with one line naming the path. Without the
 // variable kiln looks beside itself, then in ../lib/kiln/ (an install), then in the build tree.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
+#include "io/image_codecs/direct_decode.h"
+#include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
 namespace kiln {
@@ -103,18 +108,69 @@ TEST(image_codecs_cli, textured_scene_without_the_module_fails_naming_its_path) 
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(image_codecs_cli, environment_map_and_preview_need_the_module) {
+TEST(image_codecs_cli, an_environment_map_needs_the_module) {
   const codecs_variable variable(missing_module);
   const std::string dir = scratch_folder("codecs_environment");
   std::vector<std::string> args = small_render(untextured, dir + "/env.exr");
   args.insert(args.end(), {"--environment", scenes + "glass_showcase_sky.hdr"});
   expect_module_error(run_kiln(args), missing_module, "an environment map needs");
   EXPECT_FALSE(fs::exists(dir + "/env.exr"));
+}
 
-  args = small_render(untextured, dir + "/preview.exr");
-  args.insert(args.end(), {"--preview", dir + "/preview.png"});
-  expect_module_error(run_kiln(args), missing_module, "a preview needs");
-  EXPECT_FALSE(fs::exists(dir + "/preview.png"));
+// The sRGB code of a linear value, written out independently of kiln's code.
+int srgb_code(double v) {
+  return int(std::lround(255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)));
+}
+
+std::vector<uint8_t> file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// kiln encodes previews and contact sheets itself (libpng, libjpeg): with no module to be found, a
+// render of nothing but a constant background seen by the camera writes a PNG that libpng decodes
+// to that colour's sRGB codes at every pixel, a JPEG within a code of them, and a batch its sheet.
+TEST(image_codecs_cli, previews_and_contact_sheets_never_look_for_the_module) {
+  const codecs_variable variable(missing_module);
+  const std::string dir = scratch_folder("codecs_preview");
+  testing::gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2})}});
+  const std::string scene = dir + "/triangle.gltf";
+  b.write(scene);
+  // Looking away from the triangle: every pixel is the background. 0.25, 0.5 and 0.75 are exact
+  // in the EXR's half.
+  const std::vector<std::string> view = {
+      "--background", "0.25,0.5,0.75", "--show-background", "--look-from", "0,0,5", "--look-at", "0,0,10"};
+  const int expected[3] = {srgb_code(0.25), srgb_code(0.5), srgb_code(0.75)};
+  EXPECT_EQ(expected[0], 137);
+  for (const std::string extension : {"png", "jpg"}) {
+    const std::string preview = dir + "/background." + extension;
+    std::vector<std::string> args = small_render(scene, dir + "/background.exr");
+    args.insert(args.end(), view.begin(), view.end());
+    args.insert(args.end(), {"--preview", preview});
+    const command_result result = run_kiln(args);
+    ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+    const std::vector<uint8_t> bytes = file_bytes(preview);
+    const std::optional<image> decoded = decode_directly(bytes.data(), bytes.size(), 16 * 12);
+    ASSERT_TRUE(decoded) << preview;
+    ASSERT_EQ(decoded->width, 16);
+    ASSERT_EQ(decoded->height, 12);
+    int worst = 0;
+    for (size_t i = 0; i < 16 * 12; ++i) {
+      for (size_t c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(int(decoded->texels8[i * 4 + c]) - expected[c]));
+      EXPECT_EQ(decoded->texels8[i * 4 + 3], 255) << preview << " pixel " << i;
+    }
+    // PNG is lossless; JPEG's YCbCr round trip moves a flat colour by at most a code.
+    EXPECT_EQ(worst, extension == "png" ? 0 : 1) << preview;
+  }
+
+  const std::string sheet = dir + "/sheet.png";
+  const command_result batch = run_kiln({"batch", scene, "--out-dir", dir + "/batch", "--width", "16",
+                                         "--height", "12", "-q", "--contact-sheet", sheet});
+  EXPECT_EQ(batch.exit_code, 0) << batch.stderr_text;
+  const std::vector<uint8_t> sheet_bytes = file_bytes(sheet);
+  EXPECT_TRUE(decode_directly(sheet_bytes.data(), sheet_bytes.size(), 1 << 20)) << sheet;
 }
 
 TEST(image_codecs_cli, a_file_that_is_no_module_is_reported_on_one_line) {

@@ -493,7 +493,8 @@ void write_job_outputs(const render_job_result& result, const render_options& op
   try {
     if (!options.preview.empty()) {
       const std::optional<display_transform> view = preview_view(options);
-      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr);
+      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr,
+                    cancel);
     }
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the preview");

@@ -1,19 +1,17 @@
 #include "io/exr/contact_sheet.h"
 
-#include <Imath/half.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <exception>
 #include <optional>
 
 #include "core/error.h"
 #include "io/exr/bitmap_font.h"
-#include "io/exr/exr_reader.h"
+#include "io/exr/exr_beauty.h"
 #include "io/exr/preview_codes.h"
 #include "io/exr/preview_writer.h"
 
@@ -33,12 +31,6 @@ constexpr colour note_white = {255, 255, 255};
 // What shows through transparent pixels: a dark grey (linear), so light and dark assets both stand out.
 constexpr float backdrop = 0.05f;
 
-// Premultiplied linear R G B A, row 0 at the top.
-struct rgba_image {
-  int width = 0, height = 0;
-  std::vector<float> pixels;
-};
-
 // The data window's size from the header alone (0 x 0 when the file cannot be read).
 std::pair<int, int> exr_size(const std::string& path) {
   if (path.empty()) return {0, 0};
@@ -51,53 +43,11 @@ std::pair<int, int> exr_size(const std::string& path) {
   }
 }
 
-float sample_value(const unsigned char* at, const std::string& format) {
-  if (format == "half") {
-    uint16_t bits = 0;
-    std::memcpy(&bits, at, sizeof bits);
-    Imath::half h;
-    h.setBits(bits);
-    return float(h);
-  }
-  if (format == "float") {
-    float f = 0.0f;
-    std::memcpy(&f, at, sizeof f);
-    return f;
-  }
-  uint32_t u = 0;
-  std::memcpy(&u, at, sizeof u);
-  return float(u);
-}
-
 // The EXR's R G B A over its data window; nullopt when it has none or cannot be read.
 std::optional<rgba_image> read_beauty(const std::string& path) {
   if (path.empty()) return std::nullopt;
   try {
-    const exr_image image = read_exr(path);
-    const char* names[4] = {"R", "G", "B", "A"};
-    size_t offsets[4] = {0, 0, 0, 0};
-    int found[4] = {-1, -1, -1, -1};
-    size_t offset = 0;
-    for (size_t c = 0; c < image.channel_names.size(); ++c) {
-      for (int k = 0; k < 4; ++k)
-        if (found[k] < 0 && image.channel_names[c] == names[k]) {
-          found[k] = int(c);
-          offsets[k] = offset;
-        }
-      offset += image.channel_bytes[c];
-    }
-    if (std::any_of(found, found + 4, [](int c) { return c < 0; })) return std::nullopt;
-    rgba_image out;
-    out.width = image.data_window.width();
-    out.height = image.data_window.height();
-    if (out.width <= 0 || out.height <= 0) return std::nullopt;
-    const size_t pixel_bytes = image.pixel_bytes();
-    out.pixels.resize(size_t(out.width) * size_t(out.height) * 4);
-    for (size_t i = 0; i < size_t(out.width) * size_t(out.height); ++i)
-      for (int k = 0; k < 4; ++k)
-        out.pixels[i * 4 + size_t(k)] = sample_value(&image.pixels[i * pixel_bytes + offsets[k]],
-                                                     image.channel_formats[size_t(found[k])]);
-    return out;
+    return read_exr_beauty(path);
   } catch (const std::exception&) {
     return std::nullopt;
   }

@@ -1,7 +1,7 @@
 // A contact sheet: one 8-bit PNG or JPEG holding many renders' beauties in a grid, each with its
 // name under it (io/exr/bitmap_font.h) and failed ones marked with a red cross, as asset reviews
 // look at a batch. Each EXR's R G B A goes through the preview's view transform (preview_code:
-// exposure, clamp, sRGB) over a grey backdrop; the file is encoded by the image codecs module and
+// exposure, clamp, sRGB) over a grey backdrop; the file is encoded by libpng or libjpeg in kiln and
 // written atomically. Depends on core and the EXR reader only.
 #pragma once
 

@@ -1,5 +1,5 @@
-// The preview's formats and view transform: pure functions that kiln (to check options) and the
-// image codecs module (to write the file) share. Depends on the standard library only.
+// The preview's formats and view transform: pure functions that the option checks, the preview
+// writer and the contact sheet share. Depends on the standard library only.
 #pragma once
 
 #include <string>

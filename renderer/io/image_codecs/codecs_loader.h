@@ -1,6 +1,6 @@
-// Finds and opens the image codecs module (kiln_image_codecs.so) the first time kiln needs to
-// decode or encode an image, so a render without images never maps OpenImageIO and its ~260
-// libraries. Depends on core and the module's table only.
+// Finds and opens the image codecs module (kiln_image_codecs.so) the first time kiln needs to read
+// an image it does not decode itself, so a render without such images never maps OpenImageIO and
+// its ~260 libraries. Depends on core and the module's table only.
 #pragma once
 
 #include <string>

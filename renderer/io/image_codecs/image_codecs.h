@@ -7,13 +7,12 @@
 #include <cstdint>
 #include <string>
 
-#include "io/colour/colour_module.h"
 #include "scene/scene.h"
 
 namespace kiln {
 
 // Bumped whenever the table below changes; kiln refuses a module built with another value.
-constexpr uint32_t image_codecs_abi = 3;
+constexpr uint32_t image_codecs_abi = 4;
 
 struct image_codecs {
   uint32_t abi = image_codecs_abi;
@@ -29,14 +28,6 @@ struct image_codecs {
   // Reads the image file at path (EXR, .hdr, anything OpenImageIO reads) as float RGBA: grey
   // becomes R = G = B, missing alpha 1. Throws kiln::error (input) naming path and where.
   image (*read_float_rgba)(const std::string& path, const std::string& where, uint64_t max_texels) = nullptr;
-
-  // io/exr/preview_writer.h's write_preview and preview_complete, same contracts.
-  void (*write_preview)(const std::string& exr_path, const std::string& preview_path, double exposure,
-                        const display_transform* view) = nullptr;
-  bool (*preview_complete)(const std::string& preview_path, int width, int height) = nullptr;
-  // io/exr/preview_writer.h's write_preview_image, same contract.
-  void (*write_preview_image)(const std::string& path, int width, int height, int channels,
-                              const unsigned char* codes) = nullptr;
 };
 
 }  // namespace kiln

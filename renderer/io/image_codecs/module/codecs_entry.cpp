@@ -9,9 +9,6 @@ kiln::image_codecs make_table() {
   kiln::image_codecs table;
   table.decode = &kiln::codecs_module::decode;
   table.read_float_rgba = &kiln::codecs_module::read_float_rgba;
-  table.write_preview = &kiln::codecs_module::write_preview;
-  table.preview_complete = &kiln::codecs_module::preview_complete;
-  table.write_preview_image = &kiln::codecs_module::write_preview_image;
   return table;
 }
 
