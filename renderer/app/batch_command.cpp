@@ -410,7 +410,16 @@ int run_batch(const batch_options& options) {
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
-  const output_folder_lock lock(absolute_path(options.out_dir), options.wait_for_lock);
+  const std::string out_dir = absolute_path(options.out_dir);
+  const output_folder_lock lock(out_dir, options.wait_for_lock);
+  // Another running batch's folder inside this one is its own subtree: no job may write there.
+  for (const batch_job& job : jobs) {
+    try {
+      check_not_in_locked_folder(job.options.output, out_dir);
+    } catch (const error& e) {
+      throw input_error("", job.where, e.what());
+    }
+  }
   return run_batch_jobs(jobs, options.resume, options.summary, options.contact_sheet, options.defaults.quiet);
 }
 

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <thread>
+#include <utility>
 
 #include "app/interrupt.h"
 #include "core/error.h"
@@ -93,11 +94,45 @@ std::string lock_holder(const std::string& lock) {
   return holder;
 }
 
+// The nearest folder from `from` upward, stopping before `stop`, whose lock a running batch holds,
+// and who holds it; an empty folder when none does.
+std::pair<fs::path, std::string> locked_folder_above(const fs::path& from, const fs::path& stop) {
+  for (fs::path folder = from; folder != stop; folder = folder.parent_path()) {
+    if (std::string holder = lock_holder((folder / output_lock_name).string()); !holder.empty())
+      return {folder, holder};
+    if (folder == folder.parent_path()) break;
+  }
+  return {};
+}
+
+// Unlocks and removes a lock file this process made and holds.
+void release(const std::string& path, int fd) {
+  // While still locked, so nobody takes a lock on a file about to go; and only while the name is
+  // still this file, so nothing someone put in its place is removed.
+  if (names_file(path, fd)) ::unlink(path.c_str());
+  ::close(fd);
+}
+
 }  // namespace
 
 output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
     : path_((fs::path(folder) / output_lock_name).string()) {
   bool told = false;
+  // Refuses, or with wait tells once and pauses before the next try. Polled, not a blocking
+  // flock: the first SIGINT/SIGTERM must end the wait.
+  const auto refuse_or_wait = [&](const std::string& holder, const std::string& held,
+                                  const std::string& why) {
+    if (!wait)
+      throw input_error(folder, "",
+                        why + "; wait for it to finish, give another --out-dir, or pass --wait-for-lock");
+    if (!told)
+      std::fprintf(stderr, "kiln batch: waiting for %s to release %s\n", holder.c_str(), held.c_str());
+    told = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (interrupt_requested())
+      throw error(error_kind::interrupted, folder, "",
+                  "interrupted while waiting for the output folder's lock");
+  };
   for (;;) {
     const int fd = open_lock_file(path_);
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
@@ -105,22 +140,21 @@ output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
       const std::string holder = held_by(fd);
       ::close(fd);
       if (e != EWOULDBLOCK) throw io_error(path_, std::string("cannot lock: ") + std::strerror(e));
-      if (!wait)
-        throw input_error(folder, "",
-                          "the output folder is in use by " + holder +
-                              "; wait for it to finish, give another --out-dir, or pass --wait-for-lock");
-      if (!told)
-        std::fprintf(stderr, "kiln batch: waiting for %s to release %s\n", holder.c_str(), folder.c_str());
-      told = true;
-      // Polled, not a blocking flock: the first SIGINT/SIGTERM must end the wait.
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      if (interrupt_requested())
-        throw error(error_kind::interrupted, folder, "",
-                    "interrupted while waiting for the output folder's lock");
+      refuse_or_wait(holder, folder, "the output folder is in use by " + holder);
       continue;
     }
     if (!names_file(path_, fd)) {
       ::close(fd);
+      continue;
+    }
+    // A lock covers its folder's subtree. Checked while holding this lock, so of two batches
+    // locking a folder and one inside it at once, at least one sees the other.
+    const fs::path here = fs::absolute(folder).lexically_normal();
+    if (const auto [above, holder] = locked_folder_above(here.parent_path(), fs::path()); !above.empty()) {
+      release(path_, fd);
+      refuse_or_wait(holder, above.string(),
+                     "the output folder lies inside " + above.string() + ", the output folder of " + holder +
+                         " that is still running");
       continue;
     }
     const std::string pid = std::to_string(::getpid()) + "\n";
@@ -133,23 +167,17 @@ output_folder_lock::output_folder_lock(const std::string& folder, bool wait)
 }
 
 output_folder_lock::~output_folder_lock() {
-  if (fd_ < 0) return;
-  // While still locked, so nobody takes a lock on a file about to go; and only while the name is
-  // still this file, so nothing someone put in its place is removed.
-  if (names_file(path_, fd_)) ::unlink(path_.c_str());
-  ::close(fd_);
+  if (fd_ >= 0) release(path_, fd_);
 }
 
-void check_not_in_locked_folder(const std::string& path) {
+void check_not_in_locked_folder(const std::string& path, const std::string& own_folder) {
   const fs::path target = fs::absolute(path).lexically_normal();
-  for (fs::path folder = target.parent_path();; folder = folder.parent_path()) {
-    const std::string holder = lock_holder((folder / output_lock_name).string());
-    if (!holder.empty())
-      throw input_error(path, "",
-                        "the folder " + folder.string() + " is the output folder of " + holder +
-                            " that is still running; write elsewhere or wait for it");
-    if (folder == folder.parent_path()) break;
-  }
+  const fs::path stop = own_folder.empty() ? fs::path() : fs::absolute(own_folder).lexically_normal();
+  const auto [folder, holder] = locked_folder_above(target.parent_path(), stop);
+  if (!folder.empty())
+    throw input_error(path, "",
+                      "the folder " + folder.string() + " is the output folder of " + holder +
+                          " that is still running; write elsewhere or wait for it");
 }
 
 }  // namespace kiln

@@ -107,5 +107,45 @@ TEST(output_lock, a_symbolic_link_at_the_lock_name_locks_nothing_for_a_render) {
   ::close(fd);
 }
 
+// A lock covers its folder's subtree: a folder inside a locked one cannot be locked (a second
+// batch there would mix its outputs with the first's), and no lock file is left behind.
+TEST(output_lock, a_folder_inside_a_locked_folder_is_refused_until_the_lock_goes) {
+  const fs::path dir = scratch_dir("nested");
+  const fs::path inner = dir / "out" / "sub" / "deeper";
+  fs::create_directories(inner);
+  {
+    const output_folder_lock held((dir / "out").string(), false);
+    try {
+      const output_folder_lock nested(inner.string(), false);
+      FAIL() << "a folder inside a locked folder was locked";
+    } catch (const error& e) {
+      EXPECT_EQ(e.kind(), error_kind::input);
+      EXPECT_EQ(std::string(e.what()),
+                inner.string() + ": the output folder lies inside " + (dir / "out").string() +
+                    ", the output folder of another kiln batch (pid " + std::to_string(::getpid()) +
+                    ") that is still running; wait for it to finish, give another "
+                    "--out-dir, or pass --wait-for-lock");
+    }
+    EXPECT_FALSE(fs::exists(fs::symlink_status(inner / output_lock_name)));
+  }
+  EXPECT_NO_THROW(output_folder_lock(inner.string(), false));
+}
+
+// A batch's outputs are checked below its own folder only: its own lock is not a refusal, a lock
+// on a folder inside it is.
+TEST(output_lock, outputs_below_a_batchs_own_folder_meet_only_the_locks_inside_it) {
+  const fs::path dir = scratch_dir("below");
+  fs::create_directories(dir / "out" / "sub");
+  const std::string out = (dir / "out").string();
+  {
+    const output_folder_lock own(out, false);
+    EXPECT_NO_THROW(check_not_in_locked_folder((dir / "out" / "sub" / "a.exr").string(), out));
+    EXPECT_THROW(check_not_in_locked_folder((dir / "out" / "sub" / "a.exr").string()), error);
+  }
+  const output_folder_lock other((dir / "out" / "sub").string(), false);
+  EXPECT_THROW(check_not_in_locked_folder((dir / "out" / "sub" / "x" / "a.exr").string(), out), error);
+  EXPECT_NO_THROW(check_not_in_locked_folder((dir / "out" / "b.exr").string(), out));
+}
+
 }  // namespace
 }  // namespace kiln
