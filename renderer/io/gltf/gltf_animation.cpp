@@ -10,13 +10,15 @@
 #include "core/message_text.h"
 #include "io/gltf/gltf_accessors.h"
 #include "io/gltf/gltf_common.h"
+#include "io/gltf/gltf_instancing.h"
 
 namespace kiln::gltf_internal {
 namespace {
 
+// Zero stays zero (the caller refuses it), never NaN.
 void normalize_quaternion(double* q) {
-  const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (int j = 0; j < 4; ++j) q[j] /= len;
+  const dvec4 unit = unit_quaternion(dvec4(q[0], q[1], q[2], q[3]));
+  for (int j = 0; j < 4; ++j) q[j] = unit[j];
 }
 
 // Shortest-path spherical interpolation of two unit quaternions.
@@ -276,13 +278,19 @@ animation_pose evaluate_animations(const tinygltf::Model& model, const std::vect
       if (rotation)
         for (size_t k = 0; k < times.size(); ++k) {
           const float* q = &values[k * stride + (cubic ? components : 0)];
-          if (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] == 0.0f)
+          if (q[0] == 0.0f && q[1] == 0.0f && q[2] == 0.0f && q[3] == 0.0f)
             throw input_error(file, output_at,
                               "keyframe " + std::to_string(k) + " is a zero-length rotation quaternion");
         }
 
       sample.assign(components, 0.0);
       sample_keyframes(times, values, components, interpolation, rotation, time, sample.data());
+      // CUBICSPLINE's Hermite curve may pass through zero between nonzero keyframes (q to -q with
+      // flat tangents): no rotation at all, which glTF cannot mean.
+      if (rotation && sample[0] == 0.0 && sample[1] == 0.0 && sample[2] == 0.0 && sample[3] == 0.0)
+        throw input_error(file, output_at,
+                          "at time " + format_number(time) +
+                              " the keyframes interpolate to a zero-length rotation quaternion");
       animated_node& state = nodes[static_cast<size_t>(node_index)];
       if (!state.transform && !weights) {
         // Start from the node's own TRS; the channels replace what they drive.

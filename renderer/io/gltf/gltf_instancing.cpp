@@ -57,9 +57,16 @@ std::vector<float> read_values(const tinygltf::Model& model, int accessor, const
 
 }  // namespace
 
+dvec4 unit_quaternion(const dvec4& q) {
+  const double largest = std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z), std::abs(q.w)});
+  if (!(largest > 0.0)) return dvec4(0.0);
+  const dvec4 scaled = q / largest;
+  return scaled / glm::length(scaled);
+}
+
 dmat4 trs_matrix(const dvec3& translation, const dvec4& rotation, const dvec3& scale) {
-  const double len = glm::length(rotation);  // callers refuse len == 0
-  const double x = rotation.x / len, y = rotation.y / len, z = rotation.z / len, w = rotation.w / len;
+  const dvec4 unit = unit_quaternion(rotation);  // callers refuse a zero quaternion
+  const double x = unit.x, y = unit.y, z = unit.z, w = unit.w;
   dmat4 m(1.0);
   m[0] = dvec4(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0) * scale.x;
   m[1] = dvec4(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0) * scale.y;
@@ -122,7 +129,7 @@ std::optional<std::vector<dmat4>> read_gpu_instances(const tinygltf::Model& mode
     const dvec4 rotation =
         r.empty() ? dvec4(0, 0, 0, 1) : dvec4(r[4 * i], r[4 * i + 1], r[4 * i + 2], r[4 * i + 3]);
     const dvec3 scale = s.empty() ? dvec3(1.0) : dvec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]);
-    if (glm::length(rotation) == 0.0)
+    if (rotation == dvec4(0.0))
       throw input_error(file, pointer_join(attributes_where, "ROTATION"),
                         "instance " + std::to_string(i) + " has a zero-length rotation quaternion");
     transforms[i] = trs_matrix(translation, rotation, scale);

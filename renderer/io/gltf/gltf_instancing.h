@@ -17,6 +17,11 @@ namespace kiln::gltf_internal {
 
 constexpr const char* gpu_instancing_extension = "EXT_mesh_gpu_instancing";
 
+// q (x, y, z, w) at unit length, for any finite q but zero (which gives zero): scaled by its largest
+// component first, so that (1e200, 0, 0, 0), whose squared length is infinite, stays a half turn
+// about x instead of collapsing to zero and the identity.
+dvec4 unit_quaternion(const dvec4& q);
+
 // T * R * S from a translation, a quaternion (x, y, z, w; glTF's order, normalised here, must not
 // be zero) and a scale: glTF's node transform and each EXT_mesh_gpu_instancing instance.
 dmat4 trs_matrix(const dvec3& translation, const dvec4& rotation, const dvec3& scale);

@@ -123,6 +123,36 @@ TEST(GltfAnimation, LinearRotationIsTheShortestPathSlerp) {
   }
 }
 
+// A quaternion is normalised by scaling it by its largest component first: (1e200, 0, 0, 0) has
+// an infinite squared length and became the identity; (1e-170, 0, 0, 0) has a squared length
+// that underflows to zero and was refused as zero. Both are a half turn about x.
+TEST(GltfAnimation, HugeAndTinyRotationQuaternionsAreTheRotationTheyName) {
+  temp_folder dir;
+  for (const double x : {1e200, 1e-170, 2.0}) {
+    SCOPED_TRACE(x);
+    const dmat4 m =
+        load_at(triangle_node({{"rotation", {x, 0, 0, 0}}}), dir, 0.0).instances.at(0).world_from_object;
+    EXPECT_EQ(m[0][0], 1.0);
+    EXPECT_EQ(m[1][1], -1.0);
+    EXPECT_EQ(m[2][2], -1.0);
+  }
+}
+
+// CUBICSPLINE's curve from q to -q with flat tangents passes through zero halfway: no rotation.
+// It was normalised to NaN and reported as "/nodes/0: world transform overflows to infinity".
+TEST(GltfAnimation, ACubicSplineRotationThroughZeroIsRefusedAtItsSampler) {
+  temp_folder dir;
+  gltf_builder b = triangle_node();
+  add_animation(b, 0, "rotation", {0, 1}, {/*key 0*/ 0, 0, 0, 0, 0, 0, 0, 1,  0, 0, 0, 0,
+                                           /*key 1*/ 0, 0, 0, 0, 0, 0, 0, -1, 0, 0, 0, 0},
+                "VEC4", 4, "CUBICSPLINE");
+  EXPECT_NEAR(load_at(b, dir, 0.25).instances.at(0).world_from_object[0][0], 1.0, tol);
+  EXPECT_EQ(error_of([&] { load_at(b, dir, 0.5); }),
+            dir.file("posed.gltf") +
+                ": /animations/0/samplers/0/output: at time 0.5 the keyframes interpolate to a zero-length "
+                "rotation quaternion");
+}
+
 TEST(GltfAnimation, ChannelsReplaceOnlyWhatTheyDriveAndCamerasMoveToo) {
   temp_folder dir;
   gltf_builder b = triangle_node({{"scale", {2, 2, 2}}, {"translation", {0, 0, 7}}});

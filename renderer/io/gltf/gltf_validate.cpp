@@ -383,7 +383,7 @@ void validate_nodes(const tinygltf::Model& model, const std::string& file) {
     check_transform_array(node.scale, 3, "scale", file, where);
     if (!node.rotation.empty()) {
       const auto& q = node.rotation;
-      if (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] == 0.0)
+      if (q[0] == 0.0 && q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0)  // not its square: 1e-170 is no zero
         throw input_error(file, pointer_join(where, "rotation"), "rotation quaternion has zero length");
     }
     auto ext = node.extensions.find("KHR_lights_punctual");
