@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "support/channel_exr.h"
+#include "support/exr_header.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
@@ -170,37 +171,13 @@ TEST(environment_lighting_cli, the_default_render_is_anti_aliased_and_lit_by_the
   EXPECT_GT(partial, 0);
 }
 
-// The header of a scanline OpenEXR image of side × side half RGB texels, without its pixels.
-std::string exr_header_claiming(int side) {
-  std::string h("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
-  auto attribute = [&h](const std::string& name, const std::string& type, const std::string& value) {
-    const uint32_t size = uint32_t(value.size());
-    h += name + '\0' + type + '\0' + std::string(reinterpret_cast<const char*>(&size), 4) + value;
-  };
-  auto ints = [](std::vector<int32_t> v) {
-    return std::string(reinterpret_cast<const char*>(v.data()), v.size() * 4);
-  };
-  std::string channels;
-  for (const char* c : {"B", "G", "R"}) channels += std::string(c) + '\0' + ints({1, 0, 1, 1});
-  attribute("channels", "chlist", channels + '\0');
-  attribute("compression", "compression", std::string(1, '\0'));
-  attribute("dataWindow", "box2i", ints({0, 0, side - 1, side - 1}));
-  attribute("displayWindow", "box2i", ints({0, 0, side - 1, side - 1}));
-  attribute("lineOrder", "lineOrder", std::string(1, '\0'));
-  const float one = 1.0f, zero[2] = {0.0f, 0.0f};
-  attribute("pixelAspectRatio", "float", std::string(reinterpret_cast<const char*>(&one), 4));
-  attribute("screenWindowCenter", "v2f", std::string(reinterpret_cast<const char*>(zero), 8));
-  attribute("screenWindowWidth", "float", std::string(reinterpret_cast<const char*>(&one), 4));
-  return h + '\0';
-}
-
 TEST(environment_lighting_cli, bad_lighting_input_is_one_line_and_exit_2) {
   const std::string dir = testing::scratch_folder("environment_bad");
   const std::string scene = sphere_on_ground(dir);
   std::ofstream(dir + "/not_an_image.exr") << "this is not an image";
   std::ofstream(dir + "/empty.hdr");
   // A map claiming 10⁵ × 10⁵ texels (more than 2^27): refused from its header, nothing allocated.
-  std::ofstream(dir + "/enormous.exr", std::ios::binary) << exr_header_claiming(100000);
+  std::ofstream(dir + "/enormous.exr", std::ios::binary) << testing::exr_header_claiming(100000, 100000);
   const std::vector<std::vector<std::string>> cases = {
       {"--environment", dir + "/not_an_image.exr"},
       {"--environment", dir + "/empty.hdr"},

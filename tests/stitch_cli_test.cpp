@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/exr_header.h"
 #include "support/float_exr.h"
 #include "support/run_kiln.h"
 
@@ -218,6 +219,65 @@ TEST(stitch_cli, the_deprecated_tile_option_renders_the_same_band_with_a_warning
   EXPECT_EQ(tile.spec.y, band.spec.y);
   EXPECT_EQ(tile.spec.height, band.spec.height);
   EXPECT_EQ(tile.pixels, band.pixels);
+}
+
+// A region of half RGBA pixels (8 bytes each) at [x, x + width) x [y, y + height) of a display
+// window of frame_width x frame_height, written by OpenImageIO.
+std::string write_region(const std::string& path, int x, int y, int width, int height, int frame_width,
+                         int frame_height) {
+  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::HALF);
+  spec.x = x;
+  spec.y = y;
+  spec.full_width = frame_width;
+  spec.full_height = frame_height;
+  const std::vector<float> pixels(size_t(width) * size_t(height) * 4, 0.5f);
+  auto out = OIIO::ImageOutput::create(path);
+  EXPECT_TRUE(out && out->open(path, spec)) << path;
+  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  out->close();
+  return path;
+}
+
+// The regions and the frame are charged to a memory budget before they are made: past it, one line
+// names what needed the memory, its size and the budget. Stitch said only "out of memory" (a region
+// claiming 100000² pixels) or allocated a map of the whole frame to find a gap in it.
+TEST(stitch_cli, a_frame_or_region_past_the_memory_budget_is_refused_naming_its_size) {
+  const std::string dir = scratch_folder("stitch_memory");
+  const std::string top = write_region(dir + "/top.exr", 0, 0, 64, 32, 64, 64);
+  const std::string bottom = write_region(dir + "/bottom.exr", 0, 32, 64, 32, 64, 64);
+  const std::string out = dir + "/out.exr";
+  // The regions take 32 KiB; the frame 32 KiB more.
+  command_result result = run_kiln({"stitch", out, top, bottom, "--max-memory", "48K"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.stderr_text,
+            "kiln: " + top +
+                ": the stitched frame's pixels (display window [0,64)x[0,64), 8 bytes each) "
+                "need about 32 KiB more, 64 KiB in all, over the memory budget of 48 KiB "
+                "(raise it with --max-memory)\n");
+  EXPECT_FALSE(std::ifstream(out).good());
+  result = run_kiln({"stitch", out, top, bottom, "--max-memory", "64K"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+
+  const std::string huge = dir + "/huge.exr";
+  // With an empty line offset table (one 8-byte entry a row) the file opens; its pixels are absent.
+  std::ofstream(huge, std::ios::binary)
+      << testing::exr_header_claiming(100000, 100000) << std::string(size_t(100000) * 8, '\0');
+  result = run_kiln({"stitch", dir + "/huge_out.exr", huge, "--max-memory", "1G"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.stderr_text, "kiln: " + huge +
+                                    ": the data window's pixels need about 56 GiB, over the memory budget of "
+                                    "1.0 GiB (raise it with --max-memory)\n");
+
+  // Two 4x4 regions of a 100000² frame leave a gap, found without a map of the frame.
+  const std::string left = write_region(dir + "/left.exr", 0, 0, 4, 4, 100000, 100000);
+  const std::string right = write_region(dir + "/right.exr", 4, 0, 4, 4, 100000, 100000);
+  result = run_kiln({"stitch", dir + "/gap.exr", left, right, "--max-memory", "1M"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(
+      result.stderr_text.find(right + ": dataWindow: with this file the 2 inputs still do not cover the "
+                                      "display window [0,100000)x[0,100000): pixel (8, 0) is missing"),
+      std::string::npos)
+      << result.stderr_text;
 }
 
 }  // namespace

@@ -3,9 +3,12 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_stitch.h"
 #include "io/exr/exr_writer.h"
+#include "job/memory_limit.h"
+#include "job/option_values.h"
 #include "job/output_guard.h"
 
 namespace kiln {
@@ -17,6 +20,9 @@ void add_stitch_options(CLI::App& app, stitch_options& o) {
                  "overlap")
       ->required()
       ->check(CLI::ExistingFile);
+  app.add_option("--max-memory", o.max_memory,
+                 "Memory budget for the regions and the frame (e.g. 8G); default 90% of the memory "
+                 "kiln may use");
 }
 
 void run_stitch(const stitch_options& options) {
@@ -26,9 +32,13 @@ void run_stitch(const stitch_options& options) {
   check_not_symlink(options.output, "output");
   check_exr_output_name(options.output, "output", preview_hint::hide);
   check_output_writable(options.output);  // before reading, which may take long for big frames
+  // Every region and the frame are held at once: charged before each is made, so a frame too big
+  // for memory is refused naming its size instead of ending in "out of memory".
+  memory_budget budget(options.max_memory.empty() ? default_memory_budget()
+                                                  : parse_memory_size(options.max_memory, "--max-memory"));
   std::vector<exr_image> regions;
-  for (const std::string& path : options.inputs) regions.push_back(read_exr(path));
-  exr_image frame = stitch_regions(options.inputs, regions);
+  for (const std::string& path : options.inputs) regions.push_back(read_exr(path, &budget));
+  exr_image frame = stitch_regions(options.inputs, regions, &budget);
   // Regions of one frame share its inputs and every setting but the region; kiln's own regions say
   // so in their headers, and those that disagree are refused rather than joined into a frame that
   // no render could make.

@@ -14,6 +14,7 @@ namespace kiln {
 struct stitch_options {
   std::string output;
   std::vector<std::string> inputs;
+  std::string max_memory;  // --max-memory SIZE; empty: the default budget
 };
 
 void add_stitch_options(CLI::App& app, stitch_options& options);

@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "io/exr/exr_header.h"
 #include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
@@ -72,7 +73,7 @@ void describe_parts(const std::string& path, const exr_header& header, exr_image
 
 }  // namespace
 
-exr_image read_exr(const std::string& path) {
+exr_image read_exr(const std::string& path, memory_budget* budget) {
   bool tiled = false, deep = false, multipart = false;
   if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multipart)) {
     std::FILE* probe = std::fopen(path.c_str(), "rbe");
@@ -94,6 +95,7 @@ exr_image read_exr(const std::string& path) {
     const uint64_t count = uint64_t(d.width()) * uint64_t(d.height());
     if (d.width() <= 0 || d.height() <= 0 || pixel == 0 || count > std::numeric_limits<size_t>::max() / pixel)
       throw input_error(path, "dataWindow", "no pixels to read, or too many");
+    if (budget) budget->charge(count * pixel, path, "the data window's pixels");
     image.pixels.resize(size_t(count) * pixel);
     // Every part's channels land in their own place of each interleaved pixel, in the file's
     // formats: nothing is converted. Reading every pixel is what finds a truncated file.

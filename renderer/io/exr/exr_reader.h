@@ -11,6 +11,8 @@
 
 namespace kiln {
 
+class memory_budget;
+
 // The whole header as read (attributes, channel formats, windows); opaque outside io/exr.
 struct exr_header;
 
@@ -28,8 +30,9 @@ struct exr_image {
   size_t pixel_bytes() const;
 };
 
-// Throws kiln::error (input) naming path when the file cannot be opened or read.
-exr_image read_exr(const std::string& path);
+// Throws kiln::error (input) naming path when the file cannot be opened or read, or when its data
+// window's pixels do not fit what is left of budget (when given), charged before they are made.
+exr_image read_exr(const std::string& path, memory_budget* budget = nullptr);
 
 // The header's string attribute name (e.g. "kiln/settings_hash"), empty when it has none.
 std::string exr_string_attribute(const exr_image& image, const std::string& name);
