@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -82,17 +83,24 @@ std::string temporary_prefix(const std::string& path) {
   return "." + fs::path(path).filename().string() + ".kiln-tmp-" + host_name() + "-";
 }
 
+// ".NAME.tmp-HOST-": what the one temporary file of path a process of this host wrote began with
+// before kiln numbered them (".NAME.tmp-HOST-PID"). A killed older kiln left such files.
+std::string legacy_temporary_prefix(const std::string& path) {
+  return "." + fs::path(path).filename().string() + ".tmp-" + host_name() + "-";
+}
+
 bool all_digits(const std::string& s, size_t most) {
   return !s.empty() && s.size() <= most && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
-// The process id in name when name is exactly prefix + "PID-N"; 0 otherwise.
-pid_t writer_of(const std::string& name, const std::string& prefix) {
+// The process id in name when name is exactly prefix + "PID-N" (numbered) or prefix + "PID"
+// (not); 0 otherwise.
+pid_t writer_of(const std::string& name, const std::string& prefix, bool numbered) {
   if (name.compare(0, prefix.size(), prefix) != 0) return 0;
   const std::string rest = name.substr(prefix.size());
-  const size_t dash = rest.find('-');
+  const size_t dash = numbered ? rest.find('-') : rest.size();
   if (dash == std::string::npos || !all_digits(rest.substr(0, dash), 9) ||
-      !all_digits(rest.substr(dash + 1), 20))
+      (numbered && !all_digits(rest.substr(dash + 1), 20)))
     return 0;
   return pid_t(std::stol(rest.substr(0, dash)));
 }
@@ -101,13 +109,15 @@ pid_t writer_of(const std::string& name, const std::string& prefix) {
 // a SIGKILL during a write leaves. Only what kiln can prove its own goes: the exact name of a
 // temporary file of this very path, a regular file (never a link) of this user. Another host's
 // files are never touched (a farm writes into shared folders from many hosts, and their PIDs mean
-// nothing here), nor a name kiln would not have made (a user's ".notes.tmp-HOST-PID").
+// nothing here), nor a name kiln would not have made (a user's ".notes.tmp-HOST-PID"). Older
+// kiln's unnumbered name for this path counts as its own too, by the same rules.
 void remove_dead_temporaries(const std::string& path) {
   const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  const std::string prefix = temporary_prefix(path);
+  const std::string prefix = temporary_prefix(path), legacy_prefix = legacy_temporary_prefix(path);
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const pid_t pid = writer_of(it->path().filename().string(), prefix);
+    const std::string name = it->path().filename().string();
+    const pid_t pid = std::max(writer_of(name, prefix, true), writer_of(name, legacy_prefix, false));
     if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH)
       continue;  // alive, or not ours
     struct stat s {};

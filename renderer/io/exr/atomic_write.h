@@ -32,7 +32,8 @@ int create_temporary_file(const std::string& path, std::string& temporary);
 // path leave exactly one complete file. Throws kiln::error (io) "cannot write <what>: <reason>" on
 // failure, and (interrupted) when cancel is raised before the rename, leaving no temporary file
 // behind and any earlier file at path untouched. First removes the temporary files of path that
-// processes of this host which no longer exist left (killed while writing), and nothing else.
+// processes of this host which no longer exist left (killed while writing; older kiln's
+// ".NAME.tmp-HOST-PID" included), and nothing else.
 void write_atomically(const std::string& path, const std::string& what,
                       const std::function<std::string(const temporary_file& temporary)>& write,
                       const std::atomic<bool>* cancel = nullptr);

@@ -133,6 +133,28 @@ TEST(atomic_write, the_sweep_removes_what_killed_writes_of_the_output_left) {
   EXPECT_EQ(bytes_of(dir / "victim"), "kept");
 }
 
+// Older kiln named the temporary file of a write ".NAME.tmp-HOST-PID", one per process: a killed
+// write of this very output in that name goes too, by the same rules, and nothing else that
+// merely looks like it.
+TEST(atomic_write, the_sweep_removes_what_killed_writes_of_older_kiln_left) {
+  const fs::path dir = scratch_dir("sweep_legacy");
+  const std::string prefix = ".out.exr.tmp-" + host() + "-", dead = std::to_string(dead_pid());
+  write_file(dir / (prefix + dead), "left by a killed older kiln");
+  write_file(dir / "victim", "kept");
+  const std::vector<std::string> spared = {prefix + std::to_string(::getppid()), prefix + dead + "-0",
+                                           prefix + dead + "x", ".out.exr.tmp-elsewhere-" + dead,
+                                           ".out.exr.tmp-" + dead};
+  for (const std::string& name : spared) write_file(dir / name, "someone's " + name);
+  write_text((dir / "out.exr").string(), "the output");
+  EXPECT_FALSE(fs::exists(dir / (prefix + dead)));
+  for (const std::string& name : spared) EXPECT_EQ(bytes_of(dir / name), "someone's " + name) << name;
+  // A link at the name is not a file kiln wrote: it stays, and so does what it points to.
+  fs::create_symlink(dir / "victim", dir / (prefix + dead));
+  write_text((dir / "out.exr").string(), "the output again");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / (prefix + dead))));
+  EXPECT_EQ(bytes_of(dir / "victim"), "kept");
+}
+
 // A file or link someone placed at the name the next temporary file would take is neither written
 // through nor replaced: the write takes another name.
 TEST(atomic_write, a_name_taken_in_advance_is_skipped_not_written_through) {
