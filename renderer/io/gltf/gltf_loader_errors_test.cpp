@@ -165,6 +165,30 @@ TEST(GltfLoaderErrors, WorldTransformOverflow) {
   expect_error(b, {"/nodes/0", "world transform overflows to infinity"});
 }
 
+// A NaN rotation: JSON has no NaN, so a broken exporter's NaN or 1e999 in the node's rotation is
+// refused at that member; a NaN in an animation's rotation keyframes at the sampler's output.
+TEST(GltfLoaderErrors, NaNRotationsAreRefusedNamingTheirPointer) {
+  for (const char* literal : {"NaN", "1e999"}) {
+    temp_folder dir;
+    gltf_builder b = single_triangle();
+    b.doc["nodes"][0]["rotation"] = {0, 0, 4321, 1};
+    std::string text = b.finished("data:application/octet-stream;base64," + base64_encode(b.bin)).dump();
+    text.replace(text.find("4321"), 4, literal);
+    const std::string path = dir.file("rotation.gltf");
+    write_text(path, text);
+    const std::string message = error_of([&] { load_gltf(path); });
+    EXPECT_EQ(message.rfind(path + ": /nodes/0/rotation", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  gltf_builder b = single_triangle();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const int input = b.add_data(std::vector<float>{0, 1}, k_float, "SCALAR", 1);
+  const int output = b.add_data(std::vector<float>{0, 0, 0, 1, nan, 0, 0, 1}, k_float, "VEC4", 4);
+  b.doc["animations"] = {{{"samplers", {{{"input", input}, {"output", output}}}},
+                          {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}}}}};
+  expect_error(b, {"/animations/0/samplers/0/output", "keyframe value 4 is NaN or infinite"});
+}
+
 TEST(GltfLoaderErrors, ZeroQuaternion) {
   gltf_builder b = single_triangle();
   b.doc["nodes"][0]["rotation"] = {0, 0, 0, 0};
