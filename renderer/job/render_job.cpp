@@ -489,12 +489,15 @@ void write_job_outputs(const render_job_result& result, const render_options& op
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the EXR");
   }
-  // From the file as written, so the preview shows exactly what the EXR holds.
+  // The beauty exactly as the EXR holds it: from memory under a lossless codec, else read back.
   try {
     if (!options.preview.empty()) {
       const std::optional<display_transform> view = preview_view(options);
-      write_preview(options.output, options.preview, options.preview_exposure, view ? &*view : nullptr,
-                    cancel);
+      const display_transform* transform = view ? &*view : nullptr;
+      if (const std::optional<rgba_image> beauty = stored_beauty(result.image, result.storage))
+        write_preview(*beauty, options.preview, options.preview_exposure, transform, cancel);
+      else
+        write_preview(options.output, options.preview, options.preview_exposure, transform, cancel);
     }
   } catch (const std::bad_alloc&) {
     throw out_of_memory(options, "writing the preview");

@@ -387,23 +387,40 @@ size_t pixel_bytes_of(const std::vector<Imf::Header>& headers) {
       bytes += format_bytes(c.channel().type);
   return bytes;
 }
+
+// One layer's samples as the file stores them: rounded to half where the layer is half.
+stored_layer stored(const layer& l, size_t pixels) {
+  stored_layer s{l.part, {}, l.format == Imf::HALF, {}};
+  s.samples.resize(pixels * l.channels.size());
+  for (const channel& c : l.channels) s.channels.push_back(c.name);
+  for (size_t i = 0; i < pixels; ++i)
+    for (size_t c = 0; c < l.channels.size(); ++c) {
+      const float value = l.channels[c].value(i);
+      s.samples[i * l.channels.size() + c] = s.half ? float(half(value)) : value;
+    }
+  return s;
+}
+
 }  // namespace
 
 std::vector<stored_layer> stored_layers(const film& f, const exr_settings& settings) {
   std::vector<stored_layer> out;
-  const size_t pixels = size_t(f.width) * size_t(f.height);
-  for (const layer& l : film_layers(f, settings)) {
-    stored_layer s{l.part, {}, l.format == Imf::HALF, {}};
-    s.samples.resize(pixels * l.channels.size());
-    for (const channel& c : l.channels) s.channels.push_back(c.name);
-    for (size_t i = 0; i < pixels; ++i)
-      for (size_t c = 0; c < l.channels.size(); ++c) {
-        const float value = l.channels[c].value(i);
-        s.samples[i * l.channels.size() + c] = s.half ? float(half(value)) : value;
-      }
-    out.push_back(std::move(s));
-  }
+  for (const layer& l : film_layers(f, settings))
+    out.push_back(stored(l, size_t(f.width) * size_t(f.height)));
   return out;
+}
+
+std::optional<rgba_image> stored_beauty(const film& f, const exr_settings& settings) {
+  if (is_lossy_compression(settings.compression)) return std::nullopt;
+  for (const layer& l : film_layers(f, settings))
+    if (l.part == exr_part_name(exr_part::rgba)) {  // R, G, B, A in that order
+      rgba_image beauty;
+      beauty.width = f.width;
+      beauty.height = f.height;
+      beauty.pixels = stored(l, size_t(f.width) * size_t(f.height)).samples;
+      return beauty;
+    }
+  return std::nullopt;
 }
 
 void check_output_writable(const std::string& path) {

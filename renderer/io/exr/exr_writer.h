@@ -6,11 +6,13 @@
 
 #include <array>
 #include <atomic>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/math.h"
+#include "io/exr/exr_beauty.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_storage.h"
 #include "render/film.h"
@@ -51,6 +53,11 @@ struct stored_layer {
   std::vector<float> samples;
 };
 std::vector<stored_layer> stored_layers(const film& f, const exr_settings& settings);
+
+// The beauty (R G B A) as write_exr stores it for the film: what read_exr_beauty reads back from
+// the file, bit for bit, without reading it. Nullopt under a lossy codec (the file's values are
+// the codec's) or without a beauty AOV.
+std::optional<rgba_image> stored_beauty(const film& f, const exr_settings& settings);
 
 // Writes the film to path atomically. Throws kiln::error (io) on failure, and (interrupted) when
 // cancel is raised before the file is renamed into place: then nothing is written.

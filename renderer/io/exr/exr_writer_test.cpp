@@ -344,6 +344,44 @@ TEST(exr_writer, dwa_level_is_recorded_and_drives_the_compressor_also_when_writt
   EXPECT_LT(fs::file_size(kept), fs::file_size(finer));
 }
 
+// What the preview takes from memory is what reading the file back gives, bit for bit: half and
+// float beauties, one part or several, lossless codecs, a crop, and values half cannot hold (NaN,
+// past 65504, below its smallest normal); under a lossy codec it must read the file instead.
+TEST(exr_writer, stored_beauty_is_the_file_s_beauty_bit_for_bit_under_lossless_codecs) {
+  film f = all_aov_film();
+  f.x0 = 2;
+  f.y0 = 3;
+  f.full_width = 20;
+  f.full_height = 10;
+  f.color[0] = vec4(std::nanf(""), 1e6f, 1e-6f, 0.5f);
+  f.color[1] = vec4(-3.0f, 70000.0f, 3e-8f, 0.0f);
+  for (const sample_format format : {sample_format::half, sample_format::float32})
+    for (const std::string codec : {"none", "zip", "piz"})
+      for (const bool multipart : {false, true}) {
+        exr_settings s = all_layers(format);
+        s.compression = codec;
+        s.multipart = multipart;
+        const fs::path file = scratch_dir() / "stored_beauty.exr";
+        write_exr(file.string(), f, s, exr_metadata{});
+        const std::optional<rgba_image> stored = stored_beauty(f, s), read = read_exr_beauty(file.string());
+        ASSERT_TRUE(stored && read) << codec;
+        EXPECT_EQ(stored->width, 7);
+        EXPECT_EQ(stored->height, 5);
+        EXPECT_EQ(read->width, 7);
+        ASSERT_EQ(stored->pixels.size(), read->pixels.size());
+        EXPECT_EQ(
+            std::memcmp(stored->pixels.data(), read->pixels.data(), read->pixels.size() * sizeof(float)), 0)
+            << codec << (multipart ? " multipart" : "")
+            << (format == sample_format::half ? " half" : " float");
+      }
+  exr_settings lossy;
+  lossy.compression = "dwab";
+  EXPECT_FALSE(stored_beauty(f, lossy));
+  aov_set no_beauty;
+  no_beauty.beauty = false;
+  EXPECT_FALSE(stored_beauty(film(2, 2, no_beauty), exr_settings{}));
+}
+
 TEST(exr_writer, tiled_files_record_the_tile_size_and_scanline_files_none) {
   for (int tile : {0, 4, 64}) {
     for (bool multipart : {false, true}) {

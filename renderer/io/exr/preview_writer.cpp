@@ -46,9 +46,10 @@ std::vector<unsigned char> preview_codes(const rgba_image& beauty, int channels,
             std::isnan(v) ? 0 : (unsigned char)std::lround(255.0f * std::clamp(v, 0.0f, 1.0f));
       }
   } else {
+    const preview_code_table table = make_preview_code_table(exposure);
     for (size_t i = 0; i < pixel_count; ++i)
       for (size_t c = 0; c < 3; ++c)
-        codes[i * size_t(channels) + c] = preview_code(rgba[i * 4 + c] * unpremultiply(i), exposure);
+        codes[i * size_t(channels) + c] = preview_code(table, rgba[i * 4 + c] * unpremultiply(i));
   }
   if (channels == 4)
     for (size_t i = 0; i < pixel_count; ++i) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * alpha(i));
@@ -77,14 +78,18 @@ bool starts_as(const std::vector<unsigned char>& bytes, const std::string& forma
 
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
                    const display_transform* view, const std::atomic<bool>* cancel) {
-  const std::string format = preview_format(preview_path);
-  if (format.empty())
+  if (preview_format(preview_path).empty())
     throw input_error(preview_path, "--preview", "a preview must end in .png, .jpg or .jpeg");
   const std::optional<rgba_image> beauty = read_exr_beauty(exr_path);
   if (!beauty) throw input_error(exr_path, "--preview", "the EXR holds no R G B A to preview");
-  const int channels = format == "png" ? 4 : 3;
-  write_preview_image(preview_path, beauty->width, beauty->height, channels,
-                      preview_codes(*beauty, channels, exposure, view), cancel);
+  write_preview(*beauty, preview_path, exposure, view, cancel);
+}
+
+void write_preview(const rgba_image& beauty, const std::string& preview_path, double exposure,
+                   const display_transform* view, const std::atomic<bool>* cancel) {
+  const int channels = preview_format(preview_path) == "png" ? 4 : 3;
+  write_preview_image(preview_path, beauty.width, beauty.height, channels,
+                      preview_codes(beauty, channels, exposure, view), cancel);
 }
 
 void write_preview_image(const std::string& path, int width, int height, int channels,

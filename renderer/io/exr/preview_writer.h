@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/colour/colour_module.h"
+#include "io/exr/exr_beauty.h"
 #include "io/exr/preview_codes.h"
 
 namespace kiln {
@@ -22,6 +23,11 @@ namespace kiln {
 // With view, the colour (times 2^exposure) goes through that display transform instead of
 // preview_code, and its code values are round(255 · clamp(v, 0, 1)).
 void write_preview(const std::string& exr_path, const std::string& preview_path, double exposure,
+                   const display_transform* view = nullptr, const std::atomic<bool>* cancel = nullptr);
+
+// The same for a beauty already in memory (premultiplied R G B A over the data window, as the EXR
+// stores it: io/exr/exr_writer.h's stored_beauty), without reading the file back.
+void write_preview(const rgba_image& beauty, const std::string& preview_path, double exposure,
                    const display_transform* view = nullptr, const std::atomic<bool>* cancel = nullptr);
 
 // Writes width x height 8-bit code values (row 0 at the top; channels 3, R G B, or 4, R G B and

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -97,6 +98,36 @@ TEST(preview_writer, png_holds_the_straight_srgb_codes_of_the_beauty_part) {
     for (size_t c = 0; c < 4; ++c)
       EXPECT_EQ(int(decoded->texels8[i * 4 + c]), expected[i][c]) << "pixel " << i << " channel " << c;
   EXPECT_TRUE(preview_complete((dir / "two.png").string(), 4, 1));
+}
+
+// The table gives preview_code's code for every float: checked at each code's first float and
+// the float before it, and at a million floats spread over the whole range, for several exposures.
+// (The whole of [0, 1] at exposure 0, every float, agreed when the table was written.)
+TEST(preview_writer, the_code_table_is_preview_code_exactly) {
+  const auto float_of = [](uint32_t bits) {
+    float f = 0.0f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  };
+  for (const double exposure : {0.0, 1.5, -2.0, 7.25, -40.0}) {
+    const preview_code_table table = make_preview_code_table(exposure);
+    size_t differ = 0;
+    const auto check = [&](float v) { differ += preview_code(table, v) != preview_code(v, exposure); };
+    for (const float t : table.thresholds) {
+      check(t);
+      check(std::nextafter(t, 0.0f));
+    }
+    for (uint64_t bits = 0; bits <= 0xFFFFFFFFu; bits += 4099) check(float_of(uint32_t(bits)));
+    for (const float v : {0.0f, -0.0f, -1.0f, std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+                          std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min()})
+      check(v);
+    EXPECT_EQ(differ, 0u) << "exposure " << exposure;
+  }
+  const preview_code_table table = make_preview_code_table(0.0);
+  EXPECT_EQ(preview_code(table, 0.25f), 137);
+  EXPECT_EQ(preview_code(table, 1.0f), 255);
+  EXPECT_EQ(preview_code(table, std::numeric_limits<float>::quiet_NaN()), 0);
 }
 
 TEST(preview_writer, an_exr_without_a_beauty_is_refused_naming_it) {

@@ -45,10 +45,12 @@ void flush_png(png_structp) {}
 
 void png_warned(png_structp, png_const_charp) {}
 
-// OpenImageIO 2.4's PNG writer, call for call: zlib level 6, libpng's default row filters
-// (PNG_NO_FILTERS leaves the choice to libpng: adaptive, all five, for 8-bit RGB), an sRGB chunk
-// (absolute intent) with its gAMA and cHRM, an oFFs of (0, 0) and a tEXt "oiio:ColorSpace" = "sRGB",
-// which tools reading kiln's previews have always found there.
+// OpenImageIO 2.4's PNG file but for its compression: the same chunks (an sRGB chunk of absolute
+// intent with its gAMA and cHRM, an oFFs of (0, 0) and a tEXt "oiio:ColorSpace" = "sRGB", which
+// tools reading kiln's previews have always found there) and the same pixels, deflated at zlib
+// level 1 after the Sub row filter instead of level 6 after libpng's adaptive choice among all
+// five filters: a preview is for a quick look, and that search cost more than all the rest of
+// writing one (docs/performance.md).
 bool write_png(int width, int height, int channels, const unsigned char* codes, png_sink& sink) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, png_failed, png_warned);
   if (!png) return false;
@@ -58,9 +60,9 @@ bool write_png(int width, int height, int channels, const unsigned char* codes, 
     return false;
   }
   png_set_write_fn(png, &sink, write_png_bytes, flush_png);
-  png_set_compression_level(png, 6);
+  png_set_compression_level(png, 1);
   png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_NO_FILTERS);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8,
                channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);

@@ -1,8 +1,8 @@
 // Encodes 8-bit PNG and JPEG in memory with libpng and libjpeg directly, in kiln itself, for the
 // preview and the contact sheet: opening the image codecs module (OpenImageIO and its ~260
-// libraries) to write one small picture cost a render 0.14-0.3 s of CPU at process start. The files
-// are the ones the module's OpenImageIO 2.4 wrote, byte for byte: the same libraries with the same
-// settings and the same metadata. Depends on the standard library, libpng and libjpeg only.
+// libraries) to write one small picture cost a render 0.14-0.3 s of CPU at process start. The
+// pictures are the ones the module's OpenImageIO 2.4 wrote: a JPEG byte for byte, a PNG with the
+// same pixels and metadata, compressed faster. Depends on the standard library, libpng and libjpeg.
 #pragma once
 
 #include <string>
