@@ -74,11 +74,12 @@ TEST(aov, only_requested_buffers_exist) {
   scene world = two_quads();
   film f = render(world, 1, 1, aov_set{});
   EXPECT_EQ(f.depth.size(), size_t(width * height));
-  EXPECT_EQ(f.normal.size(), size_t(width * height));
-  EXPECT_TRUE(f.position.empty() && f.albedo.empty() && f.uv.empty() && f.ids.empty());
+  EXPECT_EQ(f.vec3_layer(aov::normal).size(), size_t(width * height));
+  EXPECT_TRUE(f.vec3_layer(aov::position).empty() && f.vec3_layer(aov::albedo).empty() && f.uv.empty() &&
+              f.ids.empty());
   aov_set ids_only{false, false, false, false, false, false, true};
   f = render(world, 1, 1, ids_only);
-  EXPECT_TRUE(f.depth.empty() && f.normal.empty() && f.position.empty());
+  EXPECT_TRUE(f.depth.empty() && f.vec3_layer(aov::normal).empty() && f.vec3_layer(aov::position).empty());
   EXPECT_EQ(f.ids.size(), size_t(width * height));
 }
 
@@ -94,10 +95,15 @@ TEST(aov, position_is_the_camera_ray_hit_point) {
       ray r = generate_camera_ray(cam, x + 0.5, y + 0.5);
       dvec3 expected = dvec3(r.origin) + double(f.depth[i]) * glm::normalize(dvec3(r.direction));
       for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(f.position[i][c], expected[c], 1e-4 * f.depth[i]) << x << "," << y;
+        EXPECT_NEAR(f.vec3_layer(aov::position)[i][c], expected[c], 1e-4 * f.depth[i]) << x << "," << y;
       // Each quad is a plane of constant z.
-      const float z = f.position[i].z;
-      EXPECT_NEAR(z, z > 0.25f ? 0.5f : f.position[i].x < 0.0f ? 0.0f : -1.0f, 1e-5) << x << "," << y;
+      const float z = f.vec3_layer(aov::position)[i].z;
+      EXPECT_NEAR(z,
+                  z > 0.25f                                 ? 0.5f
+                  : f.vec3_layer(aov::position)[i].x < 0.0f ? 0.0f
+                                                            : -1.0f,
+                  1e-5)
+          << x << "," << y;
       ++checked;
     }
   EXPECT_GT(checked, 20);
@@ -114,19 +120,19 @@ TEST(aov, albedo_and_ids_name_the_object_hit_and_background_is_minus_one) {
       const glm::ivec3 id = f.ids[i];
       if (std::isinf(f.depth[i])) {
         EXPECT_EQ(id, glm::ivec3(-1)) << x << "," << y;
-        EXPECT_EQ(f.albedo[i], vec3(0.0f));
+        EXPECT_EQ(f.vec3_layer(aov::albedo)[i], vec3(0.0f));
         ++seen_background;
-      } else if (f.position[i].z > 0.25f) {
+      } else if (f.vec3_layer(aov::position)[i].z > 0.25f) {
         EXPECT_EQ(id, glm::ivec3(3, 3, int(instance_of_node(world, 3)))) << x << "," << y;
-        EXPECT_EQ(f.albedo[i], vec3(1.0f));
+        EXPECT_EQ(f.vec3_layer(aov::albedo)[i], vec3(1.0f));
         ++seen_default;
-      } else if (f.position[i].x < 0.0f) {
+      } else if (f.vec3_layer(aov::position)[i].x < 0.0f) {
         EXPECT_EQ(id, glm::ivec3(1, 1, int(left))) << x << "," << y;
-        EXPECT_EQ(f.albedo[i], vec3(0.2f, 0.5f, 0.8f)) << x << "," << y;
+        EXPECT_EQ(f.vec3_layer(aov::albedo)[i], vec3(0.2f, 0.5f, 0.8f)) << x << "," << y;
         ++seen_left;
       } else {
         EXPECT_EQ(id, glm::ivec3(2, 2, int(right))) << x << "," << y;
-        EXPECT_EQ(f.albedo[i], vec3(0.9f, 0.1f, 0.3f)) << x << "," << y;
+        EXPECT_EQ(f.vec3_layer(aov::albedo)[i], vec3(0.9f, 0.1f, 0.3f)) << x << "," << y;
         ++seen_right;
       }
     }
@@ -141,8 +147,8 @@ TEST(aov, nearest_sample_aovs_do_not_depend_on_threads) {
   scene world = two_quads();
   film one = render(world, 1, 4), many = render(world, 3, 4);
   EXPECT_TRUE(same_bytes(one.color, many.color));
-  EXPECT_TRUE(same_bytes(one.position, many.position));
-  EXPECT_TRUE(same_bytes(one.albedo, many.albedo));
+  EXPECT_TRUE(same_bytes(one.vec3_layer(aov::position), many.vec3_layer(aov::position)));
+  EXPECT_TRUE(same_bytes(one.vec3_layer(aov::albedo), many.vec3_layer(aov::albedo)));
   EXPECT_TRUE(same_bytes(one.uv, many.uv));
   EXPECT_TRUE(same_bytes(one.ids, many.ids));
 }

@@ -49,9 +49,9 @@ void expect_crop_matches(const cornell& c, const render_settings& s, const pixel
   EXPECT_EQ(crop.full_height, height);
   expect_same_region(crop.color, crop, full.color, full, "colour");
   expect_same_region(crop.depth, crop, full.depth, full, "depth");
-  expect_same_region(crop.normal, crop, full.normal, full, "normal");
-  expect_same_region(crop.position, crop, full.position, full, "position");
-  expect_same_region(crop.albedo, crop, full.albedo, full, "albedo");
+  expect_same_region(crop.vec3_layer(aov::normal), crop, full.vec3_layer(aov::normal), full, "normal");
+  expect_same_region(crop.vec3_layer(aov::position), crop, full.vec3_layer(aov::position), full, "position");
+  expect_same_region(crop.vec3_layer(aov::albedo), crop, full.vec3_layer(aov::albedo), full, "albedo");
   expect_same_region(crop.uv, crop, full.uv, full, "uv");
   expect_same_region(crop.ids, crop, full.ids, full, "ids");
 }

@@ -61,7 +61,7 @@ bool on_edge(const film& f, int x, int y) {
       if (nx < 0 || ny < 0 || nx >= f.width || ny >= f.height) continue;
       const size_t n = f.index(nx, ny);
       if (std::isinf(f.depth[centre]) && std::isinf(f.depth[n])) continue;  // both background
-      if (glm::dot(f.normal[centre], f.normal[n]) < 0.95f) return true;
+      if (glm::dot(f.vec3_layer(aov::normal)[centre], f.vec3_layer(aov::normal)[n]) < 0.95f) return true;
       if (f.ids[centre].z != f.ids[n].z) return true;
       if (std::isinf(f.depth[centre]) != std::isinf(f.depth[n]) ||
           std::abs(f.depth[centre] - f.depth[n]) > 0.25f * f.depth[centre])

@@ -53,7 +53,7 @@ TEST(NonFiniteSamples, InfiniteEmissionIsDiscardedAndCounted) {
   uint64_t hit_pixels = 0;
   for (size_t i = 0; i < image.color.size(); ++i) {
     ASSERT_TRUE(finite(image.color[i])) << "pixel " << i;
-    ASSERT_TRUE(is_finite(image.normal[i])) << "pixel " << i;
+    ASSERT_TRUE(is_finite(image.vec3_layer(aov::normal)[i])) << "pixel " << i;
     if (std::isfinite(image.depth[i])) {
       ++hit_pixels;
       EXPECT_EQ(image.color[i], vec4(0.0f)) << "pixel " << i;

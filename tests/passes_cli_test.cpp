@@ -301,8 +301,10 @@ TEST(passes_cli, film_bytes_count_the_pass_buffers) {
                                            "lightgroup_emission", "lightgroup_environment"};
   const film f(7, 5, a, groups);
   const uint64_t allocated =
-      f.color.size() * sizeof(vec4) + f.depth.size() * sizeof(float) + f.normal.size() * sizeof(vec3) +
-      (f.albedo_filtered.size() + f.normal_filtered.size() + f.diffuse.size() + f.specular.size()) *
+      f.color.size() * sizeof(vec4) + f.depth.size() * sizeof(float) +
+      f.vec3_layer(aov::normal).size() * sizeof(vec3) +
+      (f.vec3_layer(aov::albedo_filtered).size() + f.vec3_layer(aov::normal_filtered).size() +
+       f.vec3_layer(aov::diffuse).size() + f.vec3_layer(aov::specular).size()) *
           sizeof(vec3) +
       f.shadow.size() * sizeof(float);
   EXPECT_EQ(f.shadow.size(), size_t(7 * 5 * 4));  // three lights and the environment

@@ -37,10 +37,12 @@ TEST(quadric_image, showcase_has_every_kind_no_nan_and_is_thread_independent) {
   film many = render(world, accel, cam, 3, 7);
   ASSERT_EQ(one.color.size(), many.color.size());
   EXPECT_EQ(std::memcmp(one.color.data(), many.color.data(), one.color.size() * sizeof(vec4)), 0);
-  EXPECT_EQ(std::memcmp(one.normal.data(), many.normal.data(), one.normal.size() * sizeof(vec3)), 0);
+  EXPECT_EQ(std::memcmp(one.vec3_layer(aov::normal).data(), many.vec3_layer(aov::normal).data(),
+                        one.vec3_layer(aov::normal).size() * sizeof(vec3)),
+            0);
   for (size_t i = 0; i < one.color.size(); ++i) {
     ASSERT_TRUE(is_finite(one.color[i])) << "pixel " << i;
-    ASSERT_TRUE(is_finite(one.normal[i])) << "pixel " << i;
+    ASSERT_TRUE(is_finite(one.vec3_layer(aov::normal)[i])) << "pixel " << i;
   }
   // Every placed primitive is visible: count camera rays that hit each instance first.
   std::vector<int> pixels(world.instances.size(), 0);

@@ -76,10 +76,10 @@ TEST(shading_corrections, wherever_a_normal_map_changes_the_beauty_it_changes_n)
     ++changed;
     // The beauty changed, so N must have: it is the mapped normal, the 8-bit decode of the texel
     // hit (the right texel, 128 128 255, is flat within 0.0055).
-    ASSERT_GT(glm::length(mapped.normal[i] - plain.normal[i]), 1e-3f) << i;
-    const float on_tilted = glm::dot(mapped.normal[i], tilted);
+    ASSERT_GT(glm::length(mapped.vec3_layer(aov::normal)[i] - plain.vec3_layer(aov::normal)[i]), 1e-3f) << i;
+    const float on_tilted = glm::dot(mapped.vec3_layer(aov::normal)[i], tilted);
     const float on_flat =
-        glm::dot(mapped.normal[i], glm::normalize(vec3(1.0f / 255.0f, 1.0f / 255.0f, 1.0f)));
+        glm::dot(mapped.vec3_layer(aov::normal)[i], glm::normalize(vec3(1.0f / 255.0f, 1.0f / 255.0f, 1.0f)));
     ASSERT_NEAR(std::max(on_tilted, on_flat), 1.0f, 2e-4f) << i;
     if (on_tilted > on_flat) ++tilted_changed;
   }
@@ -98,8 +98,9 @@ TEST(shading_corrections, a_mapped_normal_facing_away_from_a_grazing_viewer_is_b
   for (size_t i = 0; i < f.color.size(); ++i) {
     if (f.color[i].a == 0.0f) continue;
     ++hits;
-    const vec3 to_viewer = glm::normalize(vec3(eye) - f.position[i]);
-    ASSERT_GT(glm::dot(f.normal[i], to_viewer), 0.0f) << i;  // N faces the viewer after the bend
+    const vec3 to_viewer = glm::normalize(vec3(eye) - f.vec3_layer(aov::position)[i]);
+    ASSERT_GT(glm::dot(f.vec3_layer(aov::normal)[i], to_viewer), 0.0f)
+        << i;  // N faces the viewer after the bend
     if (f.color[i].r > 0.0f) ++shaded;
   }
   ASSERT_GT(hits, 100);
@@ -144,7 +145,7 @@ TEST(shading_corrections, a_low_poly_sphere_is_lit_up_to_its_smooth_terminator_a
   for (size_t i = 0; i < f.color.size(); ++i) {
     if (f.color[i].a == 0.0f) continue;
     // Where the smooth sphere (the vertex normals' surface) faces the light, the pixel is lit.
-    const vec3 smooth = glm::normalize(f.position[i]);
+    const vec3 smooth = glm::normalize(f.vec3_layer(aov::position)[i]);
     if (glm::dot(smooth, to_light) < 0.05f) continue;
     ++lit;
     if (f.color[i].r == 0.0f) ++black;

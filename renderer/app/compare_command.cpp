@@ -45,7 +45,8 @@ image_difference compare_images(const film& a, const film& b, double tolerance) 
       pixel_differs |= differs(a.color[i][c], b.color[i][c], tolerance);
     }
     pixel_differs |= differs(a.depth[i], b.depth[i], tolerance);
-    for (int c = 0; c < 3; ++c) pixel_differs |= differs(a.normal[i][c], b.normal[i][c], tolerance);
+    for (int c = 0; c < 3; ++c)
+      pixel_differs |= differs(a.vec3_layer(aov::normal)[i][c], b.vec3_layer(aov::normal)[i][c], tolerance);
     d.differing_pixels += pixel_differs;
     d.mask.color[i] = pixel_differs ? vec4(1.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f);
     d.mask.depth[i] =

@@ -13,38 +13,30 @@ constexpr int default_exr_tile = 64;
 
 // The format slot of a --channel-format AOV name; nullptr for names that have none. Throws for
 // data AOVs asked to be half and for unknown names.
-sample_format* format_slot(layer_formats& formats, const std::string& aov, const std::string& format) {
-  if (aov == "beauty") return &formats.beauty;
-  if (aov == "N") return &formats.normal;
-  if (aov == "albedo") return &formats.albedo;
-  if (aov == "uv") return &formats.uv;
-  if (aov == "direct") return &formats.direct;
-  if (aov == "reflection") return &formats.reflection;
-  if (aov == "refraction") return &formats.refraction;
-  if (aov == "lightgroups") return &formats.light_groups;
-  if (aov == "albedo_filtered") return &formats.albedo_filtered;
-  if (aov == "N_filtered") return &formats.normal_filtered;
-  if (aov == "diffuse") return &formats.diffuse;
-  if (aov == "specular") return &formats.specular;
-  if (aov == "shadow") return &formats.shadow;
-  if (aov == "Z" || aov == "P" || aov == "id" || aov == "motion") {
+sample_format* format_slot(layer_formats& formats, const std::string& name, const std::string& format) {
+  for (const aov_row& row : aov_table) {
+    if (name != row.name) continue;
+    if (!row.data) return &formats[row.id];
     if (format == "float") return nullptr;  // what it is anyway
-    throw input_error(
-        "", "--channel-format",
-        aov + " is always 32-bit float (depth, positions, motion and ids need the precision); only " +
-            selectable_format_aovs() + " can be half");
+    throw input_error("", "--channel-format",
+                      name +
+                          " is always 32-bit float (depth, positions, motion, ids and Cryptomatte need the "
+                          "precision); only " +
+                          selectable_format_aovs() + " can be half");
   }
   throw input_error("", "--channel-format",
-                    "unknown AOV '" + aov + "' (choose from " + selectable_format_aovs() + ")");
+                    "unknown AOV '" + name + "' (choose from " + selectable_format_aovs() + ")");
 }
 
 }  // namespace
 
 const std::string& selectable_format_aovs() {
-  static const std::string list =
-      "beauty, N, albedo, uv, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, "
-      "diffuse, "
-      "specular, shadow";
+  static const std::string list = [] {
+    std::string out;
+    for (const aov_row& row : aov_table)
+      if (!row.data) out += (out.empty() ? "" : ", ") + std::string(row.name);
+    return out;
+  }();
   return list;
 }
 
@@ -71,11 +63,9 @@ exr_settings resolve_exr_settings(const render_options& options) {
   exr_settings settings = options.exr;
   if (options.exr_tiled || options.exr_tile_size > 0)
     settings.tile_size = options.exr_tile_size > 0 ? options.exr_tile_size : default_exr_tile;
-  const sample_format all = options.full_float ? sample_format::float32 : sample_format::half;
-  settings.formats = {all, all, all, sample_format::float32,
-                      all, all, all, all,  // uv: float either way
-                      all, all, all, all,
-                      all};
+  settings.formats = layer_formats{};  // uv float, the other colour layers half
+  if (options.full_float)
+    for (sample_format& format : settings.formats.of) format = sample_format::float32;
   apply_channel_formats(options.channel_formats, settings.formats);
   const std::string& codec = settings.compression;
   if (settings.compression_level > 0) {

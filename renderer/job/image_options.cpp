@@ -190,14 +190,7 @@ void add_image_options(std::vector<option_spec>& t) {
   add(custom_option(
           "aovs", parse_aovs,
           [](const render_options& o) -> std::optional<std::string> { return aov_list_name(o.aovs); },
-          "beauty,Z",
-          "Comma-separated outputs to write: beauty (R G B A), Z, N, P (world position), albedo, uv, id "
-          "(id.object, id.material, id.instance), crypto_object and crypto_material (Cryptomatte of the node "
-          "and material names; cryptomatte for both), direct, reflection and refraction (the beauty split by "
-          "first event), lightgroups (the beauty split by light: one layer per light, emission and "
-          "environment), albedo_filtered and N_filtered (albedo and normal filtered like the beauty, for a "
-          "denoiser), diffuse and specular (the direct light by BRDF lobe), shadow (one shadow matte per "
-          "light) (default beauty,Z,N)"))
+          "beauty,Z", aov_help()))
       .recorded_as = "kiln/aovs";
   add(integer_option<int>(
       "cryptomatte-depth", [](render_options & o) -> auto& { return o.aovs.crypto_depth; }, 1,

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "job/asset_file.h"
+#include "render/aov_table.h"
 
 namespace kiln::option_entries {
 
@@ -152,12 +153,8 @@ void parse_aovs(render_options& o, const std::string& text) {
   std::string bad;
   std::optional<aov_set> aovs = parse_aov_list(text, &bad);
   if (!aovs)
-    throw input_error(
-        "", "--aovs",
-        "unknown or repeated output " + bad +
-            " (choose from beauty, Z, N, P, albedo, uv, id, motion, crypto_object, crypto_material, "
-            "cryptomatte, direct, reflection, refraction, lightgroups, albedo_filtered, "
-            "N_filtered, diffuse, specular, shadow)");
+    throw input_error("", "--aovs",
+                      "unknown or repeated output " + bad + " (choose from " + aov_name_list() + ")");
   // --cryptomatte-depth and --depth-mode fill in fields of the same set, whichever comes first.
   aovs->crypto_depth = o.aovs.crypto_depth;
   aovs->depth_kind = o.aovs.depth_kind;

@@ -2,37 +2,11 @@
 
 #include <sstream>
 
+#include "render/aov_table.h"
+
 namespace kiln {
 
 namespace {
-
-struct aov_name {
-  const char* name;
-  bool aov_set::*flag;
-};
-
-// Channel order in the EXR file.
-constexpr aov_name aov_names[] = {
-    {"beauty", &aov_set::beauty},
-    {"Z", &aov_set::depth},
-    {"N", &aov_set::normal},
-    {"P", &aov_set::position},
-    {"albedo", &aov_set::albedo},
-    {"uv", &aov_set::uv},
-    {"id", &aov_set::ids},
-    {"motion", &aov_set::motion},
-    {"crypto_object", &aov_set::crypto_object},
-    {"crypto_material", &aov_set::crypto_material},
-    {"direct", &aov_set::direct},
-    {"reflection", &aov_set::reflection},
-    {"refraction", &aov_set::refraction},
-    {"lightgroups", &aov_set::light_groups},
-    {"albedo_filtered", &aov_set::albedo_filtered},
-    {"N_filtered", &aov_set::normal_filtered},
-    {"diffuse", &aov_set::diffuse},
-    {"specular", &aov_set::specular},
-    {"shadow", &aov_set::shadow},
-};
 
 // Shorthand for both Cryptomatte layers.
 constexpr const char* cryptomatte_name = "cryptomatte";
@@ -41,7 +15,7 @@ constexpr const char* cryptomatte_name = "cryptomatte";
 
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad) {
   aov_set aovs;
-  for (const aov_name& a : aov_names) aovs.*a.flag = false;
+  for (const aov_row& a : aov_table) aovs.*a.flag = false;
   std::istringstream in(text);
   std::string item;
   bool any = false;
@@ -55,8 +29,8 @@ std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad)
       any = true;
       continue;
     }
-    const aov_name* found = nullptr;
-    for (const aov_name& a : aov_names)
+    const aov_row* found = nullptr;
+    for (const aov_row& a : aov_table)
       if (item == a.name) found = &a;
     if (!found || aovs.*found->flag) {
       if (bad) *bad = found ? item + " (given twice)" : "'" + item + "'";
@@ -75,7 +49,7 @@ std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad)
 
 std::string aov_list_name(const aov_set& aovs) {
   std::string out;
-  for (const aov_name& a : aov_names)
+  for (const aov_row& a : aov_table)
     if (aovs.*a.flag) out += (out.empty() ? "" : ",") + std::string(a.name);
   return out;
 }

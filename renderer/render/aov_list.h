@@ -73,18 +73,6 @@ inline bool wants_camera_passes(const aov_set& a) {
   return a.albedo_filtered || a.normal_filtered || a.diffuse || a.specular || a.shadow;
 }
 
-// The vec3 parts filtered beside the beauty with its weights, per sample, in this order: the light
-// split's three (direct, reflection, refraction) when some output needs it, one per light group
-// when asked for, then albedo_filtered, N_filtered, diffuse and specular (each when asked for), and
-// the shadow mattes (the lights' and the environment's) packed three to a part. light_groups counts
-// the groups: the lights plus emission and environment.
-inline int shadow_part_count(int light_groups) { return (std::max(light_groups - 1, 0) + 2) / 3; }
-inline int beauty_part_count(const aov_set& a, int light_groups) {
-  return (wants_light_split(a) ? 3 : 0) + (a.light_groups ? light_groups : 0) + int(a.albedo_filtered) +
-         int(a.normal_filtered) + int(a.diffuse) + int(a.specular) +
-         (a.shadow ? shadow_part_count(light_groups) : 0);
-}
-
 // The canonical comma-separated list, in channel order: "beauty,Z,N" for the default (the
 // cryptomatte shorthand is listed as crypto_object,crypto_material).
 std::string aov_list_name(const aov_set& aovs);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "render/aov_table.h"
+
 namespace kiln {
 namespace {
 
@@ -68,7 +70,8 @@ TEST(aov_list, pass_names_and_part_counts) {
   EXPECT_EQ(beauty_part_count(*aovs, 6), 4 + 2);
   EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 5), 2);  // 3 lights + the environment
   EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow", nullptr), 4), 1);  // 2 lights + the environment
-  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow,direct,lightgroups", nullptr), 3), 1 + 3 + 3);
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("shadow,direct,lightgroups", nullptr), 3), 1 + 1 + 3);
+  EXPECT_EQ(beauty_part_count(*parse_aov_list("reflection,direct,beauty,Z,N,P", nullptr), 3), 2);
   EXPECT_FALSE(wants_camera_passes(*parse_aov_list("beauty,lightgroups,albedo", nullptr)));
   std::string bad;
   EXPECT_FALSE(parse_aov_list("N_Filtered", &bad));

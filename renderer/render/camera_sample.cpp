@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include "core/hash_random.h"
 #include "shade/environment.h"
@@ -176,12 +177,34 @@ void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion*
     s.motion = hit_motion(*motion, world, s.surface_hit, s.render_point, s.time);
 }
 
+vec3 filtered_sample_value(aov a, const light_split& split, const camera_passes& passes) {
+  switch (a) {
+    case aov::direct:
+      return split.direct;
+    case aov::reflection:
+      return split.reflection;
+    case aov::refraction:
+      return split.refraction;
+    case aov::albedo_filtered:
+      return passes.albedo;
+    case aov::normal_filtered:
+      return passes.normal;
+    case aov::diffuse:
+      return passes.diffuse;
+    case aov::specular:
+      return passes.specular;
+    default:
+      return vec3(0.0f);
+  }
+}
+
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {
   if (!out.depth.empty())
     out.depth[i] = out.aovs.depth_kind == depth_mode::planar ? s.depth * s.view_cosine : s.depth;
-  if (!out.normal.empty()) out.normal[i] = s.normal;
-  if (!out.position.empty()) out.position[i] = s.position;
-  if (!out.albedo.empty()) out.albedo[i] = s.albedo;
+  const std::pair<aov, const vec3*> nearest[] = {
+      {aov::normal, &s.normal}, {aov::position, &s.position}, {aov::albedo, &s.albedo}};
+  for (const auto& [a, value] : nearest)
+    if (!out.vec3_layer(a).empty()) out.vec3_layer(a)[i] = *value;
   if (!out.uv.empty()) out.uv[i] = s.uv;
   if (!out.ids.empty())
     out.ids[i] = glm::ivec3(s.node, s.material, s.instance == no_instance ? -1 : int32_t(s.instance));

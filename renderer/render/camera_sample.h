@@ -93,6 +93,10 @@ void keep_as_nearest(const camera_sample& s, camera_sample& nearest);
 // pixel, for the sample that decides it, not for every sample.
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion);
 
+// The value a sample gives the filtered AOV a of three floats (aov_shape::vec3): where the film
+// finds what shading recorded for it (shade/path_record.h).
+vec3 filtered_sample_value(aov a, const light_split& split, const camera_passes& passes);
+
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.
 void store_nearest_sample(const camera_sample& s, film& out, size_t i);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "render/aov_list.h"
+#include "render/aov_table.h"
 
 namespace kiln {
 
@@ -37,32 +37,24 @@ struct film {
   int full_width = 0, full_height = 0;
   std::vector<vec4> color;   // premultiplied RGBA, row 0 at the top
   std::vector<float> depth;  // ray distance of the nearest sample; +inf where nothing was hit
-  std::vector<vec3> normal;  // world shading normal of the nearest sample; 0 for background
-  // The nearest sample's world hit point, base colour and TEXCOORD_0; 0 for background.
-  std::vector<vec3> position;
-  std::vector<vec3> albedo;
+  // The AOVs of three floats a pixel (aov_shape::vec3), by aov; empty unless asked for. The nearest
+  // sample's (N: world shading normal, P: world hit point, albedo: base colour; 0 for background)
+  // or filtered like the beauty (the light split, direct, reflection, refraction; the camera
+  // path's passes, shade/path_record.h's camera_passes). See vec3_layer.
+  std::vector<vec3> vec3_layers[aov_count];
+  // The nearest sample's TEXCOORD_0; 0 for background.
   std::vector<vec2> uv;
   // The nearest sample's glTF node, material and scene instance as exact integers; -1 for background.
   std::vector<glm::ivec3> ids;
   // The nearest sample's motion in pixels (u right, v up): (forward.u, forward.v) to the next
   // frame, (backward.u, backward.v) to the previous one; 0 for background.
   std::vector<vec4> motion;
-  // The premultiplied colour split by first event (direct, reflection, refraction), filtered like
-  // it; empty unless asked for.
-  std::vector<vec3> direct;
-  std::vector<vec3> reflection;
-  std::vector<vec3> refraction;
   // Light groups (render/light_groups.h): their EXR layer names, and per pixel one premultiplied
   // colour per group, filtered like the beauty; empty unless asked for.
   // Kept when light groups or shadow mattes are asked for (the mattes are named after the lights).
   std::vector<std::string> light_group_layers;
   std::vector<vec3> light_groups;
-  // The camera path's passes (shade/whitted.h's camera_passes), filtered like the beauty; empty
-  // unless asked for. shadow holds shadow_count() mattes per pixel.
-  std::vector<vec3> albedo_filtered;
-  std::vector<vec3> normal_filtered;
-  std::vector<vec3> diffuse;
-  std::vector<vec3> specular;
+  // The shadow mattes, filtered like the beauty: shadow_count() per pixel; empty unless asked for.
   std::vector<float> shadow;
   // Cryptomatte: aovs.crypto_depth ranks a pixel, coverage descending; empty unless asked for.
   std::vector<id_coverage> crypto_object;
@@ -76,27 +68,22 @@ struct film {
     const size_t n = size_t(w) * h;
     color.assign(n, vec4(0.0f));
     if (a.depth) depth.assign(n, inf);
-    if (a.normal) normal.assign(n, vec3(0.0f));
-    if (a.position) position.assign(n, vec3(0.0f));
-    if (a.albedo) albedo.assign(n, vec3(0.0f));
+    for (const aov_row& row : aov_table)
+      if (row.shape == aov_shape::vec3 && a.*row.flag) vec3_layers[int(row.id)].assign(n, vec3(0.0f));
     if (a.uv) uv.assign(n, vec2(0.0f));
     if (a.ids) ids.assign(n, glm::ivec3(-1));
     if (a.motion) motion.assign(n, vec4(0.0f));
-    if (a.direct) direct.assign(n, vec3(0.0f));
-    if (a.reflection) reflection.assign(n, vec3(0.0f));
-    if (a.refraction) refraction.assign(n, vec3(0.0f));
     if (a.light_groups || a.shadow) light_group_layers = group_layers;
     if (a.light_groups) light_groups.assign(n * group_layers.size(), vec3(0.0f));
-    if (a.albedo_filtered) albedo_filtered.assign(n, vec3(0.0f));
-    if (a.normal_filtered) normal_filtered.assign(n, vec3(0.0f));
-    if (a.diffuse) diffuse.assign(n, vec3(0.0f));
-    if (a.specular) specular.assign(n, vec3(0.0f));
     if (a.shadow) shadow.assign(n * size_t(shadow_count()), 0.0f);
     if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
     if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
+  // The buffer of an AOV of three floats a pixel (empty unless asked for).
+  std::vector<vec3>& vec3_layer(aov a) { return vec3_layers[int(a)]; }
+  const std::vector<vec3>& vec3_layer(aov a) const { return vec3_layers[int(a)]; }
   int light_group_count() const { return int(light_group_layers.size()); }
   // The punctual lights: every group but emission and environment.
   int light_count() const { return std::max(light_group_count() - 2, 0); }
@@ -116,9 +103,8 @@ struct film {
 inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0) {
   uint64_t per_pixel = sizeof(vec4);
   per_pixel += a.depth ? sizeof(float) : 0;
-  for (bool three : {a.normal, a.position, a.albedo, a.direct, a.reflection, a.refraction, a.albedo_filtered,
-                     a.normal_filtered, a.diffuse, a.specular})
-    per_pixel += three ? sizeof(vec3) : 0;
+  for (const aov_row& row : aov_table)
+    per_pixel += row.shape == aov_shape::vec3 && a.*row.flag ? sizeof(vec3) : 0;
   per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
   per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 1, 0)) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;

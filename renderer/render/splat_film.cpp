@@ -183,26 +183,25 @@ void splat_film::add(int x, int y, const pixel_splat& splat, tile_sums& t) {
 }
 
 void store_beauty_parts(film& out, size_t p, const vec3* parts) {
-  if (wants_light_split(out.aovs)) {
-    std::vector<vec3>* split[3] = {&out.direct, &out.reflection, &out.refraction};
-    for (size_t c = 0; c < 3; ++c)
-      if (!split[c]->empty()) (*split[c])[p] = parts[c];
-    parts += 3;
-  }
-  if (out.aovs.light_groups) {
-    const size_t groups = size_t(out.light_group_count());
-    std::copy(parts, parts + groups, out.light_groups.begin() + p * groups);
-    parts += groups;
-  }
   // A mean of values in [0, 1] can round just past 1 (Σ w·a in double over Σ w in float): the
-  // albedo (a denoiser wants [0, 1]) and the mattes are clamped back.
-  if (!out.albedo_filtered.empty()) out.albedo_filtered[p] = glm::clamp(*parts++, 0.0f, 1.0f);
-  for (std::vector<vec3>* pass : {&out.normal_filtered, &out.diffuse, &out.specular})
-    if (!pass->empty()) (*pass)[p] = *parts++;
-  const size_t mattes = size_t(out.shadow_count());
-  if (out.aovs.shadow)
-    for (size_t i = 0; i < mattes; ++i)
-      out.shadow[p * mattes + i] = std::clamp(parts[i / 3][int(i % 3)], 0.0f, 1.0f);
+  // albedo (a denoiser wants [0, 1]) and the mattes are clamped back (aov_row::clamp_unit).
+  for (const aov_row& row : aov_table) {
+    if (row.sampling != aov_sampling::filtered || row.shape == aov_shape::rgba || !(out.aovs.*row.flag))
+      continue;
+    if (row.shape == aov_shape::vec3) {
+      out.vec3_layer(row.id)[p] = row.clamp_unit ? glm::clamp(*parts, 0.0f, 1.0f) : *parts;
+      ++parts;
+    } else if (row.shape == aov_shape::per_group) {
+      const size_t groups = size_t(out.light_group_count());
+      std::copy(parts, parts + groups, out.light_groups.begin() + p * groups);
+      parts += groups;
+    } else if (row.shape == aov_shape::per_matte) {
+      const size_t mattes = size_t(out.shadow_count());
+      for (size_t i = 0; i < mattes; ++i)
+        out.shadow[p * mattes + i] = std::clamp(parts[i / 3][int(i % 3)], 0.0f, 1.0f);
+      parts += shadow_part_count(out.light_group_count());
+    }
+  }
 }
 
 namespace {

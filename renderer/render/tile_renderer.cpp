@@ -58,19 +58,10 @@ film crop_film(const film& from, const pixel_rect& to) {
   };
   copy(from.color, out.color);
   copy(from.depth, out.depth);
-  copy(from.normal, out.normal);
-  copy(from.position, out.position);
-  copy(from.albedo, out.albedo);
+  for (int a = 0; a < aov_count; ++a) copy(from.vec3_layers[a], out.vec3_layers[a]);
   copy(from.uv, out.uv);
   copy(from.ids, out.ids);
   copy(from.motion, out.motion);
-  copy(from.direct, out.direct);
-  copy(from.reflection, out.reflection);
-  copy(from.refraction, out.refraction);
-  copy(from.albedo_filtered, out.albedo_filtered);
-  copy(from.normal_filtered, out.normal_filtered);
-  copy(from.diffuse, out.diffuse);
-  copy(from.specular, out.specular);
   // Buffers of `per_pixel` values a pixel.
   auto copy_runs = [&](const auto& src, auto& dst, size_t per_pixel) {
     if (src.empty()) return;
@@ -110,21 +101,23 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
 }
 
 // The beauty's parts of one sample, as the film keeps them (render/aov_list.h's beauty_part_count):
-// the light split, the light groups, then the camera passes, the shadow mattes three to a part.
+// every filtered AOV's in the table's order, light groups one part each, the shadow mattes three
+// to a part.
 void gather_beauty_parts(const aov_set& aovs, const light_split& split, const std::vector<vec3>& groups,
                          const camera_passes& passes, std::vector<vec3>& parts) {
   parts.clear();
-  if (wants_light_split(aovs)) parts.insert(parts.end(), {split.direct, split.reflection, split.refraction});
-  if (aovs.light_groups) parts.insert(parts.end(), groups.begin(), groups.end());
-  if (aovs.albedo_filtered) parts.push_back(passes.albedo);
-  if (aovs.normal_filtered) parts.push_back(passes.normal);
-  if (aovs.diffuse) parts.push_back(passes.diffuse);
-  if (aovs.specular) parts.push_back(passes.specular);
-  if (!aovs.shadow) return;
-  for (size_t i = 0; i < passes.shadow.size(); i += 3) {
-    vec3 three(0.0f);
-    for (size_t c = 0; c < 3 && i + c < passes.shadow.size(); ++c) three[int(c)] = passes.shadow[i + c];
-    parts.push_back(three);
+  for (const aov_row& row : aov_table) {
+    if (row.sampling != aov_sampling::filtered || !(aovs.*row.flag)) continue;
+    if (row.shape == aov_shape::vec3)
+      parts.push_back(filtered_sample_value(row.id, split, passes));
+    else if (row.shape == aov_shape::per_group)
+      parts.insert(parts.end(), groups.begin(), groups.end());
+    else if (row.shape == aov_shape::per_matte)
+      for (size_t i = 0; i < passes.shadow.size(); i += 3) {
+        vec3 three(0.0f);
+        for (size_t c = 0; c < 3 && i + c < passes.shadow.size(); ++c) three[int(c)] = passes.shadow[i + c];
+        parts.push_back(three);
+      }
   }
 }
 

@@ -106,7 +106,8 @@ void add_refraction(const scene& s, const surface_point& sp, const material_poin
 void add_mirror(const surface_point& sp, const vec3& normal, const vec3& incident, const vec3& weight,
                 delta_kind kind, const medium_stack& media, int channel, delta_lobes& out) {
   vec3 direction = glm::reflect(incident, normal);
-  if (glm::dot(direction, sp.geometric_normal) <= 0.0f) direction = glm::reflect(incident, sp.geometric_normal);
+  if (glm::dot(direction, sp.geometric_normal) <= 0.0f)
+    direction = glm::reflect(incident, sp.geometric_normal);
   delta_lobe& lobe = out.lobes[out.count++];
   lobe.kind = kind;
   lobe.direction = glm::normalize(direction);

@@ -30,7 +30,8 @@ inline ray spawn_ray(const surface_point& sp, const vec3& direction, ray_kind ki
 // along its terminator.
 inline ray spawn_shadow_ray_above(const surface_point& sp, const vec3& direction) {
   ray r;
-  r.origin = offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
+  r.origin =
+      offset_ray_origin(sp.smooth_position, sp.position_error, sp.geometric_normal, sp.geometric_normal);
   r.direction = direction;
   r.kind = ray_kind::shadow;
   r.time = sp.time;

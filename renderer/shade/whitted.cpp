@@ -84,11 +84,13 @@ uint32_t child_seed(uint32_t seed, spawned which, int channel = -1) {
 
 // The state of a ray spawned by s with weight along delta lobe `lobe`: one bounce deeper, in the
 // lobe's media and channel, its record the lobe's (shade/path_record.h).
-path_state spawned_state(const path_state& s, const delta_lobe& lobe, float throughput, const ray_cone& cone) {
+path_state spawned_state(const path_state& s, const delta_lobe& lobe, float throughput,
+                         const ray_cone& cone) {
   path_state next = s;
   const bool refracts = lobe.kind == delta_kind::refraction;
-  next.seed = refracts ? child_seed(s.seed, spawned::refraction, lobe.channel)
-                       : child_seed(s.seed, lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror);
+  next.seed =
+      refracts ? child_seed(s.seed, spawned::refraction, lobe.channel)
+               : child_seed(s.seed, lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror);
   next.stratum = {};
   ++next.depth;
   next.throughput = throughput;
@@ -107,13 +109,14 @@ vec3 trace_delta_lobe(const shading_context& ctx, const surface_point& sp, const
   const float next_throughput = s.throughput * max_component(lobe.weight);
   if (!(next_throughput >= ctx.options.min_throughput) || !spend_ray(s.budget)) return vec3(0.0f);
   const bool refracts = lobe.kind == delta_kind::refraction;
-  const ray spawned_ray = spawn_ray(sp, lobe.direction, refracts ? ray_kind::refraction : ray_kind::reflection);
+  const ray spawned_ray =
+      spawn_ray(sp, lobe.direction, refracts ? ray_kind::refraction : ray_kind::reflection);
   ++(refracts ? counts.refraction : counts.reflection);
-  const ray_cone cone =
-      !refracts ? reflected_cone(s.cone)
-      : lobe.bends ? refracted_cone(s.cone, lobe.eta, glm::dot(incident, sp.geometric_normal),
-                                    glm::dot(lobe.direction, sp.geometric_normal))
-                   : s.cone;
+  const ray_cone cone = !refracts ? reflected_cone(s.cone)
+                        : lobe.bends
+                            ? refracted_cone(s.cone, lobe.eta, glm::dot(incident, sp.geometric_normal),
+                                             glm::dot(lobe.direction, sp.geometric_normal))
+                            : s.cone;
   const path_state next = spawned_state(s, lobe, next_throughput, cone);
   const vec3 radiance = lobe.weight * trace_radiance(ctx, spawned_ray, next, counts);
   record_branch(s.record, refracts, radiance);
@@ -141,8 +144,8 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
 
   // The BSDF's delta lobes, traced in its order; the refractions (three through a dispersive
   // volume) are summed apart first, so their sum is the same whatever follows.
-  const delta_lobes deltas = delta_lobes_at(ctx.world, ctx.options.mirror_roughness_limit, sp, mp, incident,
-                                            s.media, s.channel);
+  const delta_lobes deltas =
+      delta_lobes_at(ctx.world, ctx.options.mirror_roughness_limit, sp, mp, incident, s.media, s.channel);
   vec3 refracted(0.0f);
   int i = 0;
   for (; i < deltas.count && deltas.lobes[i].kind == delta_kind::refraction; ++i)

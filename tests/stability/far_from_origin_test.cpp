@@ -128,10 +128,11 @@ TEST(stability_far_from_origin, a_translated_scene_renders_like_the_scene_at_the
       EXPECT_NEAR(shadow, shadow_at_origin, 0.002 * analytic) << accel << " offset " << offset;
       // P stays in world space: the hit at the origin moved by the offset, within float rounding there.
       const float tolerance = 4.0f * float(offset) * std::numeric_limits<float>::epsilon() + 1e-4f;
-      for (size_t i = 0; i < far.position.size(); ++i)
+      for (size_t i = 0; i < far.vec3_layer(aov::position).size(); ++i)
         if (far.ids[i].x == plane_node && at_origin.ids[i].x == plane_node) {
-          const vec3 expected = at_origin.position[i] + vec3(float(offset));
-          ASSERT_LE(glm::length(far.position[i] - expected), tolerance) << accel << " pixel " << i;
+          const vec3 expected = at_origin.vec3_layer(aov::position)[i] + vec3(float(offset));
+          ASSERT_LE(glm::length(far.vec3_layer(aov::position)[i] - expected), tolerance)
+              << accel << " pixel " << i;
         }
     }
   }

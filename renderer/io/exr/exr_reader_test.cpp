@@ -27,7 +27,7 @@ film small_film() {
   for (size_t i = 0; i < f.color.size(); ++i) {
     f.color[i] = vec4(0.01f * float(i), 0.5f, 0.25f, 1.0f);
     f.depth[i] = 1.0f + float(i);
-    f.normal[i] = vec3(0.0f, 0.0f, 1.0f);
+    f.vec3_layer(aov::normal)[i] = vec3(0.0f, 0.0f, 1.0f);
   }
   return f;
 }

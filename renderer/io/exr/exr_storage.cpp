@@ -1,34 +1,25 @@
 #include "io/exr/exr_storage.h"
 
 #include <algorithm>
+#include <sstream>
 
 #include "io/exr/cryptomatte.h"
 
 namespace kiln {
 
 const std::vector<std::string>& exr_part_names() {
-  static const std::vector<std::string> names = {"rgba",
-                                                 "depth",
-                                                 "N",
-                                                 "P",
-                                                 "albedo",
-                                                 "uv",
-                                                 "id",
-                                                 "forward",
-                                                 "backward",
-                                                 "direct",
-                                                 "reflection",
-                                                 "refraction",
-                                                 "albedo_filtered",
-                                                 "N_filtered",
-                                                 "diffuse",
-                                                 "specular",
-                                                 crypto_object_layer_name,
-                                                 crypto_material_layer_name};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const aov_row& row : aov_table) {
+      std::istringstream parts(row.parts);
+      for (std::string part; parts >> part;) out.push_back(part);
+    }
+    out.push_back(crypto_object_layer_name);
+    out.push_back(crypto_material_layer_name);
+    return out;
+  }();
   return names;
 }
-
-const std::string& exr_part_name(exr_part part) { return exr_part_names()[size_t(part)]; }
 
 const std::vector<std::string>& exr_compression_names() {
   static const std::vector<std::string> names = {"none",  "rle", "zips", "zip",  "piz",

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <system_error>
 
 #include "core/error.h"
@@ -86,142 +87,113 @@ layer cryptomatte_layer_of(const std::string& name, const std::vector<id_coverag
   return l;
 }
 
-// The layers of the film's AOVs, in the order of aov_list_name(). New layers (e.g. cryptomatte's)
-// are one more entry here.
-std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
-  std::vector<layer> out;
-  const aov_set& a = f.aovs;
-  const layer_formats& formats = settings.formats;
-  const Imf::PixelType full = Imf::FLOAT;
-  // Three channels name.X name.Y name.Z (or .R .G .B) of a vec3 buffer.
-  auto vec3_layer = [](const std::string& name, const char* const(&suffixes)[3], Imf::PixelType format,
-                       bool data, const std::vector<vec3>& buffer) {
-    layer l{name, format, data, {}};
-    for (int c = 0; c < 3; ++c)
-      l.channels.push_back({name + suffixes[c], [&buffer, c](size_t i) { return buffer[i][c]; }});
-    return l;
-  };
-  const char* const xyz[3] = {".X", ".Y", ".Z"};
-  const char* const rgb[3] = {".R", ".G", ".B"};
-  if (a.beauty) {
-    layer l{exr_part_name(exr_part::rgba), type_of(formats.beauty), false, {}};
-    // Half's largest finite value is 65504: a brighter colour would become +inf in a half channel,
-    // and the image holds no infinities but background Z, so half colour saturates there instead.
-    const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
-    const char* rgba[4] = {"R", "G", "B", "A"};
-    for (int c = 0; c < 4; ++c)
-      l.channels.push_back(
-          {rgba[c], [&f, c, limit](size_t i) { return std::clamp(f.color[i][c], -limit, limit); }});
-    out.push_back(std::move(l));
-  }
-  if (a.depth)
-    out.push_back(
-        {exr_part_name(exr_part::depth), full, true, {{"Z", [&f](size_t i) { return f.depth[i]; }}}});
-  if (a.normal)
-    out.push_back(vec3_layer(exr_part_name(exr_part::normal), xyz, type_of(formats.normal), false, f.normal));
-  if (a.position) out.push_back(vec3_layer(exr_part_name(exr_part::position), xyz, full, true, f.position));
-  if (a.albedo)
-    out.push_back(vec3_layer(exr_part_name(exr_part::albedo), rgb, type_of(formats.albedo), false, f.albedo));
-  if (a.uv)
-    out.push_back(
-        {exr_part_name(exr_part::uv),
-         type_of(formats.uv),
-         false,
-         {{"uv.U", [&f](size_t i) { return f.uv[i].x; }}, {"uv.V", [&f](size_t i) { return f.uv[i].y; }}}});
-  if (a.ids) {
-    layer l{exr_part_name(exr_part::id), full, true, {}};
-    const char* id_names[3] = {"id.object", "id.material", "id.instance"};
-    for (int c = 0; c < 3; ++c)
-      l.channels.push_back({id_names[c], [&f, c](size_t i) { return float(f.ids[i][c]); }});
-    out.push_back(std::move(l));
-  }
-  // Motion vectors: Nuke's forward and backward layers (u, v), data like P (float, never lossy).
-  if (a.motion) {
-    const exr_part parts[2] = {exr_part::forward, exr_part::backward};
-    for (int p = 0; p < 2; ++p) {
-      const std::string& name = exr_part_name(parts[p]);
-      layer l{name, full, true, {}};
-      for (int c = 0; c < 2; ++c)
-        l.channels.push_back({name + (c == 0 ? ".u" : ".v"),
-                              [&f, index = 2 * p + c](size_t i) { return f.motion[i][index]; }});
+// Half's largest finite value is 65504: a brighter colour would become +inf in a half channel, and
+// the image holds no infinities but background Z, so a half colour layer saturates there instead.
+float saturation_of(Imf::PixelType format) {
+  return format == Imf::FLOAT ? std::numeric_limits<float>::max() : 65504.0f;
+}
+
+std::vector<std::string> words_of(const char* text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string word; in >> word;) out.push_back(word);
+  return out;
+}
+
+// The layers of one AOV of the table (render/aov_table.h) that the film holds: its parts with their
+// channels, or one layer per light group or shadow matte. Colour layers take their format from the
+// settings and saturate at its range; data layers are float.
+void add_aov_layers(const aov_row& row, const film& f, const layer_formats& formats,
+                    std::vector<layer>& out) {
+  const Imf::PixelType format = row.data ? Imf::FLOAT : type_of(formats[row.id]);
+  const float limit = row.data ? std::numeric_limits<float>::max() : saturation_of(format);
+  const std::vector<std::string> parts = words_of(row.parts), channels = words_of(row.channels);
+  switch (row.shape) {
+    case aov_shape::rgba: {
+      layer l{parts[0], format, row.data, {}};
+      for (int c = 0; c < 4; ++c)
+        l.channels.push_back({channels[size_t(c)],
+                              [&f, c, limit](size_t i) { return std::clamp(f.color[i][c], -limit, limit); }});
       out.push_back(std::move(l));
+      return;
     }
-  }
-  // The light split: colour like R G B, each in its own format and saturating like the beauty.
-  struct split_part {
-    bool wanted;
-    const std::vector<vec3>* buffer;
-    exr_part part;
-    sample_format format;
-  };
-  const split_part parts[3] = {{a.direct, &f.direct, exr_part::direct, formats.direct},
-                               {a.reflection, &f.reflection, exr_part::reflection, formats.reflection},
-                               {a.refraction, &f.refraction, exr_part::refraction, formats.refraction}};
-  const std::string part_names[3] = {exr_part_name(exr_part::direct), exr_part_name(exr_part::reflection),
-                                     exr_part_name(exr_part::refraction)};
-  for (int p = 0; p < 3; ++p) {
-    if (!parts[p].wanted) continue;
-    layer l{part_names[p], type_of(parts[p].format), false, {}};
-    const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
-    for (int c = 0; c < 3; ++c)
-      l.channels.push_back({part_names[p] + rgb[c], [buffer = parts[p].buffer, c, limit](size_t i) {
-                              return std::clamp((*buffer)[i][c], -limit, limit);
-                            }});
-    out.push_back(std::move(l));
-  }
-  // Light groups: colour like R G B, one layer (and with --multipart one part) per group.
-  if (a.light_groups) {
-    const size_t groups = size_t(f.light_group_count());
-    for (size_t g = 0; g < groups; ++g) {
-      const std::string& name = f.light_group_layers[g];
-      layer l{name, type_of(formats.light_groups), false, {}};
-      const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
+    case aov_shape::scalar:
+      out.push_back({parts[0], format, row.data, {{channels[0], [&f](size_t i) { return f.depth[i]; }}}});
+      return;
+    case aov_shape::vec3: {
+      layer l{parts[0], format, row.data, {}};
+      const std::vector<vec3>& buffer = f.vec3_layer(row.id);
       for (int c = 0; c < 3; ++c)
-        l.channels.push_back({name + rgb[c], [&f, groups, g, c, limit](size_t i) {
-                                return std::clamp(f.light_groups[i * groups + g][c], -limit, limit);
+        l.channels.push_back({channels[size_t(c)], [&buffer, c, limit](size_t i) {
+                                return std::clamp(buffer[i][c], -limit, limit);
                               }});
       out.push_back(std::move(l));
+      return;
     }
-  }
-  // The camera passes: albedo and normal like their unfiltered layers, diffuse and specular like R G B.
-  struct pass_part {
-    bool wanted;
-    const std::vector<vec3>* buffer;
-    exr_part part;
-    sample_format format;
-    const char* const* suffixes;
-  };
-  const pass_part passes[4] = {
-      {a.albedo_filtered, &f.albedo_filtered, exr_part::albedo_filtered, formats.albedo_filtered, rgb},
-      {a.normal_filtered, &f.normal_filtered, exr_part::normal_filtered, formats.normal_filtered, xyz},
-      {a.diffuse, &f.diffuse, exr_part::diffuse, formats.diffuse, rgb},
-      {a.specular, &f.specular, exr_part::specular, formats.specular, rgb}};
-  for (const pass_part& p : passes) {
-    if (!p.wanted) continue;
-    const std::string& name = exr_part_name(p.part);
-    layer l{name, type_of(p.format), false, {}};
-    const float limit = l.format == full ? std::numeric_limits<float>::max() : 65504.0f;
-    for (int c = 0; c < 3; ++c)
-      l.channels.push_back({name + p.suffixes[c], [buffer = p.buffer, c, limit](size_t i) {
-                              return std::clamp((*buffer)[i][c], -limit, limit);
-                            }});
-    out.push_back(std::move(l));
-  }
-  // Shadow mattes: one single-channel layer (and with --multipart one part) per light and one for
-  // the environment, named after their light groups.
-  if (a.shadow) {
-    const size_t mattes = size_t(f.shadow_count());
-    for (size_t g = 0; g < mattes; ++g) {
-      const std::string name = f.shadow_layer(int(g));
-      layer l{name, type_of(formats.shadow), false, {}};
-      l.channels.push_back({name + ".A", [&f, mattes, g](size_t i) { return f.shadow[i * mattes + g]; }});
+    case aov_shape::vec2: {
+      layer l{parts[0], format, row.data, {}};
+      for (int c = 0; c < 2; ++c)
+        l.channels.push_back({channels[size_t(c)], [&f, c](size_t i) { return f.uv[i][c]; }});
       out.push_back(std::move(l));
+      return;
     }
+    case aov_shape::ids: {
+      layer l{parts[0], format, row.data, {}};
+      for (int c = 0; c < 3; ++c)
+        l.channels.push_back({channels[size_t(c)], [&f, c](size_t i) { return float(f.ids[i][c]); }});
+      out.push_back(std::move(l));
+      return;
+    }
+    case aov_shape::motion:
+      // Nuke's forward and backward layers (u, v).
+      for (size_t p = 0; p < 2; ++p) {
+        layer l{parts[p], format, row.data, {}};
+        for (size_t c = 0; c < 2; ++c)
+          l.channels.push_back(
+              {channels[2 * p + c], [&f, index = int(2 * p + c)](size_t i) { return f.motion[i][index]; }});
+        out.push_back(std::move(l));
+      }
+      return;
+    case aov_shape::per_group: {
+      const size_t groups = size_t(f.light_group_count());
+      for (size_t g = 0; g < groups; ++g) {
+        const std::string& name = f.light_group_layers[g];
+        layer l{name, format, row.data, {}};
+        const char* rgb[3] = {".R", ".G", ".B"};
+        for (int c = 0; c < 3; ++c)
+          l.channels.push_back({name + rgb[c], [&f, groups, g, c, limit](size_t i) {
+                                  return std::clamp(f.light_groups[i * groups + g][c], -limit, limit);
+                                }});
+        out.push_back(std::move(l));
+      }
+      return;
+    }
+    case aov_shape::per_matte: {
+      const size_t mattes = size_t(f.shadow_count());
+      for (size_t g = 0; g < mattes; ++g) {
+        const std::string name = f.shadow_layer(int(g));
+        layer l{name, format, row.data, {}};
+        l.channels.push_back({name + ".A", [&f, mattes, g](size_t i) { return f.shadow[i * mattes + g]; }});
+        out.push_back(std::move(l));
+      }
+      return;
+    }
+    case aov_shape::ranks:
+      out.push_back(
+          row.id == aov::crypto_object
+              ? cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, f.aovs.crypto_depth)
+              : cryptomatte_layer_of(crypto_material_layer_name, f.crypto_material, f.aovs.crypto_depth));
+      return;
   }
-  if (a.crypto_object)
-    out.push_back(cryptomatte_layer_of(crypto_object_layer_name, f.crypto_object, a.crypto_depth));
-  if (a.crypto_material)
-    out.push_back(cryptomatte_layer_of(crypto_material_layer_name, f.crypto_material, a.crypto_depth));
+}
+
+// The layers of the film's AOVs, in the table's order, Cryptomatte's last.
+std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
+  std::vector<layer> out;
+  for (bool ranks : {false, true})
+    for (const aov_row& row : aov_table)
+      if ((row.shape == aov_shape::ranks) == ranks && f.aovs.*row.flag)
+        add_aov_layers(row, f, settings.formats, out);
   return out;
 }
 

@@ -27,7 +27,7 @@ fs::path scratch_dir() {
 // Settings with every colour-like layer in one format.
 exr_settings all_layers(sample_format format) {
   exr_settings s;
-  s.formats = {format, format, format, format, format, format, format};
+  for (sample_format& f : s.formats.of) f = format;
   return s;
 }
 
@@ -40,7 +40,7 @@ film test_film() {
       size_t i = f.index(x, y);
       f.color[i] = vec4(0.25f * x, 0.5f * y, 1.0f / 3.0f, 1.0f);
       f.depth[i] = x == 0 ? inf : 1.0f + x + 10.0f * y;
-      f.normal[i] = vec3(0.0f, 1.0f, 0.0f);
+      f.vec3_layer(aov::normal)[i] = vec3(0.0f, 1.0f, 0.0f);
     }
   return f;
 }
@@ -122,9 +122,9 @@ film all_aov_film() {
       const float t = 0.1f + 0.013f * float(i);
       f.color[i] = vec4(t, 2.0f * t, 1.0f / 3.0f, 1.0f);
       f.depth[i] = x == 0 ? inf : 100.0f + 0.001f * float(i);
-      f.normal[i] = vec3(t, 0.7f, -t);
-      f.position[i] = vec3(1000.0f + 0.001f * float(i), -t, 3.0f);
-      f.albedo[i] = vec3(t, 0.5f, 0.25f);
+      f.vec3_layer(aov::normal)[i] = vec3(t, 0.7f, -t);
+      f.vec3_layer(aov::position)[i] = vec3(1000.0f + 0.001f * float(i), -t, 3.0f);
+      f.vec3_layer(aov::albedo)[i] = vec3(t, 0.5f, 0.25f);
       f.uv[i] = vec2(t, 1.0f - t);
       f.ids[i] = glm::ivec3(int(i), 70000 + int(i), x == 0 ? -1 : 3);
     }
@@ -168,9 +168,9 @@ std::map<std::string, std::pair<OIIO::TypeDesc, std::vector<float>>> channels_of
 TEST(exr_writer, each_colour_like_layer_takes_its_own_format_and_data_layers_stay_float) {
   fs::path file = scratch_dir() / "formats.exr";
   exr_settings s;
-  s.formats.beauty = sample_format::float32;
-  s.formats.albedo = sample_format::float32;
-  s.formats.uv = sample_format::half;  // N (by default) and uv (asked for) half
+  s.formats[aov::beauty] = sample_format::float32;
+  s.formats[aov::albedo] = sample_format::float32;
+  s.formats[aov::uv] = sample_format::half;  // N (by default) and uv (asked for) half
   write_exr(file.string(), all_aov_film(), s, exr_metadata{});
   const auto channels = channels_of(file);
   ASSERT_EQ(channels.size(), 19u);
