@@ -385,7 +385,7 @@ std::vector<stored_layer> stored_layers(const film& f, const exr_settings& setti
 std::optional<rgba_image> stored_beauty(const film& f, const exr_settings& settings) {
   if (is_lossy_compression(settings.compression)) return std::nullopt;
   for (const layer& l : film_layers(f, settings))
-    if (l.part == exr_part_name(exr_part::rgba)) {  // R, G, B, A in that order
+    if (l.part == aov_row_of(aov::beauty).parts) {  // R, G, B, A in that order
       rgba_image beauty;
       beauty.width = f.width;
       beauty.height = f.height;
