@@ -47,9 +47,11 @@ std::vector<unsigned char> preview_codes(const rgba_image& beauty, int channels,
       }
   } else {
     const preview_code_table table = make_preview_code_table(exposure);
-    for (size_t i = 0; i < pixel_count; ++i)
+    for (size_t i = 0; i < pixel_count; ++i) {
+      const float straight = unpremultiply(i);
       for (size_t c = 0; c < 3; ++c)
-        codes[i * size_t(channels) + c] = preview_code(table, rgba[i * 4 + c] * unpremultiply(i));
+        codes[i * size_t(channels) + c] = preview_code(table, rgba[i * 4 + c] * straight);
+    }
   }
   if (channels == 4)
     for (size_t i = 0; i < pixel_count; ++i) codes[i * 4 + 3] = (unsigned char)std::lround(255.0f * alpha(i));
