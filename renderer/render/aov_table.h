@@ -49,8 +49,8 @@ enum class aov_sampling : uint8_t {
 enum class aov_shape : uint8_t {
   rgba,       // film::color
   scalar,     // film::depth
-  vec3,       // film::vec3_layer(id): three floats, the common case
-  vec2,       // film::uv
+  triple,     // film::vec3_layer(id): three floats, the common case
+  pair,       // film::uv
   ids,        // film::ids: three exact integers
   motion,     // film::motion: forward and backward (u, v)
   per_group,  // film::light_groups: three floats per light group, layers named at run time

@@ -93,7 +93,7 @@ void keep_as_nearest(const camera_sample& s, camera_sample& nearest);
 // pixel, for the sample that decides it, not for every sample.
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion);
 
-// The value a sample gives the filtered AOV a of three floats (aov_shape::vec3): where the film
+// The value a sample gives the filtered AOV a of three floats (aov_shape::triple): where the film
 // finds what shading recorded for it (shade/path_record.h).
 vec3 filtered_sample_value(aov a, const light_split& split, const camera_passes& passes);
 

@@ -37,7 +37,7 @@ struct film {
   int full_width = 0, full_height = 0;
   std::vector<vec4> color;   // premultiplied RGBA, row 0 at the top
   std::vector<float> depth;  // ray distance of the nearest sample; +inf where nothing was hit
-  // The AOVs of three floats a pixel (aov_shape::vec3), by aov; empty unless asked for. The nearest
+  // The AOVs of three floats a pixel (aov_shape::triple), by aov; empty unless asked for. The nearest
   // sample's (N: world shading normal, P: world hit point, albedo: base colour; 0 for background)
   // or filtered like the beauty (the light split, direct, reflection, refraction; the camera
   // path's passes, shade/path_record.h's camera_passes). See vec3_layer.
@@ -69,7 +69,7 @@ struct film {
     color.assign(n, vec4(0.0f));
     if (a.depth) depth.assign(n, inf);
     for (const aov_row& row : aov_table)
-      if (row.shape == aov_shape::vec3 && a.*row.flag) vec3_layers[int(row.id)].assign(n, vec3(0.0f));
+      if (row.shape == aov_shape::triple && a.*row.flag) vec3_layers[int(row.id)].assign(n, vec3(0.0f));
     if (a.uv) uv.assign(n, vec2(0.0f));
     if (a.ids) ids.assign(n, glm::ivec3(-1));
     if (a.motion) motion.assign(n, vec4(0.0f));
@@ -104,7 +104,7 @@ inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0)
   uint64_t per_pixel = sizeof(vec4);
   per_pixel += a.depth ? sizeof(float) : 0;
   for (const aov_row& row : aov_table)
-    per_pixel += row.shape == aov_shape::vec3 && a.*row.flag ? sizeof(vec3) : 0;
+    per_pixel += row.shape == aov_shape::triple && a.*row.flag ? sizeof(vec3) : 0;
   per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
   per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 1, 0)) : 0;
   per_pixel += a.uv ? sizeof(vec2) : 0;

@@ -188,7 +188,7 @@ void store_beauty_parts(film& out, size_t p, const vec3* parts) {
   for (const aov_row& row : aov_table) {
     if (row.sampling != aov_sampling::filtered || row.shape == aov_shape::rgba || !(out.aovs.*row.flag))
       continue;
-    if (row.shape == aov_shape::vec3) {
+    if (row.shape == aov_shape::triple) {
       out.vec3_layer(row.id)[p] = row.clamp_unit ? glm::clamp(*parts, 0.0f, 1.0f) : *parts;
       ++parts;
     } else if (row.shape == aov_shape::per_group) {

@@ -108,7 +108,7 @@ void gather_beauty_parts(const aov_set& aovs, const light_split& split, const st
   parts.clear();
   for (const aov_row& row : aov_table) {
     if (row.sampling != aov_sampling::filtered || !(aovs.*row.flag)) continue;
-    if (row.shape == aov_shape::vec3)
+    if (row.shape == aov_shape::triple)
       parts.push_back(filtered_sample_value(row.id, split, passes));
     else if (row.shape == aov_shape::per_group)
       parts.insert(parts.end(), groups.begin(), groups.end());

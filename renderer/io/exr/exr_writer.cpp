@@ -120,7 +120,7 @@ void add_aov_layers(const aov_row& row, const film& f, const layer_formats& form
     case aov_shape::scalar:
       out.push_back({parts[0], format, row.data, {{channels[0], [&f](size_t i) { return f.depth[i]; }}}});
       return;
-    case aov_shape::vec3: {
+    case aov_shape::triple: {
       layer l{parts[0], format, row.data, {}};
       const std::vector<vec3>& buffer = f.vec3_layer(row.id);
       for (int c = 0; c < 3; ++c)
@@ -130,7 +130,7 @@ void add_aov_layers(const aov_row& row, const film& f, const layer_formats& form
       out.push_back(std::move(l));
       return;
     }
-    case aov_shape::vec2: {
+    case aov_shape::pair: {
       layer l{parts[0], format, row.data, {}};
       for (int c = 0; c < 2; ++c)
         l.channels.push_back({channels[size_t(c)], [&f, c](size_t i) { return f.uv[i][c]; }});
