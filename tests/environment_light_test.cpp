@@ -10,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
@@ -207,6 +209,51 @@ TEST(environment_light, map_density_integrates_to_one_and_matches_the_directions
   // The spot's weight (radiance × sin θ) is about that of the rest of the sky: half the draws go there.
   EXPECT_GT(spot, 4096 / 3);
   EXPECT_LT(spot, 4096 * 2 / 3);
+}
+
+// The interval of cdf (n intervals) holding u, found by walking it: the largest k < n whose start
+// is at most u (empty intervals are passed over). The draw's guide tables must find the same one.
+size_t walked_interval(const float* cdf, size_t n, float u) {
+  size_t k = 0;
+  while (k + 1 < n && cdf[k + 1] <= u) ++k;
+  return k;
+}
+
+// Guide tables only narrow the search: on a map of black rows, black runs, single bright texels and
+// uneven widths, every draw lands in the texel a walk along the CDFs finds, at the same point.
+TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
+  scene w;
+  image im;
+  im.width = 97;
+  im.height = 41;
+  im.texels32.assign(size_t(im.width) * size_t(im.height) * 4, 0.0f);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int y = 3; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      const float r = unit(rng);
+      const float v = r < 0.5f ? 0.0f : r < 0.98f ? r : 5000.0f * r;  // black runs and hot spots
+      for (int c = 0; c < 3; ++c) im.texels32[(size_t(y) * size_t(im.width) + size_t(x)) * 4 + size_t(c)] = v;
+    }
+  w.images.push_back(im);
+  w.env.map_image = 0;
+  w.env.rotation = 0.3f;
+  const environment_light e = make_environment_light(w);
+  ASSERT_TRUE(e.lights);
+  const size_t width = size_t(e.width), height = size_t(e.height);
+  for (int i = 0; i < 20000; ++i) {
+    const vec2 u(i < 100 ? float(i) / 100.0f : unit(rng), i < 100 ? 1.0f - float(i) / 100.0f : unit(rng));
+    const float uy = std::min(u.y, 0.99999994f), ux = std::min(u.x, 0.99999994f);
+    const size_t y = walked_interval(e.row_cdf.data(), height, uy);
+    const float* row = &e.column_cdf[y * (width + 1)];
+    const size_t x = walked_interval(row, width, ux);
+    const float dv = std::clamp((uy - e.row_cdf[y]) / (e.row_cdf[y + 1] - e.row_cdf[y]), 0.0f, 0.99999994f);
+    const float du = std::clamp((ux - row[x]) / (row[x + 1] - row[x]), 0.0f, 0.99999994f);
+    const vec3 expected = environment_direction(
+        vec2((float(x) + du) / float(width), (float(y) + dv) / float(height)), e.rotation);
+    const environment_sample s = sample_environment(e, vec2(ux, uy));
+    ASSERT_EQ(s.direction, expected) << i << " u " << ux << ", " << uy;
+  }
 }
 
 TEST(environment_light, lobe_density_integrates_to_one) {

@@ -32,12 +32,37 @@ double make_cdf(const float* weights, size_t n, float* cdf) {
 }
 
 // The interval [cdf[k], cdf[k+1]) holding u, and u's place in it (in [0, 1)). Empty intervals are
-// never chosen: upper_bound lands past every entry equal to u.
-size_t find_interval(const float* cdf, size_t n, float u, float& within) {
-  const size_t k = size_t(std::upper_bound(cdf + 1, cdf + n, u) - (cdf + 1));
+// never chosen: the search lands past every entry equal to u. first, last: the intervals u can lie
+// in (0 and n - 1 when nothing narrows it).
+size_t find_interval(const float* cdf, size_t n, float u, float& within, size_t first = 0,
+                     size_t last = ~size_t(0)) {
+  last = std::min(last, n - 1);
+  const size_t k = first + size_t(std::upper_bound(cdf + first + 1, cdf + last + 1, u) - (cdf + first + 1));
   const float width = cdf[k + 1] - cdf[k];
   within = width > 0.0f ? std::clamp((u - cdf[k]) / width, 0.0f, 0.99999994f) : 0.5f;
   return k;
+}
+
+// The guide table's size for a CDF of n intervals: the largest power of two at most n (at most
+// 2^20), so that a bucket holds about one interval where the CDF rises evenly.
+size_t guide_size(size_t n) {
+  size_t g = 1;
+  while (g * 2 <= n && g < (size_t(1) << 20)) g *= 2;
+  return g;
+}
+
+// Fills guide (g + 1 entries) for the CDF of n intervals: entry b is the interval holding b / g.
+void make_guide(const float* cdf, size_t n, size_t g, uint32_t* guide) {
+  float within;
+  for (size_t b = 0; b < g; ++b) guide[b] = uint32_t(find_interval(cdf, n, float(b) / float(g), within));
+  guide[g] = uint32_t(n - 1);
+}
+
+// find_interval through the CDF's guide table: the same interval, searched for only between the
+// intervals holding the bucket's two ends (u·g is exact, g a power of two).
+size_t find_guided(const float* cdf, size_t n, const uint32_t* guide, size_t g, float u, float& within) {
+  const size_t b = std::min(size_t(u * float(g)), g - 1);
+  return find_interval(cdf, n, u, within, guide[b], guide[b + 1]);
 }
 
 // The map's weights: each texel's luminance times the solid angle it spans (sin θ at its row).
@@ -56,6 +81,13 @@ void build_map_distribution(const image& im, environment_light& e) {
     row_weight[y] = float(make_cdf(weights, w, &e.column_cdf[y * (w + 1)]));
   }
   const double total = make_cdf(row_weight.data(), h, e.row_cdf.data());
+  e.row_guide_size = int(guide_size(h));
+  e.column_guide_size = int(guide_size(w));
+  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  e.row_guide.resize(gh + 1);
+  make_guide(e.row_cdf.data(), h, gh, e.row_guide.data());
+  e.column_guide.resize((gw + 1) * h);
+  for (size_t y = 0; y < h; ++y) make_guide(&e.column_cdf[y * (w + 1)], w, gw, &e.column_guide[y * (gw + 1)]);
   e.lights = total > 0.0;
   if (!e.lights) return;
   // Density over (u, v) in [0,1]²: weight / (total / texel count).
@@ -68,7 +100,9 @@ void build_map_distribution(const image& im, environment_light& e) {
 uint64_t environment_light_bytes(const scene& s) {
   if (!s.env.has_map()) return 0;
   const image& im = s.images[size_t(s.env.map_image)];
-  return uint64_t(std::max(im.width, 0) + 1) * uint64_t(std::max(im.height, 0) + 1) * 2 * sizeof(float);
+  const uint64_t w = uint64_t(std::max(im.width, 0)), h = uint64_t(std::max(im.height, 0));
+  const uint64_t guides = (guide_size(w) + 1) * h + guide_size(h) + 1;
+  return (w + 1) * (h + 1) * 2 * sizeof(float) + guides * sizeof(uint32_t);
 }
 
 environment_light make_environment_light(const scene& s) {
@@ -105,8 +139,9 @@ environment_sample sample_environment(const environment_light& e, const vec2& u)
   }
   const size_t w = size_t(e.width), h = size_t(e.height);
   float dv = 0.0f, du = 0.0f;
-  const size_t y = find_interval(e.row_cdf.data(), h, u.y, dv);
-  const size_t x = find_interval(&e.column_cdf[y * (w + 1)], w, u.x, du);
+  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  const size_t y = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u.y, dv);
+  const size_t x = find_guided(&e.column_cdf[y * (w + 1)], w, &e.column_guide[y * (gw + 1)], gw, u.x, du);
   const vec2 uv((float(x) + du) / float(w), (float(y) + dv) / float(h));
   out.direction = environment_direction(uv, e.rotation);
   const float sin_theta = std::sin(pi * uv.y);

@@ -22,10 +22,18 @@ struct environment_light {
   std::vector<float> texel_density;
   std::vector<float> row_cdf;     // height + 1 entries, from 0 to 1
   std::vector<float> column_cdf;  // per row, width + 1 entries from 0 to 1
+  // Guide tables (Chen and Asau's index tables) over each CDF: entry b of a CDF's table is the
+  // interval that u = b / G falls in, G a power of two (so b / G is exact); a draw then searches
+  // only the intervals between two neighbouring entries, and finds the interval the whole CDF's
+  // binary search finds, in a step or two instead of log2(width) cache misses.
+  int row_guide_size = 0;              // G of the row CDF
+  int column_guide_size = 0;           // G of each row's CDF
+  std::vector<uint32_t> row_guide;     // row_guide_size + 1 entries
+  std::vector<uint32_t> column_guide;  // per row, column_guide_size + 1 entries
 };
 
-// The bytes make_environment_light(s) allocates: two floats a texel of a map (its density and its
-// row's CDF), for the job's memory budget.
+// The bytes make_environment_light(s) allocates: about three words a texel of a map (its density, its
+// row's CDF and guide table), for the job's memory budget.
 uint64_t environment_light_bytes(const scene& s);
 
 // The environment light of s's environment (lights false when it is black everywhere).
