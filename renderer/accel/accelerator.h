@@ -37,6 +37,13 @@ class accelerator {
   // True when anything blocks the segment (r.tmin, r.tmax]. Invalid rays report not occluded.
   virtual bool occluded(const ray& r) const = 0;
 
+  // occluded() of `count` rays at once (a wave's shadow rays), in order: blocked[i] is 1 exactly
+  // when occluded(rays[i]) is true, else 0, invalid rays included. A backend that answers such rays
+  // faster together (Embree's ray packets) overrides it; the others answer one ray at a time.
+  virtual void occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const {
+    for (size_t i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
+  }
+
   // Throws kiln::error (render) when the backend recorded a failure while answering queries; a
   // backend that reports errors through callbacks (Embree) cannot throw from inside a query.
   virtual void throw_if_failed() const {}

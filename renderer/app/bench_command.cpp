@@ -50,6 +50,7 @@ struct totals {
 totals sum_kinds(const bench_measurement& m, bool camera_and_shadow_only) {
   totals t;
   for (const kind_measurement& k : m.kinds) {
+    if (k.replayed_as_occlusion) continue;  // the render traced these rays once, as closest-hit queries
     if (camera_and_shadow_only && k.kind != "camera" && k.kind != "shadow") continue;
     t.rays += k.rays;
     t.bare_seconds += k.bare_seconds;
@@ -75,6 +76,14 @@ nlohmann::json report_json(const bench_options& o, const prepared_scene& p, cons
       j["kiln_stream_mrays_per_s"] = mrays(k.rays, k.kiln_stream_seconds);
       j["bare_stream_over_bare"] = k.bare_seconds / k.bare_stream_seconds;
       j["kiln_stream_over_bare"] = k.kiln_stream_seconds > 0 ? k.bare_seconds / k.kiln_stream_seconds : 0.0;
+    }
+    if (k.kiln_batch_seconds > 0.0) {
+      nlohmann::json& j = kinds.back();
+      j["kiln_batch_mrays_per_s"] = mrays(k.rays, k.kiln_batch_seconds);
+      j["kiln_batch_over_bare"] = k.bare_seconds / k.kiln_batch_seconds;
+      j["kiln_batch_over_single"] = k.kiln_seconds / k.kiln_batch_seconds;
+      j["batch_hits"] = k.kiln_batch_hits;
+      if (k.replayed_as_occlusion) j["replayed_as_occlusion"] = true;
     }
   }
   const totals all = sum_kinds(m, false);
@@ -143,6 +152,9 @@ std::string report_csv(const nlohmann::json& r) {
     if (k.contains("bare_stream_mrays_per_s"))
       row(k["kind"], "intersect_stream", k["rays"], k["bare_stream_mrays_per_s"],
           k["kiln_stream_mrays_per_s"], k["kiln_stream_over_bare"]);
+    if (k.contains("kiln_batch_mrays_per_s"))
+      row(k["kind"], "occluded_batch", k["rays"], k["bare_embree_mrays_per_s"], k["kiln_batch_mrays_per_s"],
+          k["kiln_batch_over_bare"]);
   }
   row("render", "all", r["rays"]["queries"], r["bare_embree_mrays_per_s"], r["render_mrays_per_s"],
       r["render_over_bare"]);
@@ -163,15 +175,21 @@ void print_summary(const nlohmann::json& r) {
   std::printf("  %-12s %-9s %10s %14s %14s %8s\n", "kind", "query", "rays", "bare Mrays/s", "kiln Mrays/s",
               "ratio");
   for (const auto& k : r["kinds"]) {
-    std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f\n", k["kind"].get<std::string>().c_str(),
+    std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f%s\n", k["kind"].get<std::string>().c_str(),
                 k["query"].get<std::string>().c_str(), k["rays"].get<size_t>(),
                 k["bare_embree_mrays_per_s"].get<double>(), k["kiln_query_mrays_per_s"].get<double>(),
-                k["kiln_query_over_bare"].get<double>());
+                k["kiln_query_over_bare"].get<double>(),
+                k.contains("replayed_as_occlusion") ? "   (walked shadow rays, as occlusion queries)" : "");
     if (k.contains("bare_stream_mrays_per_s"))
       std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (streams; ratio to the bare single-ray loop)\n",
                   k["kind"].get<std::string>().c_str(), "stream", k["rays"].get<size_t>(),
                   k["bare_stream_mrays_per_s"].get<double>(), k["kiln_stream_mrays_per_s"].get<double>(),
                   k["kiln_stream_over_bare"].get<double>());
+    if (k.contains("kiln_batch_mrays_per_s"))
+      std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (occluded_batch: %.2fx the single-ray query)\n",
+                  k["kind"].get<std::string>().c_str(), "batch", k["rays"].get<size_t>(),
+                  k["bare_embree_mrays_per_s"].get<double>(), k["kiln_batch_mrays_per_s"].get<double>(),
+                  k["kiln_batch_over_bare"].get<double>(), k["kiln_batch_over_single"].get<double>());
   }
   std::printf("  %-12s %-9s %10zu %14.2f %14.2f %8.3f   (whole render, shading included)\n", "render", "all",
               r["rays"]["queries"].get<size_t>(), r["bare_embree_mrays_per_s"].get<double>(),

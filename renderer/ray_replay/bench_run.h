@@ -29,6 +29,13 @@ struct kind_measurement {
   // quadrics, whose user geometry answers single rays only.
   double bare_stream_seconds = 0.0;
   double kiln_stream_seconds = 0.0;
+  // Occlusion queries only: the same chunks of rays through accelerator::occluded_batch (Embree's
+  // ray packets), timed alternating with the single-ray loops; 0 when not measured.
+  double kiln_batch_seconds = 0.0;
+  size_t kiln_batch_hits = 0;
+  // The render asked these rays closest-hit queries (the shadow walk past see-through surfaces);
+  // here they are timed as occlusion queries, and left out of the render's totals.
+  bool replayed_as_occlusion = false;
 };
 
 struct bench_measurement {

@@ -31,6 +31,12 @@ bool ray_recorder::occluded(const ray& r) const {
   return inner_.occluded(r);
 }
 
+void ray_recorder::occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const {
+  recorded_rays& local = threads_->buffers.local();
+  for (size_t i = 0; i < count; ++i) local.occluded[size_t(rays[i].kind)].push_back(rays[i]);
+  inner_.occluded_batch(rays, count, blocked);
+}
+
 recorded_rays ray_recorder::rays() const {
   recorded_rays all;
   for (const recorded_rays& part : threads_->buffers)

@@ -26,6 +26,7 @@ class ray_recorder final : public accelerator {
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  void occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const override;
   void throw_if_failed() const override { inner_.throw_if_failed(); }
 
   // Every query so far, merged over threads (call when no query is running). The order within a

@@ -97,7 +97,21 @@ std::optional<hit> comparing_accelerator::intersect(const ray& r) const {
 
 bool comparing_accelerator::occluded(const ray& r) const {
   const bool a = primary_.occluded(r);
-  const bool b = secondary_.occluded(r);
+  count_occlusion(r, a, secondary_.occluded(r));
+  return a;
+}
+
+void comparing_accelerator::occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const {
+  // Each backend answers the whole batch its own way (Embree in packets), so the packets are what
+  // is held to the other backend.
+  thread_local std::vector<uint8_t> secondary;
+  secondary.resize(count);
+  primary_.occluded_batch(rays, count, blocked);
+  secondary_.occluded_batch(rays, count, secondary.data());
+  for (size_t i = 0; i < count; ++i) count_occlusion(rays[i], blocked[i] != 0, secondary[i] != 0);
+}
+
+void comparing_accelerator::count_occlusion(const ray& r, bool a, bool b) const {
   kind_statistics& k = threads_->stats.local()[size_t(r.kind)];
   ++k.rays;
   ++k.occlusion_queries;
@@ -112,7 +126,6 @@ bool comparing_accelerator::occluded(const ray& r) const {
       threads_->keep(mismatch_example{r, true, a ? blocker : std::nullopt, b ? blocker : std::nullopt, a, b});
     }
   }
-  return a;
 }
 
 comparison_statistics comparing_accelerator::statistics() const {

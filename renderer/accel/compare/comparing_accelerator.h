@@ -57,6 +57,7 @@ class comparing_accelerator final : public accelerator {
 
   std::optional<hit> intersect(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  void occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const override;
   void throw_if_failed() const override {
     primary_.throw_if_failed();
     secondary_.throw_if_failed();
@@ -66,6 +67,9 @@ class comparing_accelerator final : public accelerator {
   comparison_statistics statistics() const;
 
  private:
+  // Counts one occlusion query whose backends answered a (primary) and b (secondary).
+  void count_occlusion(const ray& r, bool a, bool b) const;
+
   struct per_thread;
   const scene& scene_;
   const accelerator& primary_;

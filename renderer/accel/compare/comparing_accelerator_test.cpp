@@ -36,12 +36,19 @@ std::vector<ray> rays_at_sphere(const mesh& m, ray_kind kind) {
   return rays;
 }
 
+// A coarse sphere, the brute-force loop over it and the broken backend.
+struct sphere_backends {
+  mesh sphere = make_sphere_mesh(8, 16, 1.0f);
+  scene s = scene_from_mesh(sphere);
+  brute_force_accelerator reference{s};
+  never_hits broken;
+};
+
 TEST(comparing_accelerator, counts_every_disagreement_of_a_backend_that_never_hits) {
-  const mesh sphere = make_sphere_mesh(8, 16, 1.0f);
-  const scene s = scene_from_mesh(sphere);
-  const brute_force_accelerator reference(s);
-  const never_hits broken;
-  const comparing_accelerator both(s, broken, reference);
+  const sphere_backends b;
+  const mesh& sphere = b.sphere;
+  const brute_force_accelerator& reference = b.reference;
+  const comparing_accelerator both(b.s, b.broken, reference);
 
   const std::vector<ray> camera = rays_at_sphere(sphere, ray_kind::camera);
   const std::vector<ray> shadow = rays_at_sphere(sphere, ray_kind::shadow);
@@ -71,6 +78,19 @@ TEST(comparing_accelerator, counts_every_disagreement_of_a_backend_that_never_hi
   EXPECT_FALSE(backends_agree(stats, 0));
   EXPECT_FALSE(backends_agree(stats, stats.mismatches() - 1));
   EXPECT_TRUE(backends_agree(stats, stats.mismatches()));
+}
+
+TEST(comparing_accelerator, a_batch_is_compared_ray_by_ray) {
+  const sphere_backends b;
+  const comparing_accelerator both(b.s, b.reference, b.broken);
+  std::vector<ray> shadow = rays_at_sphere(b.sphere, ray_kind::shadow);
+  shadow[1].direction = -shadow[1].direction;  // leaves the sphere: both say clear
+  std::vector<uint8_t> blocked(shadow.size(), 7);
+  both.occluded_batch(shadow.data(), shadow.size(), blocked.data());
+  for (size_t i = 0; i < shadow.size(); ++i) EXPECT_EQ(blocked[i], i == 1 ? 0 : 1) << "the primary's answer";
+  const kind_statistics& k = both.statistics().by_kind[size_t(ray_kind::shadow)];
+  EXPECT_EQ(k.occlusion_queries, shadow.size());
+  EXPECT_EQ(k.occlusion_mismatches, shadow.size() - 1);
 }
 
 TEST(comparing_accelerator, a_backend_agrees_with_itself) {

@@ -38,6 +38,7 @@ struct embree_accelerator::state {
   int64_t built_bytes = 0;                      // what its build added to Embree's memory
   int64_t peak_bytes = 0;                       // and the most the build held above its start
   bool has_quadrics = false;  // rtcIntersect1M cannot carry the world ray quadric callbacks read
+  int packet_width = 1;       // occluded_batch's packets: the widest the CPU runs natively
   bool moving = false;        // built with motion blur: every frame is built anew
 
   void throw_if_failed(const std::string& during) const { errors.throw_if_any(during); }
@@ -214,11 +215,72 @@ void kiln_hit(const scene& world, const RTCRayHit& query, const ray& r, bool qua
     finish_hit(world, world.instances[h.instance_id], query, r, quadric_normal, h);
 }
 
+// The widest ray packet this CPU traces natively (16 with AVX-512, 8 with AVX, 4 with SSE), or 1
+// when Embree was built without packets. Wider packets emulated as narrower ones would only add
+// the cost of the split.
+int native_packet_width(RTCDevice device) {
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return 4;
+  return 1;
+}
+
+// Fills lane k of an SoA packet (RTCRay4/8/16) from r, in place; id is the lane's index into the
+// rays the context's world_rays point at.
+template <typename packet>
+void fill_lane(const ray& r, unsigned id, packet& p, int k) {
+  p.org_x[k] = r.origin.x;
+  p.org_y[k] = r.origin.y;
+  p.org_z[k] = r.origin.z;
+  p.tnear[k] = r.tmin;
+  p.dir_x[k] = r.direction.x;
+  p.dir_y[k] = r.direction.y;
+  p.dir_z[k] = r.direction.z;
+  p.time[k] = r.time;
+  p.tfar[k] = r.tmax;
+  p.mask[k] = ~0u;
+  p.id[k] = id;
+  p.flags[k] = 0;
+}
+
+// occluded() of each ray in packets of `width` lanes through trace (rtcOccluded4/8/16). An invalid
+// ray, and the lanes past the end, are inactive: they hold a finite empty ray, since Embree loads
+// every lane, and answer not blocked as occluded() does.
+template <int width, typename packet>
+void occlude_packets(RTCScene top, const scene& world, const ray* rays, size_t count, uint8_t* blocked,
+                     void (*trace)(const int*, RTCScene, RTCIntersectContext*, packet*)) {
+  static const ray empty_lane{vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), 0.0f, 0.0f};
+  kiln_intersect_context context;
+  context.world = &world;
+  for (size_t begin = 0; begin < count; begin += width) {
+    const size_t n = std::min(size_t(width), count - begin);
+    packet p;  // aligned to its width by its declaration, as rtcOccludedN requires
+    alignas(64) int valid[width];
+    bool any = false;
+    for (int k = 0; k < width; ++k) {
+      const bool active = size_t(k) < n && is_valid(rays[begin + k]);
+      valid[k] = active ? -1 : 0;
+      any |= active;
+      fill_lane(active ? rays[begin + k] : empty_lane, unsigned(k), p, k);
+    }
+    if (any) {
+      // A fresh context per packet, as per ray in trace_bare: an occlusion query that stops inside
+      // an instance leaves the context's instance stack behind.
+      rtcInitIntersectContext(&context.embree);
+      context.world_rays = rays + begin;
+      trace(valid, top, &context.embree, &p);
+    }
+    // Embree marks an occluded lane by setting its tfar to -infinity.
+    for (size_t k = 0; k < n; ++k) blocked[begin + k] = valid[k] != 0 && p.tfar[k] < 0.0f;
+  }
+}
+
 }  // namespace
 
 embree_accelerator::embree_accelerator(const scene& s, const embree_options& options)
     : state_(std::make_unique<state>()), scene_(s), options_(options) {
   state_->device = process_embree_device();
+  state_->packet_width = native_packet_width(state_->device);
   embree_error_scope scope(state_->errors);
   state_->unscoped_errors_before = unscoped_embree_errors();
   const int64_t bytes_before = embree_bytes_now();
@@ -357,7 +419,7 @@ void embree_accelerator::closest_hit(const ray& r, bool quadric_normal, std::opt
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
-  context.world_ray = &r;
+  context.world_rays = &r;
   RTCRayHit query;
   fill_embree_query(r, query);
   rtcIntersect1(state_->top, &context.embree, &query);
@@ -401,12 +463,28 @@ bool embree_accelerator::occluded(const ray& r) const {
   kiln_intersect_context context;
   rtcInitIntersectContext(&context.embree);
   context.world = &scene_;
-  context.world_ray = &r;
+  context.world_rays = &r;
   RTCRay query;
   fill_embree_ray(r, query);
   rtcOccluded1(state_->top, &context.embree, &query);
   // Embree marks an occluded ray by setting tfar to -infinity.
   return query.tfar < 0.0f;
+}
+
+void embree_accelerator::occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const {
+  switch (state_->packet_width) {
+    case 16:
+      occlude_packets<16>(state_->top, scene_, rays, count, blocked, &rtcOccluded16);
+      return;
+    case 8:
+      occlude_packets<8>(state_->top, scene_, rays, count, blocked, &rtcOccluded8);
+      return;
+    case 4:
+      occlude_packets<4>(state_->top, scene_, rays, count, blocked, &rtcOccluded4);
+      return;
+    default:
+      for (size_t i = 0; i < count; ++i) blocked[i] = occluded(rays[i]);
+  }
 }
 
 }  // namespace kiln
@@ -423,7 +501,7 @@ size_t embree_accelerator::trace_bare(const ray* rays, size_t count, bool occlus
     // A fresh context per ray, as Embree requires: an occlusion query that stops inside an instance
     // leaves the context's instance stack behind.
     rtcInitIntersectContext(&context.embree);
-    context.world_ray = &rays[i];  // quadric user geometry reads the double-precision world ray
+    context.world_rays = &rays[i];  // quadric user geometry reads the double-precision world ray
     if (occlusion) {
       RTCRay query;
       fill_embree_ray(rays[i], query);

@@ -27,6 +27,9 @@ class embree_accelerator final : public accelerator {
   std::optional<hit> intersect(const ray& r) const override;
   std::optional<hit> intersect_for_shadow(const ray& r) const override;
   bool occluded(const ray& r) const override;
+  // Packets of the CPU's native width (rtcOccluded16, 8 or 4, a valid mask over the invalid rays
+  // and the tail); quadrics answer in them too, each lane reading its own world ray.
+  void occluded_batch(const ray* rays, size_t count, uint8_t* blocked) const override;
   // One rtcIntersect1M stream with the coherent flag (Embree traces it as packets of the CPU's
   // native width). Scenes with quadrics answer one ray at a time: their user geometry reads the
   // world ray from the intersect context, which holds one ray.

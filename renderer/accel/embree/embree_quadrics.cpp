@@ -22,28 +22,29 @@ void quadric_bounds_callback(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = next_float_up(float(b.upper.z));
 }
 
-// The quadric hit of the world ray within [tnear, tfar] of the instance Embree is visiting: the
+// The quadric hit of world ray `r` within [tnear, tfar] of the instance Embree is visiting: the
 // closest, or with any_hit (occlusion) whichever is found first.
 // A moving instance is taken back to object space by its transform at the ray's time.
-std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const void* user, float tnear,
-                                     float tfar, bool any_hit) {
+std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const void* user, const ray& r,
+                                     float tnear, float tfar, bool any_hit) {
   const auto* context = reinterpret_cast<const kiln_intersect_context*>(embree_context);
   const scene& world = *context->world;
   const uint32_t id = embree_context->instID[0];
-  const dmat4 object_from_world = instance_moves(world, id)
-                                      ? instance_at(world, id, context->world_ray->time).object_from_world
-                                      : world.instances[id].object_from_world;
-  const dvec3 o = transform_point(object_from_world, dvec3(context->world_ray->origin));
-  const dvec3 d = transform_vector(object_from_world, dvec3(context->world_ray->direction));
+  const dmat4 object_from_world = instance_moves(world, id) ? instance_at(world, id, r.time).object_from_world
+                                                            : world.instances[id].object_from_world;
+  const dvec3 o = transform_point(object_from_world, dvec3(r.origin));
+  const dvec3 d = transform_vector(object_from_world, dvec3(r.direction));
   return intersect_quadric(*static_cast<const prepared_quadric*>(user), o, d, tnear, tfar, any_hit);
 }
 
 void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
-  // kiln traces single rays (rtcIntersect1), so N is 1.
+  // kiln traces closest-hit queries as single rays (rtcIntersect1), so N is 1.
   if (args->N != 1 || !args->valid[0]) return;
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const auto* context = reinterpret_cast<const kiln_intersect_context*>(args->context);
+  const ray& r = context->world_rays[rayhit->ray.id];
   std::optional<quadric_ray_hit> h =
-      query(args->context, args->geometryUserPtr, rayhit->ray.tnear, rayhit->ray.tfar, false);
+      query(args->context, args->geometryUserPtr, r, rayhit->ray.tnear, rayhit->ray.tfar, false);
   if (!h) return;
   rayhit->ray.tfar = float(h->t);
   // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.
@@ -57,11 +58,18 @@ void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
   rayhit->hit.instID[0] = args->context->instID[0];
 }
 
+// Occlusion of N rays: one (rtcOccluded1) or a packet's lanes (rtcOccluded4/8/16, which Embree 3
+// hands to callbacks at the packet's own width and order), each lane its own world ray.
 void quadric_occluded_callback(const RTCOccludedFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  auto* r = reinterpret_cast<RTCRay*>(args->ray);
-  // Any root in (tnear, tfar) blocks: no need to find the closest one.
-  if (query(args->context, args->geometryUserPtr, r->tnear, r->tfar, true)) r->tfar = -inf;
+  const auto* context = reinterpret_cast<const kiln_intersect_context*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    float& tfar = RTCRayN_tfar(args->ray, args->N, i);
+    const ray& r = context->world_rays[RTCRayN_id(args->ray, args->N, i)];
+    // Any root in (tnear, tfar) blocks: no need to find the closest one.
+    if (query(args->context, args->geometryUserPtr, r, RTCRayN_tnear(args->ray, args->N, i), tfar, true))
+      tfar = -inf;
+  }
 }
 
 }  // namespace
