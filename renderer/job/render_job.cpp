@@ -367,6 +367,7 @@ render_settings make_render_settings(const render_options& options) {
   settings.shading.max_rays_per_sample = options.max_rays_per_sample;
   settings.shading.environment_samples = options.environment_samples;
   settings.packets = options.packets;
+  settings.reference_shading = options.shading == "reference";
   settings.aovs = options.aovs;
   return settings;
 }

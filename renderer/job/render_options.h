@@ -95,6 +95,7 @@ struct render_options {
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   embree_options embree;                        // --bvh-quality, --bvh-compact
   bool packets = false;                         // --packets on|off: trace each tile's camera rays together
+  std::string shading = "wave";                 // --shading wave|reference (render/tile_renderer.h)
   std::string environment;                      // equirectangular map file; empty: the --background colour
   std::string lighting = "auto";                // --lighting auto|studio|headlight|file (job/lighting.h)
   double environment_rotation_degrees = 0.0;

@@ -181,6 +181,13 @@ void add_trace_options(std::vector<option_spec>& t) {
       "on", "Trace each tile's camera rays together as Embree packets: on or off (default off)"));
   t.back().recorded_as = "kiln/packets";
   t.back().choices = {"on", "off"};
+  add(choice_option(
+          "shading", [](render_options & o) -> auto& { return o.shading; }, {"wave", "reference"},
+          "reference",
+          "How a tile's samples are shaded: wave (the camera's hits of a run of samples made ready "
+          "together, grouped by material, then shaded) or reference (each sample from its camera ray to "
+          "its last bounce, one at a time: the scalar path the wave is held to)"))
+      .recorded_as = "kiln/shading";
   add(number_option<double>(
           "time-limit", [](render_options & o) -> auto& { return o.time_limit_seconds; }, 0.0, 1e9, "60",
           "Stop a job still loading or rendering after this many seconds: nothing is written, "

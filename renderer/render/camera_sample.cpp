@@ -130,30 +130,44 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
 
 }  // namespace
 
-camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
-                               const ray& start, const std::optional<hit>& first, const ray_cone& cone,
-                               ray_counts& counts, const sample_outputs& outputs) {
+void prepare_camera_hit(const shading_context& ctx, const ray& start, const std::optional<hit>& first,
+                        const ray_cone& cone, ray_counts& counts, triangle_memo* memo, camera_hit& out) {
+  out.r = start;  // find_visible_hit moves the origin past culled back faces
+  std::optional<hit> walked;
+  out.visible = visible_hit_from(ctx, out.r, first, walked, counts);
+  if (!out.visible) return;
+  out.distance = distance_to_hit(start, out.r, *out.visible);
+  out.at_hit = cone_at(cone, out.distance);
+  out.p =
+      prepare_shading(ctx, out.r, make_surface_point(ctx.world, *out.visible, out.r, out.at_hit.width, memo));
+}
+
+camera_sample shade_prepared_camera_hit(const shading_context& ctx, const view_camera& cam,
+                                        bool show_background, const ray& start, const camera_hit& prepared,
+                                        ray_counts& counts, const sample_outputs& outputs) {
   camera_sample s;
   if (outputs.surfaces) outputs.surfaces->clear();  // a miss shades no surface
   if (outputs.groups) s.groups.assign(ctx.world.lights.size() + 2, vec3(0.0f));
   if (outputs.passes && outputs.shadow) s.passes.shadow.assign(ctx.world.lights.size() + 1, 0.0f);
-  ray r = start;  // find_visible_hit moves the origin past culled back faces
   // Orthographic rays run along the view axis from the window plane: their distance is planar.
   if (cam.kind == projection::perspective) s.view_cosine = float(glm::dot(dvec3(start.direction), cam.view));
   ++counts.camera;
-  std::optional<hit> walked;
-  const std::optional<hit>& h = visible_hit_from(ctx, r, first, walked, counts);
-  if (!h) {
-    missed(ctx, s, r, show_background, outputs.split, counts);
+  if (!prepared.visible) {
+    missed(ctx, s, prepared.r, show_background, outputs.split, counts);
     return s;  // every path returns s, so it is built in the caller's slot
   }
-  const float distance = distance_to_hit(start, r, *h);
-  const ray_cone at_hit = cone_at(cone, distance);
-  const shading_point p =
-      prepare_shading(ctx, r, make_surface_point(ctx.world, *h, r, at_hit.width, outputs.memo));
-  record_hit(ctx, *h, p, distance, outputs, s);
-  shade_camera_path(ctx, r, start.origin, p, at_hit, show_background, outputs, s, counts);
+  record_hit(ctx, *prepared.visible, prepared.p, prepared.distance, outputs, s);
+  shade_camera_path(ctx, prepared.r, start.origin, prepared.p, prepared.at_hit, show_background, outputs, s,
+                    counts);
   return s;
+}
+
+camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
+                               const ray& start, const std::optional<hit>& first, const ray_cone& cone,
+                               ray_counts& counts, const sample_outputs& outputs) {
+  camera_hit prepared;
+  prepare_camera_hit(ctx, start, first, cone, counts, outputs.memo, prepared);
+  return shade_prepared_camera_hit(ctx, cam, show_background, start, prepared, counts, outputs);
 }
 
 void keep_as_nearest(const camera_sample& s, camera_sample& nearest) {

@@ -78,8 +78,29 @@ camera_sample trace_camera_sample(const shading_context& ctx, const view_camera&
                                   double px, double py, const ray_cone& cone, ray_counts& counts,
                                   const sample_outputs& outputs = {});
 
+// A camera ray's first visible surface made ready to shade: the first half of shade_camera_hit,
+// which the wave stage (render/tile_renderer.cpp) runs for a run of samples together.
+struct camera_hit {
+  ray r;  // the camera ray, its origin moved past culled back faces
+  std::optional<hit> visible;
+  float distance = 0.0f;  // from the camera ray's origin to the visible hit
+  ray_cone at_hit;        // the ray's cone there
+  shading_point p;        // the surface and material there (set when visible)
+};
+
+// The camera hit of the camera ray `start` whose closest hit `first` is known, with footprint cone.
+void prepare_camera_hit(const shading_context& ctx, const ray& start, const std::optional<hit>& first,
+                        const ray_cone& cone, ray_counts& counts, triangle_memo* memo, camera_hit& out);
+
+// The sample of the camera ray `start` from its prepared camera hit: the second half of
+// shade_camera_hit.
+camera_sample shade_prepared_camera_hit(const shading_context& ctx, const view_camera& cam,
+                                        bool show_background, const ray& start, const camera_hit& prepared,
+                                        ray_counts& counts, const sample_outputs& outputs = {});
+
 // trace_camera_sample for the camera ray `start` whose closest hit `first` is already known (the
-// camera-ray stage of render/camera_rays.h traced it).
+// camera-ray stage of render/camera_rays.h traced it): prepare_camera_hit, then
+// shade_prepared_camera_hit.
 camera_sample shade_camera_hit(const shading_context& ctx, const view_camera& cam, bool show_background,
                                const ray& start, const std::optional<hit>& first, const ray_cone& cone,
                                ray_counts& counts, const sample_outputs& outputs = {});

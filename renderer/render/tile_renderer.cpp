@@ -133,13 +133,43 @@ inline pixel_stratum sample_stratum(int x, int y, int s, int spp) {
   return {pixel, permuted_index(uint32_t(s), uint32_t(spp), pixel), uint32_t(spp)};
 }
 
+// The wave stage's camera hits of the run of samples a tile's camera ray batch holds (first: the
+// batch's first sample when they were made; none yet: npos).
+struct camera_hits {
+  size_t first = ~size_t(0);
+  std::vector<camera_hit> hits;
+  std::vector<uint32_t> order;  // the batch's rays grouped by the material they hit first
+};
+
+// Makes the camera hits of the run rays holds, unless they are made: the rays grouped by the
+// material of their closest hit (misses last), so that one material's textures and branches are
+// worked through together, each group in the order the rays were made.
+const std::vector<camera_hit>& camera_hits_of(const shading_context& ctx, const camera_ray_batch& rays,
+                                              camera_hits& out, triangle_memo& memo, ray_counts& counts) {
+  if (out.first == rays.first && out.hits.size() == rays.rays.size()) return out.hits;
+  const size_t n = rays.rays.size();
+  out.first = rays.first;
+  out.hits.resize(n);
+  out.order.resize(n);
+  for (size_t i = 0; i < n; ++i) out.order[i] = uint32_t(i);
+  auto material_of = [&](uint32_t i) {
+    const std::optional<hit>& h = rays.hits[i];
+    return h ? ctx.world.instances[h->instance_id].material : ~uint32_t(0);
+  };
+  std::stable_sort(out.order.begin(), out.order.end(),
+                   [&](uint32_t a, uint32_t b) { return material_of(a) < material_of(b); });
+  for (uint32_t i : out.order)
+    prepare_camera_hit(ctx, rays.rays[i], rays.hits[i], rays.sources[i].cone, counts, &memo, out.hits[i]);
+  return out.hits;
+}
+
 // Shades every stratified sample of one pixel from its camera ray and closest hit (made and traced
 // by the camera-ray stage, rays) and splats it through the filter. The nearest sample decides depth,
 // normal and the other AOVs (never filtered, so they stay valid for compositing).
 void render_pixel(const shading_context& ctx, const view_camera& cam, const render_settings& settings, int x,
                   int y, camera_ray_batch& rays, pixel_splat& splat, splat_film& splats, tile_sums& sums,
                   std::vector<vec3>& parts, film& out, deep_collector* deep, triangle_memo& memo,
-                  ray_counts& counts) {
+                  camera_hits& wave, ray_counts& counts) {
   const bool splat_wants_mattes = matte_layers(settings.aovs).any();
   camera_sample nearest;
   splat.clear();
@@ -152,8 +182,12 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
     outputs.stratum = sample_stratum(x, y, s, settings.samples_per_pixel);
-    camera_sample cs = shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
-                                        source.cone, counts, outputs);
+    camera_sample cs =
+        settings.reference_shading
+            ? shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone,
+                               counts, outputs)
+            : shade_prepared_camera_hit(ctx, cam, settings.show_background, rays.rays[k],
+                                        camera_hits_of(ctx, rays, wave, memo, counts)[k], counts, outputs);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
@@ -206,10 +240,11 @@ void render_filtered_tile(const tile_job& job, const pixel_rect& tl, tile_sums& 
   // The camera rays of each run of rows are made and traced first (render/camera_rays.h).
   camera_ray_batch rays = tile_camera_rays(tl.x0, tl.y0, tl.x1, tl.y1);
   triangle_memo memo;  // the tile's samples mostly hit the same few triangles (shade/surface.h)
+  camera_hits wave;    // without reference shading
   for (int y = tl.y0; y < tl.y1 && !cancel_requested(job.settings); ++y) {
     for (int x = tl.x0; x < tl.x1 && !cancel_requested(job.settings); ++x) {
       render_pixel(job.ctx, job.cam, job.settings, x, y, rays, splat, job.splats, sums, parts, job.out,
-                   deep ? &deep_pixel : nullptr, memo, counts);
+                   deep ? &deep_pixel : nullptr, memo, wave, counts);
       if (deep) finish_deep_pixel(deep_pixel, *deep);
     }
     count_row_done(job.settings, tl);

@@ -40,6 +40,9 @@ struct render_settings {
   // Camera rays of a tile traced together (accelerator::intersect_coherent) before shading; the
   // image is the same either way. Adaptive sampling traces its samples one at a time.
   bool packets = false;
+  // Shade each sample from its camera ray to its last bounce before the next (the reference the
+  // wave is held to) instead of making a run's camera hits ready together first.
+  bool reference_shading = false;
   aov_set aovs;  // which outputs the film keeps beside the colour
   // Motion blur: each camera sample gets its time in the shutter (render/sample_pattern.h), which
   // every ray of its path keeps. Off: every ray is at time 0 (the frame, or the shutter's opening).
