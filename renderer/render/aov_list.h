@@ -32,7 +32,7 @@ struct aov_set {
   // CryptoObject00.. and CryptoMaterial00..: Cryptomatte ranks of the glTF node and material names.
   bool crypto_object = false;
   bool crypto_material = false;
-  // direct.RGB, reflection.RGB, refraction.RGB: the beauty split by first event (shade/whitted.h's
+  // direct.RGB, reflection.RGB, refraction.RGB: the beauty split by first event (shade/path_record.h's
   // light_split), filtered like it; the three sum to R G B.
   bool direct = false;
   bool reflection = false;
@@ -68,7 +68,7 @@ std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad)
 // True when some output needs the light split.
 inline bool wants_light_split(const aov_set& a) { return a.direct || a.reflection || a.refraction; }
 
-// True when some output needs the camera path's passes (whitted.h's camera_passes).
+// True when some output needs the camera path's passes (shade/path_record.h's camera_passes).
 inline bool wants_camera_passes(const aov_set& a) {
   return a.albedo_filtered || a.normal_filtered || a.diffuse || a.specular || a.shadow;
 }

@@ -41,7 +41,7 @@ struct camera_sample {
   // With outputs.groups: rgba's colour by light group (render/light_groups.h); else empty.
   std::vector<vec3> groups;
   // With outputs.passes: what the camera path collects for the denoiser and relighting passes
-  // (shade/whitted.h), its shadow mattes (one per light) only with outputs.shadow.
+  // (shade/path_record.h), its shadow mattes (one per light) only with outputs.shadow.
   camera_passes passes;
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
@@ -58,7 +58,7 @@ struct sample_outputs {
   bool shadow = false;  // fills passes.shadow too (with passes)
   // Deep output: set to the caller's buffer, which each sample clears and fills with the surfaces
   // its camera path shades, their radiance summing to rgba's colour and their coverage to its
-  // alpha (shade/whitted.h's camera_path::surfaces). Kept outside camera_sample, which adaptive
+  // alpha (shade/path_record.h's camera_path::surfaces). Kept outside camera_sample, which adaptive
   // sampling stores for every pixel corner.
   std::vector<path_surface>* surfaces = nullptr;
   const scene_motion* motion = nullptr;  // fills surface_hit and render_point

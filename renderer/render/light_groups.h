@@ -12,7 +12,7 @@
 
 namespace kiln {
 
-// The EXR layer of each group, in the order shade/whitted.h files them: "lightgroup_" + the
+// The EXR layer of each group, in the order shade/path_record.h files them: "lightgroup_" + the
 // light's name for each light in scene order, then "lightgroup_emission" and
 // "lightgroup_environment". A name keeps letters, digits and '_' (anything else becomes '_'); a
 // light without a name is "light<index>"; a name met before gets "_2", "_3", ... so every layer is

@@ -180,7 +180,7 @@ inline vec3 coat_normal_or(const material_point& mp, const vec3& n) {
 // How much of each glossy lobe a light lights. Punctual lights light all of them; the environment
 // lights the part of a smooth surface's reflection that is not traced as a mirror ray (which sees
 // the environment itself), and none of the dielectric's transmissive share, whose reflection is
-// always traced (shade/whitted.h).
+// always traced (shade/delta_lobes.h).
 struct glossy_weights {
   float dielectric = 1.0f;  // the dielectric GGX lobe
   float metal = 1.0f;       // the metal's GGX lobe
