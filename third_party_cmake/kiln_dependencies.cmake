@@ -109,6 +109,12 @@ add_library(kiln_png_jpeg INTERFACE)
 target_link_libraries(kiln_png_jpeg INTERFACE PNG::PNG JPEG::JPEG)
 add_library(kiln::png_jpeg ALIAS kiln_png_jpeg)
 
+# zlib's CRC-32 is the content checksum of every output (io/exr/exr_checksum.h); libpng needs zlib anyway.
+kiln_require(ZLIB zlib1g-dev)
+add_library(kiln_zlib INTERFACE)
+target_link_libraries(kiln_zlib INTERFACE ZLIB::ZLIB)
+add_library(kiln::zlib ALIAS kiln_zlib)
+
 add_library(kiln_meshoptimizer INTERFACE)
 target_link_libraries(kiln_meshoptimizer INTERFACE meshoptimizer::meshoptimizer)
 add_library(kiln::meshoptimizer ALIAS kiln_meshoptimizer)

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config python3
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
-  libtinygltf-dev libdraco-dev libmeshoptimizer-dev libpng-dev libjpeg-dev nlohmann-json3-dev libglm-dev libcli11-dev
+  libtinygltf-dev libdraco-dev libmeshoptimizer-dev libpng-dev zlib1g-dev libjpeg-dev nlohmann-json3-dev libglm-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-openimageio
   clang-format-14

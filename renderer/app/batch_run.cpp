@@ -11,11 +11,13 @@
 #include "app/interrupt.h"
 #include "app/text_output.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "io/exr/contact_sheet.h"
-#include "io/exr/exr_reader.h"
-#include "io/exr/preview_writer.h"
+#include "io/exr/exr_verify.h"
+#include "io/exr/preview_record.h"
 #include "job/deep_output.h"
 #include "job/render_fingerprint.h"
+#include "job/render_job.h"
 
 namespace kiln {
 
@@ -44,7 +46,8 @@ const char* status_name(job_status s) {
 struct job_result {
   job_status status = job_status::not_started;
   std::string error;
-  int signal = 0;  // crashed: the signal that killed the job's process
+  std::string resume;  // with --resume, why an existing output was not kept (rendered again)
+  int signal = 0;      // crashed: the signal that killed the job's process
   double seconds = 0.0;
 };
 
@@ -61,16 +64,16 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
   const auto start = std::chrono::steady_clock::now();
   try {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
-    // The deep file is renamed into place before the EXR, so an up-to-date EXR lacks it only when
-    // it was removed since: then the job renders again.
     std::error_code ec;
-    if (resume &&
-        output_up_to_date(job.options.output, make_fingerprint(job.options, &interrupt_requested()),
-                          job.options.preview) &&
-        (!job.options.deep || fs::is_regular_file(deep_output_path(job.options.output), ec))) {
-      result.status = job_status::skipped;
-      result.seconds = seconds_since(start);
-      return result;
+    if (resume && fs::exists(job.options.output, ec)) {
+      memory_budget budget(job_memory_limit(job.options));
+      result.resume =
+          resume_problem(job.options, make_fingerprint(job.options, &interrupt_requested()), &budget);
+      if (result.resume.empty()) {
+        result.status = job_status::skipped;
+        result.seconds = seconds_since(start);
+        return result;
+      }
     }
   } catch (const std::exception& e) {
     result.status = job_status::failed;
@@ -122,6 +125,7 @@ nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vecto
          {"output", jobs[i].options.output},
          {"status", status_name(r.status)},
          {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
+         {"resume", r.resume.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.resume)},
          {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
                              : nlohmann::json(nullptr)},
          {"seconds", r.seconds}});
@@ -133,22 +137,26 @@ nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vecto
 
 }  // namespace
 
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
-                       const std::string& preview) {
-  std::error_code ec;
-  if (!fs::is_regular_file(output, ec)) return false;
-  try {
-    const exr_image image = read_exr(output);  // every pixel: a truncated file fails here
-    if (exr_string_attribute(image, "kiln/input_hash") != fingerprint.input_hash ||
-        exr_string_attribute(image, "kiln/settings_hash") != fingerprint.settings_hash)
-      return false;
-    // The preview is written after the EXR, so a kill in between leaves the EXR alone.
-    return preview.empty() ||
-           (fs::is_regular_file(preview, ec) &&
-            preview_complete(preview, image.data_window.width(), image.data_window.height()));
-  } catch (const error&) {
-    return false;
+std::string resume_problem(const render_options& options, const render_fingerprint& fingerprint,
+                           memory_budget* budget) {
+  const expected_attributes hashes = {{"kiln/input_hash", fingerprint.input_hash},
+                                      {"kiln/settings_hash", fingerprint.settings_hash}};
+  const exr_check flat = check_flat_exr(options.output, hashes, budget);
+  if (!flat.problem.empty()) return options.output + ": " + flat.problem;
+  // The deep file is renamed into place before the EXR, and the preview after it.
+  if (options.deep) {
+    const std::string path = deep_output_path(options.output);
+    const exr_check deep = check_deep_exr(path, hashes, budget);
+    if (!deep.problem.empty()) return path + ": " + deep.problem;
+    if (!(deep.data_window == flat.data_window) || !(deep.display_window == flat.display_window))
+      return path + ": its windows are not the EXR's";
   }
+  if (!options.preview.empty()) {
+    const std::string problem =
+        preview_file_problem(options.preview, flat.data_window.width(), flat.data_window.height());
+    if (!problem.empty()) return options.preview + ": " + problem;
+  }
+  return "";
 }
 
 namespace {
@@ -194,8 +202,10 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
     }
     if (r.status == job_status::failed || r.status == job_status::crashed) ++failed;
     if (quiet) continue;
-    std::fprintf(stderr, "kiln batch: [%zu/%zu] %s %s %.2f s%s%s\n", i + 1, jobs.size(), jobs[i].name.c_str(),
-                 status_name(r.status), r.seconds, r.error.empty() ? "" : ": ", r.error.c_str());
+    std::fprintf(stderr, "kiln batch: [%zu/%zu] %s %s %.2f s%s%s%s%s%s\n", i + 1, jobs.size(),
+                 jobs[i].name.c_str(), status_name(r.status), r.seconds, r.error.empty() ? "" : ": ",
+                 r.error.c_str(), r.resume.empty() ? "" : " (not resumed: ", r.resume.c_str(),
+                 r.resume.empty() ? "" : ")");
     // ETA from the mean time of a rendered job: skipped ones cost next to nothing.
     const size_t left = jobs.size() - done;
     if (interrupted)

@@ -11,15 +11,20 @@
 
 namespace kiln {
 
+class memory_budget;
+
 // What happened to a job; crashed when a signal killed its process (it counts as failed);
 // not_started when the batch stopped before it.
 enum class job_status { rendered, skipped, failed, crashed, interrupted, not_started };
 
-// True when output exists, every pixel reads back, its kiln/input_hash and kiln/settings_hash
-// equal the fingerprint's, and, when the job asks for a preview, that preview is complete at the
-// EXR's size: every output a job asks for must be there.
-bool output_up_to_date(const std::string& output, const render_fingerprint& fingerprint,
-                       const std::string& preview);
+// Why --resume may not keep options' outputs as done, as "FILE: problem", or "" when it may: every
+// file the job writes (the EXR, with --deep the deep EXR, with --preview the preview) exists, reads
+// to its end and gives the content checksum it recorded when written (io/exr/exr_verify.h,
+// io/exr/preview_record.h); the EXRs' kiln/input_hash and kiln/settings_hash equal the
+// fingerprint's; the deep file's windows are the EXR's and the preview has the EXR's size. Reads
+// a band of rows at a time, charged to budget.
+std::string resume_problem(const render_options& options, const render_fingerprint& fingerprint,
+                           memory_budget* budget);
 
 // Runs the jobs; writes the contact sheet (when contact_sheet is not empty) unless a signal stopped
 // the batch, and the summary (when summary is not empty) whatever happens. Returns the exit code: 0

@@ -6,14 +6,17 @@
 #include <OpenEXR/ImfDeepScanLineOutputFile.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <vector>
 
 #include "core/error.h"
 #include "io/exr/exr_atomic_file.h"
 #include "io/exr/exr_base_header.h"
+#include "io/exr/exr_checksum.h"
 #include "io/exr/exr_message.h"
 
 namespace kiln {
@@ -105,6 +108,35 @@ void write_deep_file(Imf::OStream& stream, const Imf::Header& header, const deep
   }
 }
 
+// The checksum deep_exr_checksum reads back from the file (io/exr/exr_checksum.h): the layout, then
+// row by row the counts and the samples, each sample's channels in the header's (alphabetical) order.
+std::string deep_checksum(const Imf::Header& header, const deep_image& deep) {
+  std::vector<size_t> offsets;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+    for (int i = 0; i < channel_count; ++i)
+      if (std::strcmp(c.name(), deep_channel_names[i]) == 0) offsets.push_back(channel_offsets[i]);
+  content_crc crc;
+  const std::string layout = exr_layout_text(header);
+  crc.add(layout.data(), layout.size());
+  std::vector<float> samples;
+  for (int y = deep.region.y0; y < deep.region.y1; ++y) {
+    const deep_rows row = gather_rows(deep, y, y + 1);
+    samples.clear();
+    for (size_t i = 0; i < row.counts.size(); ++i) {
+      if (row.counts[i] == 0) continue;
+      const char* first = row.first[0][i] - channel_offsets[0];  // the pixel's first deep_sample
+      for (unsigned int s = 0; s < row.counts[i]; ++s)
+        for (size_t offset : offsets) {
+          float value;
+          std::memcpy(&value, first + s * sizeof(deep_sample) + offset, sizeof value);
+          samples.push_back(value);
+        }
+    }
+    add_deep_row(crc, row.counts.data(), row.counts.size(), samples.data(), samples.size());
+  }
+  return crc.text();
+}
+
 }  // namespace
 
 void write_deep_exr(const std::string& path, const deep_image& deep, const exr_metadata& metadata,
@@ -115,6 +147,7 @@ void write_deep_exr(const std::string& path, const deep_image& deep, const exr_m
   Imf::Header header;
   try {
     header = deep_header(deep, metadata);
+    header.insert(exr_checksum_attribute, Imf::StringAttribute(deep_checksum(header, deep)));
   } catch (const std::exception& e) {  // e.g. a metadata key that is a standard attribute of another type
     throw io_error(path, "cannot write deep EXR: " + exr_message(e.what(), path));
   }

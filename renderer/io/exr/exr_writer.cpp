@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfOutputPart.h>
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfTiledOutputPart.h>
@@ -32,6 +33,7 @@
 #include "io/exr/cryptomatte.h"
 #include "io/exr/exr_atomic_file.h"
 #include "io/exr/exr_base_header.h"
+#include "io/exr/exr_checksum.h"
 #include "io/exr/exr_header.h"
 #include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
@@ -342,11 +344,58 @@ void write_file(Imf::OStream& stream, const std::vector<Imf::Header>& headers, c
   }
 }
 
-// Writes headers as the parts of one file at path, atomically. pixels holds every part's channels
-// interleaved, `pixel` bytes a pixel, row-major over the parts' (common) data window: the parts one
-// after another, each part's channels in its channel list's order and in their own formats.
-void write_parts(const std::string& path, const std::vector<Imf::Header>& headers,
-                 const unsigned char* pixels, size_t pixel, const std::atomic<bool>* cancel = nullptr) {
+bool lossy(Imf::Compression codec) {
+  switch (codec) {
+    case Imf::PXR24_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION:
+    case Imf::DWAB_COMPRESSION:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The checksum of the pixels a reader of the file will get back (io/exr/exr_checksum.h). Lossless
+// codecs give back these very bytes; a lossy codec's values are known only after it has run, so the
+// file is encoded once in memory and decoded again (about the file's size in memory, plus the decode).
+std::string stored_checksum(const std::vector<Imf::Header>& headers, const unsigned char* pixels,
+                            size_t pixel, const std::atomic<bool>* cancel) {
+  const Imath::Box2i& w = headers.front().dataWindow();
+  const size_t bytes = size_t(w.max.x - w.min.x + 1) * size_t(w.max.y - w.min.y + 1) * pixel;
+  if (std::none_of(headers.begin(), headers.end(),
+                   [](const Imf::Header& h) { return lossy(h.compression()); }))
+    return flat_exr_checksum(headers, pixels, bytes);
+  Imf::StdOSStream encoded;
+  write_file(encoded, headers, pixels, pixel, cancel);
+  Imf::StdISStream decoded;
+  decoded.str(encoded.str());
+  Imf::MultiPartInputFile file(decoded);
+  return flat_exr_checksum(file, "", nullptr);
+}
+
+// Writes headers as the parts of one file at path, atomically, each with kiln/checksum. pixels holds
+// every part's channels interleaved, `pixel` bytes a pixel, row-major over the parts' (common) data
+// window: the parts one after another, each part's channels in its channel list's order and in their
+// own formats.
+void write_parts(const std::string& path, std::vector<Imf::Header> headers, const unsigned char* pixels,
+                 size_t pixel, const std::atomic<bool>* cancel = nullptr) {
+  std::string checksum;
+  try {
+    checksum = stored_checksum(headers, pixels, pixel, cancel);
+  } catch (const error& e) {
+    if (e.kind() == error_kind::interrupted) throw error(error_kind::interrupted, path, "", e.what());
+    throw io_error(path, std::string("cannot write EXR: ") + e.what());
+  } catch (const std::exception& e) {
+    throw io_error(path, "cannot write EXR: " + exr_message(e.what(), path));
+  }
+  for (Imf::Header& header : headers) {
+    // A copied header (write_exr of an image read back) holds its source's.
+    if (header.find(exr_checksum_attribute) != header.end())
+      header = header_without(header, exr_checksum_attribute);
+    header.insert(exr_checksum_attribute, Imf::StringAttribute(checksum));
+  }
   write_exr_atomically(
       path, "EXR", [&](Imf::OStream& stream) { write_file(stream, headers, pixels, pixel, cancel); }, cancel);
 }

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "io/exr/atomic_write.h"
 #include "io/exr/exr_beauty.h"
+#include "io/exr/preview_record.h"
 #include "io/image_codecs/direct_decode.h"
 #include "io/image_codecs/direct_encode.h"
 
@@ -116,6 +117,7 @@ void write_preview_image(const std::string& path, int width, int height, int cha
     problem = encode_jpeg(width, height, rgb.data(), encoded);
   }
   if (!problem.empty()) throw io_error(path, "cannot encode " + format + ": " + problem);
+  encoded = with_checksum_record(encoded, format);
   // The error names the format as earlier kilns did ("cannot write png: ...").
   write_atomically(
       path, format,
