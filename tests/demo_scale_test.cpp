@@ -107,11 +107,11 @@ TEST(demo_scene_scale, secondary_rays_never_rehit_their_surface_at_any_scale) {
       const image_difference d = compare_interiors(unit, scaled);
       EXPECT_GT(d.interior_share, 0.7);  // edges are a small part of the image
       // Moved 10 scene sizes away, world-space float hit points round coarser; seen in the mirror
-      // through the glass, whose refraction magnifies that, one pixel of about 6,000 (43,34)
-      // changes by 1.2% in a dark channel. Shadow acne or self-reflection would change thousands.
-      // Scaled about the origin, nothing may change.
+      // through the glass, whose refraction magnifies that, one or two pixels of about 6,000
+      // ((38,40) and (34,48)) change by 1.0-1.1% in the dark red channel. Shadow acne or
+      // self-reflection would change thousands. Scaled about the origin, nothing may change.
       const bool shifted = shift != dvec3(0.0);
-      EXPECT_LE(d.differing_share, shifted ? 2.0 / 6000.0 : 0.0)
+      EXPECT_LE(d.differing_share, shifted ? 3.0 / 6000.0 : 0.0)
           << "scale " << scale << ", shift " << shift.x;
     }
   }
