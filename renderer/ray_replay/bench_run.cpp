@@ -165,8 +165,7 @@ bench_measurement run_bench(const scene& world, const view_camera& cam, const re
     for (size_t k = 0; k < size_t(ray_kind_count); ++k) {
       // A render with see-through shadows walks every shadow ray with closest-hit queries; those
       // rays are also timed as occlusion queries, the question a batched shadow pass asks first.
-      const bool walked_shadows =
-          occlusion && k == size_t(ray_kind::shadow) && recorded.occluded[k].empty();
+      const bool walked_shadows = occlusion && k == size_t(ray_kind::shadow) && recorded.occluded[k].empty();
       const std::vector<ray> rays =
           valid_only(occlusion && !walked_shadows ? recorded.occluded[k] : recorded.intersect[k]);
       if (rays.empty()) continue;

@@ -93,7 +93,7 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
     // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
     const brdf_lobes lobes =
         s.record.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint)
-                 : brdf_lobes{};
+                        : brdf_lobes{};
 
     if (!l.casts_shadows) {
       add(i, f * ls.irradiance * cos_theta);

@@ -408,9 +408,9 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
     out.specular *= 1.0f - weight;
     if (coat_v > 0.0f && coat_l > 0.0f) {
       zero = false;
-      out.specular += vec3(
-          weight * (weights ? weights->coat : 1.0f) *
-          ggx_lobe(L.clearcoat_roughness, nc, h, v, l, std::max(glm::dot(nc, h), 0.0f), coat_v, coat_l, footprint));
+      out.specular += vec3(weight * (weights ? weights->coat : 1.0f) *
+                           ggx_lobe(L.clearcoat_roughness, nc, h, v, l, std::max(glm::dot(nc, h), 0.0f),
+                                    coat_v, coat_l, footprint));
     }
   }
   return out;

@@ -155,7 +155,8 @@ TEST(surface, curvature_turns_around_a_cylinder_and_not_along_it) {
   EXPECT_NEAR(sphere.minor, 0.5, 1e-6);
   EXPECT_EQ(sphere.axis, vec3(0.0f));
   // Parallel steps describe no patch.
-  EXPECT_EQ(curvature_from_differentials(n, dvec3(1, 0, 0), dvec3(2, 0, 0), dvec3(0.1), dvec3(0.2)).major, 0.0f);
+  EXPECT_EQ(curvature_from_differentials(n, dvec3(1, 0, 0), dvec3(2, 0, 0), dvec3(0.1), dvec3(0.2)).major,
+            0.0f);
 }
 
 TEST(surface, barycentric_interpolation_follows_embree_convention) {

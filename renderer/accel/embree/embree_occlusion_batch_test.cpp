@@ -89,10 +89,18 @@ std::vector<ray> random_rays(const scene& s, size_t count, uint32_t seed) {
     if (unit(rng) < 0.5f) r.tmax = unit(rng) * radius;
     r.time = unit(rng);
     if (i % 29 == 3) switch ((i / 29) % 4) {
-        case 0: r.direction = vec3(0.0f); break;
-        case 1: r.tmin = std::nanf(""); break;
-        case 2: r.origin.y = inf; break;
-        default: r.tmin = r.tmax + 1.0f; break;
+        case 0:
+          r.direction = vec3(0.0f);
+          break;
+        case 1:
+          r.tmin = std::nanf("");
+          break;
+        case 2:
+          r.origin.y = inf;
+          break;
+        default:
+          r.tmin = r.tmax + 1.0f;
+          break;
       }
   }
   return rays;

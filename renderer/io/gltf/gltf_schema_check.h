@@ -11,8 +11,8 @@
 namespace kiln::gltf_internal {
 
 // Throws input_error for the first integer property of the glTF schema or of an extension kiln
-// reads (indices, byte offsets and lengths, counts, enums) that is not a JSON integer, lies below the schema's minimum or above
-// what kiln stores, or, for an index, names no element of its collection.
+// reads (indices, byte offsets and lengths, counts, enums) that is not a JSON integer, lies below the
+// schema's minimum or above what kiln stores, or, for an index, names no element of its collection.
 void check_integer_properties(const nlohmann::json& doc, const std::string& path);
 
 // Throws input_error for a camera's optional aspectRatio or perspective zfar that is given but
