@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "app/batch_run.h"
 #include "app/cli_checks.h"
 #include "app/cli_suggest.h"
+#include "app/exit_status.h"
 #include "app/interrupt.h"
 #include "app/output_lock.h"
 #include "app/text_output.h"
@@ -404,23 +406,39 @@ int run_batch(const batch_options& options) {
                           plan_json(plan_batch(options), options.plan_estimates).dump(2) + "\n");
     return 0;
   }
-  std::vector<batch_job> jobs = plan_batch(options);
   if (!options.summary.empty()) check_output_writable(options.summary);
-  if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
-  const std::string out_dir = absolute_path(options.out_dir);
-  const output_folder_lock lock(out_dir, options.wait_for_lock);
-  // Another running batch's folder inside this one is its own subtree: no job may write there.
-  for (const batch_job& job : jobs) {
-    try {
-      check_not_in_locked_folder(job.options.output, out_dir);
-    } catch (const error& e) {
-      throw input_error("", job.where, e.what());
+  // From here the summary is written whatever stops the batch: a refused plan, an unusable folder,
+  // a job in another batch's folder, out of memory, a signal. Only when another batch holds the
+  // folder is it left alone: the summary named may be that batch's.
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<batch_job> jobs;
+  bool locking = false;
+  try {
+    jobs = plan_batch(options);
+    if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
+    const std::string out_dir = absolute_path(options.out_dir);
+    locking = true;
+    const output_folder_lock lock(out_dir, options.wait_for_lock);
+    locking = false;
+    // Another running batch's folder inside this one is its own subtree: no job may write there.
+    for (const batch_job& job : jobs) {
+      try {
+        check_not_in_locked_folder(job.options.output, out_dir);
+      } catch (const error& e) {
+        throw input_error("", job.where, e.what());
+      }
     }
+    return run_batch_jobs(jobs, options.resume, options.summary, options.contact_sheet,
+                          options.defaults.quiet);
+  } catch (const std::exception& e) {
+    if (!options.summary.empty() && !locking)
+      write_stopped_batch_summary(options.summary, jobs, exit_status_of(e), message_of(e),
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    throw;
   }
-  return run_batch_jobs(jobs, options.resume, options.summary, options.contact_sheet, options.defaults.quiet);
 }
 
 }  // namespace kiln

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/batch_child.h"
+#include "app/exit_status.h"
 #include "app/interrupt.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -112,7 +113,7 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
 }
 
 nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vector<job_result>& results,
-                            int exit_code, double seconds) {
+                            int exit_code, double seconds, const std::string& error) {
   nlohmann::json list = nlohmann::json::array();
   std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0},     {"failed", 0},
                                     {"crashed", 0},  {"interrupted", 0}, {"not_started", 0}};
@@ -132,7 +133,11 @@ nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vecto
   }
   nlohmann::json totals = {{"jobs", jobs.size()}, {"seconds", seconds}};
   for (const auto& [name, count] : counts) totals[name] = count;
-  return {{"version", 1}, {"exit_code", exit_code}, {"jobs", list}, {"totals", totals}};
+  return {{"version", 1},
+          {"exit_code", exit_code},
+          {"error", error.empty() ? nlohmann::json(nullptr) : nlohmann::json(error)},
+          {"jobs", list},
+          {"totals", totals}};
 }
 
 }  // namespace
@@ -178,7 +183,38 @@ void write_batch_contact_sheet(const std::string& path, const std::vector<batch_
   write_contact_sheet(path, cells);
 }
 
+// Writes the summary atomically; false (said on stderr) when it cannot. A job list too large for
+// memory leaves the totals and the error, so the summary is still there and says so.
+bool write_summary(const std::string& path, const std::vector<batch_job>& jobs,
+                   const std::vector<job_result>& results, int exit_code, double seconds,
+                   const std::string& error) {
+  // A job's message may quote bytes that are not UTF-8 (from a file's contents): they become U+FFFD
+  // instead of losing the summary.
+  const auto text = [](const nlohmann::json& j) {
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  };
+  try {
+    std::string summary;
+    try {
+      summary = text(summary_json(jobs, results, exit_code, seconds, error));
+    } catch (const std::bad_alloc&) {
+      const std::string why = "out of memory listing the summary's " + std::to_string(jobs.size()) + " jobs";
+      summary = text(summary_json({}, {}, exit_code, seconds, error.empty() ? why : error + "; " + why));
+    }
+    write_text_atomically(path, summary);
+    return true;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kiln: %s\n", message_of(e).c_str());
+    return false;
+  }
+}
+
 }  // namespace
+
+void write_stopped_batch_summary(const std::string& path, const std::vector<batch_job>& jobs,
+                                 int exit_code, const std::string& error, double seconds) {
+  write_summary(path, jobs, std::vector<job_result>(jobs.size()), exit_code, seconds, error);
+}
 
 int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary,
                    const std::string& contact_sheet, bool quiet) {
@@ -191,7 +227,13 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
     if (interrupt_requested()) break;  // a signal between jobs: the rest are not started
     const std::string label =
         "[" + std::to_string(i + 1) + "/" + std::to_string(jobs.size()) + "] " + jobs[i].name;
-    results[i] = run_job(jobs[i], resume, label, quiet);
+    try {
+      results[i] = run_job(jobs[i], resume, label, quiet);
+    } catch (const std::exception& e) {  // out of memory, or a failure outside the job's process
+      results[i] = job_result{};
+      results[i].status = job_status::failed;
+      results[i].error = message_of(e);
+    }
     const job_result& r = results[i];
     if (r.status == job_status::not_started) break;  // a signal just before its start
     interrupted = r.status == job_status::interrupted;
@@ -224,24 +266,13 @@ int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::s
     try {
       write_batch_contact_sheet(contact_sheet, jobs, results);
       if (!quiet) std::fprintf(stderr, "kiln batch: contact sheet -> %s\n", contact_sheet.c_str());
-    } catch (const error& e) {
-      std::fprintf(stderr, "kiln: %s\n", e.what());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "kiln: %s\n", message_of(e).c_str());
       if (!exit_code) exit_code = 1;
     }
   }
-  if (!summary.empty()) {
-    try {
-      write_text_atomically(summary,
-                            summary_json(jobs, results, exit_code, seconds_since(batch_start))
-                                    // A job's message may quote bytes that are not UTF-8 (from a file's
-                                    // contents): they become U+FFFD instead of losing the summary.
-                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-                                "\n");
-    } catch (const error& e) {
-      std::fprintf(stderr, "kiln: %s\n", e.what());
-      return exit_code ? exit_code : 1;
-    }
-  }
+  if (!summary.empty() && !write_summary(summary, jobs, results, exit_code, seconds_since(batch_start), ""))
+    return exit_code ? exit_code : 1;
   return exit_code;
 }
 

@@ -22,6 +22,7 @@
 #include "app/cli_checks.h"
 #include "app/cli_suggest.h"
 #include "app/compare_command.h"
+#include "app/exit_status.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
 #include "app/stitch_command.h"
@@ -30,9 +31,7 @@
 namespace {
 
 constexpr int exit_success = 0;
-constexpr int exit_failure = 1;
 constexpr int exit_bad_input = 2;
-constexpr int exit_time_limit = 124;  // as timeout(1): the job ran past --time-limit
 
 // A job of kiln batch: it stops (SIGTERM, handled like any) when the batch dies, so a killed
 // batch leaves no render running on its own. KILN_TEST_ABORT_ASSET (test only, see
@@ -119,17 +118,8 @@ int main(int argc, char** argv) {
     if (stitch_command->parsed()) kiln::run_stitch(stitch);
     if (batch_command->parsed()) return kiln::run_batch(batch);  // 0, 1 when a job failed, 128 + signal
     return exit_success;
-  } catch (const kiln::error& e) {
-    std::cerr << "kiln: " << e.what() << '\n';
-    if (e.kind() == kiln::error_kind::time_limit) return exit_time_limit;
-    if (e.kind() == kiln::error_kind::interrupted)
-      return 128 + (kiln::interrupt_signal() ? kiln::interrupt_signal() : SIGINT);
-    return e.kind() == kiln::error_kind::input ? exit_bad_input : exit_failure;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "kiln: out of memory\n";
-    return exit_failure;
   } catch (const std::exception& e) {
-    std::cerr << "kiln: " << e.what() << '\n';
-    return exit_failure;
+    std::cerr << "kiln: " << kiln::message_of(e) << '\n';
+    return kiln::exit_status_of(e);
   }
 }
