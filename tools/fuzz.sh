@@ -5,7 +5,8 @@
 #             image_header (encoded image headers), image_decode (PNG and JPEG through kiln's own
 #             decoding, io/image_codecs/direct_decode.h), transforms (extreme transforms, cameras and
 #             coordinates through the whole render job), draco_stream (KHR_draco_mesh_compression
-#             streams through the decoder wrapper) or all (default: every one in sequence);
+#             streams through the decoder wrapper), resume_check (damaged EXR, deep EXR and preview
+#             outputs through `kiln batch --resume`'s check) or all (default: every one in sequence);
 #             SECONDS per target, default 300
 # Each run's last lines (libFuzzer's final stats) give executions and coverage; the full log is
 # fuzz/findings/TARGET.log. Seeds for gltf_loader: scenes/, tests/data/bad_gltf/,
@@ -19,12 +20,12 @@ target=all
 seconds=300
 for arg in "$@"; do
   case "$arg" in
-    gltf_loader | quadric | image_header | image_decode | transforms | draco_stream | all) target="$arg" ;;
-    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|image_decode|transforms|draco_stream|all] [SECONDS]" >&2 && exit 2 ;;
+    gltf_loader | quadric | image_header | image_decode | transforms | draco_stream | ocio_config_text | resume_check | all) target="$arg" ;;
+    *[!0-9]* | "") echo "usage: tools/fuzz.sh [gltf_loader|quadric|image_header|image_decode|transforms|draco_stream|ocio_config_text|resume_check|all] [SECONDS]" >&2 && exit 2 ;;
     *) seconds="$arg" ;;
   esac
 done
-targets=(gltf_loader quadric image_header image_decode transforms draco_stream ocio_config_text)
+targets=(gltf_loader quadric image_header image_decode transforms draco_stream ocio_config_text resume_check)
 [[ "$target" != all ]] && targets=("$target")
 
 if ! command -v clang++-14 >/dev/null; then
@@ -93,6 +94,27 @@ seed_ocio_config_text() {
   cp share/ocio/kiln.ocio "$1/kiln.ocio"
 }
 
+# Seeds for fuzz_resume_check: a tiny render's outputs in several codecs, with its deep file and
+# previews, each behind the byte naming its kind (0 flat, 1 deep, 2 PNG, 3 JPEG). Needs a kiln
+# binary (the release tree's, or KILN=...); without one the corpus starts from the studio map.
+seed_resume_check() {
+  local kiln="${KILN:-build/renderer/app/kiln}" work
+  work="$(mktemp -d)"
+  { printf '\x00'; cat share/environments/studio.exr; } >"$1/studio.exr"
+  if [[ -x "$kiln" ]]; then
+    for codec in zip piz b44 dwaa; do
+      "$kiln" render scenes/cornell_box.gltf -o "$work/$codec.exr" --width 8 --height 6 --spp 1 -q \
+        --compression "$codec" --multipart --deep --preview "$work/$codec.png" &&
+        { printf '\x00'; cat "$work/$codec.exr"; } >"$1/$codec.exr" &&
+        { printf '\x01'; cat "$work/$codec.deep.exr"; } >"$1/$codec.deep.exr" &&
+        { printf '\x02'; cat "$work/$codec.png"; } >"$1/$codec.png"
+    done
+    "$kiln" render scenes/cornell_box.gltf -o "$work/j.exr" --width 8 --height 6 --spp 1 -q --preview "$work/j.jpg" &&
+      { printf '\x03'; cat "$work/j.jpg"; } >"$1/j.jpg"
+  fi
+  rm -rf "$work"
+}
+
 for t in "${targets[@]}"; do
   corpus="fuzz/corpus/$t"
   mkdir -p "$corpus"
@@ -100,7 +122,7 @@ for t in "${targets[@]}"; do
   dict=(-dict=fuzz/gltf.dict)
   [[ "$t" == quadric ]] && dict=(-dict=fuzz/quadric.dict)
   [[ "$t" == image_header || "$t" == image_decode || "$t" == transforms || "$t" == draco_stream ||
-     "$t" == ocio_config_text ]] && dict=()
+     "$t" == ocio_config_text || "$t" == resume_check ]] && dict=()
   echo "kiln: fuzzing $t for $seconds s" >&2
   set +e
   ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0 LSAN_OPTIONS=suppressions=fuzz/lsan.supp \

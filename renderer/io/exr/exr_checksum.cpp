@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "io/exr/exr_header_scan.h"
 
 namespace kiln {
 
@@ -106,6 +107,14 @@ std::string flat_exr_checksum(Imf::MultiPartInputFile& file, const std::string& 
   const int rows = int(std::clamp<int64_t>(int64_t(exr_band_bytes / row), 1, height));
   memory_charge charge(budget);
   charge.add(uint64_t(rows) * row, path, "the resume check's rows of pixels");
+  // OpenEXR's own buffers, which the header alone sizes: a chunk of each part (its lines or its tile),
+  // compressed and not, and its tables of a few words a line.
+  for (const Imf::Header& h : headers) {
+    const uint64_t chunk = h.hasTileDescription()
+                               ? uint64_t(h.tileDescription().xSize) * h.tileDescription().ySize
+                               : uint64_t(exr_lines_per_chunk(int(h.compression()))) * uint64_t(width);
+    charge.add(2 * chunk * pixel_bytes({h}) + 16 * uint64_t(height), path, "OpenEXR's decode buffers");
+  }
   std::vector<unsigned char> band(size_t(rows) * row);
   content_crc crc = layout_crc(headers);
   for (int64_t y0 = window.min.y; y0 <= window.max.y; y0 += rows) {
@@ -151,11 +160,14 @@ std::string deep_exr_checksum(Imf::MultiPartInputFile& file, const std::string& 
   const int64_t width = int64_t(window.max.x) - window.min.x + 1;
   if (width <= 0 || window.max.y < window.min.y || uint64_t(width) > (uint64_t(1) << 31))
     throw input_error(path, "dataWindow", "no pixels to read, or too many");
+  memory_charge counts_charge(budget);
+  // OpenEXR's own buffers first: sample count tables of a line, and tables of a few words a line.
+  counts_charge.add(8 * uint64_t(width) + 24 * uint64_t(int64_t(window.max.y) - window.min.y + 1), path,
+                    "OpenEXR's deep decode buffers");
   Imf::DeepScanLineInputPart in(file, 0);
   content_crc crc;
   const std::string layout = exr_layout_text(header);
   crc.add(layout.data(), layout.size());
-  memory_charge counts_charge(budget);
   counts_charge.add(uint64_t(width) * deep_band_rows * (sizeof(unsigned int) + channels * sizeof(char*)),
                     path, "the resume check's deep sample counts");
   std::vector<unsigned int> counts(size_t(width) * deep_band_rows);

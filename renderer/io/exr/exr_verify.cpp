@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/exr/exr_checksum.h"
+#include "io/exr/exr_header_scan.h"
 #include "io/exr/exr_message.h"
 #include "io/exr/exr_threads.h"
 
@@ -34,6 +35,8 @@ exr_check check_exr(const std::string& path, const expected_attributes& expected
     bool tiled = false, is_deep = false, multipart = false;
     if (!Imf::isOpenExrFile(path.c_str(), tiled, is_deep, multipart)) return {"not an OpenEXR file", {}, {}};
     if (is_deep != deep) return {deep ? "not a deep EXR" : "a deep EXR, not a flat one", {}, {}};
+    const std::string sizes = exr_header_sizes_problem(path);
+    if (!sizes.empty()) return {sizes, {}, {}};
     use_exr_threads();
     Imf::MultiPartInputFile file(path.c_str());
     const Imf::Header& header = file.header(0);

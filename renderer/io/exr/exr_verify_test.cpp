@@ -252,6 +252,23 @@ TEST(exr_verify, a_deep_file_is_read_to_its_end_and_every_cut_or_flipped_sample_
             std::string::npos);
 }
 
+// Damaged deep files the fuzzer found that made OpenEXR allocate gigabytes from their headers:
+// refused before OpenEXR reads them, or charged to the budget before it allocates.
+TEST(exr_verify, headers_that_declare_more_than_the_file_holds_are_refused_before_openexr_reads_them) {
+  const std::string folder = std::string(KILN_SOURCE_DIR) + "/tests/data/fuzz_regressions/";
+  memory_budget budget(uint64_t(64) << 20);
+  EXPECT_EQ(check_deep_exr(folder + "resume_deep_attribute_size_past_the_file.deep.exr", {}, &budget)
+                .problem.rfind("header attribute ", 0),
+            0u);
+  EXPECT_EQ(check_deep_exr(folder + "resume_deep_channel_list_longer_than_declared.deep.exr", {}, &budget)
+                .problem.rfind("its header does not parse", 0),
+            0u);
+  EXPECT_NE(check_deep_exr(folder + "resume_deep_window_wider_than_the_budget.deep.exr", {}, &budget)
+                .problem.find("over the memory budget"),
+            std::string::npos);
+  EXPECT_EQ(budget.used(), 0u);
+}
+
 TEST(preview_record, every_changed_byte_of_a_preview_fails_its_record) {
   std::vector<unsigned char> codes(8 * 6 * 4);
   for (size_t i = 0; i < codes.size(); ++i) codes[i] = (unsigned char)(i * 37);
