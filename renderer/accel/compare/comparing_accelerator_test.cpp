@@ -88,7 +88,8 @@ TEST(comparing_accelerator, a_batch_is_compared_ray_by_ray) {
   std::vector<uint8_t> blocked(shadow.size(), 7);
   both.occluded_batch(shadow.data(), shadow.size(), blocked.data());
   for (size_t i = 0; i < shadow.size(); ++i) EXPECT_EQ(blocked[i], i == 1 ? 0 : 1) << "the primary's answer";
-  const kind_statistics& k = both.statistics().by_kind[size_t(ray_kind::shadow)];
+  const comparison_statistics stats = both.statistics();
+  const kind_statistics& k = stats.by_kind[size_t(ray_kind::shadow)];
   EXPECT_EQ(k.occlusion_queries, shadow.size());
   EXPECT_EQ(k.occlusion_mismatches, shadow.size() - 1);
 }
