@@ -45,8 +45,9 @@ class silenced_stderr {
   int saved_ = -1;
 };
 
-// Refuses an image whose own header is not one kiln takes, has no size, or declares more than
-// max_texels, before any decoder (or the module holding them) is touched.
+// Refuses an image whose own header is not one kiln takes, has no size, declares more than
+// max_texels or more than its data can hold, before any decoder (or the module holding them) is
+// touched.
 image_header checked_header(const encoded_image& in, const std::string& file, uint64_t max_texels) {
   const image_header h = read_image_header(in.data, in.size);
   if (h.format.empty()) throw input_error(file, in.where, "image data is not PNG, JPEG, WebP, GIF or BMP");
@@ -57,6 +58,8 @@ image_header checked_header(const encoded_image& in, const std::string& file, ui
     throw input_error(file, in.where,
                       "image is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
                           " texels, over the limit of " + std::to_string(max_texels) + " (--max-texels)");
+  if (const std::string problem = image_data_problem(in.data, in.size, h); !problem.empty())
+    throw input_error(file, in.where, problem);
   return h;
 }
 

@@ -1,5 +1,6 @@
 #include "io/gltf/image_header.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace kiln::gltf_internal {
@@ -83,7 +84,59 @@ void read_bmp(const bytes_view& b, image_header& h) {
   h.height = height < 0 ? uint64_t(-int64_t(height)) : uint64_t(height);
 }
 
+// The bytes of every IDAT chunk of a PNG, as far as its chunk list can be walked.
+uint64_t png_image_data_bytes(const bytes_view& b) {
+  uint64_t total = 0;
+  for (size_t pos = 8; b.has(pos, 12);) {
+    const uint64_t length = b.be32(pos);
+    if (b.starts_with("IDAT", pos + 4)) total += length;
+    if (b.starts_with("IEND", pos + 4) || length > b.size - pos - 12) break;
+    pos += 12 + size_t(length);
+  }
+  return total;
+}
+
+// The size of the first chunk named type among a WebP's chunks (after RIFF, size, WEBP), or 0.
+uint64_t webp_chunk_bytes(const bytes_view& b, const char* type) {
+  for (size_t pos = 12; b.has(pos, 8);) {
+    const uint64_t length = b.le32(pos + 4);
+    if (b.starts_with(type, pos)) return std::min<uint64_t>(length, b.size - pos - 8);
+    if (length > b.size - pos - 8) break;
+    pos += 8 + size_t(length) + (length & 1);  // chunks are padded to an even size
+  }
+  return 0;
+}
+
+std::string size_text(const image_header& h) { return std::to_string(h.width) + "x" + std::to_string(h.height); }
+
 }  // namespace
+
+std::string image_data_problem(const uint8_t* data, size_t size, const image_header& h) {
+  const bytes_view b{data, size};
+  if (h.format == "PNG" && b.has(16, 10)) {
+    const uint64_t depth = b.data[24], type = b.data[25];
+    const uint64_t channels = type == 0 || type == 3 ? 1 : type == 4 ? 2 : type == 2 ? 3 : type == 6 ? 4 : 0;
+    // The pixels' bits alone, without the filter bytes: a lower bound for any interlacing.
+    const uint64_t texels = h.width * h.height;  // each at most 2^31 in a PNG
+    const uint64_t pixel_bytes = texels > (~uint64_t(0) >> 6) ? ~uint64_t(0) : texels * channels * depth / 8;
+    const uint64_t idat = png_image_data_bytes(b);
+    constexpr uint64_t deflate_ratio = 1032;  // a 258-byte match in two bits
+    if (pixel_bytes / deflate_ratio > idat + 64)  // 64: the zlib header, checksum and block headers
+      return "PNG header says " + size_text(h) + " texels (" + std::to_string(pixel_bytes) +
+             " bytes of pixels), but its " + std::to_string(idat) +
+             " bytes of image data (IDAT) can hold at most " + std::to_string((idat + 64) * deflate_ratio) +
+             " (deflate expands at most 1032:1)";
+  }
+  if (h.format == "WebP") {
+    const uint64_t vp8 = webp_chunk_bytes(b, "VP8 ");
+    const uint64_t macroblocks = ((h.width + 15) / 16) * ((h.height + 15) / 16);
+    if (vp8 > 0 && macroblocks > vp8 * 8)
+      return "WebP header says " + size_text(h) + " texels (" + std::to_string(macroblocks) +
+             " macroblocks, each coded in more than a bit), but its VP8 data is " + std::to_string(vp8) +
+             " bytes";
+  }
+  return "";
+}
 
 image_header read_image_header(const uint8_t* data, size_t size) {
   const bytes_view b{data, size};

@@ -18,4 +18,12 @@ struct image_header {
 
 image_header read_image_header(const uint8_t* data, size_t size);
 
+// Why data cannot hold the h.width x h.height image its header declares, or "": a PNG's image data
+// (IDAT) or a lossy WebP's VP8 data too short to decode to that size however it is coded (deflate
+// expands at most 1032:1; VP8 spends over a bit on the prediction modes of each 16x16 macroblock).
+// The decoders allocate the whole image before they find the data missing, so a few bytes
+// declaring 16384x16384 would cost a gigabyte each. Formats that can code any size in a few bytes
+// (lossless WebP, GIF, JPEG's arithmetic coding) are left to their decoders.
+std::string image_data_problem(const uint8_t* data, size_t size, const image_header& h);
+
 }  // namespace kiln::gltf_internal
