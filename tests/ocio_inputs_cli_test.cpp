@@ -29,52 +29,13 @@ using testing::scratch_folder;
 
 const std::string shipped_config = KILN_SOURCE_DIR "/share/ocio/kiln.ocio";
 
-// How a run of kiln ended: its exit code (-1000: killed at the deadline), its stderr, how long it
-// took and its peak resident memory.
-struct measured_run {
-  int exit_code = -1000;
-  std::string stderr_text;
-  double seconds = 0.0;
-  long peak_kib = 0;
-};
-
-// AddressSanitizer reserves terabytes of address space for its shadow memory at start, so a kiln
-// built with it cannot run under an address-space limit; the peak RSS check still bounds it.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool limit_address_space = false;
-#else
-constexpr bool limit_address_space = true;
-#endif
+using testing::measured_run;
 
 // Runs kiln with args, killing it after `seconds`; its address space is limited to 2 GiB (except
 // under AddressSanitizer), so a read that never ends fails in memory rather than take the machine's.
 measured_run run_at_most(const std::vector<std::string>& args, const std::string& dir,
                          double seconds = 15.0) {
-  const auto start = std::chrono::steady_clock::now();
-  const testing::child_process child = testing::start_kiln(args, dir, [] {
-    if (!limit_address_space) return;
-    const rlimit limit{rlim_t(2) << 30, rlim_t(2) << 30};
-    ::setrlimit(RLIMIT_AS, &limit);
-  });
-  measured_run run;
-  int status = 0;
-  rusage usage{};
-  while (::wait4(child.pid, &status, WNOHANG, &usage) == 0) {
-    if (std::chrono::steady_clock::now() - start > std::chrono::duration<double>(seconds)) {
-      ::kill(child.pid, SIGKILL);
-      ::wait4(child.pid, &status, 0, &usage);
-      run.stderr_text = "still running after " + std::to_string(seconds) + " s";
-      run.peak_kib = usage.ru_maxrss;
-      run.seconds = seconds;
-      return run;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.peak_kib = usage.ru_maxrss;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-  run.stderr_text = child.stderr_text();
-  return run;
+  return testing::run_measured(args, dir, seconds, uint64_t(2) << 30);
 }
 
 // Expects kiln refused args in time (exit 2, one line naming `names`, nothing written) and in

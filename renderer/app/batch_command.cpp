@@ -8,6 +8,8 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <set>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "app/batch_manifest.h"
@@ -104,7 +106,14 @@ std::string render_command_line(const render_options& o) {
 // render: .exr, no symlink.
 void check_batch_outputs(const std::vector<batch_job>& jobs, const std::string& contact_sheet) {
   std::vector<input_file> files;
+  // The files a job reads depend on these options alone; the frames of a sequence (up to a million)
+  // share them, so the asset's JSON is read once per sequence, not once per frame.
+  std::set<std::tuple<std::string, std::string, bool, uint64_t, uint64_t>> read_already;
   for (const batch_job& job : jobs) {
+    const render_options& o = job.options;
+    if (!read_already.emplace(o.input, o.environment, o.allow_outside_files, o.limits.max_json_bytes, o.max_memory)
+             .second)
+      continue;
     std::vector<input_file> read = render_input_files(job.options, &interrupt_requested());
     files.insert(files.end(), read.begin(), read.end());
   }
@@ -154,12 +163,16 @@ nlohmann::json estimate_json(const render_options& options) {
           {"probe", {e.probe_width, e.probe_height, e.probe_spp}}};
 }
 
-nlohmann::json plan_json(const std::vector<batch_job>& jobs, bool estimates) {
-  nlohmann::json list = nlohmann::json::array();
+// Writes the plan one job at a time (a million frames' plan is never held whole); every job is
+// checked before anything is written.
+void write_plan(const std::string& path, const std::vector<batch_job>& jobs, bool estimates) {
   for (const batch_job& job : jobs) {
     if (!job.error.empty()) throw input_error("", job.where, job.error);
     if (job.options.crop || job.options.band_count > 0)
       throw input_error("", job.where, "a plan leaves --crop and --band to whoever runs it; drop them");
+  }
+  write_json_list_atomically(path, {{"version", 1}}, "jobs", jobs.size(), [&](size_t i) {
+    const batch_job& job = jobs[i];
     std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
     if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
     nlohmann::json entry = {{"name", job.name},
@@ -168,9 +181,8 @@ nlohmann::json plan_json(const std::vector<batch_job>& jobs, bool estimates) {
                             {"render_args", args}};
     if (nlohmann::json estimate = estimates ? estimate_json(job.options) : nullptr; !estimate.is_null())
       entry["estimate"] = estimate;
-    list.push_back(entry);
-  }
-  return {{"version", 1}, {"jobs", list}};
+    return entry;
+  });
 }
 
 }  // namespace
@@ -402,8 +414,7 @@ int run_batch(const batch_options& options) {
   }
   if (!options.plan.empty()) {
     check_output_writable(options.plan);
-    write_text_atomically(options.plan,
-                          plan_json(plan_batch(options), options.plan_estimates).dump(2) + "\n");
+    write_plan(options.plan, plan_batch(options), options.plan_estimates);
     return 0;
   }
   if (!options.summary.empty()) check_output_writable(options.summary);

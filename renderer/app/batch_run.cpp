@@ -112,32 +112,17 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
   return result;
 }
 
-nlohmann::json summary_json(const std::vector<batch_job>& jobs, const std::vector<job_result>& results,
-                            int exit_code, double seconds, const std::string& error) {
-  nlohmann::json list = nlohmann::json::array();
-  std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0},     {"failed", 0},
-                                    {"crashed", 0},  {"interrupted", 0}, {"not_started", 0}};
-  for (size_t i = 0; i < jobs.size(); ++i) {
-    const job_result& r = results[i];
-    ++counts[status_name(r.status)];
-    list.push_back(
-        {{"name", jobs[i].name},
-         {"asset", jobs[i].options.input},
-         {"output", jobs[i].options.output},
-         {"status", status_name(r.status)},
-         {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
-         {"resume", r.resume.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.resume)},
-         {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
-                             : nlohmann::json(nullptr)},
-         {"seconds", r.seconds}});
-  }
-  nlohmann::json totals = {{"jobs", jobs.size()}, {"seconds", seconds}};
-  for (const auto& [name, count] : counts) totals[name] = count;
-  return {{"version", 1},
-          {"exit_code", exit_code},
-          {"error", error.empty() ? nlohmann::json(nullptr) : nlohmann::json(error)},
-          {"jobs", list},
-          {"totals", totals}};
+// The summary's entry of job i.
+nlohmann::json summary_entry(const batch_job& job, const job_result& r) {
+  return {{"name", job.name},
+          {"asset", job.options.input},
+          {"output", job.options.output},
+          {"status", status_name(r.status)},
+          {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
+          {"resume", r.resume.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.resume)},
+          {"signal", r.signal ? nlohmann::json{{"number", r.signal}, {"name", signal_name(r.signal)}}
+                              : nlohmann::json(nullptr)},
+          {"seconds", r.seconds}};
 }
 
 }  // namespace
@@ -183,25 +168,24 @@ void write_batch_contact_sheet(const std::string& path, const std::vector<batch_
   write_contact_sheet(path, cells);
 }
 
-// Writes the summary atomically; false (said on stderr) when it cannot. A job list too large for
-// memory leaves the totals and the error, so the summary is still there and says so.
+// Writes the summary atomically, one job at a time (a million jobs' summary is never held whole);
+// false (said on stderr) when it cannot. A job's message may quote bytes that are not UTF-8 (from a
+// file's contents): they become U+FFFD instead of losing the summary.
 bool write_summary(const std::string& path, const std::vector<batch_job>& jobs,
                    const std::vector<job_result>& results, int exit_code, double seconds,
                    const std::string& error) {
-  // A job's message may quote bytes that are not UTF-8 (from a file's contents): they become U+FFFD
-  // instead of losing the summary.
-  const auto text = [](const nlohmann::json& j) {
-    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-  };
+  std::map<std::string, int> counts{{"rendered", 0}, {"skipped", 0},     {"failed", 0},
+                                    {"crashed", 0},  {"interrupted", 0}, {"not_started", 0}};
+  for (const job_result& r : results) ++counts[status_name(r.status)];
+  nlohmann::json totals = {{"jobs", jobs.size()}, {"seconds", seconds}};
+  for (const auto& [name, count] : counts) totals[name] = count;
+  const nlohmann::json summary = {{"version", 1},
+                                  {"exit_code", exit_code},
+                                  {"error", error.empty() ? nlohmann::json(nullptr) : nlohmann::json(error)},
+                                  {"totals", totals}};
   try {
-    std::string summary;
-    try {
-      summary = text(summary_json(jobs, results, exit_code, seconds, error));
-    } catch (const std::bad_alloc&) {
-      const std::string why = "out of memory listing the summary's " + std::to_string(jobs.size()) + " jobs";
-      summary = text(summary_json({}, {}, exit_code, seconds, error.empty() ? why : error + "; " + why));
-    }
-    write_text_atomically(path, summary);
+    write_json_list_atomically(path, summary, "jobs", jobs.size(),
+                               [&](size_t i) { return summary_entry(jobs[i], results[i]); });
     return true;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "kiln: %s\n", message_of(e).c_str());

@@ -19,7 +19,9 @@ std::string deep_output_path(const std::string& output);
 // not -o or the preview) and the options take the path deep output supports (whole frame,
 // stratified samples, a box filter inside the pixel, no visible background). Throws kiln::error
 // (input or io) before anything loads. Without --deep it does nothing.
-void check_deep_job(const render_options& options);
+// shared: as check_render_outputs's.
+struct shared_output_checks;
+void check_deep_job(const render_options& options, const shared_output_checks* shared = nullptr);
 
 // A render's deep image and the part of the job's memory budget it holds; the charge is given
 // back when the deep image goes (after it is written). The budget outlives both.

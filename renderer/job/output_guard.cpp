@@ -113,11 +113,12 @@ void check_output_spares_inputs(const std::string& output, const std::string& op
         "the output is " + hit->role + " (" + hit->path + "); writing it would destroy an input");
 }
 
-void check_render_outputs(const render_options& options) {
+void check_render_outputs(const render_options& options, const shared_output_checks* shared) {
   // The most telling reason first: "-o a.gltf" is the asset before it is a name without .exr.
-  const input_index inputs = index_inputs(render_input_files(options));
-  check_output_spares_inputs(options.output, "-o", inputs);
-  if (!options.preview.empty()) check_output_spares_inputs(options.preview, "--preview", inputs);
+  const input_index inputs = shared ? input_index{} : index_inputs(render_input_files(options));
+  const input_index& index = shared ? shared->inputs : inputs;
+  check_output_spares_inputs(options.output, "-o", index);
+  if (!options.preview.empty()) check_output_spares_inputs(options.preview, "--preview", index);
   check_not_symlink(options.output, "-o");
   if (!options.preview.empty()) check_not_symlink(options.preview, "--preview");
   check_exr_output_name(options.output, "-o", preview_hint::show);

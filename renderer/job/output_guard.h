@@ -51,7 +51,16 @@ input_index index_inputs(const std::vector<input_file>& inputs);
 void check_output_spares_inputs(const std::string& output, const std::string& option,
                                 const input_index& inputs);
 
-// Everything above for one render's -o and --preview (also against each other).
-void check_render_outputs(const render_options& options);
+// What the frames of one sequence share, found once for all of them: the files they read, and
+// whether their output folders were probed (every frame writes into the first frame's folders).
+// Checking a million frames then neither parses the asset nor creates a file a million times.
+struct shared_output_checks {
+  input_index inputs;  // index_inputs(render_input_files(options))
+  bool folders_probed = false;
+};
+
+// Everything above for one render's -o and --preview (also against each other); shared, when
+// given, holds the inputs (else they are read here).
+void check_render_outputs(const render_options& options, const shared_output_checks* shared = nullptr);
 
 }  // namespace kiln

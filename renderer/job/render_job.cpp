@@ -376,7 +376,7 @@ std::unique_ptr<accelerator> make_job_accelerator(const scene& world, const rend
   return make_accelerator(world, *parse_accel_kind(options.accel), options.grid, options.embree);
 }
 
-void check_job(const render_options& options) {
+void check_job(const render_options& options, const shared_output_checks* shared) {
   if (!options.frames.empty() || (options.turntable > 0 && !options.frame))
     throw input_error(
         "", options.frames.empty() ? "--turntable" : "--frames",
@@ -392,12 +392,12 @@ void check_job(const render_options& options) {
   check_no_nul(options.output, "-o");
   check_no_nul(options.preview, "--preview");
   if (!options.output.empty()) {
-    check_render_outputs(options);  // never a file the render reads, never through a symlink
-    check_output_writable(options.output);
+    check_render_outputs(options, shared);  // never a file the render reads, never through a symlink
+    check_output_writable(options.output, !shared || !shared->folders_probed);
   }
   resolve_exr_settings(options);
-  if (!options.preview.empty()) check_output_writable(options.preview);
-  check_deep_job(options);
+  if (!options.preview.empty()) check_output_writable(options.preview, !shared || !shared->folders_probed);
+  check_deep_job(options, shared);
 }
 
 uint64_t job_memory_limit(const render_options& options) {

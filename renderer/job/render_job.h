@@ -96,8 +96,10 @@ struct render_job_result {
 
 // The checks that need no scene: the asset is a file, the outputs are safe to write (never a
 // file the render reads, never through a symlink, writable), the storage options agree. Throws
-// kiln::error (input or io). run_job calls it; a client may call it earlier to fail fast.
-void check_job(const render_options& options);
+// kiln::error (input or io). run_job calls it; a client may call it earlier to fail fast. shared
+// (job/output_guard.h) holds what the frames of a sequence share, found once for all of them.
+struct shared_output_checks;
+void check_job(const render_options& options, const shared_output_checks* shared = nullptr);
 
 // Renders the job. Throws kiln::error: input for bad input or a file over the memory budget,
 // render for a backend failure or an allocation that failed (naming the stage it failed in),

@@ -13,6 +13,7 @@
 #include "job/job_stop.h"
 #include "job/lighting.h"
 #include "job/option_values.h"
+#include "job/output_guard.h"
 #include "job/render_job_steps.h"
 #include "job/turntable.h"
 
@@ -131,7 +132,14 @@ std::vector<long long> check_sequence(const render_options& options) {
       throw input_error("", "--preview",
                         "'" + options.preview + "' has no frame placeholder (e.g. shot.####.png)");
   }
-  for (long long frame : frames) check_job(frame_options(options, frame));
+  // Every frame reads the same files and writes into the same folders: the first frame's check
+  // finds both, the others check only their own outputs against them.
+  shared_output_checks shared;
+  shared.inputs = index_inputs(render_input_files(frame_options(options, frames.front())));
+  for (long long frame : frames) {
+    check_job(frame_options(options, frame), &shared);
+    shared.folders_probed = true;
+  }
   return frames;
 }
 

@@ -1,6 +1,7 @@
 #include "support/kiln_process.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -83,6 +84,41 @@ child_process start_kiln(const std::vector<std::string>& arguments, const std::s
     ::_exit(127);
   }
   return child;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool limit_address_space = false;
+#else
+constexpr bool limit_address_space = true;
+#endif
+
+measured_run run_measured(const std::vector<std::string>& args, const std::string& folder, double seconds,
+                          uint64_t address_space_bytes) {
+  const auto start = std::chrono::steady_clock::now();
+  const child_process child = start_kiln(args, folder, [address_space_bytes] {
+    if (!limit_address_space || !address_space_bytes) return;
+    const rlimit limit{rlim_t(address_space_bytes), rlim_t(address_space_bytes)};
+    ::setrlimit(RLIMIT_AS, &limit);
+  });
+  measured_run run;
+  int status = 0;
+  rusage usage{};
+  while (::wait4(child.pid, &status, WNOHANG, &usage) == 0) {
+    if (std::chrono::steady_clock::now() - start > std::chrono::duration<double>(seconds)) {
+      ::kill(child.pid, SIGKILL);
+      ::wait4(child.pid, &status, 0, &usage);
+      run.stderr_text = "still running after " + std::to_string(seconds) + " s";
+      run.peak_kib = usage.ru_maxrss;
+      run.seconds = seconds;
+      return run;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.peak_kib = usage.ru_maxrss;
+  run.exit_code = decode(status);
+  run.stderr_text = child.stderr_text();
+  return run;
 }
 
 }  // namespace kiln::testing

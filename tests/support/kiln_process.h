@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -37,5 +38,21 @@ struct child_process {
 // before exec (resource limits).
 child_process start_kiln(const std::vector<std::string>& arguments, const std::string& folder,
                          const std::function<void()>& prepare = {});
+
+// How a run of kiln ended: its exit code (-1000: killed at the deadline), its stderr, how long it
+// took and its peak resident memory.
+struct measured_run {
+  int exit_code = -1000;
+  std::string stderr_text;
+  double seconds = 0.0;
+  long peak_kib = 0;
+};
+
+// Runs kiln with args (stderr in folder), killing it after `seconds`. address_space_bytes (0: no
+// limit) caps its address space, except under AddressSanitizer, whose shadow memory needs
+// terabytes of it (the peak RSS still bounds such a run), so a read that never ends fails in memory
+// rather than take the machine's.
+measured_run run_measured(const std::vector<std::string>& args, const std::string& folder, double seconds,
+                          uint64_t address_space_bytes);
 
 }  // namespace kiln::testing

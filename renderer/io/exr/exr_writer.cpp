@@ -444,7 +444,7 @@ std::optional<rgba_image> stored_beauty(const film& f, const exr_settings& setti
   return std::nullopt;
 }
 
-void check_output_writable(const std::string& path) {
+void check_output_writable(const std::string& path, bool probe_folder) {
   fs::path target(path);
   if (target.filename().empty()) throw io_error(path, "output path names a folder, not a file");
   fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
@@ -457,6 +457,7 @@ void check_output_writable(const std::string& path) {
   // a socket.
   if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
     throw io_error(path, "output exists and is not a regular file");
+  if (!probe_folder) return;
   // access() answers yes to root for any folder, including /proc and /sys where nothing can be
   // created, so create a temporary file as the writer will, and remove it again.
   std::string probe;

@@ -34,8 +34,10 @@ struct exr_metadata {
 };
 
 // Throws kiln::error (io) when the directory of path does not exist or cannot be written.
-// Called before rendering so a long render never ends in an unwritable path.
-void check_output_writable(const std::string& path);
+// Called before rendering so a long render never ends in an unwritable path. probe_folder false
+// skips creating a file in the folder (the caller has just done so for another file there: the
+// frames of a sequence share a folder).
+void check_output_writable(const std::string& path, bool probe_folder = true);
 
 // Throws kiln::error (input, location "--compression") when settings would store an exact data layer
 // of aovs (Z, P, ids) with a lossy codec: a single-part file has one codec for all its channels.
