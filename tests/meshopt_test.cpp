@@ -5,6 +5,7 @@
 // quantisation allows, and trace the same image. Broken streams are refused with their pointer.
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -409,6 +410,34 @@ TEST(meshopt, counts_and_strides_past_32_bits_are_refused) {
   std::ofstream(f.at("wide.gltf")) << wide.dump();
   const std::string message = error_of(f.at("wide.gltf"));
   EXPECT_NE(message.find(at + "buffer: /buffers/4294967297 does not exist"), std::string::npos) << message;
+}
+
+// A stream declaring more than its bytes can decode to (an 11 KB file once allocated 3 GB before
+// the decoder found the stream corrupt) is refused before the output is allocated: by the codecs'
+// best ratios, 64:1 for attributes, a byte per triangle, a byte per index.
+TEST(meshopt, counts_past_what_the_stream_can_decode_to_are_refused_before_allocating) {
+  files f;
+  const std::string path = write_compressed(make_sphere(6, 8), f.at("compressed.gltf"));
+  const json doc = json::parse(std::ifstream(path));
+  for (const int view : {0, 3, 4}) {  // positions (attributes), triangles, indices
+    json huge = doc;
+    json& ext = huge["bufferViews"][view]["extensions"]["EXT_meshopt_compression"];
+    const uint64_t stride = ext["byteStride"], length = ext["byteLength"];
+    const uint64_t count = (uint64_t(1) << 30) / stride / 3 * 3;  // a gigabyte of output, whole triangles
+    ext["count"] = count;
+    huge["bufferViews"][view]["byteLength"] = count * stride;
+    std::ofstream(f.at("huge.gltf")) << huge.dump();
+    const std::string message = error_of(f.at("huge.gltf"));
+    EXPECT_NE(message.find("/bufferViews/" + std::to_string(view) + "/extensions/EXT_meshopt_compression: count " +
+                           std::to_string(count) + " x byteStride " + std::to_string(stride) + " is " +
+                           std::to_string(count * stride) + " bytes, more than the " + std::to_string(length) +
+                           "-byte meshopt stream can decode to"),
+              std::string::npos)
+        << message;
+  }
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  EXPECT_LT(usage.ru_maxrss, 512 * 1024) << "peak KiB";  // each output alone is 1 GiB
 }
 
 }  // namespace

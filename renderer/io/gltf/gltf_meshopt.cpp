@@ -122,6 +122,22 @@ meshopt_view read_extension(const tinygltf::Model& model, const tinygltf::Value&
   return v;
 }
 
+// The most bytes a stream of v.length bytes can decode to, by the codecs' formats: the attribute
+// codec spends at least 2 bits on each 16 bytes (64:1), the triangle codec a byte on each triangle
+// plus 17, the index codec a byte on each index plus 5 (the decoders refuse less, but only after
+// the caller has allocated the whole output).
+uint64_t most_decoded_bytes(const meshopt_view& v) {
+  switch (v.mode) {
+    case meshopt_mode::attributes:
+      return v.length * 64 + 64 * uint64_t(v.stride);  // each block's tail and header
+    case meshopt_mode::triangles:
+      return v.length < 17 ? 0 : (v.length - 17) * 3 * v.stride;
+    case meshopt_mode::indices:
+      return v.length < 5 ? 0 : (v.length - 5) * v.stride;
+  }
+  return 0;
+}
+
 int decode(const meshopt_view& v, const unsigned char* source, std::vector<uint8_t>& out) {
   switch (v.mode) {
     case meshopt_mode::attributes:
@@ -158,6 +174,11 @@ void decode_view(tinygltf::Model& model, size_t index, const std::string& file, 
                       "count " + std::to_string(v.count) + " x byteStride " + std::to_string(v.stride) +
                           " does not equal the bufferView's byteLength " +
                           std::to_string(model.bufferViews[index].byteLength));
+  if (const uint64_t most = most_decoded_bytes(v); size > most)
+    throw input_error(file, where,
+                      "count " + std::to_string(v.count) + " x byteStride " + std::to_string(v.stride) + " is " +
+                          std::to_string(size) + " bytes, more than the " + std::to_string(v.length) +
+                          "-byte meshopt stream can decode to (at most " + std::to_string(most) + ")");
   if (memory) memory->add(size, file, "decoded meshopt data");
   std::vector<uint8_t> out(static_cast<size_t>(size));
   const unsigned char* source = model.buffers[static_cast<size_t>(v.buffer)].data.data() + v.offset;
