@@ -30,7 +30,8 @@ struct batch_run {
 batch_run run_with_summary(const fs::path& dir, const json& jobs) {
   testing::copy_scene((dir / "scenes").string());
   fs::create_directories(dir / "report");
-  const std::string manifest = (dir / "jobs.json").string(), summary = (dir / "report" / "summary.json").string();
+  const std::string manifest = (dir / "jobs.json").string(),
+                    summary = (dir / "report" / "summary.json").string();
   std::ofstream(manifest) << json({{"jobs", jobs}}).dump();
   batch_run run;
   run.result = run_kiln({"batch", "--manifest", manifest, "--out-dir", (dir / "out").string(), "--summary",
@@ -70,12 +71,14 @@ TEST(batch_summary, a_job_refused_after_planning_leaves_a_summary_listing_every_
   const fs::path dir = testing::scratch_folder("batch_summary_refused_job");
   // Another batch is running in out/sub: a job writing there is refused once the folder is locked.
   fs::create_directories(dir / "out" / "sub");
-  const int fd = ::open((dir / "out" / "sub" / ".kiln-batch.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  const int fd =
+      ::open((dir / "out" / "sub" / ".kiln-batch.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   const std::string pid = std::to_string(::getpid()) + "\n";
   ASSERT_EQ(::write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
   ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
-  const batch_run run = run_with_summary(dir, {{{"asset", "scenes/cornell_box.gltf"}, {"output", "a.exr"}},
-                                               {{"asset", "scenes/cornell_box.gltf"}, {"output", "sub/b.exr"}}});
+  const batch_run run =
+      run_with_summary(dir, {{{"asset", "scenes/cornell_box.gltf"}, {"output", "a.exr"}},
+                             {{"asset", "scenes/cornell_box.gltf"}, {"output", "sub/b.exr"}}});
   ::close(fd);
   expect_stopped(run, 2, 2);
   EXPECT_NE(run.summary["error"].get<std::string>().find("is the output folder of another kiln batch"),

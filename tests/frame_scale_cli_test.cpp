@@ -26,10 +26,11 @@ TEST(frame_scale, a_hundred_thousand_frames_are_checked_without_reading_the_asse
   const std::string asset = testing::copy_scene((dir / "scenes").string());
   fs::create_directories(dir / "out");
   // The first frame stops at once (--time-limit): what is measured is the check of every frame.
-  const measured_run run = testing::run_measured(
-      {"render", asset, "-o", (dir / "out" / "shot.######.exr").string(), "--frames", "1-" + std::to_string(frames),
-       "--width", "4", "--height", "4", "--spp", "1", "-q", "--time-limit", "0.000001"},
-      dir.string(), 25.0, uint64_t(2) << 30);
+  const measured_run run =
+      testing::run_measured({"render", asset, "-o", (dir / "out" / "shot.######.exr").string(), "--frames",
+                             "1-" + std::to_string(frames), "--width", "4", "--height", "4", "--spp", "1",
+                             "-q", "--time-limit", "0.000001"},
+                            dir.string(), 25.0, uint64_t(2) << 30);
   std::printf("exit %d in %.2f s, peak %ld KiB\n", run.exit_code, run.seconds, run.peak_kib);
   // Before: about 43 s (a parse of the asset and a probe file per frame), killed at the deadline;
   // after: about 5 s on a 2-core machine, a stat or two per frame.
@@ -48,9 +49,10 @@ TEST(frame_scale, a_plan_of_a_hundred_thousand_frames_is_written_a_job_at_a_time
                                       {"frames", "1-" + std::to_string(frames)},
                                       {"output", "shot.######.exr"}}}}})
                                  .dump();
-  const measured_run run = testing::run_measured({"batch", "--manifest", manifest, "--out-dir", (dir / "out").string(),
-                                                  "--plan-only", plan, "--no-estimates"},
-                                                 dir.string(), 120.0, uint64_t(3) << 30);
+  const measured_run run =
+      testing::run_measured({"batch", "--manifest", manifest, "--out-dir", (dir / "out").string(),
+                             "--plan-only", plan, "--no-estimates"},
+                            dir.string(), 120.0, uint64_t(3) << 30);
   std::printf("exit %d in %.2f s, peak %ld KiB\n", run.exit_code, run.seconds, run.peak_kib);
   ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
   // Before: 1.6 GB for the plan's JSON tree and text; the jobs themselves are about 300 MB.

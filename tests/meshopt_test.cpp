@@ -428,11 +428,12 @@ TEST(meshopt, counts_past_what_the_stream_can_decode_to_are_refused_before_alloc
     huge["bufferViews"][view]["byteLength"] = count * stride;
     std::ofstream(f.at("huge.gltf")) << huge.dump();
     const std::string message = error_of(f.at("huge.gltf"));
-    EXPECT_NE(message.find("/bufferViews/" + std::to_string(view) + "/extensions/EXT_meshopt_compression: count " +
-                           std::to_string(count) + " x byteStride " + std::to_string(stride) + " is " +
-                           std::to_string(count * stride) + " bytes, more than the " + std::to_string(length) +
-                           "-byte meshopt stream can decode to"),
-              std::string::npos)
+    EXPECT_NE(
+        message.find("/bufferViews/" + std::to_string(view) + "/extensions/EXT_meshopt_compression: count " +
+                     std::to_string(count) + " x byteStride " + std::to_string(stride) + " is " +
+                     std::to_string(count * stride) + " bytes, more than the " + std::to_string(length) +
+                     "-byte meshopt stream can decode to"),
+        std::string::npos)
         << message;
   }
   rusage usage{};

@@ -8,9 +8,9 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <tuple>
-#include <nlohmann/json.hpp>
 
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
@@ -111,7 +111,8 @@ void check_batch_outputs(const std::vector<batch_job>& jobs, const std::string& 
   std::set<std::tuple<std::string, std::string, bool, uint64_t, uint64_t>> read_already;
   for (const batch_job& job : jobs) {
     const render_options& o = job.options;
-    if (!read_already.emplace(o.input, o.environment, o.allow_outside_files, o.limits.max_json_bytes, o.max_memory)
+    if (!read_already
+             .emplace(o.input, o.environment, o.allow_outside_files, o.limits.max_json_bytes, o.max_memory)
              .second)
       continue;
     std::vector<input_file> read = render_input_files(job.options, &interrupt_requested());
@@ -429,7 +430,8 @@ int run_batch(const batch_options& options) {
     if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
-    if (!fs::is_directory(options.out_dir)) throw io_error(options.out_dir, "cannot create the output folder");
+    if (!fs::is_directory(options.out_dir))
+      throw io_error(options.out_dir, "cannot create the output folder");
     const std::string out_dir = absolute_path(options.out_dir);
     locking = true;
     const output_folder_lock lock(out_dir, options.wait_for_lock);
@@ -446,8 +448,9 @@ int run_batch(const batch_options& options) {
                           options.defaults.quiet);
   } catch (const std::exception& e) {
     if (!options.summary.empty() && !locking)
-      write_stopped_batch_summary(options.summary, jobs, exit_status_of(e), message_of(e),
-                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      write_stopped_batch_summary(
+          options.summary, jobs, exit_status_of(e), message_of(e),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     throw;
   }
 }

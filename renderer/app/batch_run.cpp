@@ -195,8 +195,8 @@ bool write_summary(const std::string& path, const std::vector<batch_job>& jobs,
 
 }  // namespace
 
-void write_stopped_batch_summary(const std::string& path, const std::vector<batch_job>& jobs,
-                                 int exit_code, const std::string& error, double seconds) {
+void write_stopped_batch_summary(const std::string& path, const std::vector<batch_job>& jobs, int exit_code,
+                                 const std::string& error, double seconds) {
   write_summary(path, jobs, std::vector<job_result>(jobs.size()), exit_code, seconds, error);
 }
 

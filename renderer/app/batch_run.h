@@ -33,8 +33,8 @@ std::string resume_problem(const render_options& options, const render_fingerpri
 // The summary of a batch that stopped before its jobs ran (its plan refused, its folder unusable,
 // out of memory): every job in jobs (possibly none) not_started, error and exit_code at the top.
 // Never throws; a summary that cannot be written is said on stderr.
-void write_stopped_batch_summary(const std::string& path, const std::vector<batch_job>& jobs,
-                                 int exit_code, const std::string& error, double seconds);
+void write_stopped_batch_summary(const std::string& path, const std::vector<batch_job>& jobs, int exit_code,
+                                 const std::string& error, double seconds);
 
 int run_batch_jobs(const std::vector<batch_job>& jobs, bool resume, const std::string& summary,
                    const std::string& contact_sheet, bool quiet);

@@ -18,7 +18,8 @@ void check_deep_job(const render_options& options, const shared_output_checks* s
   if (!options.deep) return;
   if (options.output.empty()) throw input_error("", "--deep", "the deep file goes beside -o; give -o");
   const std::string path = deep_output_path(options.output);
-  check_output_spares_inputs(path, "--deep", shared ? shared->inputs : index_inputs(render_input_files(options)));
+  check_output_spares_inputs(path, "--deep",
+                             shared ? shared->inputs : index_inputs(render_input_files(options)));
   check_not_symlink(path, "--deep");
   if (!options.preview.empty() && same_file(options.preview, path))
     throw input_error("", "--preview " + options.preview,

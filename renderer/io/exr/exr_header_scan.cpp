@@ -1,11 +1,11 @@
 #include "io/exr/exr_header_scan.h"
 
+#include <OpenEXR/openexr.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-
-#include <OpenEXR/openexr.h>
 
 namespace kiln {
 

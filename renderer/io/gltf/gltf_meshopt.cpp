@@ -176,9 +176,10 @@ void decode_view(tinygltf::Model& model, size_t index, const std::string& file, 
                           std::to_string(model.bufferViews[index].byteLength));
   if (const uint64_t most = most_decoded_bytes(v); size > most)
     throw input_error(file, where,
-                      "count " + std::to_string(v.count) + " x byteStride " + std::to_string(v.stride) + " is " +
-                          std::to_string(size) + " bytes, more than the " + std::to_string(v.length) +
-                          "-byte meshopt stream can decode to (at most " + std::to_string(most) + ")");
+                      "count " + std::to_string(v.count) + " x byteStride " + std::to_string(v.stride) +
+                          " is " + std::to_string(size) + " bytes, more than the " +
+                          std::to_string(v.length) + "-byte meshopt stream can decode to (at most " +
+                          std::to_string(most) + ")");
   if (memory) memory->add(size, file, "decoded meshopt data");
   std::vector<uint8_t> out(static_cast<size_t>(size));
   const unsigned char* source = model.buffers[static_cast<size_t>(v.buffer)].data.data() + v.offset;

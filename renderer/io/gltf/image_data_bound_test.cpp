@@ -48,8 +48,8 @@ std::vector<uint8_t> png_declaring(uint32_t width, uint32_t height, size_t idat_
 std::vector<uint8_t> webp_declaring(uint16_t width, uint16_t height, uint32_t vp8_bytes) {
   std::vector<uint8_t> webp = {'R', 'I', 'F', 'F', 0, 0, 0, 0, 'W', 'E', 'B', 'P', 'V', 'P', '8', ' '};
   for (int shift = 0; shift < 32; shift += 8) webp.push_back(uint8_t(vp8_bytes >> shift));
-  std::vector<uint8_t> frame = {0, 0, 0, 0x9d, 0x01, 0x2a, uint8_t(width), uint8_t(width >> 8), uint8_t(height),
-                                uint8_t(height >> 8)};
+  std::vector<uint8_t> frame = {
+      0, 0, 0, 0x9d, 0x01, 0x2a, uint8_t(width), uint8_t(width >> 8), uint8_t(height), uint8_t(height >> 8)};
   frame.resize(vp8_bytes, 0);
   webp.insert(webp.end(), frame.begin(), frame.end());
   return webp;
@@ -82,22 +82,24 @@ TEST(image_data_bound, a_png_without_the_data_for_its_size_is_refused_before_dec
     decode_images(batch, "scene.gltf", uint64_t(1) << 30, 1, nullptr);
     FAIL() << "a 16384x16384 PNG of 100 bytes of data decoded";
   } catch (const error& e) {
-    EXPECT_STREQ(e.what(),
-                 "scene.gltf: /images/0: PNG header says 16384x16384 texels (1073741824 bytes of pixels), but its "
-                 "100 bytes of image data (IDAT) can hold at most 169248 (deflate expands at most 1032:1)");
+    EXPECT_STREQ(
+        e.what(),
+        "scene.gltf: /images/0: PNG header says 16384x16384 texels (1073741824 bytes of pixels), but its "
+        "100 bytes of image data (IDAT) can hold at most 169248 (deflate expands at most 1032:1)");
   }
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
-  EXPECT_LT(usage.ru_maxrss, 512 * 1024) << "peak KiB";  // the image alone is 1 GiB
+  EXPECT_LT(usage.ru_maxrss, 512 * 1024) << "peak KiB";    // the image alone is 1 GiB
   EXPECT_NE(problem(png_declaring(16384, 16384, 0)), "");  // header only
   // At the deflate bound it is the decoder's to judge.
   EXPECT_EQ(problem(png_declaring(16384, 16384, 1073741824 / 1032)), "");
 }
 
 TEST(image_data_bound, a_lossy_webp_without_the_data_for_its_size_is_refused) {
-  EXPECT_EQ(problem(webp_declaring(16383, 16383, 32)),
-            "WebP header says 16383x16383 texels (1048576 macroblocks, each coded in more than a bit), but its "
-            "VP8 data is 32 bytes");
+  EXPECT_EQ(
+      problem(webp_declaring(16383, 16383, 32)),
+      "WebP header says 16383x16383 texels (1048576 macroblocks, each coded in more than a bit), but its "
+      "VP8 data is 32 bytes");
   EXPECT_EQ(problem(webp_declaring(16383, 16383, 1048576 / 8)), "");
 }
 

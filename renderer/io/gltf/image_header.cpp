@@ -107,7 +107,9 @@ uint64_t webp_chunk_bytes(const bytes_view& b, const char* type) {
   return 0;
 }
 
-std::string size_text(const image_header& h) { return std::to_string(h.width) + "x" + std::to_string(h.height); }
+std::string size_text(const image_header& h) {
+  return std::to_string(h.width) + "x" + std::to_string(h.height);
+}
 
 }  // namespace
 
@@ -120,7 +122,7 @@ std::string image_data_problem(const uint8_t* data, size_t size, const image_hea
     const uint64_t texels = h.width * h.height;  // each at most 2^31 in a PNG
     const uint64_t pixel_bytes = texels > (~uint64_t(0) >> 6) ? ~uint64_t(0) : texels * channels * depth / 8;
     const uint64_t idat = png_image_data_bytes(b);
-    constexpr uint64_t deflate_ratio = 1032;  // a 258-byte match in two bits
+    constexpr uint64_t deflate_ratio = 1032;      // a 258-byte match in two bits
     if (pixel_bytes / deflate_ratio > idat + 64)  // 64: the zlib header, checksum and block headers
       return "PNG header says " + size_text(h) + " texels (" + std::to_string(pixel_bytes) +
              " bytes of pixels), but its " + std::to_string(idat) +
