@@ -75,6 +75,10 @@ void progress_report::watch() {
     const double elapsed = std::chrono::duration<double>(clock_type::now() - start).count();
     if (elapsed < next_line) continue;
     next_line = elapsed + interval_;
+    // Every pixel done: the job is resolving the film and writing its files, and its own line
+    // follows; a log gets no "rendering 100%  ETA 0.0 s" lines meanwhile.
+    const uint64_t total = progress_.pixels_total.load();
+    if (!terminal_ && total > 0 && progress_.pixels_done.load() >= total) continue;
     print(false);
   }
   // On a terminal the last state (100% when the render completed) ends the line, even when the
