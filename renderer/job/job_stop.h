@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -25,11 +26,12 @@ class job_stop {
   bool timed_out() const { return timed_out_.load(); }
 
  private:
-  void watch(double seconds);
+  void watch(std::chrono::steady_clock::time_point deadline);
   const std::atomic<bool>* outer_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> timed_out_{false};
   bool finished_ = false;
+  bool started_ = false;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread watcher_;
