@@ -23,6 +23,7 @@
 #include "app/cli_suggest.h"
 #include "app/compare_command.h"
 #include "app/exit_status.h"
+#include "app/info_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
 #include "app/stitch_command.h"
@@ -89,6 +90,12 @@ int main(int argc, char** argv) {
       "batch", "Render many assets (arguments, glob patterns or a manifest) with resume and a JSON summary");
   kiln::add_batch_options(*batch_command, batch);
 
+  kiln::info_options info;
+  CLI::App* info_command = app.add_subcommand(
+      "info",
+      "List an asset's cameras, animations, variants, lights, nodes and extensions, and estimate its render");
+  kiln::add_info_options(*info_command, info);
+
   kiln::require_integer_text(app);
   try {
     app.parse(argc, argv);
@@ -116,6 +123,7 @@ int main(int argc, char** argv) {
     if (compare_command->parsed()) return kiln::run_compare(compare);  // 0, or 3 on disagreement
     if (bench_command->parsed()) kiln::run_bench_command(bench);
     if (stitch_command->parsed()) kiln::run_stitch(stitch);
+    if (info_command->parsed()) kiln::run_info(info);
     if (batch_command->parsed()) return kiln::run_batch(batch);  // 0, 1 when a job failed, 128 + signal
     return exit_success;
   } catch (const std::exception& e) {

@@ -21,9 +21,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 plan_estimate estimate_job(const render_options& options, int probe_pixels) {
-  plan_estimate e;
   const auto load_start = std::chrono::steady_clock::now();
   const prepared_scene prepared = prepare_scene(options);
+  const double preparing = seconds_since(load_start);
+  plan_estimate e = estimate_job(prepared, options, probe_pixels);
+  e.load_seconds += preparing - prepared.load_seconds;  // the view and lighting besides the file
+  return e;
+}
+
+plan_estimate estimate_job(const prepared_scene& prepared, const render_options& options, int probe_pixels) {
+  plan_estimate e;
+  const auto build_start = std::chrono::steady_clock::now();
   render_settings settings = make_render_settings(options);
   const int width = prepared.cam.width, height = prepared.cam.height;
 
@@ -32,7 +40,7 @@ plan_estimate estimate_job(const render_options& options, int probe_pixels) {
       prepared.memory->used() + texture_filter_bytes(prepared.world) + accelerator_bytes(prepared.world) +
       film_and_output_bytes({0, 0, width, height}, settings.aovs, light_group_count(prepared.world));
   const std::unique_ptr<accelerator> accel = make_job_accelerator(prepared.world, options);
-  e.load_seconds = seconds_since(load_start);
+  e.load_seconds = prepared.load_seconds + seconds_since(build_start);
 
   // Two probes, the same view on smaller images (the window does not depend on the pixel count):
   // a render costs a part fixed per call (the textures' mip pyramids, the film, the threads, cold

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "job/render_job.h"
 #include "job/render_options.h"
 
 namespace kiln {
@@ -19,5 +20,10 @@ struct plan_estimate {
 // Loads options.input, estimates its memory and renders the probes (one pixel, then about
 // probe_pixels pixels; at most 4 samples a pixel, one thread). Throws kiln::error as run_job does.
 plan_estimate estimate_job(const render_options& options, int probe_pixels = 19200);
+
+// The same for a scene the caller has loaded with prepare_scene(options): its load time is the
+// preparation's plus the backend's build.
+plan_estimate estimate_job(const prepared_scene& prepared, const render_options& options,
+                           int probe_pixels = 19200);
 
 }  // namespace kiln

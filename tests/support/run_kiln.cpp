@@ -39,6 +39,13 @@ std::string copy_scene(const std::string& folder, const std::string& name) {
 
 namespace {
 
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 // Whether arguments name option (as "--option" or "--option=value").
 bool names(const std::vector<std::string>& arguments, const std::string& option) {
   for (const std::string& a : arguments)
@@ -55,14 +62,13 @@ command_result run_kiln(const std::vector<std::string>& arguments) {
   const bool one_sample = !arguments.empty() && arguments[0] == "render" && !names(arguments, "--spp") &&
                           !names(arguments, "--adaptive-threshold") && !names(arguments, "--help");
   if (one_sample) command += " --spp 1";
-  command += " </dev/null >/dev/null 2>" + quote(err_file);
+  const std::string out_file = err_file.substr(0, err_file.size() - 10) + "stdout.txt";
+  command += " </dev/null >" + quote(out_file) + " 2>" + quote(err_file);
   int status = std::system(command.c_str());
   command_result result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream in(err_file);
-  std::stringstream text;
-  text << in.rdbuf();
-  result.stderr_text = text.str();
+  result.stderr_text = file_text(err_file);
+  result.stdout_text = file_text(out_file);
   return result;
 }
 

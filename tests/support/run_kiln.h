@@ -9,11 +9,12 @@ namespace kiln::testing {
 struct command_result {
   int exit_code = -1;
   std::string stderr_text;
+  std::string stdout_text;
 };
 
-// Runs KILN_BINARY with the given arguments (each quoted for the shell). A `render` that names
-// neither --spp nor --adaptive-threshold runs at --spp 1 (the pixel centre), not the default 16: most
-// tests check pixel-centre closed forms on tiny images; the default itself is tested by
+// Runs KILN_BINARY with the given arguments (each quoted for the shell), capturing stderr and stdout. A
+// `render` that names neither --spp nor --adaptive-threshold runs at --spp 1 (the pixel centre), not the
+// default 16: most tests check pixel-centre closed forms on tiny images; the default itself is tested by
 // environment_lighting_cli_test, which names --spp 16 or runs the binary through another helper.
 command_result run_kiln(const std::vector<std::string>& arguments);
 
