@@ -6,19 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "core/closest_name.h"
+
 namespace CLI {
 class App;
 }
 
 namespace kiln {
-
-// Optimal string alignment distance (Damerau-Levenshtein where each substring is edited once):
-// insertions, deletions, substitutions and transpositions of neighbours each cost 1.
-size_t edit_distance(const std::string& a, const std::string& b);
-
-// The candidate closest to word when it is close enough to be a typo: at most 2 edits, and fewer
-// than half of word's characters (so "-x" suggests nothing). Ties go to the earlier candidate.
-std::optional<std::string> closest_name(const std::string& word, const std::vector<std::string>& candidates);
 
 // "unknown command 'rendr'; did you mean 'render'?" when arguments[0] names no subcommand of app;
 // nothing when it does (or is an option).

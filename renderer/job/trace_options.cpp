@@ -66,12 +66,13 @@ void add_trace_options(std::vector<option_spec>& t) {
   };
   add(node_patterns(
           "holdout", &render_options::holdout,
-          "Render these nodes (names or globs, comma-separated) as holdout mattes: they cut alpha to "
-          "zero and hide what is behind them, but still cast shadows and show in reflections"))
+          "Render these nodes and their subtrees (names, /paths or globs, comma-separated) as holdout "
+          "mattes: they cut alpha to zero and hide what is behind them, but still cast shadows and show "
+          "in reflections"))
       .recorded_as = "kiln/holdout";
   add(node_patterns("only", &render_options::only,
-                    "Render only these nodes (names or globs); every other node is a holdout (a render "
-                    "layer)"))
+                    "Render only these nodes and their subtrees (names, /paths or globs); every other node "
+                    "is a holdout (a render layer)"))
       .recorded_as = "kiln/only";
   add(flag_option(
           "holdout-invisible", [](render_options & o) -> auto& { return o.holdout_invisible; },

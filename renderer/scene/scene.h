@@ -287,8 +287,10 @@ struct scene {
   std::vector<mesh> meshes;
   std::vector<quadric> quadrics;  // KILN_quadric definitions, each shared by its instances
   std::vector<instance> instances;
-  // The glTF file's node names by node index ("" when unnamed).
+  // The glTF file's node names by node index ("" when unnamed), and each node's parent (-1 for a
+  // root): the hierarchy that --only and --holdout select by (a node selects its subtree).
   std::vector<std::string> node_names;
+  std::vector<int32_t> node_parents;
   std::vector<material> materials;  // never empty after loading: the last may be the default
   std::vector<texture> textures;
   std::vector<image> images;

@@ -118,6 +118,16 @@ def test_render_layers_from_python_match_the_cli(tmp_path):
         kiln.render(CORNELL, width=8, height=6, holdout="no_such_node")
 
 
+def test_a_render_layer_selects_a_node_and_its_subtree():
+    group = kiln.render(CORNELL, width=32, height=24, spp=1, only="objects")
+    listed = kiln.render(CORNELL, width=32, height=24, spp=1,
+                         only=["glass_column", "blue_ball", "yellow_ring", "orange_cone"])
+    assert np.array_equal(group.aovs["beauty"], listed.aovs["beauty"])
+    assert np.count_nonzero(group.aovs["beauty"][:, :, 3]) > 50
+    with pytest.raises(kiln.InputError, match="did you mean 'objects'"):
+        kiln.render(CORNELL, width=8, height=6, only="objets")
+
+
 def test_denoiser_and_relighting_passes_are_arrays():
     result = kiln.render(CORNELL, width=32, height=24, spp=2, float=True, filter="blackman-harris",
                          aovs="beauty,direct,albedo_filtered,N_filtered,diffuse,specular,shadow")

@@ -533,6 +533,9 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   out.quadrics = read_quadric_definitions(model, path);
   out.node_names.reserve(model.nodes.size());
   for (const tinygltf::Node& node : model.nodes) out.node_names.push_back(node.name);
+  out.node_parents.assign(model.nodes.size(), -1);  // validation left a forest: one parent at most
+  for (size_t n = 0; n < model.nodes.size(); ++n)
+    for (int child : model.nodes[n].children) out.node_parents[static_cast<size_t>(child)] = int32_t(n);
   const int scene_index = chosen_scene(model, st.options, path);
   if (scene_index < 0)
     warn_once(ctx, "the file has no scenes; nothing is placed");
