@@ -8,16 +8,23 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
 #include <functional>
 #include <future>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <vector>
 
+#include "core/closest_name.h"
 #include "core/error.h"
+#include "job/asset_info.h"
 #include "job/option_table.h"
 #include "job/render_job.h"
 #include "job/render_sequence.h"
@@ -31,6 +38,35 @@ namespace {
 PyObject* error_class = nullptr;        // kiln.Error
 PyObject* input_error_class = nullptr;  // kiln.InputError (also a ValueError)
 PyObject* time_limit_class = nullptr;   // kiln.TimeLimitError (also a TimeoutError)
+PyObject* warning_class = nullptr;      // kiln.KilnWarning (a UserWarning)
+
+// What kiln would print as a warning or note during a call, gathered from whichever thread runs the
+// job and given to Python's warnings module on the calling thread, with the GIL, once it returns.
+struct warning_log {
+  std::mutex lock;
+  std::vector<std::string> lines;
+
+  void add(const std::string& line) {
+    const std::lock_guard<std::mutex> held(lock);
+    // The CLI's "kiln: warning: ..." is the warning's category here.
+    lines.push_back(line.rfind("warning: ", 0) == 0 ? line.substr(9) : line);
+  }
+  std::vector<std::string> take() {
+    const std::lock_guard<std::mutex> held(lock);
+    return std::move(lines);
+  }
+};
+
+// Issues each line as a kiln.KilnWarning and returns them as a list (Result.warnings). A filter that
+// turns warnings into errors raises here.
+py::list issue_warnings(const std::vector<std::string>& lines) {
+  py::list list;
+  for (const std::string& line : lines) {
+    if (PyErr_WarnEx(warning_class, line.c_str(), 1) != 0) throw py::error_already_set();
+    list.append(line);
+  }
+  return list;
+}
 
 // --aovs and friends from "beauty,Z" or ["beauty", "Z"]; --look-from from "1,2,3" or (1, 2, 3).
 std::string option_text(const py::handle& value) {
@@ -49,14 +85,38 @@ std::string option_text(const py::handle& value) {
                         py::str(py::type::of(value).attr("__name__")).cast<std::string>());
 }
 
+std::string keyword_of(std::string name) {
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
+
+// A misspelled keyword is a TypeError, as Python's own are, with the CLI's suggestion.
+[[noreturn]] void unknown_keyword(const std::string& function, const std::string& keyword) {
+  // Compared as the command line compares them (--spp against --sp), so the two suggest alike.
+  std::vector<std::string> options;
+  for (const option_spec& spec : render_option_table()) options.push_back("--" + spec.name);
+  std::string dashed = "--" + keyword;
+  std::replace(dashed.begin(), dashed.end(), '_', '-');
+  std::string message = function + "() got an unexpected keyword argument '" + keyword + "'";
+  if (const std::optional<std::string> near = closest_name(dashed, options))
+    message += "; did you mean '" + keyword_of(near->substr(2)) + "'?";
+  else
+    message += " (kiln.options() lists the options)";
+  throw py::type_error(message);
+}
+
 // look_from= is --look-from; a value of None leaves the option at its default.
-void apply_option(render_options& options, const std::string& keyword, const py::handle& value) {
-  if (value.is_none()) return;
+void apply_option(render_options& options, const std::string& keyword, const py::handle& value,
+                  const std::string& function, warning_log& warnings) {
   std::string name = keyword;
   for (char& c : name)
     if (c == '_') c = '-';
   const option_spec* spec = find_render_option(name);
-  if (!spec) throw input_error("", keyword, "is not a render option (kiln.options() lists them)");
+  if (!spec) unknown_keyword(function, keyword);
+  if (value.is_none()) return;
+  if (name == spec->alias)
+    warnings.add("warning: " + keyword + "= is deprecated; use " + keyword_of(spec->name) + "=");
   std::string text;
   try {
     text = option_text(value);
@@ -116,6 +176,7 @@ struct python_result {
   render_options options;
   py::dict aovs, channels;
   py::dict metadata, stats;
+  py::list warnings;  // each also issued as a kiln.KilnWarning
 };
 
 // The EXR layers by the names --aovs uses.
@@ -159,10 +220,24 @@ void fill_arrays(python_result& out) {
   }
 }
 
+// Calls progress(done, total) with a total above 0 (none is known while the scene loads), each
+// change once.
+struct progress_caller {
+  const py::object& progress;
+  std::pair<uint64_t, uint64_t> last{0, 0};
+
+  void operator()(uint64_t done, uint64_t total) {
+    if (progress.is_none() || total == 0 || last == std::make_pair(done, total)) return;
+    last = {done, total};
+    progress(done, total);
+  }
+};
+
 // Runs body (the job's render) on a thread of its own while this one, holding the GIL only
-// between waits, checks for Ctrl-C and reports progress.
+// between waits, checks for Ctrl-C and reports progress, ending with a call at 100%.
 template <typename Result>
-Result run_watched(render_job& job, const py::object& progress, const std::function<Result()>& body) {
+Result run_watched(render_job& job, const py::object& progress, const std::function<Result()>& body,
+                   warning_log& warnings) {
   std::atomic<bool> cancel{false};
   render_progress counts;
   job.cancel = &cancel;
@@ -177,6 +252,7 @@ Result run_watched(render_job& job, const py::object& progress, const std::funct
     }
   });
   bool interrupted = false;
+  progress_caller report{progress};
   for (;;) {
     std::future_status status;
     {
@@ -189,9 +265,9 @@ Result run_watched(render_job& job, const py::object& progress, const std::funct
       cancel = true;
       continue;  // wait for the render to stop; the exception stays set
     }
-    if (!interrupted && !progress.is_none()) {
+    if (!interrupted) {
       try {
-        progress(counts.pixels_done.load(), counts.pixels_total.load());
+        report(counts.pixels_done.load(), counts.pixels_total.load());
       } catch (py::error_already_set& e) {
         e.restore();
         interrupted = true;
@@ -207,16 +283,23 @@ Result run_watched(render_job& job, const py::object& progress, const std::funct
     }
     throw py::error_already_set();
   }
-  return done.get();
-}
-
-render_job_result run_watched(render_job& job, const py::object& progress) {
-  return run_watched<render_job_result>(job, progress, [&job] { return run_job(job); });
+  std::optional<Result> result;
+  try {
+    result = done.get();
+  } catch (...) {
+    issue_warnings(warnings.take());  // what led up to the failure is not lost
+    throw;
+  }
+  const uint64_t total = counts.pixels_total.load();
+  report(total, total);
+  return std::move(*result);
 }
 
 // The arrays, metadata and statistics of a finished render.
-python_result finished(render_job_result result, const render_options& options) {
+python_result finished(render_job_result result, const render_options& options,
+                       const std::vector<std::string>& warnings) {
   python_result out;
+  out.warnings = issue_warnings(warnings);
   out.result = std::move(result);
   out.options = options;
   fill_arrays(out);
@@ -225,14 +308,18 @@ python_result finished(render_job_result result, const render_options& options) 
   return out;
 }
 
-// The job of a call: the asset, output= and every keyword as its render option.
-render_job python_job(const std::string& asset, const py::object& output, const py::kwargs& kwargs) {
+// The job of a call: the asset, output= and every keyword as its render option; what it would print
+// as a warning goes to warnings.
+render_job python_job(const std::string& function, const std::string& asset, const py::object& output,
+                      const py::kwargs& kwargs, const std::shared_ptr<warning_log>& warnings) {
   render_job job;
+  job.warn = [warnings](const std::string& line) { warnings->add(line); };
   job.options.input = asset;
   job.options.quiet = true;
   job.options.command_line = python_call(asset, kwargs);
   if (!output.is_none()) job.options.output = output.cast<std::string>();
-  for (const auto& [key, value] : kwargs) apply_option(job.options, key.cast<std::string>(), value);
+  for (const auto& [key, value] : kwargs)
+    apply_option(job.options, key.cast<std::string>(), value, function, *warnings);
   return job;
 }
 
@@ -240,38 +327,40 @@ render_job python_job(const std::string& asset, const py::object& output, const 
 // soon as it is rendered, all returned in order.
 py::list render_sequence(const std::string& asset, const py::object& output, const py::object& progress,
                          const py::kwargs& kwargs) {
-  render_job job = python_job(asset, output, kwargs);
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("render_sequence", asset, output, kwargs, warnings);
   if (!renders_sequence(job.options))
     throw input_error("", "frames", "render_sequence needs frames= (e.g. frames=\"1-24\") or turntable=N");
-  using frames = std::vector<std::pair<render_job_result, render_options>>;
-  frames rendered = run_watched<frames>(job, progress, [&job] {
-    frames out;
-    run_sequence(job,
-                 [&out](const render_job_result& result, const render_options& frame, const frame_report&) {
-                   if (!frame.output.empty()) write_job_outputs(result, frame);
-                   out.emplace_back(result, frame);
-                 });
-    return out;
-  });
+  // Each frame keeps the warnings given while it was made.
+  using frames = std::vector<std::tuple<render_job_result, render_options, std::vector<std::string>>>;
+  frames rendered = run_watched<frames>(
+      job, progress,
+      [&job, &warnings] {
+        frames out;
+        run_sequence(job,
+                     [&](const render_job_result& result, const render_options& frame, const frame_report&) {
+                       if (!frame.output.empty()) write_job_outputs(result, frame);
+                       out.emplace_back(result, frame, warnings->take());
+                     });
+        return out;
+      },
+      *warnings);
   py::list list;
-  for (auto& [result, frame] : rendered) list.append(finished(std::move(result), frame));
+  for (auto& [result, frame, lines] : rendered) list.append(finished(std::move(result), frame, lines));
   return list;
 }
 
 python_result render(const std::string& asset, const py::object& output, const py::object& progress,
                      const py::kwargs& kwargs) {
-  render_job job = python_job(asset, output, kwargs);
-  python_result out;
-  out.result = run_watched(job, progress);
-  out.options = job.options;
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("render", asset, output, kwargs, warnings);
+  render_job_result result = run_watched<render_job_result>(
+      job, progress, [&job] { return run_job(job); }, *warnings);
   if (!job.options.output.empty()) {
     py::gil_scoped_release unlocked;
-    write_job_outputs(out.result, job.options);
+    write_job_outputs(result, job.options);
   }
-  fill_arrays(out);
-  out.metadata = metadata_dict(out.result.metadata);
-  out.stats = statistics_dict(out.result);
-  return out;
+  return finished(std::move(result), job.options, warnings->take());
 }
 
 void write_result(const python_result& r, const std::string& path, const py::object& preview) {
@@ -283,18 +372,20 @@ void write_result(const python_result& r, const std::string& path, const py::obj
   write_job_outputs(r.result, options);
 }
 
+// The Python type of an option's value, as kiln.options() and the docstrings name it.
+const char* python_type(const option_spec& spec) {
+  const char* types[] = {"int", "int", "float", "str", "bool"};
+  return types[int(spec.type)];
+}
+
 py::list option_list() {
   py::list list;
   const render_options defaults;
   for (const option_spec& spec : render_option_table()) {
     py::dict d;
-    std::string keyword = spec.name;
-    for (char& c : keyword)
-      if (c == '-') c = '_';
-    d["name"] = keyword;
+    d["name"] = keyword_of(spec.name);
     d["option"] = "--" + spec.name;
-    const char* types[] = {"int", "int", "float", "str", "bool"};
-    d["type"] = types[int(spec.type)];
+    d["type"] = python_type(spec);
     d["help"] = spec.help;
     d["choices"] = spec.choices;
     const std::optional<std::string> value = spec.get(defaults);
@@ -302,6 +393,42 @@ py::list option_list() {
     list.append(d);
   }
   return list;
+}
+
+// A docstring: head, then every option of the table with its type, default and help, as
+// help(kiln.render) shows them.
+const char* documented(const std::string& head) {
+  static std::string text;  // the docstring lives as long as the module
+  text = head + "\n\nOptions (None or leaving one out keeps its default):\n";
+  const render_options defaults;
+  for (const option_spec& spec : render_option_table()) {
+    std::string type = python_type(spec);
+    if (!spec.choices.empty()) {
+      type.clear();
+      for (const std::string& choice : spec.choices)
+        type += (type.empty() ? "" : " | ") + ("'" + choice + "'");
+    }
+    text += "\n    " + keyword_of(spec.name) + ": " + type;
+    const std::optional<std::string> value = spec.get(defaults);
+    if (value && !value->empty())
+      text += " = " + (spec.type == option_type::flag   ? std::string(*value == "true" ? "True" : "False")
+                       : spec.type == option_type::text ? "'" + *value + "'"
+                                                        : *value);
+    text += "\n        " + spec.help + "\n";
+  }
+  return text.c_str();
+}
+
+// kiln.info: the asset's description (job/asset_info.h) as the dict of `kiln info --json`.
+py::object info(const std::string& asset, const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("info", asset, py::none(), kwargs, warnings);
+  const py::object no_progress = py::none();
+  const std::string text = run_watched<std::string>(
+      job, no_progress, [&job] { return asset_info_json(describe_asset(job.options, job.cancel, job.warn)); },
+      *warnings);
+  issue_warnings(warnings->take());
+  return py::module_::import("json").attr("loads")(text);
 }
 
 // kiln::error as kiln.InputError (bad input: the CLI's exit 2) or kiln.Error, carrying the file,
@@ -341,6 +468,8 @@ PYBIND11_MODULE(kiln, m) {
   m.attr("Error") = py::handle(error_class);
   m.attr("TimeLimitError") = py::handle(time_limit_class);
   m.attr("InputError") = py::handle(input_error_class);
+  warning_class = PyErr_NewException("kiln.KilnWarning", PyExc_UserWarning, nullptr);
+  m.attr("KilnWarning") = py::handle(warning_class);
   py::register_exception_translator(&translate);
 
   py::class_<python_result>(m, "Result", "One render: its AOVs, metadata and statistics")
@@ -348,22 +477,36 @@ PYBIND11_MODULE(kiln, m) {
       .def_readonly("channels", &python_result::channels, "AOV name -> its EXR channel names")
       .def_readonly("metadata", &python_result::metadata, "The EXR header's attributes")
       .def_readonly("stats", &python_result::stats, "Sizes, timings and ray counts")
+      .def_readonly("warnings", &python_result::warnings,
+                    "What kiln render would print as warnings and notes (each also a kiln.KilnWarning)")
       .def("write", &write_result, py::arg("path"), py::arg("preview") = py::none(),
            "Write the EXR (and a PNG/JPEG preview) exactly as kiln render would, atomically")
       .def("__getitem__",
            [](const python_result& r, const std::string& name) { return r.aovs[py::str(name)]; });
 
+  py::options signatures;
+  signatures.disable_function_signatures();  // the docstrings give them, with every option
   m.def("render", &render, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
-        "render(asset, *, output=None, progress=None, **options) -> Result\n\n"
-        "Renders asset with the options of `kiln render` (width=, height=, spp=, camera=, aovs=[...],\n"
-        "look_from=(x, y, z), ...; kiln.options() lists them). output= also writes the EXR; progress\n"
-        "is called as progress(pixels_done, pixels_total). Raises kiln.InputError for bad input.");
+        documented(
+            "render(asset, *, output=None, progress=None, **options) -> Result\n\n"
+            "Renders asset with the options of `kiln render` (width=, height=, spp=, camera=, aovs=[...],\n"
+            "look_from=(x, y, z), ...). output= also writes the EXR; progress is called as\n"
+            "progress(pixels_done, pixels_total) with a total above 0, the last time at 100%.\n"
+            "Raises kiln.InputError for bad input and TypeError for an unknown keyword; warnings are\n"
+            "kiln.KilnWarning and Result.warnings."));
   m.def("render_sequence", &render_sequence, py::arg("asset"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
         "render_sequence(asset, *, frames, output=None, progress=None, **options) -> list[Result]\n\n"
         "Renders the frames of frames=\"FIRST-LAST[:STEP]\" (or turntable=N) as kiln render does: the\n"
         "asset loads once, each frame is posed and the backend updated in place. output= (with ####\n"
-        "or %04d) writes each frame as it finishes. Returns one Result per frame, in order.");
+        "or %04d) writes each frame as it finishes. Returns one Result per frame, in order. Options:\n"
+        "those of render (help(kiln.render) lists them).");
+  m.def("info", &info, py::arg("asset"),
+        "info(asset, **options) -> dict\n\n"
+        "What `kiln info ASSET --json` prints: cameras, animations, variants, lights, scenes, nodes\n"
+        "with their geometry, bounds, extensions with kiln's support for each, and the estimate of\n"
+        "the render the options describe. Raises kiln.InputError for bad input. Options: those of\n"
+        "render (help(kiln.render) lists them).");
   m.def("options", &option_list, "Every render option: name, option, type, help, choices, default");
 }

@@ -3,6 +3,10 @@ for the same options, bit for bit; output= writes that EXR; bad options and bad 
 kiln.InputError with the CLI's one-line message; Ctrl-C (SIGINT) and a progress callback that
 raises stop a render early; threads writing one path each leave a complete file. Run by CTest with
 PYTHONPATH at the build's module."""
+import ast
+import base64
+import importlib.util
+import json
 import os
 import re
 import signal
@@ -11,6 +15,7 @@ import sys
 import tempfile
 import threading
 import time
+import warnings
 
 import numpy as np
 import OpenImageIO as oiio
@@ -184,8 +189,23 @@ def test_bad_options_raise_with_the_cli_message(tmp_path):
             kiln.render(CORNELL, **keywords)
         assert str(caught.value) == expected
         assert isinstance(caught.value, ValueError)
-    with pytest.raises(kiln.InputError, match="not a render option"):
+    with pytest.raises(TypeError, match=r"^render\(\) got an unexpected keyword argument 'no_such_option' "
+                                        r"\(kiln.options\(\) lists the options\)$"):
         kiln.render(CORNELL, no_such_option=1)
+    assert not os.path.exists(out)
+
+
+def test_a_misspelled_keyword_is_a_type_error_with_the_clis_suggestion(tmp_path):
+    out = str(tmp_path / "x.exr")
+    for typo, meant in [("sp", "spp"), ("widht", "width"), ("look_form", "look_from"), ("thread", "threads")]:
+        dashed = "--" + typo.replace("_", "-")
+        line = cli_message(["render", CORNELL, "-o", out, dashed, "1"])
+        assert line.startswith("unknown option %s; did you mean --%s?" % (dashed, meant.replace("_", "-"))), line
+        for call in (kiln.render, kiln.render_sequence, kiln.info):
+            with pytest.raises(TypeError) as caught:
+                call(CORNELL, **{typo: 1})
+            assert str(caught.value) == "%s() got an unexpected keyword argument '%s'; did you mean '%s'?" % (
+                call.__name__, typo, meant)
     assert not os.path.exists(out)
 
 
@@ -226,8 +246,7 @@ def test_a_time_limit_stops_a_render(tmp_path):
 def test_a_progress_callback_that_raises_cancels_the_render():
     calls = []
 
-    # Calls come every 50 ms from the start; until the render begins (the scene is still loading,
-    # which on a loaded machine can outlast several calls) the total is 0.
+    # Calls come every 50 ms once the render has begun (none while the scene loads).
     def progress(done, total):
         calls.append((done, total))
         if sum(1 for _, t in calls if t > 0) >= 3:
@@ -236,7 +255,124 @@ def test_a_progress_callback_that_raises_cancels_the_render():
     with pytest.raises(RuntimeError, match="enough"):
         kiln.render(GLASS, width=1600, height=1200, spp=64, threads=2, progress=progress)
     assert calls[-1][1] == 1600 * 1200
-    assert all(total in (0, 1600 * 1200) for _, total in calls)
+    assert all(total == 1600 * 1200 for _, total in calls)
+
+
+def test_the_readmes_progress_callback_works_and_ends_at_100_percent(capsys):
+    # The README's own example, exactly: no (0, 0) call while the scene loads.
+    kiln.render(GLASS, width=400, height=300, spp=4, threads=2, progress=lambda done, total: print(done / total))
+    printed = [float(line) for line in capsys.readouterr().out.split()]
+    assert printed and printed[-1] == 1.0
+    assert all(0.0 <= f <= 1.0 for f in printed) and printed == sorted(printed)
+    calls = []
+    kiln.render(CORNELL, width=8, height=6, spp=1, progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1] == (48, 48) and all(total == 48 for _, total in calls)
+    frames = []
+    kiln.render_sequence(CORNELL, turntable=2, width=8, height=6, spp=1,
+                         progress=lambda done, total: frames.append((done, total)))
+    assert frames and frames[-1] == (48, 48) and all(total == 48 for _, total in frames)
+
+
+def triangle_gltf(path, extensions_used=()):
+    """One triangle and no lights (a data-URI buffer); extensions_used are listed as optional."""
+    positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(positions.tobytes()).decode()
+    document = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "scene": 0,
+                "nodes": [{"mesh": 0, "name": "tri"}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+                "buffers": [{"byteLength": 36, "uri": uri}], "bufferViews": [{"buffer": 0, "byteLength": 36}],
+                "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                               "min": [0, 0, 0], "max": [1, 1, 0]}]}
+    if extensions_used:
+        document["extensionsUsed"] = list(extensions_used)
+    path.write_text(json.dumps(document))
+    return str(path)
+
+
+def test_warnings_are_kiln_warnings_and_result_warnings_as_the_cli_prints_them(tmp_path):
+    asset = triangle_gltf(tmp_path / "tri.gltf", ["EXT_made_up"])
+    view = dict(width=8, height=8, spp=1, lighting="headlight")
+    done = cli(["render", asset, "-o", str(tmp_path / "x.exr"), "--width", "8", "--height", "8",
+                "--lighting", "headlight", "--tile", "0/1"])
+    assert done.returncode == 0, done.stderr
+    printed = [line[len("kiln: "):].replace("warning: ", "", 1) for line in done.stderr.splitlines()
+               if not line.startswith("kiln: 8x8")]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = kiln.render(asset, tile="0/1", **view)
+    assert [w.category for w in caught] == [kiln.KilnWarning] * len(caught)
+    assert [str(w.message) for w in caught] == result.warnings
+    # The CLI's lines, the deprecated name's in Python's words.
+    assert result.warnings == [line.replace("--tile is deprecated; use --band", "tile= is deprecated; use band=")
+                               for line in printed]
+    assert "extension EXT_made_up is not supported; it is ignored" in result.warnings
+    assert "the file has no lights; using a headlight at the camera" in result.warnings
+    assert issubclass(kiln.KilnWarning, UserWarning)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", kiln.KilnWarning)
+        with pytest.raises(kiln.KilnWarning, match="EXT_made_up"):
+            kiln.render(asset, **view)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert kiln.render(CORNELL, width=8, height=6, spp=1).warnings == []
+    assert caught == []
+
+
+def test_info_is_the_clis_json_document(tmp_path):
+    done = subprocess.run([KILN, "info", "--json", CORNELL, "--width", "40", "-q"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(done.stdout)
+    info = kiln.info(CORNELL, width=40)
+    for timing in ("load_seconds", "render_seconds_one_thread"):
+        assert info["render"].pop(timing) > 0
+        expected["render"].pop(timing)
+    assert info == expected
+    assert [light["name"] for light in info["lights"]] == ["ceiling_light", "fill_light"]
+    assert info["render"]["width"] == 40
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        made_up = kiln.info(triangle_gltf(tmp_path / "tri.gltf", ["EXT_made_up"]))
+    assert made_up["extensions"] == [{"name": "EXT_made_up", "required": False, "support": "ignored"}]
+    assert made_up["geometry"]["triangles"] == 1 and made_up["nodes"][0]["name"] == "tri"
+    assert "extension EXT_made_up is not supported; it is ignored" in [str(w.message) for w in caught]
+    with pytest.raises(kiln.InputError, match="cannot open file"):
+        kiln.info(str(tmp_path / "missing.gltf"))
+
+
+def load_stub_tool():
+    spec = importlib.util.spec_from_file_location("make_python_stub",
+                                                  os.path.join(SOURCE, "tools", "make_python_stub.py"))
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    return tool
+
+
+def test_help_and_the_type_stub_list_every_option_with_its_type_and_help():
+    options = kiln.options()
+    for option in options:
+        assert "\n    %s: " % option["name"] in kiln.render.__doc__, option["name"]
+        assert option["help"] in kiln.render.__doc__, option["name"]
+    tool = load_stub_tool()
+    with open(tool.DEFAULT_STUB) as f:
+        committed = f.read()
+    # The committed stub's options are what the tool makes of this module: it cannot drift from the table.
+    assert committed == tool.updated(committed, kiln), "run tools/make_python_stub.py"
+    tree = ast.parse(committed)
+    classes = {node.name: node for node in tree.body if isinstance(node, ast.ClassDef)}
+    body = classes["RenderOptions"].body
+    fields = {node.target.id: (ast.unparse(node.annotation), body[i + 1].value.value)
+              for i, node in enumerate(body) if isinstance(node, ast.AnnAssign)}
+    assert list(fields) == [o["name"] for o in options]
+    expected_types = {"int": "Optional[int]", "float": "Optional[float]", "bool": "Optional[bool]"}
+    for option in options:
+        annotation, doc = fields[option["name"]]
+        assert doc.startswith("%s: %s" % (option["option"], option["help"])), option["name"]
+        if option["choices"]:
+            assert all(repr(choice) in annotation for choice in option["choices"]), annotation
+        else:
+            assert annotation == expected_types.get(option["type"], "Optional[_Text]"), option["name"]
+    functions = {node.name: node for node in tree.body if isinstance(node, ast.FunctionDef)}
+    for name in ("render", "render_sequence", "info"):
+        assert ast.unparse(functions[name].args.kwarg.annotation) == "Unpack[RenderOptions]", name
 
 
 def test_options_are_the_clis():
