@@ -2,8 +2,10 @@
 // NumPy arrays (height × width × channels, float32, exactly the values the EXR stores), its
 // metadata and statistics. Options are the option table's, by the same names (look_from for
 // --look-from) with the same checks; a refused value or a bad asset raises kiln.InputError with
-// the message the CLI prints. The render runs on its own thread without the GIL, and the calling
-// thread watches for Ctrl-C: a KeyboardInterrupt cancels the render and is raised when it stops.
+// the message the CLI prints, an unknown keyword TypeError with the CLI's suggestion, and what the
+// CLI prints as a warning is a kiln.KilnWarning. The render runs on its own thread without the GIL,
+// and the calling thread watches for Ctrl-C: a KeyboardInterrupt cancels the render and is raised
+// when it stops.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
