@@ -4,11 +4,7 @@
 // sorted front to back, a front-to-back `over` flatten equal to the flat beauty, the
 // deepImageState the file claims, the refusals of the paths deep output does not take, and the
 // deep samples charged to --max-memory; batch jobs with their deep files.
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfDeepFrameBuffer.h>
 #include <OpenEXR/ImfDeepImageStateAttribute.h>
-#include <OpenEXR/ImfDeepScanLineInputFile.h>
-#include <OpenEXR/ImfHeader.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +15,7 @@
 #include <vector>
 
 #include "support/channel_exr.h"
+#include "support/deep_exr.h"
 #include "support/gltf_builder.h"
 #include "support/run_kiln.h"
 
@@ -50,59 +47,6 @@ std::string write_scene(const std::string& path, bool with_veil = true, bool wit
   b.add_lamp_and_camera({1.0, 0.8, 2.0}, 12.0, {0, 0, 4}, 0.8);
   b.write(path);
   return path;
-}
-
-// A deep file's every sample, channel by channel.
-struct deep_file {
-  int width = 0, height = 0;
-  Imf::DeepImageState state = Imf::DIS_MESSY;
-  bool has_state = false;
-  std::vector<unsigned int> counts;
-  std::vector<size_t> first;  // per pixel, into the channels
-  std::vector<std::string> names;
-  std::vector<std::vector<float>> channels;
-  float at(size_t pixel, unsigned int k, const std::string& name) const {
-    const auto c = std::find(names.begin(), names.end(), name) - names.begin();
-    return channels[size_t(c)][first[pixel] + k];
-  }
-};
-
-deep_file read_deep(const std::string& path) {
-  deep_file out;
-  Imf::DeepScanLineInputFile in(path.c_str());
-  const Imath::Box2i dw = in.header().dataWindow();
-  out.width = dw.max.x - dw.min.x + 1;
-  out.height = dw.max.y - dw.min.y + 1;
-  if (const auto* s = in.header().findTypedAttribute<Imf::DeepImageStateAttribute>("deepImageState")) {
-    out.has_state = true;
-    out.state = s->value();
-  }
-  const size_t n = size_t(out.width) * size_t(out.height);
-  out.counts.resize(n);
-  Imf::DeepFrameBuffer counts;
-  counts.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(out.counts.data()),
-                                           sizeof(unsigned int), sizeof(unsigned int) * size_t(out.width)));
-  in.setFrameBuffer(counts);
-  in.readPixelSampleCounts(dw.min.y, dw.max.y);
-  out.first.resize(n + 1, 0);
-  for (size_t i = 0; i < n; ++i) out.first[i + 1] = out.first[i] + out.counts[i];
-  for (auto c = in.header().channels().begin(); c != in.header().channels().end(); ++c) {
-    out.names.push_back(c.name());
-    out.channels.emplace_back(out.first[n]);
-  }
-  Imf::DeepFrameBuffer buffer = counts;
-  std::vector<std::vector<char*>> pointers(out.names.size(), std::vector<char*>(n));
-  for (size_t c = 0; c < out.names.size(); ++c) {
-    for (size_t i = 0; i < n; ++i)
-      pointers[c][i] = reinterpret_cast<char*>(out.channels[c].data() + out.first[i]);
-    buffer.insert(out.names[c],
-                  Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(pointers[c].data()), sizeof(char*),
-                                 sizeof(char*) * size_t(out.width), sizeof(float)));
-  }
-  in.setFrameBuffer(buffer);
-  in.readPixelSampleCounts(dw.min.y, dw.max.y);  // OpenEXR reads samples only after counts in this buffer
-  in.readPixels(dw.min.y, dw.max.y);
-  return out;
 }
 
 // kiln render at size × size, quiet, float, with the id AOV and extra options.
@@ -141,7 +85,7 @@ TEST(deep_exr_cli, samples_are_sorted_counted_and_flatten_to_the_beauty) {
   const std::string quad_scene = write_scene(dir + "/quad.gltf", false, true);
   const testing::channel_exr veil = render(veil_scene, dir + "/veil.exr", {});
   const testing::channel_exr quad = render(quad_scene, dir + "/quad.exr", {});
-  const deep_file deep = read_deep(dir + "/shot.deep.exr");
+  const testing::deep_file deep = testing::read_deep(dir + "/shot.deep.exr");
   ASSERT_EQ(deep.width, size);
   ASSERT_EQ(deep.height, size);
   for (const char* name :

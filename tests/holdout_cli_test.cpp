@@ -1,8 +1,8 @@
 // Holdouts and render layers end to end (--holdout, --only, --holdout-invisible), read back as a
-// compositor would: two layers of disjoint node sets composited with `over` equal the full render
-// (exactly at pixel centres; with filtered samples everywhere but the pixels a layer covers only in
-// part), a holdout cuts alpha to zero and hides what is behind it but still casts its shadow, an
-// invisible holdout casts none, and a pattern that matches no node is refused naming the nodes.
+// compositor would: two layers of disjoint node sets added with `plus` equal the full render on
+// every pixel (tests/render_layers_cli_test.cpp has deep layers, glass and BLEND), a holdout cuts
+// alpha to zero and hides what is behind it but still casts its shadow, an invisible holdout casts
+// none, and a pattern that matches no node is refused naming the nodes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -70,16 +70,13 @@ image render(const std::string& scene, const std::string& dir, const std::string
 
 const char* const rgba[4] = {"R", "G", "B", "A"};
 
-// A over B, channel c of pixel p (premultiplied): A + (1 - A.alpha) B.
-float over(const image& a, const image& b, size_t p, const char* c) {
-  return a.at(p, c) + (1.0f - a.at(p, "A")) * b.at(p, c);
-}
+// A plus B, channel c of pixel p (premultiplied): what the README says disjoint flat layers give.
+float plus(const image& a, const image& b, size_t p, const char* c) { return a.at(p, c) + b.at(p, c); }
 
-// At pixel centres (1 spp) every pixel belongs to one layer, so front over back is the full render
-// to float rounding: the back layer holds the triangle's shadow (a holdout casts it) and nothing of
-// the triangle. With 4 tent-filtered samples a pixel whose samples fall in both layers is
-// filtered apart: every other pixel still matches to 1e-5, and the edge pixels are counted.
-TEST(holdout_cli, layers_composite_over_into_the_full_render) {
+// Every camera sample lands in exactly one of two layers of disjoint node sets, so adding them is the
+// full render to float rounding on every pixel, edges included, whatever the filter: the back layer
+// holds the triangle's shadow (a holdout casts it) and nothing of the triangle.
+TEST(holdout_cli, layers_add_into_the_full_render) {
   const std::string dir = scratch_folder("holdout_layers");
   const std::string scene = write_scene(dir + "/scene.gltf");
   for (const std::vector<std::string>& sampling :
@@ -97,19 +94,16 @@ TEST(holdout_cli, layers_composite_over_into_the_full_render) {
       covered += a == 1.0f;
       // The triangle's shadow on the quad, where the camera sees the quad: darker than the lit quad.
       shadowed += a == 0.0f && back.at(p, "A") == 1.0f && back.at(p, "B") < 0.02f;
-      if (a > 0.0f && a < 1.0f) {
-        ++edges;
-        continue;
-      }
-      for (const char* c : rgba) worst = std::max(worst, std::abs(over(front, back, p, c) - full.at(p, c)));
+      edges += a > 0.0f && a < 1.0f;
+      for (const char* c : rgba) worst = std::max(worst, std::abs(plus(front, back, p, c) - full.at(p, c)));
     }
     const std::string what = sampling[1];
     EXPECT_LE(worst, 1e-5f) << what;
     EXPECT_GT(covered, 50u) << what;
     EXPECT_GT(shadowed, 20u) << what;
     if (sampling[1] == "1") EXPECT_EQ(edges, 0u);
-    EXPECT_LT(edges, full.count() / 10) << what;
-    std::printf("spp %s: %zu of %zu pixels on layer edges; elsewhere max |front over back - full| %.3g\n",
+    if (sampling[1] == "4") EXPECT_GT(edges, 0u);
+    std::printf("spp %s: %zu of %zu pixels on layer edges; everywhere max |front plus back - full| %.3g\n",
                 what.c_str(), edges, full.count(), worst);
   }
 }

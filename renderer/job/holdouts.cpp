@@ -152,16 +152,25 @@ std::vector<bool> matched_instances(const scene& world, const node_tree& t, cons
 
 }  // namespace
 
-void apply_holdouts(scene& world, const std::string& holdout, const std::string& only, bool invisible) {
+void apply_holdouts(scene& world, const std::string& holdout, const std::string& only, holdout_kind others) {
   if (holdout.empty() && only.empty()) return;
   const node_tree tree = read_tree(world);
   const std::vector<bool> held = holdout.empty() ? std::vector<bool>(world.instances.size(), false)
                                                  : matched_instances(world, tree, holdout, "--holdout");
   const std::vector<bool> kept = only.empty() ? std::vector<bool>(world.instances.size(), true)
                                               : matched_instances(world, tree, only, "--only");
-  const holdout_kind kind = invisible ? holdout_kind::invisible : holdout_kind::matte;
   for (size_t i = 0; i < world.instances.size(); ++i)
-    if (held[i] || !kept[i]) world.instances[i].holdout = kind;
+    if (held[i] || !kept[i]) world.instances[i].holdout = others;
+}
+
+holdout_kind others_kind(const std::string& others, bool holdout_invisible, bool deep) {
+  if (others == "invisible" && holdout_invisible)
+    throw input_error("", "--others",
+                      "invisible (the camera passes the other nodes by) contradicts --holdout-invisible "
+                      "(they matte the camera); give one of them");
+  const bool unseen = others == "invisible" || (others == "auto" && deep && !holdout_invisible);
+  if (unseen) return holdout_kind::unseen;
+  return holdout_invisible ? holdout_kind::invisible : holdout_kind::matte;
 }
 
 }  // namespace kiln

@@ -303,7 +303,8 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
            (dropped == 1 ? "" : "s") + " (repeated vertices or zero area)");
   }
 
-  apply_holdouts(p.world, options.holdout, options.only, options.holdout_invisible);
+  apply_holdouts(p.world, options.holdout, options.only,
+                 others_kind(options.others, options.holdout_invisible, options.deep));
   p.cam = job_view(options, p.world, p.camera_description, p.framing ? &*p.framing : nullptr);
   // Before any accelerator is built, for every backend and every client (render, batch, compare,
   // bench): no coordinate a ray can reach may pass Embree's limit.

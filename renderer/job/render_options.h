@@ -91,6 +91,7 @@ struct render_options {
   std::string holdout;                          // --holdout NODE,...: node names or globs held out
   std::string only;                             // --only NODE,...: everything else held out
   bool holdout_invisible = false;               // --holdout-invisible: holdouts only matte the camera
+  std::string others = "auto";                  // --others auto|invisible|matte (job/holdouts.h)
   std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   embree_options embree;                        // --bvh-quality, --bvh-compact

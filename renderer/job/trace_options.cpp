@@ -72,13 +72,28 @@ void add_trace_options(std::vector<option_spec>& t) {
       .recorded_as = "kiln/holdout";
   add(node_patterns("only", &render_options::only,
                     "Render only these nodes and their subtrees (names, /paths or globs); every other node "
-                    "is a holdout (a render layer)"))
+                    "is outside the layer, as --others says (a render layer: flat layers add with plus, deep "
+                    "ones merge by depth)"))
       .recorded_as = "kiln/only";
   add(flag_option(
           "holdout-invisible", [](render_options & o) -> auto& { return o.holdout_invisible; },
           "Holdouts matte the camera only: they cast no shadows and do not show in reflections or "
           "through glass"))
       .recorded_as = "kiln/holdout_invisible";
+  option_spec others = choice_option(
+      "others", [](render_options & o) -> auto& { return o.others; }, {"auto", "invisible", "matte"},
+      "invisible",
+      "What a render layer (--only, --holdout) does with the nodes outside it: invisible (the "
+      "layer's camera rays pass them by; they still cast shadows and show in reflections and "
+      "through glass: deep layers merge by depth), matte (they cut alpha to zero: flat layers add "
+      "with plus) or auto (invisible with --deep, else matte)");
+  // Recorded as what it resolved to, so a file says which layer it is.
+  others.get = [](const render_options& o) -> std::optional<std::string> {
+    if (o.others != "auto") return o.others;
+    if (o.holdout.empty() && o.only.empty()) return std::nullopt;
+    return std::string(o.deep && !o.holdout_invisible ? "invisible" : "matte");
+  };
+  add(std::move(others)).recorded_as = "kiln/others";
   add(integer_option<int>(
           "max-depth", [](render_options & o) -> auto& { return o.max_depth; }, 0, 64, "2",
           "Maximum reflection depth"))

@@ -156,7 +156,10 @@ camera_sample shade_prepared_camera_hit(const shading_context& ctx, const view_c
     missed(ctx, s, prepared.r, show_background, outputs.split, counts);
     return s;  // every path returns s, so it is built in the caller's slot
   }
-  record_hit(ctx, *prepared.visible, prepared.p, prepared.distance, outputs, s);
+  // A matte belongs to no layer: its pixels keep a miss's Z, P, N, uv, ids, albedo and motion, so
+  // a matte picked from them selects only objects the layer holds.
+  if (!is_matte(ctx.world.instances[prepared.visible->instance_id].holdout))
+    record_hit(ctx, *prepared.visible, prepared.p, prepared.distance, outputs, s);
   shade_camera_path(ctx, prepared.r, start.origin, prepared.p, prepared.at_hit, show_background, outputs, s,
                     counts);
   return s;

@@ -194,10 +194,21 @@ enum class shape_kind { mesh, quadric };
 
 // One placement of a shape in the world. A thousand instances of one mesh cost a thousand of
 // these, not a thousand meshes.
-// A holdout matte (--holdout, --only): to the camera the instance cuts alpha to zero and hides what
-// lies behind it. A matte holdout still casts shadows and shows in mirrors and through glass; an
-// invisible one is seen by nothing but the camera's own path.
-enum class holdout_kind : uint8_t { none, matte, invisible };
+// How a render layer treats the instances outside it (--holdout, --only, --others):
+// - matte: to the camera the instance cuts alpha to zero and hides what lies behind it; it still
+//   casts shadows and shows in mirrors and through glass (flat layers that add up with `plus`);
+// - invisible (--holdout-invisible): a matte seen by nothing but the camera's own path;
+// - unseen (--others invisible): the camera's own rays pass it by as if it were not there, every
+//   other ray sees it (shadows, reflections, refraction), so the layer holds its own objects whole
+//   and a deep merge by depth does the holdout.
+enum class holdout_kind : uint8_t { none, matte, invisible, unseen };
+
+// Whether the camera's path meets the instance as a matte (its share of the sample transparent).
+inline bool is_matte(holdout_kind k) { return k == holdout_kind::matte || k == holdout_kind::invisible; }
+
+// Whether rays of the camera's own path (core/ray.h's ray_kind::camera) can hit the instance: every
+// backend skips an unseen one for them, as if it were not in the scene.
+inline bool camera_rays_hit(holdout_kind k) { return k != holdout_kind::unseen; }
 
 struct instance {
   shape_kind kind = shape_kind::mesh;

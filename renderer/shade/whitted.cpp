@@ -166,9 +166,10 @@ vec3 shade_covered_on_path(const shading_context& ctx, const ray& r, const surfa
 }
 
 // The part of a BLEND surface's ray that passes behind it (a share 1 − alpha), continued unbent
-// from the surface: one depth level, so stacked transparent layers stay bounded by max_depth.
+// from the surface: one depth level, so stacked transparent layers stay bounded by max_depth. What
+// is not traced stays covered by the surface as opaque black, or, behind a holdout, transparent.
 vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point& sp, float alpha,
-                  const path_state& s, ray_counts& counts) {
+                  const path_state& s, ray_counts& counts, bool holdout = false) {
   path_state next = s;
   next.seed = child_seed(s.seed, spawned::behind);
   next.stratum = {};
@@ -176,7 +177,10 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   next.record = scaled_record(s.record, 1.0f - alpha);
   if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||
       !spend_ray(s.budget)) {
-    record_untraced_behind(s.record, sp, next.record.share);
+    if (holdout)
+      record_holdout(next.record);
+    else
+      record_untraced_behind(s.record, sp, next.record.share);
     return vec3(0.0f);
   }
   // The same ray (its kind kept), continued behind a partly transparent surface.
@@ -279,18 +283,18 @@ shading_point prepare_shading(const shading_context& ctx, const ray& r, const su
 
 vec3 shade_prepared(const shading_context& ctx, const ray& r, const shading_point& prepared,
                     const path_state& s, ray_counts& counts) {
-  // A holdout on the camera's path: its share of the sample is transparent and brings no colour,
-  // and nothing behind it is traced.
-  if (ctx.world.instances[prepared.sp.instance].holdout != holdout_kind::none && record_holdout(s.record))
-    return vec3(0.0f);
   const material& m = ctx.world.materials[prepared.sp.material];
   const surface_point& sp = prepared.sp;
   const material_point& mp = prepared.mp;
-  if (m.alpha != alpha_mode::blend || mp.alpha >= 1.0f)
-    return shade_covered_on_path(ctx, r, sp, mp, s, counts);
-
+  const bool opaque = m.alpha != alpha_mode::blend || mp.alpha >= 1.0f;
   // BLEND: the surface covers a share alpha of the ray; the rest continues behind it.
-  const float alpha = std::max(mp.alpha, 0.0f);
+  const float alpha = opaque ? 1.0f : std::max(mp.alpha, 0.0f);
+  // A matte on the camera's path: the share of the sample it covers is transparent and brings no
+  // colour; a BLEND matte covers alpha of it, so layers cut by it add up to the full render.
+  if (is_matte(ctx.world.instances[sp.instance].holdout) && record_holdout(scaled_record(s.record, alpha)))
+    return opaque ? vec3(0.0f) : trace_behind(ctx, r, sp, alpha, s, counts, true);
+  if (opaque) return shade_covered_on_path(ctx, r, sp, mp, s, counts);
+
   vec3 radiance(0.0f);
   if (alpha > 0.0f) {
     path_state covered = s;

@@ -139,6 +139,12 @@ void set_instance_motion(RTCGeometry geometry, const std::vector<dmat4>& steps) 
   for (size_t k = 0; k < steps.size(); ++k) set_instance_transform(geometry, steps[k], unsigned(k));
 }
 
+// Ray masks: an instance the camera's own rays must pass by (scene.h's camera_rays_hit) has the
+// camera's bit cleared; camera rays carry that bit alone, every other ray all bits.
+constexpr unsigned camera_ray_mask = 1u;
+constexpr unsigned other_ray_mask = ~0u;
+unsigned ray_mask(const ray& r) { return r.kind == ray_kind::camera ? camera_ray_mask : other_ray_mask; }
+
 // Fills Embree's ray from r field by field, in place. Building a zero-initialised RTCRay and
 // copying it into the query made GCC store 8 bytes and reload them as 16: a failed store-to-load
 // forward that took half of intersect()'s own cycles.
@@ -152,7 +158,7 @@ void fill_embree_ray(const ray& r, RTCRay& out) {
   out.dir_z = r.direction.z;
   out.time = r.time;
   out.tfar = r.tmax;
-  out.mask = ~0u;
+  out.mask = ray_mask(r);
   out.id = 0;
   out.flags = 0;
 }
@@ -238,7 +244,7 @@ void fill_lane(const ray& r, unsigned id, packet& p, int k) {
   p.dir_z[k] = r.direction.z;
   p.time[k] = r.time;
   p.tfar[k] = r.tmax;
-  p.mask[k] = ~0u;
+  p.mask[k] = ray_mask(r);
   p.id[k] = id;
   p.flags[k] = 0;
 }
@@ -325,6 +331,7 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
     if (!shape) continue;
     RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geometry, shape);
+    if (!camera_rays_hit(inst.holdout)) rtcSetGeometryMask(geometry, ~camera_ray_mask);
     if (instance_moves(s, uint32_t(i)))
       set_instance_motion(geometry, s.shutter.instance_steps[i]);
     else

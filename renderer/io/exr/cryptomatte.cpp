@@ -17,12 +17,12 @@ std::string hex8(uint32_t bits) {
   return text;
 }
 
-// Adds name to the layer's manifest and table under key.
-void add_name(cryptomatte_layer& layer, size_t key, const std::string& name) {
+// Adds name to the layer's table under key, and to its manifest when listed.
+void add_name(cryptomatte_layer& layer, size_t key, const std::string& name, bool listed = true) {
   if (layer.id_by_key.size() <= key) layer.id_by_key.resize(key + 1, 0u);
   const uint32_t id = cryptomatte_id(name);
   layer.id_by_key[key] = id;
-  layer.manifest[name] = id;
+  if (listed) layer.manifest[name] = id;
 }
 
 }  // namespace
@@ -51,7 +51,9 @@ cryptomatte_layer cryptomatte_objects(const scene& world) {
   for (const instance& inst : world.instances) {
     const std::string& name =
         inst.node < world.node_names.size() ? world.node_names[inst.node] : std::string();
-    add_name(layer, inst.node, name.empty() ? "node" + std::to_string(inst.node) : name);
+    // A render layer's manifest names its own objects only (the others never reach its coverage).
+    add_name(layer, inst.node, name.empty() ? "node" + std::to_string(inst.node) : name,
+             inst.holdout == holdout_kind::none);
   }
   return layer;
 }
@@ -59,10 +61,18 @@ cryptomatte_layer cryptomatte_objects(const scene& world) {
 cryptomatte_layer cryptomatte_materials(const scene& world) {
   cryptomatte_layer layer;
   layer.name = crypto_material_layer_name;
-  for (const material& m : world.materials) {
+  // In a render layer, only the materials of the layer's own objects are listed; else all of them.
+  const bool render_layer =
+      std::any_of(world.instances.begin(), world.instances.end(),
+                  [](const instance& inst) { return inst.holdout != holdout_kind::none; });
+  std::vector<bool> in_layer(world.materials.size(), !render_layer);
+  for (const instance& inst : world.instances)
+    if (inst.holdout == holdout_kind::none && inst.material < in_layer.size()) in_layer[inst.material] = true;
+  for (size_t i = 0; i < world.materials.size(); ++i) {
+    const material& m = world.materials[i];
     if (m.source_index < 0) continue;
     add_name(layer, size_t(m.source_index),
-             m.name.empty() ? "material" + std::to_string(m.source_index) : m.name);
+             m.name.empty() ? "material" + std::to_string(m.source_index) : m.name, in_layer[i]);
   }
   return layer;
 }

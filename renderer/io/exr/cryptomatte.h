@@ -36,6 +36,8 @@ uint32_t cryptomatte_id(std::string_view name);
 std::string cryptomatte_key(std::string_view layer_name);
 
 // The object name of each glTF node that places geometry: its name, or "node<index>" when unnamed.
+// The manifest of a render layer (--only, --holdout) lists the layer's own objects, and its
+// materials, only.
 cryptomatte_layer cryptomatte_objects(const scene& world);
 
 // The name of each material in the scene: its glTF name, "material<index>" when unnamed; the

@@ -81,6 +81,34 @@ TEST(cryptomatte, keys_are_seven_hex_digits_of_the_layer_name_hash) {
   EXPECT_NE(cryptomatte_key("CryptoObject"), cryptomatte_key("CryptoMaterial"));
 }
 
+// A render layer's manifests list its own objects and their materials; the held-out instances keep
+// their ids in the table (nothing reads them) but are not named.
+TEST(cryptomatte, a_render_layer_names_its_own_objects_and_materials_only) {
+  scene world;
+  world.node_names = {"car", "wall"};
+  instance car, wall;
+  car.node = 0;
+  car.material = 0;
+  wall.node = 1;
+  wall.material = 1;
+  wall.holdout = holdout_kind::unseen;
+  world.instances = {car, wall};
+  material paint, plaster;
+  paint.name = "paint";
+  paint.source_index = 0;
+  plaster.name = "plaster";
+  plaster.source_index = 1;
+  world.materials = {paint, plaster};
+  const cryptomatte_layer objects = cryptomatte_objects(world);
+  EXPECT_EQ(objects.manifest, (std::map<std::string, uint32_t>{{"car", cryptomatte_id("car")}}));
+  ASSERT_EQ(objects.id_by_key.size(), 2u);
+  EXPECT_EQ(objects.id_by_key[1], cryptomatte_id("wall"));
+  const cryptomatte_layer materials = cryptomatte_materials(world);
+  EXPECT_EQ(materials.manifest, (std::map<std::string, uint32_t>{{"paint", cryptomatte_id("paint")}}));
+  world.instances[1].holdout = holdout_kind::none;  // not a layer: every material is named
+  EXPECT_EQ(cryptomatte_materials(world).manifest.size(), 2u);
+}
+
 TEST(cryptomatte, layers_name_nodes_and_materials_with_fallbacks) {
   scene world;
   world.node_names = {"car", "", "wheel"};
