@@ -283,7 +283,7 @@ TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_override
   EXPECT_EQ(a.spec.width, 40);
   EXPECT_EQ(a.spec.height, 30);
   EXPECT_EQ(a.spec.get_int_attribute("samplesPerPixel"), 3);
-  EXPECT_EQ(attribute(a, "kiln/max_depth"), "4");
+  EXPECT_EQ(a.spec.get_int_attribute("kiln/max_depth"), 4);
   EXPECT_EQ(attribute(a, "kiln/aovs"), "beauty,Z");
   EXPECT_EQ(a.spec.nchannels, 5);  // R G B A Z
   EXPECT_EQ(attribute(a, "kiln/scene_file"), (dir / "scenes/cornell_box.gltf").string());
@@ -293,7 +293,7 @@ TEST(batch_cli, a_json_manifest_sets_each_jobs_size_samples_outputs_and_override
   EXPECT_EQ(b.spec.width, 16);
   EXPECT_EQ(b.spec.height, 12);
   EXPECT_EQ(b.spec.get_int_attribute("samplesPerPixel"), 2);
-  EXPECT_EQ(attribute(b, "kiln/max_depth"), "8");
+  EXPECT_EQ(b.spec.get_int_attribute("kiln/max_depth"), 8);
   EXPECT_EQ(attribute(b, "kiln/aovs"), "beauty,Z,N");
   // The header's command line is the `kiln render` call that reproduces the job.
   EXPECT_EQ(attribute(b, "kiln/command_line")
@@ -317,7 +317,7 @@ TEST(batch_cli, a_csv_manifest_renders_its_rows_and_a_bad_row_stops_everything_w
   EXPECT_EQ(wide.spec.width, 20);
   EXPECT_EQ(wide.spec.height, 10);
   EXPECT_EQ(wide.spec.get_int_attribute("samplesPerPixel"), 5);
-  EXPECT_EQ(attribute(wide, "kiln/max_depth"), "2");
+  EXPECT_EQ(wide.spec.get_int_attribute("kiln/max_depth"), 2);
   EXPECT_EQ(attribute(wide, "kiln/aovs"), "beauty,id");
 
   write_file(dir / "bad.csv",

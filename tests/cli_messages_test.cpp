@@ -218,11 +218,17 @@ TEST(cli_messages, a_stitched_frame_records_the_sum_of_its_bands_render_times) {
   EXPECT_FLOAT_EQ(float_attribute(frame, "renderTimeSeconds"), seconds[0] + seconds[1] + seconds[2]);
   auto in = OIIO::ImageInput::open(frame);
   ASSERT_TRUE(in);
-  // Each band's own time, in the order the bands were given.
-  std::istringstream listed(in->spec().get_string_attribute("kiln/band_render_seconds"));
+  // Each band's own time, in the order the bands were given: a float vector, and the total a float.
+  const OIIO::ParamValue* listed = in->spec().find_attribute("kiln/band_render_seconds");
+  ASSERT_NE(listed, nullptr);
+  EXPECT_EQ(listed->type().basetype, OIIO::TypeDesc::FLOAT);
   std::vector<float> read;
-  for (std::string item; std::getline(listed, item, ',');) read.push_back(std::stof(item));
+  for (int i = 0; i < int(listed->type().numelements()) * listed->type().aggregate; ++i)
+    read.push_back(listed->get_float_indexed(i));
   EXPECT_EQ(read, (std::vector<float>{seconds[2], seconds[0], seconds[1]}));
+  EXPECT_FLOAT_EQ(in->spec().get_float_attribute("kiln/render_seconds"),
+                  seconds[0] + seconds[1] + seconds[2]);
+  EXPECT_EQ(in->spec().find_attribute("kiln/render_seconds")->type(), OIIO::TypeFloat);
 }
 
 }  // namespace

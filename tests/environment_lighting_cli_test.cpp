@@ -143,7 +143,7 @@ TEST(environment_lighting_cli, the_exr_records_what_lit_it) {
       testing::render_float_exr(scene, dir + "/studio.exr", 8, 8, {"--environment-samples", "3"});
   EXPECT_EQ(studio.spec.get_string_attribute("kiln/lighting"), "studio environment");
   EXPECT_EQ(studio.spec.get_string_attribute("kiln/lighting_mode"), "auto");
-  EXPECT_EQ(studio.spec.get_string_attribute("kiln/environment_samples"), "3");
+  EXPECT_EQ(studio.spec.get_int_attribute("kiln/environment_samples"), 3);
   const channel_exr grey =
       testing::render_float_exr(scene, dir + "/grey.exr", 8, 8, {"--background", "0.5,0.5,0.5"});
   EXPECT_EQ(grey.spec.get_string_attribute("kiln/lighting"), "background colour");
@@ -162,8 +162,8 @@ TEST(environment_lighting_cli, the_default_render_is_anti_aliased_and_lit_by_the
   ASSERT_EQ(std::system(command.c_str()), 0);
   const channel_exr im{testing::read_float_exr(out)};
   EXPECT_EQ(im.spec.get_int_attribute("samplesPerPixel"), 16);
-  EXPECT_EQ(im.spec.get_string_attribute("kiln/samples_per_pixel"), "16");
-  EXPECT_EQ(im.spec.get_string_attribute("kiln/environment_samples"), "2");
+  EXPECT_EQ(im.spec.get_int_attribute("kiln/samples_per_pixel"), 16);
+  EXPECT_EQ(im.spec.get_int_attribute("kiln/environment_samples"), 2);
   EXPECT_EQ(im.spec.get_string_attribute("kiln/lighting"), "studio environment");
   // Anti-aliased: the sphere's silhouette has pixels it covers only in part.
   int partial = 0;

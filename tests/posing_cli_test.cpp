@@ -74,9 +74,12 @@ std::vector<float> middle_row_alpha(const std::string& path) {
   return row;
 }
 
+// The attribute as OpenImageIO reads it, "TYPE VALUE" ("int 13", "double 0.5", "string stay"),
+// or "" when the file has none.
 std::string attribute(const std::string& path, const std::string& name) {
   auto in = OIIO::ImageInput::open(path);
-  return in ? in->spec().get_string_attribute(name) : "";
+  const OIIO::ParamValue* value = in ? in->spec().find_attribute(name) : nullptr;
+  return value ? std::string(value->type().c_str()) + " " + value->get_string() : "";
 }
 
 // Columns whose centres, x = -1 + (i + 0.5) / 4, lie in the quad's span [-1 + t, t] at time t.
@@ -120,14 +123,25 @@ TEST(posing_cli, time_and_frame_pose_the_scene_where_the_closed_form_says) {
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     EXPECT_EQ(middle_row_alpha(out), expected_row(cases[c].t));
   }
-  // The time options are recorded, and the resolved seconds with them.
-  EXPECT_EQ(attribute(dir + "/frame1.exr", "kiln/time"), "0.5");
-  EXPECT_EQ(attribute(dir + "/frame1.exr", "kiln/time_seconds"), "0.5");
-  EXPECT_EQ(attribute(dir + "/frame4.exr", "kiln/frame"), "13");
-  EXPECT_EQ(attribute(dir + "/frame4.exr", "kiln/time_seconds"), "0.5");
-  EXPECT_EQ(attribute(dir + "/frame5.exr", "kiln/fps"), "8");
-  EXPECT_EQ(attribute(dir + "/frame6.exr", "kiln/animation"), "stay");
+  // The time options are recorded as numbers, and the resolved seconds with them.
+  EXPECT_EQ(attribute(dir + "/frame1.exr", "kiln/time"), "double 0.5");
+  EXPECT_EQ(attribute(dir + "/frame1.exr", "kiln/time_seconds"), "double 0.5");
+  EXPECT_EQ(attribute(dir + "/frame4.exr", "kiln/frame"), "int 13");
+  EXPECT_EQ(attribute(dir + "/frame4.exr", "kiln/time_seconds"), "double 0.5");
+  EXPECT_EQ(attribute(dir + "/frame5.exr", "kiln/fps"), "double 8");
+  EXPECT_EQ(attribute(dir + "/frame5.exr", "kiln/frame_start"), "int 0");
+  EXPECT_EQ(attribute(dir + "/frame6.exr", "kiln/animation"), "string stay");
   EXPECT_EQ(attribute(dir + "/frame0.exr", "kiln/time"), "");  // a still records none
+  // The shot's rate and first frame always (their defaults when not given); a frame's place in the
+  // shot as OpenEXR's standard framesPerSecond and timeCode, counted from the first frame.
+  EXPECT_EQ(attribute(dir + "/frame0.exr", "kiln/fps"), "double 24");
+  EXPECT_EQ(attribute(dir + "/frame0.exr", "kiln/frame_start"), "int 1");
+  EXPECT_EQ(attribute(dir + "/frame0.exr", "framesPerSecond"), "");
+  EXPECT_EQ(attribute(dir + "/frame0.exr", "smpte:TimeCode"), "");
+  EXPECT_EQ(attribute(dir + "/frame4.exr", "framesPerSecond"), "rational2i 24/1");
+  EXPECT_EQ(attribute(dir + "/frame4.exr", "smpte:TimeCode"), "timecode 00:00:00:12");  // (13 - 1) at 24
+  EXPECT_EQ(attribute(dir + "/frame5.exr", "framesPerSecond"), "rational2i 8/1");
+  EXPECT_EQ(attribute(dir + "/frame5.exr", "smpte:TimeCode"), "timecode 00:00:00:04");
   // The time is a pixel setting: another time is another settings hash.
   EXPECT_NE(attribute(dir + "/frame1.exr", "kiln/settings_hash"),
             attribute(dir + "/frame2.exr", "kiln/settings_hash"));

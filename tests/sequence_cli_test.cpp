@@ -57,7 +57,7 @@ struct exr_pixels {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> names;
   std::vector<float> values;
-  std::string frame;
+  std::string frame, rate, time_code;  // kiln/frame; framesPerSecond and timeCode as OpenImageIO prints them
 };
 
 exr_pixels read_exr(const std::string& path) {
@@ -69,7 +69,10 @@ exr_pixels read_exr(const std::string& path) {
   image.height = spec.height;
   image.channels = spec.nchannels;
   image.names = spec.channelnames;
-  image.frame = spec.get_string_attribute("kiln/frame");
+  image.frame = std::to_string(spec.get_int_attribute("kiln/frame", -1));
+  if (const OIIO::ParamValue* code = spec.find_attribute("smpte:TimeCode"))
+    image.time_code = code->get_string();
+  if (const OIIO::ParamValue* rate = spec.find_attribute("framesPerSecond")) image.rate = rate->get_string();
   image.values.resize(size_t(spec.width) * spec.height * spec.nchannels);
   in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data());
   return image;
@@ -127,6 +130,8 @@ TEST(sequence_cli, frames_move_and_deform_as_the_closed_form_says_and_equal_sing
     const exr_pixels image = read_exr(dir + name);
     ASSERT_EQ(image.width, side);
     EXPECT_EQ(image.frame, std::to_string(frame));
+    EXPECT_EQ(image.rate, std::to_string(fps) + "/1");
+    EXPECT_EQ(image.time_code, "00:00:00:0" + std::to_string(frame - 1));  // frame 1 is the shot's first
     const double t = double(frame - 1) / fps;
     EXPECT_EQ(alpha_row(image, 1), covered(-1.0 + t, t));                  // the slider, top half
     EXPECT_EQ(alpha_row(image, side - 2), covered(-1.0, -0.5 + 1.5 * t));  // the morph, bottom half

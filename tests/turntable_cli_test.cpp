@@ -67,7 +67,8 @@ double framing_distance(const vec& lo, const vec& hi) {
 struct recorded_camera {
   std::array<float, 16> matrix{};
   vec eye{}, view{}, up{};
-  std::string camera, frame, time;
+  std::string camera, frame, time_code;  // time_code: OpenEXR's timeCode as "hh:mm:ss:ff"
+  double time = NAN;                     // kiln/time_seconds, a double
 };
 
 recorded_camera camera_of(const float_exr& image) {
@@ -83,8 +84,10 @@ recorded_camera camera_of(const float_exr& image) {
     c.up[r] = f[r * 4 + 1];
   }
   c.camera = image.spec.get_string_attribute("kiln/camera");
-  c.frame = image.spec.get_string_attribute("kiln/frame");
-  c.time = image.spec.get_string_attribute("kiln/time_seconds");
+  c.frame = std::to_string(image.spec.get_int_attribute("kiln/frame", -1));
+  if (const OIIO::ParamValue* t = image.spec.find_attribute("kiln/time_seconds", OIIO::TypeDesc::DOUBLE))
+    c.time = *static_cast<const double*>(t->data());
+  if (const OIIO::ParamValue* t = image.spec.find_attribute("smpte:TimeCode")) c.time_code = t->get_string();
   return c;
 }
 
@@ -133,6 +136,7 @@ TEST(turntable_cli, frames_orbit_the_centre_at_one_distance_and_elevation_at_the
     SCOPED_TRACE(frame);
     const recorded_camera c = camera_of(frame_name(dir, "tt", frame));
     EXPECT_EQ(c.frame, std::to_string(frame));
+    EXPECT_EQ(c.time_code, "00:00:00:0" + std::to_string(frame - 1));  // from the first frame at 24 fps
     EXPECT_NE(c.camera.find("turntable frame " + std::to_string(frame) + " of 6"), std::string::npos)
         << c.camera;
     const vec offset = minus(c.eye, box_centre);
@@ -261,7 +265,7 @@ TEST(turntable_cli, an_animated_asset_plays_along_unless_held) {
       const float_exr image = read_float_exr(frame_name(dir, mode, frame));
       const recorded_camera c = camera_of(image);
       const double seconds = mode == "play" ? (frame - 1) / 4.0 : 0.0;
-      EXPECT_NEAR(std::stod(c.time), seconds, 1e-12);
+      EXPECT_NEAR(c.time, seconds, 1e-12);
       // The orbit's centre: the middle of the motion's bounds played, the rest pose's held.
       const vec centre = mode == "play" ? vec{2.0, 0.0, 0.0} : vec{0.0, 0.0, 0.0};
       const vec corner_hi = mode == "play" ? vec{4.5, 0.5, 0.5} : vec{0.5, 0.5, 0.5};

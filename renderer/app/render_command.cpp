@@ -22,9 +22,10 @@ void print_summary(const render_job_result& result, const render_options& option
   const bool adaptive = options.adaptive_threshold > 0.0f;
   std::string sampling;
   for (const auto& [key, value] : result.metadata.attributes) {
-    if (adaptive && key == "kiln/adaptive") sampling = "adaptive " + value;
-    if (!adaptive && key == "kiln/filter")
-      sampling = std::to_string(samples_per_pixel_of(options)) + " spp, " + value + " filter";
+    const std::string* text = std::get_if<std::string>(&value);
+    if (adaptive && key == "kiln/adaptive" && text) sampling = "adaptive " + *text;
+    if (!adaptive && key == "kiln/filter" && text)
+      sampling = std::to_string(samples_per_pixel_of(options)) + " spp, " + *text + " filter";
   }
   const render_statistics& stats = result.stats;
   std::fprintf(stderr,

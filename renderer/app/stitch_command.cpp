@@ -52,7 +52,7 @@ void run_stitch(const stitch_options& options) {
   // The stitched frame records the settings hash of the full-frame render it equals, so
   // `kiln batch --resume` sees it as that render's output.
   const std::string frame_hash = exr_string_attribute(regions[0], "kiln/frame_settings_hash");
-  if (!frame_hash.empty()) set_exr_string_attribute(frame, "kiln/settings_hash", frame_hash);
+  if (!frame_hash.empty()) set_exr_attribute(frame, "kiln/settings_hash", frame_hash);
   write_exr(options.output, frame);
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "job/option_entries.h"
+#include "job/option_values.h"
 
 namespace kiln {
 
@@ -22,6 +23,35 @@ std::string bare_name(const std::string& name) {
   size_t dashes = 0;
   while (dashes < name.size() && dashes < 2 && name[dashes] == '-') ++dashes;
   return name.substr(dashes);
+}
+
+// The canonical text get() gave (exact digits, so the numbers read back as they were set) as the
+// attribute value spec.recorded_type says.
+exr_value recorded_value(const option_spec& spec, const std::string& text) {
+  switch (spec.recorded_type) {
+    case record_type::float64:
+      return std::stod(text);
+    case record_type::vec2: {
+      const size_t comma = text.find(',');
+      return vec2(float(std::stod(text.substr(0, comma))), float(std::stod(text.substr(comma + 1))));
+    }
+    case record_type::vec3:
+      return vec3(parse_triple(text, dashed(spec.name)));
+    case record_type::by_type:
+      break;
+  }
+  switch (spec.type) {
+    case option_type::integer:
+    case option_type::unsigned_integer:
+      return int(std::stoll(text));  // every recorded integer's range fits an int
+    case option_type::number:
+      return float(std::stod(text));
+    case option_type::flag:
+      return std::string(text == "true" ? "on" : "off");
+    case option_type::text:
+      break;
+  }
+  return text;
 }
 
 }  // namespace
@@ -63,14 +93,12 @@ std::vector<std::string> canonical_render_arguments(const render_options& option
   return arguments;
 }
 
-std::vector<std::pair<std::string, std::string>> recorded_option_attributes(const render_options& options) {
-  std::vector<std::pair<std::string, std::string>> attributes;
+std::vector<std::pair<std::string, exr_value>> recorded_option_attributes(const render_options& options) {
+  std::vector<std::pair<std::string, exr_value>> attributes;
   for (const option_spec& spec : render_option_table()) {
     if (spec.recorded_as.empty()) continue;
-    std::optional<std::string> value = spec.get(options);
-    if (!value) continue;
-    if (spec.type == option_type::flag) value = *value == "true" ? "on" : "off";
-    attributes.emplace_back(spec.recorded_as, *value);
+    const std::optional<std::string> value = spec.get(options);
+    if (value) attributes.emplace_back(spec.recorded_as, recorded_value(spec, *value));
   }
   return attributes;
 }

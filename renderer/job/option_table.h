@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/exr/exr_value.h"
 #include "job/render_options.h"
 
 namespace kiln {
@@ -30,6 +31,11 @@ enum class option_effect { pixels, region, none };
 // The kind of value, for help texts (INT, UINT, FLOAT, TEXT) and the Python module's conversion.
 enum class option_type { integer, unsigned_integer, number, text, flag };
 
+// How a recorded value is stored in the EXR header: by the option's type (integers as int,
+// numbers as float, flags as "on"/"off", the rest as text), or as a double (a time that must read
+// back exactly), a v2f or a v3f (a text of two or three numbers).
+enum class record_type { by_type, float64, vec2, vec3 };
+
 struct option_spec {
   std::string name;        // "spp": --spp on the command line, "spp" in a manifest, spp= in Python
   std::string short_name;  // "q" for -q; empty: none
@@ -46,7 +52,8 @@ struct option_spec {
   // optional value is not given. A flag's is "true" or "false".
   std::function<std::optional<std::string>(const render_options&)> get;
   std::string recorded_as;  // the EXR attribute holding the value ("kiln/..."); empty: not recorded
-  std::string example;      // a valid value other than the default, for the table's own tests
+  record_type recorded_type = record_type::by_type;
+  std::string example;  // a valid value other than the default, for the table's own tests
 };
 
 // Every render option, in the order of --help and of the canonical arguments.
@@ -66,7 +73,8 @@ enum class region_arguments { include, omit };
 // optional values only when given. Floats are printed with enough digits to read back exactly.
 std::vector<std::string> canonical_render_arguments(const render_options& options, region_arguments region);
 
-// The EXR attributes of every recorded option: {"kiln/samples_per_pixel", "4"}, flags "on"/"off".
-std::vector<std::pair<std::string, std::string>> recorded_option_attributes(const render_options& options);
+// The EXR attributes of every recorded option given a value, stored as its recorded_type says:
+// {"kiln/samples_per_pixel", 4}, {"kiln/shutter", vec2(-0.25, 0.25)}, {"kiln/deep", "on"}.
+std::vector<std::pair<std::string, exr_value>> recorded_option_attributes(const render_options& options);
 
 }  // namespace kiln

@@ -126,13 +126,24 @@ TEST(option_table, recorded_options_are_the_exr_attributes) {
   render_options o;
   o.spp_given = 4;
   o.embree.compact = true;
-  std::map<std::string, std::string> attributes;
+  set_render_option(o, "time", "0.1");
+  set_render_option(o, "shutter", "-0.25,0.5");
+  set_render_option(o, "background", "0.5,0.25,2");
+  set_render_option(o, "environment-intensity", "1.5");
+  std::map<std::string, exr_value> attributes;
   for (const auto& [key, value] : recorded_option_attributes(o)) attributes[key] = value;
-  EXPECT_EQ(attributes["kiln/samples_per_pixel"], "4");
-  EXPECT_EQ(attributes["kiln/bvh_compact"], "on");
-  EXPECT_EQ(attributes["kiln/packets"], "off");
-  EXPECT_EQ(attributes["kiln/aovs"], "beauty,Z,N");
-  EXPECT_EQ(attributes["kiln/accelerator"], "embree");
+  // Numbers are stored as numbers, of the type the value has; the rest as text.
+  EXPECT_EQ(attributes["kiln/samples_per_pixel"], exr_value(4));
+  EXPECT_EQ(attributes["kiln/max_depth"], exr_value(o.max_depth));
+  EXPECT_EQ(attributes["kiln/time"], exr_value(0.1));  // a double: the pose's time exactly
+  EXPECT_EQ(attributes["kiln/environment_intensity"], exr_value(1.5f));
+  EXPECT_EQ(attributes["kiln/shutter"], exr_value(vec2(-0.25f, 0.5f)));
+  EXPECT_EQ(attributes["kiln/background"], exr_value(vec3(0.5f, 0.25f, 2.0f)));
+  EXPECT_EQ(attributes["kiln/bvh_compact"], exr_value("on"));
+  EXPECT_EQ(attributes["kiln/packets"], exr_value("off"));
+  EXPECT_EQ(attributes["kiln/aovs"], exr_value("beauty,Z,N"));
+  EXPECT_EQ(attributes["kiln/accelerator"], exr_value("embree"));
+  EXPECT_EQ(attributes.count("kiln/frame"), 0u);  // not given: not recorded
 }
 
 // The README's "Rendering" option table: its first column's `--name`s.

@@ -192,16 +192,20 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
   metadata.world_to_camera = world_to_camera(world_view);
   metadata.world_to_ndc = world_to_ndc(world_view);
   metadata.attributes = recorded_option_attributes(options);
+  // The shot's rate and first frame even when not given (their defaults): what a frame number means.
+  if (!options.fps) metadata.attributes.emplace_back("kiln/fps", 24.0);
+  if (!options.frame_start) metadata.attributes.emplace_back("kiln/frame_start", 1);
   const bool adaptive = settings.adaptive.threshold > 0.0f;
-  const std::vector<std::pair<std::string, std::string>> resolved = {
+  const std::vector<std::pair<std::string, exr_value>> resolved = {
       {"kiln/scene_file", options.input},
       {"kiln/camera", prepared.camera_description},
       {"kiln/lighting", prepared.lighting},
       {"kiln/filter", sampling_description(settings, false)},
       {"kiln/adaptive", adaptive ? sampling_description(settings, true) : "off"},
       {"kiln/depth", options.aovs.depth_kind == depth_mode::planar ? "planar depth" : "ray distance"},
-      {"kiln/render_seconds", std::to_string(stats.seconds)},
-      {"kiln/discarded_samples", std::to_string(stats.discarded_samples)},
+      {"kiln/render_seconds", float(stats.seconds)},
+      // A double: a count can pass an int's 2^31, and a double holds every count to 2^53 exactly.
+      {"kiln/discarded_samples", double(stats.discarded_samples)},
       {"kiln/command_line", options.command_line},
       {"kiln/scene_hash", fingerprint.scene_hash},
       {"kiln/input_hash", fingerprint.input_hash},
@@ -210,12 +214,15 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
   };
   metadata.attributes.insert(metadata.attributes.end(), resolved.begin(), resolved.end());
   if (options.time || options.frame)
-    metadata.attributes.emplace_back("kiln/time_seconds", exact_text(scene_time(options)));
+    metadata.attributes.emplace_back("kiln/time_seconds", scene_time(options));
+  if (options.frame)
+    metadata.shot =
+        exr_shot_frame{options.fps.value_or(24.0), *options.frame - options.frame_start.value_or(1)};
   for (const auto* layer :
        {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
     if (layer)
-      for (auto& attribute : cryptomatte_attributes(*layer))
-        metadata.attributes.push_back(std::move(attribute));
+      for (auto& [name, value] : cryptomatte_attributes(*layer))
+        metadata.attributes.emplace_back(name, value);
   if (prepared.colour.converts()) {
     // OpenImageIO reads oiio:ColorSpace from an EXR as the image's colour space; colorspace is the
     // name other tools (and the issue) ask for. Both hold the config's name for the space.
@@ -224,15 +231,15 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
     metadata.attributes.emplace_back("kiln/ocio_config_file", prepared.colour.config);  // whichever named it
     for (size_t i = 0; i < 8; ++i) metadata.chromaticities[i] = float(prepared.colour.primaries.xy[i]);
   }
-  metadata.float_attributes = {{"renderTimeSeconds", float(stats.seconds)}};
+  metadata.attributes.emplace_back("renderTimeSeconds", float(stats.seconds));
   if (options.shutter) {
     // ImfStandardAttributes' expTime: how long the shutter is open, in seconds.
     const double open_frames = options.shutter->second - options.shutter->first;
-    metadata.float_attributes.emplace_back("expTime", float(open_frames * motion_frame_seconds(options)));
+    metadata.attributes.emplace_back("expTime", float(open_frames * motion_frame_seconds(options)));
     const size_t steps = std::max<size_t>(prepared.world.shutter.steps, prepared.camera_steps.size());
-    metadata.attributes.emplace_back("kiln/shutter_steps", std::to_string(steps));
+    metadata.attributes.emplace_back("kiln/shutter_steps", int(steps));
   }
-  metadata.int_attributes = {{"samplesPerPixel", samples_per_pixel_of(options)}};
+  metadata.attributes.emplace_back("samplesPerPixel", samples_per_pixel_of(options));
   return metadata;
 }
 

@@ -55,9 +55,13 @@ TEST(render_job, progress_counts_every_pixel_and_metadata_records_the_options) {
   const render_job_result r = run_job(job);
   EXPECT_EQ(progress.pixels_total.load(), 24u * 18u);
   EXPECT_EQ(progress.pixels_done.load(), 24u * 18u);
-  std::map<std::string, std::string> attributes(r.metadata.attributes.begin(), r.metadata.attributes.end());
-  EXPECT_EQ(attributes["kiln/samples_per_pixel"], "2");
-  EXPECT_EQ(attributes["kiln/settings_hash"].size(), 16u);
+  std::map<std::string, exr_value> attributes(r.metadata.attributes.begin(), r.metadata.attributes.end());
+  EXPECT_EQ(attributes["kiln/samples_per_pixel"], exr_value(2));
+  EXPECT_EQ(std::get<std::string>(attributes["kiln/settings_hash"]).size(), 16u);
+  // The shot's rate and first frame are recorded though not given; a still is no frame of a shot.
+  EXPECT_EQ(attributes["kiln/fps"], exr_value(24.0));
+  EXPECT_EQ(attributes["kiln/frame_start"], exr_value(1));
+  EXPECT_FALSE(r.metadata.shot);
   EXPECT_EQ(r.stats.rays.camera, 24u * 18u * 2u);
 }
 

@@ -119,6 +119,7 @@ void add_view_options(std::vector<option_spec>& t) {
           },
           "0.5", "Pose the scene at this time in seconds of its animations (default 0; or --frame)"))
       .recorded_as = "kiln/time";
+  t.back().recorded_type = record_type::float64;
   t.back().type = option_type::number;
   add(custom_option(
           "frame",
@@ -141,6 +142,7 @@ void add_view_options(std::vector<option_spec>& t) {
           },
           "30", "Frames per second of --frame (default 24)"))
       .recorded_as = "kiln/fps";
+  t.back().recorded_type = record_type::float64;
   t.back().type = option_type::number;
   add(custom_option(
           "frame-start",
@@ -173,6 +175,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "Motion blur: the shutter is open from OPEN to CLOSE, in frames relative to the frame (default: no "
           "blur)"))
       .recorded_as = "kiln/shutter";
+  t.back().recorded_type = record_type::vec2;
   add(custom_option(
           "motion-steps",
           [](render_options& o, const std::string& text) {
@@ -199,6 +202,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "A constant environment R,G,B (linear radiance): lights every surface and is seen by rays that "
           "leave the scene (default: none; see --lighting)"))
       .recorded_as = "kiln/background";
+  t.back().recorded_type = record_type::vec3;
 }
 
 }  // namespace kiln::option_entries

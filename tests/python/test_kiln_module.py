@@ -84,7 +84,8 @@ def test_arrays_equal_the_cli_exr_bit_for_bit(tmp_path, extra, arguments):
     assert result.aovs["Z"].shape == (30, 40, 1)
     assert np.count_nonzero(result.aovs["beauty"][:, :, 3]) > 100  # the scene is in the picture
     assert_arrays_match_exr(result, out)
-    assert result.metadata["kiln/samples_per_pixel"] == "2"
+    assert result.metadata["kiln/samples_per_pixel"] == 2  # numbers as numbers, as the EXR holds them
+    assert result.metadata["kiln/fps"] == 24.0 and result.metadata["kiln/frame_start"] == 1
     assert result.metadata["kiln/settings_hash"] == oiio.ImageInput.open(out).spec().get_string_attribute(
         "kiln/settings_hash")
     assert result.stats["camera_rays"] == 40 * 30 * 2
@@ -411,7 +412,8 @@ def test_render_sequence_returns_and_writes_each_frame_as_the_cli_does(tmp_path)
     view = dict(width=24, height=24, quiet=True)
     pattern = str(tmp_path / "walk.####.exr")
     frames = kiln.render_sequence(CESIUM_MAN, frames="1-13:6", output=pattern, **view)
-    assert [f.metadata["kiln/frame"] for f in frames] == ["1", "7", "13"]
+    assert [f.metadata["kiln/frame"] for f in frames] == [1, 7, 13]
+    assert [f.metadata["timeCode"] for f in frames] == ["00:00:00:00", "00:00:00:06", "00:00:00:12"]
     # Frame 13 of the sequence is kiln.render(frame=13), and the file it wrote holds it.
     alone = kiln.render(CESIUM_MAN, frame=13, **view)
     assert np.array_equal(frames[2].aovs["beauty"], alone.aovs["beauty"])
@@ -427,7 +429,8 @@ def test_a_turntable_is_a_sequence_whose_frames_render_alone_as_the_cli_does(tmp
     view = dict(width=16, height=12, spp=1, quiet=True)
     frames = kiln.render_sequence(CORNELL, turntable=3, turntable_elevation=30,
                                   output=str(tmp_path / "tt.####.exr"), **view)
-    assert [f.metadata["kiln/frame"] for f in frames] == ["1", "2", "3"]
+    assert [f.metadata["kiln/frame"] for f in frames] == [1, 2, 3]
+    assert frames[2].metadata["framesPerSecond"] == (24, 1) and frames[2].metadata["timeCode"] == "00:00:00:02"
     assert frames[1].metadata["kiln/camera"] == "turntable frame 2 of 3 (azimuth 120, elevation 30)"
     alone = kiln.render(CORNELL, turntable=3, turntable_elevation=30, frame=2, **view)
     assert np.array_equal(frames[1].aovs["beauty"], alone.aovs["beauty"])

@@ -17,4 +17,8 @@ struct exr_frame_size {
 Imf::Header exr_base_header(const exr_frame_size& frame, const pixel_rect& stored,
                             const exr_metadata& metadata);
 
+// Inserts name as the attribute type value holds (string, int, float, double, v2f, v3f,
+// floatvector), replacing one of that name of any type.
+void insert_exr_attribute(Imf::Header& header, const std::string& name, const exr_value& value);
+
 }  // namespace kiln

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "io/exr/exr_base_header.h"
 #include "io/exr/exr_header.h"
 #include "io/exr/exr_header_copy.h"
 #include "io/exr/exr_message.h"
@@ -135,23 +136,9 @@ std::optional<float> exr_float_attribute(const exr_image& image, const std::stri
   return value->value();
 }
 
-void set_exr_float_attribute(exr_image& image, const std::string& name, float value) {
+void set_exr_attribute(exr_image& image, const std::string& name, const exr_value& value) {
   auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
-  // Removed first: OpenEXR refuses to change an attribute's type, and a foreign file may hold name
-  // as another one.
-  for (Imf::Header& part : header->parts) {
-    part = header_without(part, name.c_str());
-    part.insert(name, Imf::FloatAttribute(value));
-  }
-  image.header = std::move(header);
-}
-
-void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value) {
-  auto header = std::make_shared<exr_header>(image.header ? *image.header : exr_header{});
-  for (Imf::Header& part : header->parts) {
-    part = header_without(part, name.c_str());
-    part.insert(name, Imf::StringAttribute(value));
-  }
+  for (Imf::Header& part : header->parts) insert_exr_attribute(part, name, value);
   image.header = std::move(header);
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/exr/exr_value.h"
 #include "render/film.h"
 
 namespace kiln {
@@ -40,11 +41,8 @@ std::string exr_string_attribute(const exr_image& image, const std::string& name
 // The header's float attribute name (e.g. "renderTimeSeconds"); empty when it has none.
 std::optional<float> exr_float_attribute(const exr_image& image, const std::string& name);
 
-// Sets the float attribute name on every part of image's header (a copy, as below).
-void set_exr_float_attribute(exr_image& image, const std::string& name, float value);
-
-// Sets the string attribute name on every part of image's header (a copy: other images that
-// share the header keep theirs).
-void set_exr_string_attribute(exr_image& image, const std::string& name, const std::string& value);
+// Sets the attribute name, as the type value holds, on every part of image's header (a copy:
+// other images that share the header keep theirs), replacing one of that name of any type.
+void set_exr_attribute(exr_image& image, const std::string& name, const exr_value& value);
 
 }  // namespace kiln

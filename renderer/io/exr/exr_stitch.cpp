@@ -1,7 +1,6 @@
 #include "io/exr/exr_stitch.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -80,22 +79,20 @@ std::string first_missing_pixel(const std::vector<exr_image>& regions, const pix
 }
 
 // The frame took as long as its regions together: renderTimeSeconds (and kiln/render_seconds) become
-// their sum, and kiln/band_render_seconds keeps each region's own time, in input order. Left as the
-// first region's header when some region records no time (not kiln's).
+// their sum, and kiln/band_render_seconds (a float vector) keeps each region's own time, in input order. Left
+// as the first region's header when some region records no time (not kiln's).
 void record_region_times(const std::vector<exr_image>& regions, exr_image& frame) {
   double total = 0.0;
-  std::string times;
+  std::vector<float> times;
   for (const exr_image& r : regions) {
     const std::optional<float> seconds = exr_float_attribute(r, "renderTimeSeconds");
     if (!seconds) return;
     total += double(*seconds);
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", double(*seconds));
-    times += (times.empty() ? "" : ",") + std::string(text);
+    times.push_back(*seconds);
   }
-  set_exr_float_attribute(frame, "renderTimeSeconds", float(total));
-  set_exr_string_attribute(frame, "kiln/render_seconds", std::to_string(total));
-  set_exr_string_attribute(frame, "kiln/band_render_seconds", times);
+  set_exr_attribute(frame, "renderTimeSeconds", float(total));
+  set_exr_attribute(frame, "kiln/render_seconds", float(total));
+  set_exr_attribute(frame, "kiln/band_render_seconds", times);
 }
 
 }  // namespace

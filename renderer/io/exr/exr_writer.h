@@ -15,6 +15,7 @@
 #include "io/exr/exr_beauty.h"
 #include "io/exr/exr_reader.h"
 #include "io/exr/exr_storage.h"
+#include "io/exr/exr_value.h"
 #include "render/film.h"
 
 namespace kiln {
@@ -25,9 +26,11 @@ struct exr_metadata {
   // direction; NDC (0, 0) at the display window's upper-left corner, (1, 1) at its lower-right.
   dmat4 world_to_camera{1.0};
   dmat4 world_to_ndc{1.0};
-  std::vector<std::pair<std::string, std::string>> attributes;  // e.g. {"kiln/spp", "4"}
-  std::vector<std::pair<std::string, float>> float_attributes;  // e.g. {"renderTimeSeconds", 1.5f}
-  std::vector<std::pair<std::string, int>> int_attributes;      // e.g. {"samplesPerPixel", 4}
+  // Written in this order, numbers as numbers: {"kiln/samples_per_pixel", 4},
+  // {"renderTimeSeconds", 1.5f}, {"kiln/camera", "look-at"}.
+  std::vector<std::pair<std::string, exr_value>> attributes;
+  // A frame of a shot (--frame, --frames, --turntable): framesPerSecond and timeCode.
+  std::optional<exr_shot_frame> shot;
   // The colour space of R G B (OpenEXR's chromaticities: red, green, blue, white as xy): Rec.709
   // primaries and D65 white, glTF's linear space, unless the render has a working space.
   std::array<float, 8> chromaticities{0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};

@@ -337,7 +337,7 @@ TEST(exr_writer, dwa_level_is_recorded_and_drives_the_compressor_also_when_writt
   EXPECT_EQ(exr_float_attribute(image, "dwaCompressionLevel"), 2000.0f);
   const fs::path kept = scratch_dir() / "dwa2000_copy.exr", finer = scratch_dir() / "dwa2000_at45.exr";
   write_exr(kept.string(), image);
-  set_exr_float_attribute(image, "dwaCompressionLevel", 45.0f);
+  set_exr_attribute(image, "dwaCompressionLevel", 45.0f);
   write_exr(finer.string(), image);
   EXPECT_EQ(read_parts(kept).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 2000.0f);
   EXPECT_EQ(read_parts(finer).front().spec.get_float_attribute("openexr:dwaCompressionLevel"), 45.0f);
