@@ -95,11 +95,10 @@ if(NOT EXISTS "${KILN_DRACO_ARCHIVE}" OR "${_draco_archive}" IS_NEWER_THAN "${KI
   endif()
   file(REMOVE_RECURSE "${_draco_work}/objects")
 endif()
-add_library(kiln_draco_decoder STATIC IMPORTED)
-set_target_properties(kiln_draco_decoder PROPERTIES IMPORTED_LOCATION "${KILN_DRACO_ARCHIVE}"
-                                                    INTERFACE_INCLUDE_DIRECTORIES "/usr/include")
+# The archive by path, so the installed package (renderer/package) names its own copy in lib/kiln.
 add_library(kiln_draco INTERFACE)
-target_link_libraries(kiln_draco INTERFACE kiln_draco_decoder)
+target_link_libraries(kiln_draco INTERFACE "$<BUILD_INTERFACE:${KILN_DRACO_ARCHIVE}>"
+                                           "$<INSTALL_INTERFACE:$<INSTALL_PREFIX>/lib/kiln/libdraco_decoder.a>")
 add_library(kiln::draco ALIAS kiln_draco)
 
 # Core glTF's two image formats decode through libpng and libjpeg in kiln itself

@@ -8,7 +8,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   libtinygltf-dev libdraco-dev libmeshoptimizer-dev libpng-dev zlib1g-dev libjpeg-dev nlohmann-json3-dev libglm-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3-dev pybind11-dev python3-numpy python3-pytest python3-openimageio
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-openimageio python3-venv git
   clang-format-14
 )
 [ $# -eq 0 ] || packages=("$@")

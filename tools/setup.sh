@@ -8,11 +8,13 @@ cd "$(dirname "$0")/.."
 tools/install_dependencies.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --target kiln kiln_python
-# `python3 -c "import kiln"` from anywhere: the module and the image codecs module beside it.
+# `python3 -c "import kiln"` from anywhere: the package kiln/ (the module, the kiln binary, its plugin
+# modules and shipped files), as pip would install it; the single-file module of earlier versions goes.
 site=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_paths()["platlib"])')
 if mkdir -p "$site" 2>/dev/null && [ -w "$site" ]; then
-  install -m 644 build/python/kiln.*.so build/renderer/app/kiln_image_codecs.so "$site"/
-  echo "kiln: Python module installed in $site"
+  rm -f "$site"/kiln.cpython-*.so "$site"/kiln_image_codecs.so "$site"/kiln_colour.so
+  cmake --install build --component python --prefix "$site" >/dev/null
+  echo "kiln: Python package installed in $site/kiln"
 else
   echo "kiln: $site is not writable; use the module with PYTHONPATH=$PWD/build/python"
 fi

@@ -1,5 +1,6 @@
 // Files kiln ships beside its binary (its OpenColorIO config, its studio environment): found in
-// ../share/kiln/ beside the running executable once installed, else in the source tree's share/.
+// ../share/kiln/ beside the running executable once installed, in share/kiln/ of the Python
+// package holding the module, else in the source tree's share/.
 // Depends on nothing but the standard library.
 #pragma once
 

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "io/file/install_folders.h"
+
 namespace kiln {
 namespace fs = std::filesystem;
 
@@ -40,17 +42,17 @@ std::vector<std::string> plugin_candidates(const plugin_search& search) {
       if (known == text) return;
     candidates.push_back(text);
   };
-  std::error_code ec;
-  const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && executable.has_parent_path()) {
-    add(executable.parent_path() / search.file_name);
-    add(executable.parent_path() / ".." / "lib" / "kiln" / search.file_name);
+  const install_folders folders = find_install_folders();
+  if (folders.executable) {
+    add(*folders.executable / search.file_name);
+    add(*folders.executable / ".." / "lib" / "kiln" / search.file_name);
   }
-  // For the kiln executable this is its folder again; for the Python module, the module's own.
-  Dl_info self{};
-  if (::dladdr(reinterpret_cast<void*>(&plugin_candidates), &self) && self.dli_fname &&
-      fs::path(self.dli_fname).is_absolute())
-    add(fs::path(self.dli_fname).parent_path() / search.file_name);
+  // For the kiln executable this is its folder again; for the Python module, the module's own
+  // and the package's lib/kiln (the package is laid out as an install prefix).
+  if (folders.module) {
+    add(*folders.module / search.file_name);
+    add(*folders.module / "lib" / "kiln" / search.file_name);
+  }
   if (!search.build_path.empty()) add(search.build_path);
   return candidates;
 }

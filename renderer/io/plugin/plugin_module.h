@@ -24,7 +24,7 @@ struct plugin_search {
 
 // The places looked at, in order: $env_variable alone when set; else beside the running
 // executable, in ../lib/kiln/ beside it (an install), beside the shared object this code is part
-// of (the Python module installs the modules next to itself), and build_path.
+// of and in its lib/kiln/ (the Python package carries the modules there), and build_path.
 std::vector<std::string> plugin_candidates(const plugin_search& search);
 
 // An opened module's table, or why none could be opened (then table is null).
