@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <functional>
 #include <future>
@@ -22,10 +23,12 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 #include "core/closest_name.h"
 #include "core/error.h"
+#include "io/exr/exr_shot_time.h"
 #include "job/asset_info.h"
 #include "job/option_table.h"
 #include "job/render_job.h"
@@ -139,9 +142,29 @@ std::string python_call(const std::string& asset, const py::kwargs& kwargs) {
 
 py::dict metadata_dict(const exr_metadata& m) {
   py::dict d;
-  for (const auto& [key, value] : m.attributes) d[py::str(key)] = value;
-  for (const auto& [key, value] : m.float_attributes) d[py::str(key)] = value;
-  for (const auto& [key, value] : m.int_attributes) d[py::str(key)] = value;
+  // Numbers as numbers, v2f and v3f as tuples, as the file holds them.
+  for (const auto& [key, value] : m.attributes)
+    d[py::str(key)] = std::visit(
+        [](const auto& v) -> py::object {
+          using T = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<T, vec2>)
+            return py::make_tuple(v.x, v.y);
+          else if constexpr (std::is_same_v<T, vec3>)
+            return py::make_tuple(v.x, v.y, v.z);
+          else
+            return py::cast(v);
+        },
+        value);
+  if (m.shot) {  // OpenEXR's framesPerSecond (a fraction) and timeCode ("hh:mm:ss:ff")
+    const frame_rate_fraction rate = frame_rate_of(m.shot->fps);
+    d["framesPerSecond"] = py::make_tuple(rate.numerator, rate.denominator);
+    if (const std::optional<smpte_time_code> t =
+            smpte_time_code_of(m.shot->frames_since_start, m.shot->fps)) {
+      char text[16];
+      std::snprintf(text, sizeof text, "%02d:%02d:%02d:%02d", t->hours, t->minutes, t->seconds, t->frame);
+      d["timeCode"] = std::string(text);
+    }
+  }
   // The 16 floats of the file's M44f attributes, in their order (OpenEXR's row vectors: a row of
   // the M44f is a column of kiln's matrices), as a reader of the header gets them.
   py::list camera, ndc;
