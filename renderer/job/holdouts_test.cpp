@@ -30,7 +30,7 @@ scene make_world() {
 
 // Holds out as a flat layer does: the instances outside it become mattes.
 void hold_out(scene& world, const std::string& holdout, const std::string& only) {
-  apply_holdouts(world, holdout, only, false);
+  apply_holdouts(world, holdout, only, holdout_kind::matte);
 }
 
 // The nodes of the instances left unheld, in instance order.
