@@ -100,9 +100,15 @@ json declared_json(const gltf_summary& d) {
 asset_info describe_asset(const render_options& options, const std::atomic<bool>* cancel,
                           const std::function<void(const std::string&)>& warn) {
   const prepared_scene prepared = prepare_scene(options, cancel, warn);
+  return describe_prepared(options, prepared,
+                           summarize_gltf(options.input, job_load_options(options, cancel, nullptr)));
+}
+
+asset_info describe_prepared(const render_options& options, const prepared_scene& prepared,
+                             gltf_summary declared) {
   asset_info info;
   info.file = options.input;
-  info.declared = summarize_gltf(options.input, job_load_options(options, cancel, nullptr));
+  info.declared = std::move(declared);
   info.scene_index = shown_scene(options, info.declared);
   info.cameras = prepared.world.cameras;
   // Back from camera-relative render space (render/render_space.h) to the file's world space.

@@ -43,6 +43,11 @@ struct asset_info {
 asset_info describe_asset(const render_options& options, const std::atomic<bool>* cancel = nullptr,
                           const std::function<void(const std::string&)>& warn = {});
 
+// The same for a scene loaded and prepared already (job/loaded_scene.h), whose file declares declared.
+struct prepared_scene;
+asset_info describe_prepared(const render_options& options, const prepared_scene& prepared,
+                             gltf_summary declared);
+
 // The info as one JSON document (keys documented in README.md, "kiln info"), indented by 2.
 std::string asset_info_json(const asset_info& info);
 

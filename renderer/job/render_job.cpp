@@ -20,6 +20,7 @@
 #include "job/holdouts.h"
 #include "job/job_stop.h"
 #include "job/lighting.h"
+#include "job/loaded_scene.h"
 #include "job/memory_estimates.h"
 #include "job/memory_limit.h"
 #include "job/option_table.h"
@@ -412,16 +413,16 @@ uint64_t job_memory_limit(const render_options& options) {
   return options.max_memory ? options.max_memory : default_memory_budget();
 }
 
-void charge_render_memory(const prepared_scene& prepared, const render_settings& settings) {
-  memory_budget& memory = *prepared.memory;
+void charge_render_memory(const prepared_scene& prepared, const render_settings& settings,
+                          memory_charge& held) {
   const std::string& file = prepared.world.source;
   pixel_rect region = settings.crop;
   if (region.width() <= 0) region = {0, 0, prepared.cam.width, prepared.cam.height};
-  memory.charge(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
-  memory.charge(environment_light_bytes(prepared.world), file, "the environment's sampling distribution");
-  memory.charge(accelerator_bytes(prepared.world), file, "the acceleration structures");
-  memory.charge(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
-                "the film and AOV buffers");
+  held.add(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
+  held.add(environment_light_bytes(prepared.world), file, "the environment's sampling distribution");
+  held.add(accelerator_bytes(prepared.world), file, "the acceleration structures");
+  held.add(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
+           "the film and AOV buffers");
 }
 
 std::shared_ptr<deep_output> attach_deep_output(const render_options& options, const prepared_scene& prepared,
@@ -433,55 +434,12 @@ std::shared_ptr<deep_output> attach_deep_output(const render_options& options, c
   return deep;
 }
 
-namespace {
-
-render_job_result run_stoppable_job(const render_job& job, const std::atomic<bool>* stop,
-                                    const char*& stage) {
-  const render_options& options = job.options;
-  render_job_result result;
-  result.storage = resolve_exr_settings(options);
-  // Hashed before loading: an asset edited during the render then reads as stale next time.
-  stage = "hashing the inputs";
-  const render_fingerprint fingerprint = job.fingerprint ? *job.fingerprint : make_fingerprint(options, stop);
-  stage = "loading the scene";
-  const prepared_scene prepared = prepare_scene(options, stop, job.warn);
-  result.width = prepared.cam.width;
-  result.height = prepared.cam.height;
-  result.camera_description = prepared.camera_description;
-  result.load_seconds = prepared.load_seconds;
-
-  render_settings settings = make_render_settings(options);
-  settings.crop = job_region(options, prepared.cam);
-  settings.motion = prepared.motion.get();
-  if (!prepared.camera_steps.empty()) settings.camera_steps = &prepared.camera_steps;
-  charge_render_memory(prepared, settings);
-
-  stage = "building the acceleration structure";
-  const auto build_start = std::chrono::steady_clock::now();
-  std::unique_ptr<accelerator> accel = make_job_accelerator(prepared.world, options);
-  result.build_seconds = seconds_since(build_start);
-
-  stage = "rendering";
-  const cryptomatte_layer objects = cryptomatte_objects(prepared.world);
-  const cryptomatte_layer materials = cryptomatte_materials(prepared.world);
-  settings.mattes = {objects.id_by_key, materials.id_by_key};
-  settings.cancel = stop;
-  settings.progress = job.progress;
-  result.deep = attach_deep_output(options, prepared, settings);
-  result.image = render_image(prepared.world, *accel, prepared.cam, settings, &result.stats);
-  accel->throw_if_failed();  // an error Embree reported during traversal fails the render
-  // A stop that arrives after the last pixel still ends the job before anything is written.
-  throw_if_cancelled(stop, options.output);
-  result.metadata = job_metadata(options, prepared, settings, result.stats, fingerprint, objects, materials);
-  return result;
-}
-
-}  // namespace
-
 render_job_result run_job(const render_job& job) {
   check_job(job.options);
+  // Loaded and rendered once, as a kept scene renders: one time limit for both.
   return run_stoppable(job, job.options, [&job](const std::atomic<bool>* stop, const char*& stage) {
-    return run_stoppable_job(job, stop, stage);
+    loaded_scene loaded(job, job.options, stop, stage);
+    return loaded.render(job, job.options, stop, stage, nullptr);
   });
 }
 

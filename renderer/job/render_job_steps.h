@@ -41,8 +41,10 @@ view_camera job_view(const render_options& options, const scene& world, std::str
 // The region of the frame the job renders: its --crop or --band, checked against the image.
 pixel_rect job_region(const render_options& options, const view_camera& cam);
 
-// The film, the mip pyramids and the backend, charged to the job's budget before any is made.
-void charge_render_memory(const prepared_scene& prepared, const render_settings& settings);
+// The film, the mip pyramids and the backend, charged to the job's budget (through held, which
+// gives them back when the render is over) before any is made.
+void charge_render_memory(const prepared_scene& prepared, const render_settings& settings,
+                          memory_charge& held);
 
 // With --deep: a deep image for settings to fill, its samples charged to the prepared scene's budget
 // as tiles finish; null (and settings untouched) without.

@@ -38,11 +38,18 @@ struct frame_report {
   double update_seconds = 0.0;  // building or updating the backend
 };
 
+// What receives each frame of a sequence as it finishes (and writes it).
+using frame_handler =
+    std::function<void(const render_job_result&, const render_options&, const frame_report&)>;
+
 // Renders every frame of the sequence (sequence_frames) in order and hands each to on_frame (which writes
 // it) before the next starts; an error stops the sequence there (earlier frames stay written).
 // Throws like run_job; --time-limit applies to each frame.
-void run_sequence(const render_job& job,
-                  const std::function<void(const render_job_result&, const render_options&,
-                                           const frame_report&)>& on_frame);
+void run_sequence(const render_job& job, const frame_handler& on_frame);
+
+// The same from a scene loaded already (kiln.Scene): each frame is a render of it
+// (job/loaded_scene.h). Options that change what is loaded load the asset anew, as above.
+class loaded_scene;
+void run_sequence(const render_job& job, loaded_scene& kept, const frame_handler& on_frame);
 
 }  // namespace kiln

@@ -29,6 +29,7 @@
 #include "io/gltf/gltf_parse.h"
 #include "io/gltf/gltf_primitive_mesh.h"
 #include "io/gltf/gltf_quadrics.h"
+#include "io/gltf/gltf_summary.h"
 #include "io/gltf/gltf_validate.h"
 #include "io/gltf/gltf_variants.h"
 #include "scene/coordinate_range.h"
@@ -481,6 +482,8 @@ gltf_sequence::gltf_sequence(const std::string& path, const gltf_load_options& o
 gltf_sequence::~gltf_sequence() = default;
 
 bool gltf_sequence::animated() const { return state_->animated && !state_->animations.empty(); }
+
+gltf_summary gltf_sequence::summary() const { return summarize_model(state_->model, state_->path); }
 
 std::pair<double, double> gltf_sequence::time_range() const {
   if (!animated()) return {0.0, 0.0};

@@ -17,6 +17,8 @@
 
 namespace kiln {
 
+struct gltf_summary;  // io/gltf/gltf_summary.h
+
 // Bounds on what a file may make the loader do, so a hostile or broken file is refused with a
 // message instead of exhausting memory, time or the stack. Defaults cover every real asset kiln
 // has met with a wide margin; the CLI can raise them.
@@ -89,6 +91,8 @@ class gltf_sequence {
   // The first and last keyframe times of the chosen animations, in seconds ({0, 0} when not
   // animated).
   std::pair<double, double> time_range() const;
+  // What the file declares (io/gltf/gltf_summary.h), from the parse it keeps.
+  gltf_summary summary() const;
 
  private:
   struct state;

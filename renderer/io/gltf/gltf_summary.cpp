@@ -60,7 +60,10 @@ gltf_light_summary light_summary(const tinygltf::Light& src) {
 
 gltf_summary summarize_gltf(const std::string& path, const gltf_load_options& options) {
   memory_charge held(options.memory);
-  const tinygltf::Model model = parse_gltf_file(path, options, &held);
+  return summarize_model(parse_gltf_file(path, options, &held), path);
+}
+
+gltf_summary summarize_model(const tinygltf::Model& model, const std::string& path) {
   gltf_summary s;
   s.generator = model.asset.generator;
   s.default_scene = model.defaultScene;

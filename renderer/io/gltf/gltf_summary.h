@@ -8,6 +8,10 @@
 
 #include "io/gltf/gltf_loader.h"
 
+namespace tinygltf {
+class Model;
+}
+
 namespace kiln {
 
 // What kiln does with an extension a file names: implements it, leaves it out of the render (an
@@ -66,5 +70,8 @@ struct gltf_summary {
 // Reads and parses path as load_gltf does (the same limits, folder rules and refusals) and
 // summarises it. Throws kiln::error (input) when that fails.
 gltf_summary summarize_gltf(const std::string& path, const gltf_load_options& options = {});
+
+// The summary of a model parsed already (gltf_sequence::summary); path names it in errors.
+gltf_summary summarize_model(const tinygltf::Model& model, const std::string& path);
 
 }  // namespace kiln
