@@ -132,7 +132,7 @@ float power_heuristic(float pdf, float other) {
 // transmission below it (from the back, as back_light lights it).
 void add_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                                const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
-                               float weight, environment_tally& tally, ray_counts& counts) {
+                               const vec2& uv, float weight, environment_tally& tally, ray_counts& counts) {
   const bool above = glm::dot(sp.smooth_normal, l) > 0.0f;
   const float cos_theta = above ? glm::dot(sp.shading_normal, l) : -glm::dot(sp.shading_normal, l);
   if (!(cos_theta > 0.0f) || !(weight > 0.0f)) return;
@@ -142,7 +142,7 @@ void add_environment_direction(const shading_context& ctx, const surface_point& 
   else if (diffuse_see_through_weight(mp) > 0.0f)
     f.diffuse = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, l);
   if (f.diffuse == vec3(0.0f) && f.specular == vec3(0.0f)) return;
-  const vec3 arriving = environment_radiance(ctx.world, l) * (cos_theta * weight);
+  const vec3 arriving = environment_radiance_at(ctx.world, uv) * (cos_theta * weight);
   if (arriving == vec3(0.0f)) return;
   const ray shadow = above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow);
   const vec3 visibility = shadow_visibility(ctx, shadow, counts);
@@ -183,14 +183,16 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
     const environment_sample es = sample_environment(e, light_u);
     if (es.pdf > 0.0f) {
       const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
-      add_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, weight, tally, counts);
+      add_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, tally, counts);
     }
     const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), lobe_u.x, lobe_u.y);
     if (const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u)) {
       const float pdf = lobe_pdf(lobes, to_viewer, *l);
       if (pdf > 0.0f) {
-        const float weight = power_heuristic(pdf, environment_pdf(e, *l)) / pdf;
-        add_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, weight, tally, counts);
+        // The map's coordinates of the direction, once for its density and its radiance.
+        const vec2 uv = e.uniform ? vec2(0.0f) : environment_uv(*l, e.rotation);
+        const float weight = power_heuristic(pdf, environment_pdf_at(e, *l, uv)) / pdf;
+        add_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, uv, weight, tally, counts);
       }
     }
   }

@@ -16,13 +16,17 @@ vec2 environment_uv(const vec3& direction, float rotation_radians) {
 }
 
 vec3 environment_radiance(const scene& s, const vec3& direction) {
+  if (!s.env.has_map()) return s.env.color;
+  return environment_radiance_at(s, environment_uv(direction, s.env.rotation));
+}
+
+vec3 environment_radiance_at(const scene& s, const vec2& uv) {
   const environment& env = s.env;
   if (!env.has_map()) return env.color;
   texture map;
   map.image = uint32_t(env.map_image);
   map.sampling = {wrap_mode::repeat, wrap_mode::clamp_to_edge, filter_mode::linear};
-  return vec3(sample_texture(s, map, environment_uv(direction, env.rotation), texel_encoding::linear)) *
-         env.intensity;
+  return vec3(sample_texture(s, map, uv, texel_encoding::linear)) * env.intensity;
 }
 
 }  // namespace kiln

@@ -15,4 +15,8 @@ vec2 environment_uv(const vec3& direction, float rotation_radians);
 // Radiance arriving from direction (any length).
 vec3 environment_radiance(const scene& s, const vec3& direction);
 
+// The same at the map's equirectangular coordinates uv (environment_uv of the direction), for a
+// caller that has them already (a direction drawn from the map); the constant colour without a map.
+vec3 environment_radiance_at(const scene& s, const vec2& uv);
+
 }  // namespace kiln

@@ -143,6 +143,7 @@ environment_sample sample_environment(const environment_light& e, const vec2& u)
   const size_t y = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u.y, dv);
   const size_t x = find_guided(&e.column_cdf[y * (w + 1)], w, &e.column_guide[y * (gw + 1)], gw, u.x, du);
   const vec2 uv((float(x) + du) / float(w), (float(y) + dv) / float(h));
+  out.uv = uv;
   out.direction = environment_direction(uv, e.rotation);
   const float sin_theta = std::sin(pi * uv.y);
   if (!(sin_theta > 0.0f)) return out;
@@ -153,7 +154,12 @@ environment_sample sample_environment(const environment_light& e, const vec2& u)
 float environment_pdf(const environment_light& e, const vec3& d) {
   if (!e.lights) return 0.0f;
   if (e.uniform) return 1.0f / (4.0f * pi);
-  const vec2 uv = environment_uv(d, e.rotation);
+  return environment_pdf_at(e, d, environment_uv(d, e.rotation));
+}
+
+float environment_pdf_at(const environment_light& e, const vec3& d, const vec2& uv) {
+  if (!e.lights) return 0.0f;
+  if (e.uniform) return 1.0f / (4.0f * pi);
   const float sin_theta = std::sqrt(std::max(1.0f - d.y * d.y, 0.0f));
   if (!(sin_theta > 0.0f)) return 0.0f;
   const size_t x = std::min(size_t(uv.x * float(e.width)), size_t(e.width) - 1);

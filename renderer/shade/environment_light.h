@@ -44,11 +44,15 @@ environment_light make_environment_light(const scene& s);
 struct environment_sample {
   vec3 direction{0.0f, 1.0f, 0.0f};
   float pdf = 0.0f;
+  vec2 uv{0.0f};  // with a map: the coordinates drawn, so its radiance needs no trigonometry
 };
 environment_sample sample_environment(const environment_light& e, const vec2& u);
 
 // The density per steradian with which sample_environment draws the unit direction d.
 float environment_pdf(const environment_light& e, const vec3& d);
+
+// The same for a direction d whose map coordinates uv (environment_uv of d) the caller has.
+float environment_pdf_at(const environment_light& e, const vec3& d, const vec2& uv);
 
 // The world direction of equirectangular coordinates (u, v) for a map turned by rotation: the
 // inverse of environment.h's environment_uv.
