@@ -60,7 +60,7 @@ std::optional<image> take_environment(scene& world) {
 }  // namespace
 
 std::string changed_load_option(const render_options& loaded, const render_options& wanted) {
-  if (loaded.input != wanted.input) return "input";
+  if (loaded.input != wanted.input || loaded.in_memory != wanted.in_memory) return "input";
   for (const char* name : load_option_names)
     if (find_render_option(name)->get(loaded) != find_render_option(name)->get(wanted)) return name;
   return "";

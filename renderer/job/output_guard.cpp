@@ -45,10 +45,14 @@ std::vector<input_file> render_input_files(const render_options& options, const 
   memory_budget budget(options.max_memory ? options.max_memory : default_memory_budget());
   rules.memory = &budget;
   // A missing or unreadable asset names nothing: its render reports it (a batch fails that job only).
-  if (input_file_missing(options.input) || !input_file_problem(options.input, max_gltf_file_bytes).empty())
+  if (options.in_memory)
+    files.clear();  // an asset in memory reads no file of its own
+  else if (input_file_missing(options.input) ||
+           !input_file_problem(options.input, max_gltf_file_bytes).empty())
     return files;
-  for (const std::string& file : gltf_referenced_files(options.input, rules))
-    files.push_back({file, "a buffer or image file of " + options.input});
+  else
+    for (const std::string& file : gltf_referenced_files(options.input, rules))
+      files.push_back({file, "a buffer or image file of " + options.input});
   if (!options.environment.empty()) files.push_back({options.environment, "the --environment map"});
   return files;
 }

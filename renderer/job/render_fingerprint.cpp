@@ -44,8 +44,18 @@ void add_file(fnv1a& hash, const std::string& path, uint64_t max_bytes, const st
 }  // namespace
 
 render_fingerprint make_fingerprint(const render_options& options, const std::atomic<bool>* cancel) {
-  fnv1a inputs, scene;  // the asset's bytes go into both: read once
-  if (!input_file_missing(options.input))
+  fnv1a inputs, scene;      // the asset's bytes go into both: read once
+  if (options.in_memory) {  // the document, and each file it was given with by its URI and bytes
+    const std::vector<uint8_t>& document = options.in_memory->document;
+    inputs.add(reinterpret_cast<const char*>(document.data()), document.size());
+    scene.add(reinterpret_cast<const char*>(document.data()), document.size());
+    for (const auto& [uri, bytes] : options.in_memory->files) {
+      inputs.add(uri);
+      fnv1a file;
+      file.add(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+      inputs.add(file.hex());
+    }
+  } else if (!input_file_missing(options.input))
     read_input_file(options.input, {max_gltf_file_bytes, cancel, "", ""},
                     [&](const char* bytes, size_t count) {
                       inputs.add(bytes, count);
@@ -54,7 +64,7 @@ render_fingerprint make_fingerprint(const render_options& options, const std::at
   // Each referenced file by its name and bytes, so renaming a buffer counts as a change too. The
   // list comes through the loader's URI rule: nothing outside the folder, no FIFO, no device.
   // A missing asset names nothing; the loader reports it.
-  if (!input_file_missing(options.input)) {
+  if (!options.in_memory && !input_file_missing(options.input)) {
     gltf_load_options rules;
     rules.allow_files_outside_folder = options.allow_outside_files;
     rules.limits.max_json_bytes = options.limits.max_json_bytes;

@@ -273,6 +273,7 @@ double scene_time(const render_options& options) {
 gltf_load_options job_load_options(const render_options& options, const std::atomic<bool>* cancel,
                                    memory_budget* memory) {
   gltf_load_options load_options;
+  load_options.in_memory = options.in_memory;
   load_options.scene_index = options.scene_index;
   load_options.allow_files_outside_folder = options.allow_outside_files;
   load_options.limits = options.limits;

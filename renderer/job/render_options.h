@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -25,6 +26,8 @@ constexpr long long max_frame_number = 1000000000;
 
 struct render_options {
   std::string input;
+  // An asset in memory (kiln.load of a dict or bytes), which input then only names; null: the file.
+  std::shared_ptr<const gltf_memory_asset> in_memory;
   std::string output;
   std::optional<int> width;
   std::optional<int> height;

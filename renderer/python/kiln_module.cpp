@@ -1,6 +1,9 @@
-// The Python module `kiln`: one render job (job/render_job.h) per kiln.render() call, its AOVs as
-// NumPy arrays (height × width × channels, float32, exactly the values the EXR stores), its
-// metadata and statistics. Options are the option table's, by the same names (look_from for
+// The Python module `kiln`: one render job (job/render_job.h) per kiln.render() call, or a kiln.Scene
+// (job/loaded_scene.h) that kiln.load() reads once and renders many times, from a file or from glTF in
+// memory (kiln/__init__.py turns a dict or bytes and their buffers and images into the files by URI
+// that _load takes). A render's AOVs are NumPy arrays (height × width × channels, float32, exactly
+// the values the EXR stores), with its metadata and statistics. Paths are str or os.PathLike. Options are the
+// option table's, by the same names (look_from for
 // --look-from) with the same checks; a refused value or a bad asset raises kiln.InputError with
 // the message the CLI prints, an unknown keyword TypeError with the CLI's suggestion, and what the
 // CLI prints as a warning is a kiln.KilnWarning. The render runs on its own thread without the GIL,
@@ -17,6 +20,7 @@
 #include <exception>
 #include <functional>
 #include <future>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -30,6 +34,7 @@
 #include "core/error.h"
 #include "io/exr/exr_shot_time.h"
 #include "job/asset_info.h"
+#include "job/loaded_scene.h"
 #include "job/option_table.h"
 #include "job/render_job.h"
 #include "job/render_sequence.h"
@@ -96,6 +101,11 @@ std::string keyword_of(std::string name) {
   return name;
 }
 
+// A path given as str, bytes or os.PathLike (pathlib.Path), as text; anything else is a TypeError.
+std::string path_text(const py::handle& value) {
+  return py::module_::import("os").attr("fsdecode")(value).cast<std::string>();
+}
+
 // A misspelled keyword is a TypeError, as Python's own are, with the CLI's suggestion.
 [[noreturn]] void unknown_keyword(const std::string& function, const std::string& keyword) {
   // Compared as the command line compares them (--spp against --sp), so the two suggest alike.
@@ -133,7 +143,7 @@ void apply_option(render_options& options, const std::string& keyword, const py:
   spec->set(options, text);
 }
 
-std::string python_call(const std::string& asset, const py::kwargs& kwargs) {
+std::string python_call(const std::string& asset, const py::dict& kwargs) {
   std::string line = "kiln.render(" + py::repr(py::str(asset)).cast<std::string>();
   for (const auto& [key, value] : kwargs)
     line += ", " + key.cast<std::string>() + "=" + py::repr(value).cast<std::string>();
@@ -336,37 +346,35 @@ python_result finished(render_job_result result, const render_options& options,
 // The job of a call: the asset, output= and every keyword as its render option; what it would print
 // as a warning goes to warnings.
 render_job python_job(const std::string& function, const std::string& asset, const py::object& output,
-                      const py::kwargs& kwargs, const std::shared_ptr<warning_log>& warnings) {
+                      const py::dict& kwargs, const std::shared_ptr<warning_log>& warnings) {
   render_job job;
   job.warn = [warnings](const std::string& line) { warnings->add(line); };
   job.options.input = asset;
   job.options.quiet = true;
   job.options.command_line = python_call(asset, kwargs);
-  if (!output.is_none()) job.options.output = output.cast<std::string>();
+  if (!output.is_none()) job.options.output = path_text(output);
   for (const auto& [key, value] : kwargs)
     apply_option(job.options, key.cast<std::string>(), value, function, *warnings);
   return job;
 }
 
-// kiln.render_sequence: every frame of frames=, each written (when output= names a pattern) as
-// soon as it is rendered, all returned in order.
-py::list render_sequence(const std::string& asset, const py::object& output, const py::object& progress,
-                         const py::kwargs& kwargs) {
-  const auto warnings = std::make_shared<warning_log>();
-  render_job job = python_job("render_sequence", asset, output, kwargs, warnings);
+// The frames of a sequence, each written (when output= names a pattern) as soon as it is rendered,
+// all returned in order; run(on_frame) renders them (run_sequence, from a file or a kept scene).
+py::list sequence_results(render_job& job, const py::object& progress,
+                          const std::shared_ptr<warning_log>& warnings,
+                          const std::function<void(const frame_handler&)>& run) {
   if (!renders_sequence(job.options))
     throw input_error("", "frames", "render_sequence needs frames= (e.g. frames=\"1-24\") or turntable=N");
   // Each frame keeps the warnings given while it was made.
   using frames = std::vector<std::tuple<render_job_result, render_options, std::vector<std::string>>>;
   frames rendered = run_watched<frames>(
       job, progress,
-      [&job, &warnings] {
+      [&run, &warnings] {
         frames out;
-        run_sequence(job,
-                     [&](const render_job_result& result, const render_options& frame, const frame_report&) {
-                       if (!frame.output.empty()) write_job_outputs(result, frame);
-                       out.emplace_back(result, frame, warnings->take());
-                     });
+        run([&](const render_job_result& result, const render_options& frame, const frame_report&) {
+          if (!frame.output.empty()) write_job_outputs(result, frame);
+          out.emplace_back(result, frame, warnings->take());
+        });
         return out;
       },
       *warnings);
@@ -375,12 +383,11 @@ py::list render_sequence(const std::string& asset, const py::object& output, con
   return list;
 }
 
-python_result render(const std::string& asset, const py::object& output, const py::object& progress,
-                     const py::kwargs& kwargs) {
-  const auto warnings = std::make_shared<warning_log>();
-  render_job job = python_job("render", asset, output, kwargs, warnings);
-  render_job_result result = run_watched<render_job_result>(
-      job, progress, [&job] { return run_job(job); }, *warnings);
+// One render by body (run_job, or a kept scene's), written to output= when given.
+python_result render_result(render_job& job, const py::object& progress,
+                            const std::shared_ptr<warning_log>& warnings,
+                            const std::function<render_job_result()>& body) {
+  render_job_result result = run_watched<render_job_result>(job, progress, body, *warnings);
   if (!job.options.output.empty()) {
     py::gil_scoped_release unlocked;
     write_job_outputs(result, job.options);
@@ -388,10 +395,26 @@ python_result render(const std::string& asset, const py::object& output, const p
   return finished(std::move(result), job.options, warnings->take());
 }
 
-void write_result(const python_result& r, const std::string& path, const py::object& preview) {
+// kiln.render_sequence: the asset loaded once, its frames rendered as kiln render --frames does.
+py::list render_sequence(const py::object& asset, const py::object& output, const py::object& progress,
+                         const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("render_sequence", path_text(asset), output, kwargs, warnings);
+  return sequence_results(job, progress, warnings,
+                          [&job](const frame_handler& on_frame) { run_sequence(job, on_frame); });
+}
+
+python_result render(const py::object& asset, const py::object& output, const py::object& progress,
+                     const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("render", path_text(asset), output, kwargs, warnings);
+  return render_result(job, progress, warnings, [&job] { return run_job(job); });
+}
+
+void write_result(const python_result& r, const py::object& path, const py::object& preview) {
   render_options options = r.options;
-  options.output = path;
-  options.preview = preview.is_none() ? std::string() : preview.cast<std::string>();
+  options.output = path_text(path);
+  options.preview = preview.is_none() ? std::string() : path_text(preview);
   check_job(options);
   py::gil_scoped_release unlocked;
   write_job_outputs(r.result, options);
@@ -423,8 +446,8 @@ py::list option_list() {
 // A docstring: head, then every option of the table with its type, default and help, as
 // help(kiln.render) shows them.
 const char* documented(const std::string& head) {
-  static std::string text;  // the docstring lives as long as the module
-  text = head + "\n\nOptions (None or leaving one out keeps its default):\n";
+  static std::list<std::string> texts;  // each docstring lives as long as the module
+  std::string& text = texts.emplace_back(head + "\n\nOptions (None or leaving one out keeps its default):\n");
   const render_options defaults;
   for (const option_spec& spec : render_option_table()) {
     std::string type = python_type(spec);
@@ -444,16 +467,95 @@ const char* documented(const std::string& head) {
   return text.c_str();
 }
 
-// kiln.info: the asset's description (job/asset_info.h) as the dict of `kiln info --json`.
-py::object info(const std::string& asset, const py::kwargs& kwargs) {
-  const auto warnings = std::make_shared<warning_log>();
-  render_job job = python_job("info", asset, py::none(), kwargs, warnings);
+// The asset's description (job/asset_info.h) that describe makes, as the dict of `kiln info --json`.
+py::object info_dict(render_job& job, const std::shared_ptr<warning_log>& warnings,
+                     const std::function<asset_info()>& describe) {
   const py::object no_progress = py::none();
   const std::string text = run_watched<std::string>(
-      job, no_progress, [&job] { return asset_info_json(describe_asset(job.options, job.cancel, job.warn)); },
-      *warnings);
+      job, no_progress, [&describe] { return asset_info_json(describe()); }, *warnings);
   issue_warnings(warnings->take());
   return py::module_::import("json").attr("loads")(text);
+}
+
+// kiln.info: the asset's description, loaded as kiln info loads it.
+py::object info(const py::object& asset, const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = python_job("info", path_text(asset), py::none(), kwargs, warnings);
+  return info_dict(job, warnings, [&job] { return describe_asset(job.options, job.cancel, job.warn); });
+}
+
+// kiln.Scene: an asset loaded once; every call renders or describes it with load()'s keywords and
+// its own (which win), as kiln.render would with both.
+struct python_scene {
+  std::shared_ptr<loaded_scene> loaded;
+  std::string asset;  // its path, or the name of an asset in memory
+  std::shared_ptr<const gltf_memory_asset> in_memory;
+  py::dict options;  // load()'s keywords
+
+  // The job of one call: load()'s keywords, then the call's own.
+  render_job job(const std::string& function, const py::object& output, const py::kwargs& kwargs,
+                 const std::shared_ptr<warning_log>& warnings) const {
+    py::dict merged = options.attr("copy")();
+    for (const auto& [key, value] : kwargs) merged[key] = value;
+    render_job made = python_job(function, asset, output, merged, warnings);
+    made.options.in_memory = in_memory;
+    return made;
+  }
+};
+
+// The bytes of a bytes object, for an asset in memory.
+std::vector<uint8_t> bytes_of(const py::handle& value) {
+  const std::string text = py::reinterpret_borrow<py::bytes>(value);
+  return std::vector<uint8_t>(text.begin(), text.end());
+}
+
+// kiln._load (kiln.load in kiln/__init__.py): the asset at a path, or document (.gltf JSON or .glb
+// bytes) with files (URI -> bytes), read and checked once.
+python_scene load(const py::object& asset, const py::object& document, const py::dict& files,
+                  const py::kwargs& kwargs) {
+  python_scene s;
+  s.options = py::dict(kwargs).attr("copy")();
+  if (!document.is_none()) {
+    auto in_memory = std::make_shared<gltf_memory_asset>();
+    in_memory->document = bytes_of(document);
+    for (const auto& [uri, bytes] : files) in_memory->files[uri.cast<std::string>()] = bytes_of(bytes);
+    s.in_memory = std::move(in_memory);
+    s.asset = "<memory>";
+  } else {
+    s.asset = path_text(asset);
+  }
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = s.job("load", py::none(), py::kwargs(), warnings);
+  const py::object no_progress = py::none();
+  s.loaded = run_watched<std::shared_ptr<loaded_scene>>(
+      job, no_progress, [&job] { return std::make_shared<loaded_scene>(job); }, *warnings);
+  issue_warnings(warnings->take());
+  return s;
+}
+
+python_result scene_render(const python_scene& s, const py::object& output, const py::object& progress,
+                           const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = s.job("render", output, kwargs, warnings);
+  const std::shared_ptr<loaded_scene> loaded = s.loaded;
+  return render_result(job, progress, warnings, [&job, loaded] { return loaded->render(job); });
+}
+
+py::list scene_render_sequence(const python_scene& s, const py::object& output, const py::object& progress,
+                               const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = s.job("render_sequence", output, kwargs, warnings);
+  const std::shared_ptr<loaded_scene> loaded = s.loaded;
+  return sequence_results(job, progress, warnings, [&job, loaded](const frame_handler& on_frame) {
+    run_sequence(job, *loaded, on_frame);
+  });
+}
+
+py::object scene_info(const python_scene& s, const py::kwargs& kwargs) {
+  const auto warnings = std::make_shared<warning_log>();
+  render_job job = s.job("info", py::none(), kwargs, warnings);
+  const std::shared_ptr<loaded_scene> loaded = s.loaded;
+  return info_dict(job, warnings, [&job, loaded] { return loaded->describe(job); });
 }
 
 // kiln::error as kiln.InputError (bad input: the CLI's exit 2) or kiln.Error, carrying the file,
@@ -533,5 +635,41 @@ PYBIND11_MODULE(_kiln, m) {
         "with their geometry, bounds, extensions with kiln's support for each, and the estimate of\n"
         "the render the options describe. Raises kiln.InputError for bad input. Options: those of\n"
         "render (help(kiln.render) lists them).");
+  py::class_<python_scene>(m, "Scene",
+                           "An asset loaded once (kiln.load), rendered and described as often as wanted")
+      .def(
+          "render", &scene_render, py::kw_only(), py::arg("output") = py::none(),
+          py::arg("progress") = py::none(),
+          documented(
+              "render(*, output=None, progress=None, **options) -> Result\n\n"
+              "Renders the loaded scene as kiln.render(asset, **load_options, **options) would, without\n"
+              "reading the asset again: any camera, look_from/look_at, time or frame, lighting, AOVs, size,\n"
+              "sampling and crop. An option that changes what is loaded (scene, variant, animation,\n"
+              "working_space, ocio_config, the max_* limits, max_memory, allow_outside_files) loads the "
+              "asset\n"
+              "anew for this render alone; the Scene keeps its own load. Releases the GIL while it renders;\n"
+              "renders of one Scene from several threads run one at a time."))
+      .def("render_sequence", &scene_render_sequence, py::kw_only(), py::arg("output") = py::none(),
+           py::arg("progress") = py::none(),
+           "render_sequence(*, frames, output=None, progress=None, **options) -> list[Result]\n\n"
+           "The frames of frames=\"FIRST-LAST[:STEP]\" (or turntable=N), each posed from the loaded scene\n"
+           "as kiln.render_sequence poses them. Options: those of render (help(kiln.render) lists them).")
+      .def(
+          "info", &scene_info,
+          "info(**options) -> dict\n\n"
+          "kiln.info's document for the loaded scene (cameras, animations, variants, lights, nodes, bounds,\n"
+          "extensions, the estimate of the render the options describe), without reading the asset again.")
+      .def_property_readonly(
+          "file", [](const python_scene& s) { return s.asset; },
+          "The asset's path, or '<memory>' for glTF given in memory")
+      .def_property_readonly(
+          "options", [](const python_scene& s) { return s.options.attr("copy")(); },
+          "load()'s options: every render's defaults, which its own options override")
+      .def("__repr__", [](const python_scene& s) {
+        return "kiln.Scene(" + py::repr(py::str(s.asset)).cast<std::string>() + ")";
+      });
+  m.def("_load", &load, py::arg("asset"), py::kw_only(), py::arg("document") = py::none(),
+        py::arg("files") = py::dict(),
+        "_load(asset, *, document=None, files={}, **options) -> Scene: kiln.load's native part");
   m.def("options", &option_list, "Every render option: name, option, type, help, choices, default");
 }

@@ -1,6 +1,6 @@
 // Which files an asset may make kiln read: buffers and images resolve relative to the asset's
 // folder; ".." escapes and absolute paths that leave it are refused unless allowed; percent-
-// encoded URIs and names with spaces work.
+// encoded URIs and names with spaces work. An asset in memory reads only the files given with it.
 #include <gtest/gtest.h>
 
 #include "io/gltf/gltf_loader.h"
@@ -132,6 +132,50 @@ TEST(GltfFileAccess, PlainSpacesInUriLoad) {
   temp_folder dir;
   const std::string path = write_with_buffer_at(dir, "my data.bin", "sub/my data.bin");
   EXPECT_EQ(load_gltf(path).meshes.size(), 1u);
+}
+
+// The single triangle in memory, its buffer given under `given` while the JSON names `uri`.
+gltf_load_options in_memory(const std::string& uri, const std::string& given, size_t bytes = 0) {
+  const gltf_builder b = single_triangle();
+  auto asset = std::make_shared<gltf_memory_asset>();
+  const std::string text = b.finished(uri).dump();
+  asset->document.assign(text.begin(), text.end());
+  asset->files[given] = b.bin;
+  if (bytes) asset->files[given].resize(bytes);
+  gltf_load_options options;
+  options.in_memory = asset;
+  return options;
+}
+
+TEST(GltfFileAccess, AnAssetInMemoryReadsTheFilesGivenWithIt) {
+  for (const auto& [uri, given] : {std::pair{"tri.bin", "tri.bin"}, {"my%20data.bin", "my%20data.bin"}}) {
+    const scene s = load_gltf("<memory>", in_memory(uri, given));
+    ASSERT_EQ(s.meshes.size(), 1u) << uri;
+    EXPECT_EQ(s.meshes[0].positions[2], vec3(0, 1, 0));
+    EXPECT_EQ(s.source, "<memory>");
+  }
+}
+
+TEST(GltfFileAccess, AnAssetInMemoryReadsNoFile) {
+  temp_folder dir;  // the URI names a file that exists, absolute or beside the working directory
+  const std::string path = write_with_buffer_at(dir, "tri.bin", "sub/tri.bin");
+  for (const std::string& uri : {dir.file("sub/tri.bin"), std::string("tri.bin")}) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir.file("sub"));
+    const std::string message = error_of([&] { load_gltf(path, in_memory(uri, "other.bin")); });
+    fs::current_path(before);
+    EXPECT_NE(message.find("/buffers/0/uri"), std::string::npos) << message;
+    EXPECT_NE(message.find("which was not given with the asset in memory"), std::string::npos) << message;
+  }
+}
+
+TEST(GltfFileAccess, AnAssetInMemoryIsCheckedAsAFile) {
+  const std::string message = error_of([] { load_gltf("<memory>", in_memory("tri.bin", "tri.bin", 5)); });
+  EXPECT_NE(message.find("<memory>: /buffers/0/byteLength: byteLength is"), std::string::npos) << message;
+  EXPECT_NE(message.find("the bytes given for 'tri.bin' are 5"), std::string::npos) << message;
+  gltf_load_options small = in_memory("tri.bin", "tri.bin");
+  small.limits.max_json_bytes = 10;
+  EXPECT_NE(error_of([&] { load_gltf("<memory>", small); }).find("--max-json-bytes"), std::string::npos);
 }
 
 }  // namespace

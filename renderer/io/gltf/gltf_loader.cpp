@@ -472,6 +472,7 @@ gltf_sequence::gltf_sequence(const std::string& path, const gltf_load_options& o
   decode_draco_primitives(st.model, path, &st.model_memory);
   validate_model(st.model, path);
   apply_material_variant(st.model, options.variant, path);
+  chosen_scene(st.model, options, path);  // a bad --scene fails the load, before any pose
   st.quantized = uses_extension(st.model, quantization_extension);
   // A still asset (no animation) skips this: its scene is what it always was.
   st.animated = !st.model.animations.empty() ||

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -34,7 +35,17 @@ struct gltf_limits {
 // through int and unsigned int.
 constexpr uint64_t max_gltf_file_bytes = uint64_t(2147483647);
 
+// An asset held in memory (kiln.load of a dict or bytes): the .gltf JSON or the .glb, and the files
+// its buffer and image URIs name, by the URI as the JSON writes it. The loader reads nothing from the
+// file system for it: a URI that is not here is refused, naming its JSON pointer.
+struct gltf_memory_asset {
+  std::vector<uint8_t> document;
+  std::map<std::string, std::vector<uint8_t>> files;
+};
+
 struct gltf_load_options {
+  // When set, the asset itself (the path then only names it in messages).
+  std::shared_ptr<const gltf_memory_asset> in_memory;
   int scene_index = -1;  // -1: the file's default scene (or scene 0 when none is marked)
   // Buffer and image URIs may name files outside the asset's folder (absolute paths, ".."
   // escapes). Off by default: a scene file must not read arbitrary files on a farm node.

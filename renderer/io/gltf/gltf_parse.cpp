@@ -33,10 +33,20 @@ struct fs_context {
   std::string interrupted_file;               // a read it stopped (tinygltf only sees "failed")
   // Filled by the JSON pre-pass: images no material samples are neither read nor kept, so a
   // large unused image file costs no memory (a missing one is still refused, by the pre-pass).
-  std::vector<bool> image_used;              // by image index
-  std::set<std::string> unused_image_files;  // canonical paths only unused images name
-  memory_charge* memory = nullptr;           // the JSON's parse and the buffers are charged here
+  std::vector<bool> image_used;                  // by image index
+  std::set<std::string> unused_image_files;      // canonical paths only unused images name
+  memory_charge* memory = nullptr;               // the JSON's parse and the buffers are charged here
+  const gltf_memory_asset* in_memory = nullptr;  // an asset in memory: its files, not the folder's
 };
+
+// The file an in-memory asset supplies for a path tinygltf asks for: the URI as written, or as
+// tinygltf decodes it (percent escapes); null when it is not supplied.
+const std::vector<uint8_t>* supplied_file(const gltf_memory_asset& asset, const std::string& path) {
+  if (const auto it = asset.files.find(path); it != asset.files.end()) return &it->second;
+  for (const auto& [uri, bytes] : asset.files)
+    if (percent_decoded(uri) == path) return &bytes;
+  return nullptr;
+}
 
 // Reads a file the asset names or the asset itself: a regular file within kiln's size limit
 // (never a FIFO or a device, which would block or never end), stopping when cancel is raised.
@@ -58,7 +68,9 @@ bool read_file_bytes(const std::string& path, std::vector<uint8_t>& out, std::st
 // paths are relative, so they never lie inside the (absolute) asset folder and are not found.
 // A file outside the folder that exists is reported as existing so that read_whole_file can
 // refuse it with a clear reason instead of tinygltf's "not found".
-bool file_exists(const std::string& path, void*) {
+bool file_exists(const std::string& path, void* user) {
+  if (const gltf_memory_asset* asset = static_cast<fs_context*>(user)->in_memory)
+    return supplied_file(*asset, path) != nullptr;
   if (fs::path(path).is_relative()) return false;
   std::error_code ec;
   return fs::is_regular_file(path, ec);
@@ -73,6 +85,10 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     return false;
   }
   auto* context = static_cast<fs_context*>(user);
+  if (context->in_memory) {
+    *out = *supplied_file(*context->in_memory, path);  // file_exists found it
+    return true;
+  }
   // No bytes: tinygltf then leaves the image empty (a warning kiln ignores) and goes on.
   if (context->unused_image_files.count(canonical_key(path)) > 0) return true;
   if (!context->rules.allow_outside && !inside_asset_folder(path, context->rules)) {
@@ -229,7 +245,13 @@ std::string check_json_before_parsing(const uint8_t* text, size_t size, const st
                       std::to_string(nodes->size()) + " nodes, over the limit of " +
                           std::to_string(limits.max_nodes) + " (--max-nodes)");
   for_each_file_uri(doc, [&](const std::string& where, const std::string& uri) {
-    checked_uri_files(path, where, uri, context.rules);
+    if (!context.in_memory)
+      checked_uri_files(path, where, uri, context.rules);
+    else if (!supplied_file(*context.in_memory, uri))
+      throw input_error(
+          path, where,
+          "names " + quoted(uri) +
+              ", which was not given with the asset in memory (nothing is read from files for it)");
   });
   // An unsupported required extension explains what follows from it (Draco's accessors have no
   // bufferViews), so it is reported first.
@@ -240,6 +262,7 @@ std::string check_json_before_parsing(const uint8_t* text, size_t size, const st
   check_camera_numbers(doc, path);
   if (context.memory) context.memory->add(declared_buffer_bytes(doc), path, "the buffers");
   context.image_used = images_used_by_materials(doc);
+  if (context.in_memory) return placeholders ? doc.dump() : std::string();  // every file is here
   context.unused_image_files = unused_image_files(doc, context.image_used, context.rules.folder_prefix);
   refuse_missing_image_files(doc, context.rules.folder_prefix, path);
   return placeholders ? doc.dump() : std::string();
@@ -276,20 +299,30 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
                                 memory_charge* held) {
   // The file's size from stat(), before it is read; a file over the size limit is refused by the
   // reader, in its own words.
-  std::error_code size_error;
-  if (held && input_file_problem(path, max_gltf_file_bytes).empty())
-    if (const uintmax_t size = fs::file_size(path, size_error); !size_error)
-      held->add(size, path, "the glTF file");
-  // Throws for a FIFO, a device or a folder given as the asset, before a byte is read.
-  const std::vector<uint8_t> bytes = read_whole_input_file(path, {max_gltf_file_bytes, options.cancel});
-
-  std::error_code ec;
-  const fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
-  if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
+  const gltf_memory_asset* in_memory = options.in_memory.get();
+  std::vector<uint8_t> read;
+  fs::path folder;  // tinygltf looks for an in-memory asset's files under their URIs alone
   fs_context context;
-  context.rules = asset_uri_rules(path, options.allow_files_outside_folder);
+  context.in_memory = in_memory;
   context.cancel = options.cancel;
   context.memory = held;
+  if (!in_memory) {
+    std::error_code size_error;
+    if (held && input_file_problem(path, max_gltf_file_bytes).empty())
+      if (const uintmax_t size = fs::file_size(path, size_error); !size_error)
+        held->add(size, path, "the glTF file");
+    // Throws for a FIFO, a device or a folder given as the asset, before a byte is read.
+    read = read_whole_input_file(path, {max_gltf_file_bytes, options.cancel});
+    std::error_code ec;
+    folder = fs::absolute(fs::path(path), ec).parent_path();
+    if (ec) throw input_error(path, "", "cannot resolve the asset's folder: " + ec.message());
+    context.rules = asset_uri_rules(path, options.allow_files_outside_folder);
+  } else if (in_memory->document.size() > max_gltf_file_bytes) {
+    throw input_error(path, "", "the asset is over kiln's size limit of " + memory_text(max_gltf_file_bytes));
+  } else if (held) {
+    held->add(in_memory->document.size(), path, "the glTF file");
+  }
+  const std::vector<uint8_t>& bytes = in_memory ? in_memory->document : read;
 
   tinygltf::TinyGLTF parser;
   const bool is_glb = ends_with_glb(path) || has_glb_magic(bytes);
@@ -308,7 +341,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
       const glb_layout layout = check_glb_container(bytes, path);
       json_offset = layout.json_offset;
       json_length = layout.json_length;
-      buffer_sources sources{context.rules.folder_prefix, true, layout.has_bin, layout.bin_length};
+      buffer_sources sources{context.rules.folder_prefix, true, layout.has_bin, layout.bin_length,
+                             in_memory ? &in_memory->files : nullptr};
       const std::string replaced = check_json_before_parsing(bytes.data() + json_offset, json_length, path,
                                                              context, options.limits, sources);
       if (has_utf8_bom(bytes.data() + layout.json_offset, layout.json_length))
@@ -323,7 +357,8 @@ tinygltf::Model parse_gltf_file(const std::string& path, const gltf_load_options
         throw input_error(path, "", "JSON starts with a byte order mark, which glTF forbids");
       const std::string replaced =
           check_json_before_parsing(bytes.data(), bytes.size(), path, context, options.limits,
-                                    buffer_sources{context.rules.folder_prefix, false, false, 0});
+                                    buffer_sources{context.rules.folder_prefix, false, false, 0,
+                                                   in_memory ? &in_memory->files : nullptr});
       const char* text = replaced.empty() ? reinterpret_cast<const char*>(bytes.data()) : replaced.data();
       const size_t text_size = replaced.empty() ? bytes.size() : replaced.size();
       ok = parser.LoadASCIIFromString(&model, &err, &warn, text, static_cast<unsigned int>(text_size),

@@ -158,6 +158,14 @@ void check_buffer(const json& buffer, size_t i, const std::string& path, const b
     return;
   }
   // tinygltf requires the file's size to equal byteLength exactly.
+  if (sources.memory_files) {
+    const auto supplied = sources.memory_files->find(uri);  // present: the URI check saw to it
+    if (supplied != sources.memory_files->end() && supplied->second.size() != length)
+      throw input_error(path, pointer_join(where, "byteLength"),
+                        "byteLength is " + std::to_string(length) + " but the bytes given for " +
+                            quoted(uri) + " are " + std::to_string(supplied->second.size()));
+    return;
+  }
   std::error_code ec;
   const fs::path file = fs::path(sources.folder_prefix) / percent_decoded(uri);
   if (!fs::is_regular_file(file, ec))

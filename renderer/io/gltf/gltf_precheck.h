@@ -6,8 +6,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace kiln::gltf_internal {
 
@@ -17,6 +19,8 @@ struct buffer_sources {
   bool is_glb = false;
   bool has_bin = false;   // GLB: the file has a BIN chunk
   size_t bin_length = 0;  // GLB: its length in bytes
+  // An asset in memory: the files its URIs name, instead of the folder's (gltf_loader.h).
+  const std::map<std::string, std::vector<uint8_t>>* memory_files = nullptr;
 };
 
 // Throws input_error when text is not JSON, naming the pointer of the value where parsing

@@ -1,7 +1,8 @@
 # Type stubs of the kiln package, for IDEs and type checkers. The block between the BEGIN and END
 # lines is generated from the option table by tools/make_python_stub.py (a test fails when it is
 # out of date); the rest is written by hand.
-from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union
+import os
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Union
 
 import numpy
 from typing_extensions import TypedDict, Unpack
@@ -12,6 +13,10 @@ __version__: str
 # look_from=(0, 1, 3.5)).
 _Text = Union[str, int, float, Sequence[Union[str, int, float]]]
 _Progress = Optional[Callable[[int, int], Any]]
+_Path = Union[str, "os.PathLike[str]"]
+# A buffer's or an image's bytes: bytes, or a NumPy array (its bytes as they lie in memory).
+_Bytes = Union[bytes, bytearray, memoryview, numpy.ndarray]
+_Files = Union[Sequence[_Bytes], Mapping[Union[int, str], _Bytes]]
 
 class Error(RuntimeError):
     file: str
@@ -30,7 +35,7 @@ class Result:
     metadata: Dict[str, Any]  # the EXR header's attributes
     stats: Dict[str, Any]  # sizes, timings and ray counts
     warnings: List[str]
-    def write(self, path: str, preview: Optional[str] = None) -> None: ...
+    def write(self, path: _Path, preview: Optional[_Path] = None) -> None: ...
     def __getitem__(self, name: str) -> numpy.ndarray: ...
 
 # BEGIN options
@@ -208,20 +213,47 @@ class RenderOptions(TypedDict, total=False):
 # END options
 
 def render(
-    asset: str, *, output: Optional[str] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
+    asset: _Path, *, output: Optional[_Path] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
 ) -> Result:
     """Renders asset with the options of `kiln render`; help(kiln.render) lists them. output= also
     writes the EXR; progress(pixels_done, pixels_total) is called with a total above 0, the last
     time at 100%. Raises kiln.InputError for bad input, TypeError for an unknown keyword."""
 
 def render_sequence(
-    asset: str, *, output: Optional[str] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
+    asset: _Path, *, output: Optional[_Path] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
 ) -> List[Result]:
     """Renders the frames of frames="FIRST-LAST[:STEP]" (or turntable=N), loading the asset once;
     output= with #### or %04d writes each frame as it finishes."""
 
-def info(asset: str, **options: Unpack[RenderOptions]) -> Dict[str, Any]:
+def info(asset: _Path, **options: Unpack[RenderOptions]) -> Dict[str, Any]:
     """What `kiln info ASSET --json` prints (its keys: README, "kiln info")."""
+
+class Scene:
+    """An asset loaded once (kiln.load), rendered and described as often as wanted."""
+
+    file: str  # the asset's path, or '<memory>'
+    options: Dict[str, Any]  # load()'s options: every render's defaults
+    def render(
+        self, *, output: Optional[_Path] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
+    ) -> Result:
+        """Renders as kiln.render(asset, **load_options, **options) would, without reading the asset
+        again. An option that changes what is loaded loads anew for this render alone."""
+    def render_sequence(
+        self, *, output: Optional[_Path] = None, progress: _Progress = None, **options: Unpack[RenderOptions]
+    ) -> List[Result]:
+        """The frames of frames= (or turntable=), posed from the loaded scene."""
+    def info(self, **options: Unpack[RenderOptions]) -> Dict[str, Any]:
+        """kiln.info's document for the loaded scene."""
+
+def load(
+    asset: Union[_Path, Dict[str, Any], bytes, bytearray, memoryview],
+    *,
+    buffers: Optional[_Files] = None,
+    images: Optional[_Files] = None,
+    **options: Unpack[RenderOptions],
+) -> Scene:
+    """Reads asset once (a path, a glTF dict, or .gltf or .glb bytes with its buffers and images by
+    index or URI) and returns a Scene. options are every render's defaults."""
 
 def options() -> List[Dict[str, Any]]:
     """Every render option: name, option, type, help, choices, default."""
