@@ -78,9 +78,15 @@ py::list issue_warnings(const std::vector<std::string>& lines) {
   return list;
 }
 
+// A path given as str, bytes or os.PathLike (pathlib.Path), as text; anything else is a TypeError.
+std::string path_text(const py::handle& value) {
+  return py::module_::import("os").attr("fsdecode")(value).cast<std::string>();
+}
+
 // --aovs and friends from "beauty,Z" or ["beauty", "Z"]; --look-from from "1,2,3" or (1, 2, 3).
 std::string option_text(const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::hasattr(value, "__fspath__")) return path_text(value);  // environment=pathlib.Path(...)
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::int_>(value)) return py::str(value).cast<std::string>();
   // repr of a float is the shortest text that reads back to the same double.
@@ -99,11 +105,6 @@ std::string keyword_of(std::string name) {
   for (char& c : name)
     if (c == '-') c = '_';
   return name;
-}
-
-// A path given as str, bytes or os.PathLike (pathlib.Path), as text; anything else is a TypeError.
-std::string path_text(const py::handle& value) {
-  return py::module_::import("os").attr("fsdecode")(value).cast<std::string>();
 }
 
 // A misspelled keyword is a TypeError, as Python's own are, with the CLI's suggestion.

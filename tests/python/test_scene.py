@@ -114,6 +114,11 @@ def test_pathlib_paths_are_paths_everywhere(tmp_path):
     assert (tmp_path / "c.exr").stat().st_size > 0 and (tmp_path / "c.png").stat().st_size > 0
     assert kiln.info(path)["cameras"][0]["name"] == "main"
     assert len(kiln.render_sequence(path, **SMALL, turntable=2)) == 2
+    sky = pathlib.Path(SOURCE, "scenes", "glass_showcase_sky.hdr")
+    lit, by_text = kiln.render(path, **SMALL, environment=sky), kiln.render(CORNELL, **SMALL, environment=str(sky))
+    assert os.path.samefile(lit.metadata["kiln/environment"], sky)
+    assert lit.metadata["kiln/settings_hash"] == by_text.metadata["kiln/settings_hash"]
+    assert_same_arrays(lit, by_text)
     with pytest.raises(TypeError):
         kiln.render(3.5)
 

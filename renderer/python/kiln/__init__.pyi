@@ -9,9 +9,9 @@ from typing_extensions import TypedDict, Unpack
 
 __version__: str
 
-# A text option also takes a number, or a list or tuple joined with commas (aovs=["beauty", "Z"],
-# look_from=(0, 1, 3.5)).
-_Text = Union[str, int, float, Sequence[Union[str, int, float]]]
+# A text option also takes a number, a list or tuple joined with commas (aovs=["beauty", "Z"],
+# look_from=(0, 1, 3.5)), or a path (environment=pathlib.Path("sky.exr")).
+_Text = Union[str, int, float, Sequence[Union[str, int, float]], "os.PathLike[str]"]
 _Progress = Optional[Callable[[int, int], Any]]
 _Path = Union[str, "os.PathLike[str]"]
 # A buffer's or an image's bytes: bytes, or a NumPy array (its bytes as they lie in memory).
