@@ -70,8 +70,8 @@ struct loaded_scene::state {
   render_options loaded;  // the options it was loaded with
   render_fingerprint inputs;
   std::string hashed_environment;  // the environment file inputs hashed
+  prepared_scene prepared;         // before asset: its budget outlives what the asset holds charged to it
   std::unique_ptr<gltf_sequence> asset;
-  prepared_scene prepared;
   double load_seconds = 0.0;           // reported with the first render
   bool posed = false;                  // prepared.world holds a pose
   std::vector<uint32_t> posed_meshes;  // the meshes its pose built (the backend refits them)
