@@ -1,6 +1,7 @@
-// A PNG or lossy WebP whose header declares a size its data is too short to code is refused from
-// the header, before a decoder allocates the image (a header-only 16384x16384 PNG used to cost
-// a gigabyte before its refusal); real images coded as tightly as their encoders can still pass.
+// A PNG or lossy WebP whose header declares a size its data is too short to code, or a large
+// lossless WebP or GIF coded from almost nothing, is refused from the header, before a decoder
+// allocates the image (a header-only 16384x16384 PNG used to cost a gigabyte before its refusal);
+// real images coded as tightly as their encoders can still pass.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -101,6 +102,47 @@ TEST(image_data_bound, a_lossy_webp_without_the_data_for_its_size_is_refused) {
       "WebP header says 16383x16383 texels (1048576 macroblocks, each coded in more than a bit), but its "
       "VP8 data is 32 bytes");
   EXPECT_EQ(problem(webp_declaring(16383, 16383, 1048576 / 8)), "");
+}
+
+// A lossless (VP8L) WebP header: signature 0x2f, then width - 1 and height - 1 in 14 bits each.
+std::vector<uint8_t> lossless_webp_declaring(uint32_t width, uint32_t height, size_t bytes) {
+  std::vector<uint8_t> webp = {'R', 'I', 'F', 'F', 0, 0, 0, 0, 'W', 'E', 'B', 'P', 'V', 'P', '8', 'L'};
+  const uint32_t chunk = uint32_t(bytes - 20), bits = (width - 1) | ((height - 1) << 14);
+  for (int shift = 0; shift < 32; shift += 8) webp.push_back(uint8_t(chunk >> shift));
+  webp.push_back(0x2f);
+  for (int shift = 0; shift < 32; shift += 8) webp.push_back(uint8_t(bits >> shift));
+  webp.resize(bytes, 0);
+  return webp;
+}
+
+// A GIF whose logical screen is width x height, padded to bytes.
+std::vector<uint8_t> gif_declaring(uint16_t width, uint16_t height, size_t bytes) {
+  std::vector<uint8_t> gif = {'G',
+                              'I',
+                              'F',
+                              '8',
+                              '9',
+                              'a',
+                              uint8_t(width),
+                              uint8_t(width >> 8),
+                              uint8_t(height),
+                              uint8_t(height >> 8)};
+  gif.resize(bytes, 0);
+  return gif;
+}
+
+// Lossless WebP and GIF can code a solid 16383x16383 image in about 32 bytes, which their decoders
+// expand to a gigabyte (four such textures took 9.9 GB and 33 s): a large image must bring a byte
+// of file for every 4096 bytes of texels. Small placeholders and real images keep passing.
+TEST(image_data_bound, a_large_image_from_a_few_bytes_of_lossless_webp_or_gif_is_refused) {
+  EXPECT_EQ(problem(lossless_webp_declaring(16383, 16383, 32)),
+            "WebP header says 16383x16383 texels (1073610756 bytes as 8-bit RGBA) from 32 bytes of file: "
+            "over 4096 bytes of texels a byte, which only a near-uniform image codes (a uniform texture "
+            "needs a few texels, or the material's factor alone)");
+  EXPECT_NE(problem(gif_declaring(16000, 16000, 64)), "");
+  EXPECT_EQ(problem(lossless_webp_declaring(16383, 16383, 1073610756 / 4096 + 1)), "");  // at the bound
+  EXPECT_EQ(problem(lossless_webp_declaring(4096, 4096, 32)), "");  // 64 MiB: a placeholder may
+  EXPECT_EQ(problem(gif_declaring(1024, 1024, 40)), "");
 }
 
 TEST(image_data_bound, solid_images_coded_as_tightly_as_the_encoders_can_pass) {

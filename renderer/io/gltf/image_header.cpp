@@ -129,14 +129,27 @@ std::string image_data_problem(const uint8_t* data, size_t size, const image_hea
              " bytes of image data (IDAT) can hold at most " + std::to_string((idat + 64) * deflate_ratio) +
              " (deflate expands at most 1032:1)";
   }
-  if (h.format == "WebP") {
-    const uint64_t vp8 = webp_chunk_bytes(b, "VP8 ");
+  const uint64_t vp8 = h.format == "WebP" ? webp_chunk_bytes(b, "VP8 ") : 0;
+  if (vp8 > 0) {
     const uint64_t macroblocks = ((h.width + 15) / 16) * ((h.height + 15) / 16);
-    if (vp8 > 0 && macroblocks > vp8 * 8)
+    if (macroblocks > vp8 * 8)
       return "WebP header says " + size_text(h) + " texels (" + std::to_string(macroblocks) +
              " macroblocks, each coded in more than a bit), but its VP8 data is " + std::to_string(vp8) +
              " bytes";
   }
+  if (h.format == "PNG" || vp8 > 0) return "";
+  // The formats with no such bound (lossless WebP, GIF, arithmetic-coded JPEG) can code a solid
+  // image of any size in a few dozen bytes, and their decoders allocate all of it. A large image
+  // must bring data in some proportion to its size: among the sample models the highest ratio is
+  // 8,300:1 on a 1 MiB placeholder, and no texture above 16 MiB passes 150:1.
+  constexpr uint64_t large_image_bytes = uint64_t(64) << 20, max_expansion = 4096;
+  const uint64_t texels = h.width * h.height;  // each side at most 2^16 in these formats' headers
+  const uint64_t rgba_bytes = texels > (~uint64_t(0) >> 3) ? ~uint64_t(0) : texels * 4;
+  if (rgba_bytes > large_image_bytes && rgba_bytes / max_expansion > size)
+    return h.format + " header says " + size_text(h) + " texels (" + std::to_string(rgba_bytes) +
+           " bytes as 8-bit RGBA) from " + std::to_string(size) +
+           " bytes of file: over 4096 bytes of texels a byte, which only a near-uniform image codes "
+           "(a uniform texture needs a few texels, or the material's factor alone)";
   return "";
 }
 
