@@ -2,8 +2,9 @@
 // sample the chosen animations at the requested time (gltf_animation), flatten the chosen scene's
 // node forest to double-precision world transforms, place one instance per node that uses a
 // (mesh, primitive) pair (whose triangle mesh gltf_primitive_mesh builds once and shares), and
-// convert the materials, lights and cameras the scene uses. A node whose mesh is skinned or morphed
-// (non-zero or animated weights) gets its own posed copy of each primitive.
+// convert the materials, lights and cameras the scene uses. A skinned or morphed mesh (non-zero or
+// animated weights) is posed once per distinct pose (pose_key), which every node that poses it
+// alike shares; a pose no animation changes is built once per sequence, like a rigid mesh.
 #include "io/gltf/gltf_loader.h"
 
 #include <algorithm>
@@ -113,24 +114,27 @@ std::vector<double> morph_weights(build_context& ctx, int node_index) {
   return defaults;
 }
 
-// Every node's world transform in the pose, from the roots of the whole node forest (a skin's
-// joints need not lie in the rendered scene).
+// Every node's world transform in the pose, and whether a channel moves it or an ancestor, from
+// the roots of the whole node forest (a skin's joints need not lie in the rendered scene).
 void compute_node_worlds(build_context& ctx) {
   const size_t count = ctx.model.nodes.size();
   std::vector<char> is_child(count, 0);
   for (const tinygltf::Node& node : ctx.model.nodes)
     for (int child : node.children) is_child[static_cast<size_t>(child)] = 1;
   ctx.node_world.assign(count, dmat4(1.0));
-  std::vector<std::pair<int, dmat4>> stack;
+  ctx.node_moves.assign(count, 0);
+  std::vector<std::tuple<int, dmat4, bool>> stack;
   for (size_t n = count; n-- > 0;)
-    if (!is_child[n]) stack.emplace_back(static_cast<int>(n), dmat4(1.0));
+    if (!is_child[n]) stack.emplace_back(static_cast<int>(n), dmat4(1.0), false);
   while (!stack.empty()) {
-    const auto [node_index, parent_world] = stack.back();
+    const auto [node_index, parent_world, parent_moves] = stack.back();
     stack.pop_back();
     const dmat4 world = parent_world * posed_local(ctx, node_index);
+    const bool moves = parent_moves || (!ctx.pose.empty() && ctx.pose.nodes[size_t(node_index)].transform);
     ctx.node_world[static_cast<size_t>(node_index)] = world;
+    ctx.node_moves[static_cast<size_t>(node_index)] = moves;
     for (int child : ctx.model.nodes[static_cast<size_t>(node_index)].children)
-      stack.emplace_back(child, world);
+      stack.emplace_back(child, world, moves);
   }
 }
 
@@ -180,24 +184,35 @@ std::optional<deformation> node_deformation(build_context& ctx, int node_index) 
   const bool animated = !ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights;
   if (!animated && std::all_of(d.weights.begin(), d.weights.end(), [](double w) { return w == 0.0; }))
     d.weights.clear();
+  d.moves = animated;
   if (node.skin >= 0) {
     d.skin = node.skin;
     d.joints = &skin_joint_matrices(ctx, node.skin);
+    for (int joint : ctx.model.skins[static_cast<size_t>(node.skin)].joints)
+      d.moves = d.moves || ctx.node_moves[static_cast<size_t>(joint)];
   }
   if (d.weights.empty() && d.joints == nullptr) return std::nullopt;
   return d;
 }
 
-// The scene mesh of a node's primitive: its own posed mesh when the node deforms it, else the
-// shared one.
+// The scene mesh of a node's primitive: when the node deforms it, the posed mesh of its pose,
+// built for the first node that poses it so (or taken over from the last frame when that pose
+// does not move), else the shared rigid one.
 int32_t mesh_for_node(build_context& ctx, int node_index, int prim_index, const deformation* posed) {
   const int mesh_index = ctx.model.nodes[static_cast<size_t>(node_index)].mesh;
   if (posed == nullptr) return mesh_for(ctx, mesh_index, prim_index);
-  const auto key = std::make_pair(node_index, prim_index);
+  const bool animated_weights = !ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights;
+  pose_key key{mesh_index, prim_index, posed->skin, animated_weights ? node_index : -1,
+               animated_weights ? std::vector<double>() : posed->weights};
   auto cached = ctx.posed_cache.find(key);
   if (cached != ctx.posed_cache.end()) return cached->second;
-  const int32_t built = build_mesh(ctx, mesh_index, prim_index, posed);
-  ctx.posed_cache.emplace(key, built);
+  // A pose no animation moves is the last frame's mesh, taken over.
+  const std::map<pose_key, int32_t>* last = ctx.reuse_poses;
+  const auto previous = last ? last->find(key) : std::map<pose_key, int32_t>::const_iterator();
+  const int32_t built = last && previous != last->end() ? take_over_mesh(ctx, previous->second)
+                                                        : build_mesh(ctx, mesh_index, prim_index, posed);
+  if (!posed->moves) ctx.still_poses.emplace(key, built);
+  ctx.posed_cache.emplace(std::move(key), built);
   ctx.posed_primitives.emplace(mesh_index, prim_index);
   return built;
 }
@@ -454,6 +469,7 @@ struct gltf_sequence::state {
   // The last frame's:
   bool posed_once = false;
   std::map<std::vector<int>, int32_t> geometry_cache;
+  std::map<pose_key, int32_t> still_poses;
   std::set<int> used;
   material_map materials;
   size_t image_count = 0;  // images the loader made (a client may append its own)
@@ -496,6 +512,7 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   const tinygltf::Model& model = st.model;
   const std::string& path = st.path;
   const bool reuse = previous != nullptr && st.posed_once;
+  st.posed_once = false;  // a pose that throws leaves `previous` half taken: the next builds afresh
   scene out;
   out.source = path;
   build_context ctx{model,
@@ -512,6 +529,7 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   if (reuse) {
     ctx.reuse = previous;
     ctx.reuse_geometry = &st.geometry_cache;
+    ctx.reuse_poses = &st.still_poses;
   }
 
   // Optional extensions kiln does not know are ignored, all named on one line (required ones
@@ -568,6 +586,7 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   if (ctx.memory) ctx.memory->release(st.posed_bytes);
   st.posed_bytes = ctx.posed_bytes;
   st.geometry_cache = std::move(ctx.geometry_cache);
+  st.still_poses = std::move(ctx.still_poses);
   st.posed_once = true;
   if (posed_meshes) *posed_meshes = std::move(ctx.posed_meshes);
   return out;

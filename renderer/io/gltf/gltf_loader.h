@@ -90,11 +90,12 @@ class gltf_sequence {
 
   // The scene posed at `time` seconds, equal to load_gltf at that time. `previous`, the scene the
   // last call returned, gives up what no animation changes, moved instead of built again: every
-  // mesh no node deforms, and the materials, textures and decoded images (the loader's own; images
-  // a client appended stay behind). Drop `previous` afterwards. Mesh indices and instance order
-  // are the same in every frame unless a transform turns singular at some time. `posed_meshes`
-  // receives the meshes built for this time (the skinned and morphed ones): a backend refits
-  // those and moves every instance. Throws kiln::error (input) for bad input at this time.
+  // rigid mesh, every skinned or morphed one whose joints and weights no channel drives, and the
+  // materials, textures and decoded images (the loader's own; images a client appended stay
+  // behind). Drop `previous` afterwards. Mesh indices and instance order are the same in every
+  // frame unless a transform turns singular at some time. `posed_meshes` receives the meshes
+  // posed anew for this time (those an animation deforms): a backend refits those and moves every
+  // instance. Throws kiln::error (input) for bad input at this time.
   scene pose(double time, scene* previous = nullptr, std::vector<uint32_t>* posed_meshes = nullptr);
 
   // Whether animations drive the file's nodes, so frames differ.

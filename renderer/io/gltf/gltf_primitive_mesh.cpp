@@ -219,16 +219,18 @@ int32_t reused_or_built_mesh(build_context& ctx, int mesh_index, int prim_index,
                              const std::vector<int>& geometry) {
   if (ctx.reuse_geometry) {
     auto previous = ctx.reuse_geometry->find(geometry);
-    if (previous != ctx.reuse_geometry->end()) {
-      if (previous->second < 0) return -1;
-      ctx.out.meshes.push_back(std::move(ctx.reuse->meshes[static_cast<size_t>(previous->second)]));
-      return static_cast<int32_t>(ctx.out.meshes.size() - 1);
-    }
+    if (previous != ctx.reuse_geometry->end()) return take_over_mesh(ctx, previous->second);
   }
   return build_mesh(ctx, mesh_index, prim_index);
 }
 
 }  // namespace
+
+int32_t take_over_mesh(build_context& ctx, int32_t previous) {
+  if (previous < 0) return -1;
+  ctx.out.meshes.push_back(std::move(ctx.reuse->meshes[static_cast<size_t>(previous)]));
+  return static_cast<int32_t>(ctx.out.meshes.size() - 1);
+}
 
 // Reads a float attribute and refuses NaN or infinity (they would poison bounds and traversal).
 std::vector<float> read_finite(build_context& ctx, int accessor, const std::string& where,
@@ -261,7 +263,7 @@ std::vector<uint32_t> primitive_indices(build_context& ctx, const tinygltf::Prim
 }
 
 // Builds the kiln mesh of one glTF primitive, or -1 when it has nothing to render. With a
-// deformation the mesh is the primitive posed by one node (see pose_primitive).
+// deformation the mesh is the primitive in that pose (see pose_primitive).
 int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const deformation* posed) {
   const tinygltf::Mesh& src = ctx.model.meshes[static_cast<size_t>(mesh_index)];
   const tinygltf::Primitive& prim = src.primitives[static_cast<size_t>(prim_index)];
@@ -280,8 +282,10 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const def
   uint64_t bytes = primitive_bytes(ctx.model, prim);
   // Posing holds double copies of positions, normals and tangents, a delta and the skin sets.
   if (posed) bytes += ctx.model.accessors[static_cast<size_t>(prim.attributes.at("POSITION"))].count * 160;
-  charge_memory(ctx.memory, bytes, ctx.file, "meshes");
-  if (posed && ctx.memory) ctx.posed_bytes += bytes;
+  charge_memory(ctx.memory, bytes, ctx.file,
+                posed ? "posed meshes (one per distinct skin and morph pose)" : "meshes");
+  // A pose that moves is built again for every time: the last time's is released as this one is charged.
+  if (posed && posed->moves && ctx.memory) ctx.posed_bytes += bytes;
 
   mesh m;
   m.name = src.name.empty() ? "mesh " + std::to_string(mesh_index) : src.name;
@@ -401,7 +405,7 @@ int32_t build_mesh(build_context& ctx, int mesh_index, int prim_index, const def
   }
 
   ctx.out.meshes.push_back(std::move(m));
-  if (posed) ctx.posed_meshes.push_back(static_cast<uint32_t>(ctx.out.meshes.size() - 1));
+  if (posed && posed->moves) ctx.posed_meshes.push_back(static_cast<uint32_t>(ctx.out.meshes.size() - 1));
   return static_cast<int32_t>(ctx.out.meshes.size() - 1);
 }
 

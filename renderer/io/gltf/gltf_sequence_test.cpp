@@ -1,11 +1,14 @@
 // gltf_sequence against load_gltf: each frame posed from the last (rigid meshes, materials and
-// images handed over, deformed meshes built again) must equal a fresh load at that time, and a
-// long sequence must not grow the memory budget frame by frame.
+// images handed over, deformed meshes built again) must equal a fresh load at that time, also
+// after a frame that failed halfway, and a long sequence must not grow the memory budget frame by
+// frame.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "io/gltf/gltf_loader.h"
+#include "io/gltf/gltf_test_util.h"
+#include "support/animated_gltf.h"
 
 namespace kiln {
 namespace {
@@ -70,6 +73,27 @@ TEST(GltfSequence, EveryFrameEqualsAFreshLoadAtItsTime) {
       first = false;
     }
   }
+}
+
+// Node 0 places a still triangle; node 1 another, sliding out to 1e16 (past kiln's coordinate
+// limit) at t = 1. Posing t = 1 takes node 0's mesh from the last frame, then fails on node 1: the
+// next pose cannot take that mesh again, and builds afresh.
+TEST(GltfSequence, AFrameThatFailsHalfwayLeavesTheNextToBuildAfresh) {
+  using namespace gltf_test;
+  temp_folder dir;
+  gltf_builder b;
+  b.add_node({{"mesh", b.add_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2})}});
+  const int sliding = b.add_node({{"mesh", b.add_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {0, 1, 2})}});
+  testing::animate(b, sliding, "translation", {0, 0, 0}, {1e16f, 0, 0});
+  const std::string path = b.write(dir.file("slides_away.gltf"));
+  gltf_sequence sequence(path, {});
+  scene previous = sequence.pose(0.0);
+  const std::string message = error_of([&] { sequence.pose(1.0, &previous); });
+  EXPECT_NE(message.find("/nodes/1"), std::string::npos) << message;
+  const scene now = sequence.pose(0.0, &previous);
+  expect_same_meshes(now, load_gltf(path));
+  ASSERT_EQ(now.meshes.size(), 2u);
+  EXPECT_EQ(now.meshes[0].positions.size(), 3u);
 }
 
 TEST(GltfSequence, ALongSequenceKeepsItsMemoryBudgetFlat) {
