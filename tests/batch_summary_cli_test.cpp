@@ -99,5 +99,19 @@ TEST(batch_summary, a_batch_that_ran_has_no_error_in_its_summary) {
   EXPECT_EQ(run.summary["jobs"][1]["status"], "failed");
 }
 
+TEST(batch_summary, a_summary_inside_a_missing_out_dir_is_written_there) {
+  const fs::path dir = testing::scratch_folder("batch_summary_in_out_dir");
+  testing::copy_scene((dir / "scenes").string());
+  const fs::path out = dir / "out", summary = out / "summary.json";
+  const command_result result =
+      run_kiln({"batch", (dir / "scenes" / "cornell_box.gltf").string(), "--out-dir", out.string(),
+                "--summary", summary.string(), "--width", "8", "--height", "6", "-q"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  ASSERT_TRUE(fs::exists(summary)) << result.stderr_text;
+  const json written = json::parse(std::ifstream(summary));
+  EXPECT_EQ(written["exit_code"], 0);
+  EXPECT_EQ(written["totals"]["rendered"], 1);
+}
+
 }  // namespace
 }  // namespace kiln

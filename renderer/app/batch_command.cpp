@@ -403,6 +403,13 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
   return jobs;
 }
 
+// Creates --out-dir (and its parents) when missing.
+void create_out_dir(const std::string& out_dir) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir)) throw io_error(out_dir, "cannot create the output folder");
+}
+
 int run_batch(const batch_options& options) {
   if (!options.contact_sheet.empty()) {
     if (!options.plan.empty())
@@ -418,7 +425,13 @@ int run_batch(const batch_options& options) {
     write_plan(options.plan, plan_batch(options), options.plan_estimates);
     return 0;
   }
-  if (!options.summary.empty()) check_output_writable(options.summary);
+  if (!options.summary.empty()) {
+    // A summary inside --out-dir goes in the folder the batch creates anyway: create it first.
+    if (lies_below(fs::absolute(options.summary).lexically_normal(),
+                   fs::absolute(options.out_dir).lexically_normal()))
+      create_out_dir(options.out_dir);
+    check_output_writable(options.summary);
+  }
   // From here the summary is written whatever stops the batch: a refused plan, an unusable folder,
   // a job in another batch's folder, out of memory, a signal. Only when another batch holds the
   // folder is it left alone: the summary named may be that batch's.
@@ -428,10 +441,7 @@ int run_batch(const batch_options& options) {
   try {
     jobs = plan_batch(options);
     if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
-    std::error_code ec;
-    fs::create_directories(options.out_dir, ec);
-    if (!fs::is_directory(options.out_dir))
-      throw io_error(options.out_dir, "cannot create the output folder");
+    create_out_dir(options.out_dir);
     const std::string out_dir = absolute_path(options.out_dir);
     locking = true;
     const output_folder_lock lock(out_dir, options.wait_for_lock);
