@@ -160,6 +160,8 @@ using lanes = __m128;
 [[gnu::always_inline]] inline lanes to_lanes(float r, float g, float b, float a) {
   return _mm_setr_ps(r, g, b, a);
 }
+// A float RGBA texel's four channels.
+[[gnu::always_inline]] inline lanes float_lanes(const float* t) { return _mm_loadu_ps(t); }
 // An 8-bit RGBA texel's four codes as floats (exact).
 [[gnu::always_inline]] inline lanes code_lanes(const uint8_t* t) {
   int32_t word;
@@ -179,6 +181,7 @@ using lanes = vec4;
 inline lanes mix_lanes(const lanes& a, const lanes& b, float t) { return glm::mix(a, b, t); }
 inline lanes to_lanes(const vec4& v) { return v; }
 inline lanes to_lanes(float r, float g, float b, float a) { return vec4(r, g, b, a); }
+inline lanes float_lanes(const float* t) { return vec4(t[0], t[1], t[2], t[3]); }
 inline lanes code_lanes(const uint8_t* t) { return vec4(float(t[0]), float(t[1]), float(t[2]), float(t[3])); }
 inline vec4 to_vec4(const lanes& l) { return l; }
 #endif
@@ -203,8 +206,15 @@ template <typename Read>
   }
   const image& img = *p.level0;
   const size_t w = size_t(img.width);
-  if (img.texels8.empty())
+  if (img.texels8.empty()) {
+    // Linear float (an HDR environment map): the texels as they are, four channels at once.
+    if (p.encoding == texel_encoding::linear) {
+      const float* texels = img.texels32.data();
+      return blend_lanes([&](int x, int y) { return float_lanes(texels + (size_t(y) * w + size_t(x)) * 4); },
+                         x0, x1, y0, y1, tx, ty);
+    }
     return blend([&](int x, int y) { return fetch_texel(img, x, y, p.encoding); }, x0, x1, y0, y1, tx, ty);
+  }
   const uint8_t* texels = img.texels8.data();
   if (p.encoding == texel_encoding::srgb)
     return blend_lanes(
