@@ -131,6 +131,20 @@ TEST_F(cli_view, look_at_camera_overrides_the_file_and_is_recorded_in_the_header
   EXPECT_NEAR(image.rgba[centre + 4], 3.0f, 1e-3f);
 }
 
+TEST_F(cli_view, one_end_of_a_look_at_camera_is_refused_before_the_asset_loads) {
+  // The asset cannot load (its buffer is missing): the refusal must come from the arguments alone.
+  const std::string broken = folder_ + "/broken.gltf";
+  std::ofstream(broken)
+      << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "missing.bin", "byteLength": 4}]})";
+  for (const char* given : {"--look-from", "--look-at"}) {
+    auto result = run_kiln({"render", broken, "-o", out("one_end"), "-q", given, "1,2,3"});
+    EXPECT_EQ(result.exit_code, 2) << given;
+    EXPECT_EQ(result.stderr_text, "kiln: --look-from/--look-at: give both --look-from and --look-at\n")
+        << given;
+    EXPECT_FALSE(fs::exists(out("one_end")));
+  }
+}
+
 TEST_F(cli_view, scene_option_renders_another_scene_and_refuses_a_missing_one) {
   auto result = run_kiln(
       {"render", scene_, "-o", out("scene1"), "-q", "--width", "32", "--height", "32", "--scene", "1"});

@@ -101,14 +101,19 @@ void resolve_image_size(const render_options& options, float camera_aspect, int&
   check_pixel_count(width, height, options.max_pixels);
 }
 
+// A look-at camera needs both its ends; checked before the scene loads and again where it is made.
+void check_look_at_pair(const render_options& options) {
+  if (bool(options.look_from) != bool(options.look_at))
+    throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
+}
+
 }  // namespace
 
 view_camera job_view(const render_options& options, const scene& world, std::string& description,
                      const bounds3* framing) {
   const std::optional<orbit_angles> orbit = job_orbit(options);  // refuses it beside --look-from, --camera
   if (options.look_from || options.look_at) {
-    if (!options.look_from || !options.look_at)
-      throw input_error("", "--look-from/--look-at", "give both --look-from and --look-at");
+    check_look_at_pair(options);
     int width = 0, height = 0;
     resolve_image_size(options, 0.0f, width, height);
     description = "look-at";
@@ -395,6 +400,7 @@ void check_job(const render_options& options, const shared_output_checks* shared
   check_asset_file(options.input);  // before the fingerprint reads it
   scene_time(options);
   check_turntable_frame(options);  // and --camera-view's options
+  check_look_at_pair(options);
   if (options.crop && options.band_count > 0)
     throw input_error("", "--crop", "--crop and --band both choose the region; give one of them");
   // Both sides given: the size is known before the scene loads, so a huge one fails at once.
