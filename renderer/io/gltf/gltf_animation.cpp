@@ -80,6 +80,18 @@ std::vector<float> read_times(const tinygltf::Model& model, int accessor, const 
   return times;
 }
 
+// Whether a sampler's keyframes all hold one value (`stride` floats a key; CUBICSPLINE's value
+// sits between its tangents, which must all be zero), so it gives that value at every time.
+bool keyframes_hold(const std::vector<float>& values, size_t components, size_t stride, bool cubic) {
+  const size_t value_at = cubic ? components : 0;
+  for (size_t key = 0; key + stride <= values.size(); key += stride)
+    for (size_t c = 0; c < stride; ++c) {
+      const bool tangent = c < value_at || c >= value_at + components;
+      if (tangent ? values[key + c] != 0.0f : values[key + c] != values[c]) return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 void sample_keyframes(const std::vector<float>& times, const std::vector<float>& values, size_t components,
@@ -302,12 +314,16 @@ animation_pose evaluate_animations(const tinygltf::Model& model, const std::vect
         if (s.size() == 3) state.scale = dvec3(s[0], s[1], s[2]);
         state.transform = true;
       }
+      const bool moves = !keyframes_hold(values, components, stride, cubic);
       if (path == "translation") state.translation = dvec3(sample[0], sample[1], sample[2]);
       if (rotation) state.rotation = dvec4(sample[0], sample[1], sample[2], sample[3]);
       if (path == "scale") state.scale = dvec3(sample[0], sample[1], sample[2]);
       if (weights) {
         state.weights = true;
+        state.weights_move = moves;
         state.morph_weights = sample;
+      } else {
+        state.transform_moves = state.transform_moves || moves;
       }
       any = true;
     }

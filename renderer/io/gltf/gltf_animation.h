@@ -34,6 +34,10 @@ struct animated_node {
   dvec3 scale{1.0};
   bool weights = false;  // a weights channel drives it
   std::vector<double> morph_weights;
+  // Whether the channels' keyframes differ, so the transform or the weights change with time; a
+  // channel whose keys all hold one value poses the node alike at every time.
+  bool transform_moves = false;
+  bool weights_move = false;
 };
 
 // Every node's animated state (indexed by node), empty when no chosen animation drives a node.

@@ -63,8 +63,8 @@ struct build_context {
 
 // How a node deforms its mesh: morph weights (empty: none) and the joint matrices of its skin
 // (null: not skinned). `moves`: an animation changes the pose with time (a weights channel on
-// the node, or a channel on a joint or a joint's ancestor), so each time poses it anew; a pose
-// that does not move is built once, like a rigid mesh.
+// the node, or a channel on a joint or a joint's ancestor, whose keys differ), so each time poses
+// it anew; a pose that does not move is built once, like a rigid mesh.
 struct deformation {
   std::vector<double> weights;
   const std::vector<dmat4>* joints = nullptr;

@@ -114,8 +114,9 @@ std::vector<double> morph_weights(build_context& ctx, int node_index) {
   return defaults;
 }
 
-// Every node's world transform in the pose, and whether a channel moves it or an ancestor, from
-// the roots of the whole node forest (a skin's joints need not lie in the rendered scene).
+// Every node's world transform in the pose, and whether a channel moves it or an ancestor (with
+// keys that differ), from the roots of the whole node forest (a skin's joints need not lie in the
+// rendered scene).
 void compute_node_worlds(build_context& ctx) {
   const size_t count = ctx.model.nodes.size();
   std::vector<char> is_child(count, 0);
@@ -130,7 +131,8 @@ void compute_node_worlds(build_context& ctx) {
     const auto [node_index, parent_world, parent_moves] = stack.back();
     stack.pop_back();
     const dmat4 world = parent_world * posed_local(ctx, node_index);
-    const bool moves = parent_moves || (!ctx.pose.empty() && ctx.pose.nodes[size_t(node_index)].transform);
+    const bool moves =
+        parent_moves || (!ctx.pose.empty() && ctx.pose.nodes[size_t(node_index)].transform_moves);
     ctx.node_world[static_cast<size_t>(node_index)] = world;
     ctx.node_moves[static_cast<size_t>(node_index)] = moves;
     for (int child : ctx.model.nodes[static_cast<size_t>(node_index)].children)
@@ -184,7 +186,7 @@ std::optional<deformation> node_deformation(build_context& ctx, int node_index) 
   const bool animated = !ctx.pose.empty() && ctx.pose.nodes[static_cast<size_t>(node_index)].weights;
   if (!animated && std::all_of(d.weights.begin(), d.weights.end(), [](double w) { return w == 0.0; }))
     d.weights.clear();
-  d.moves = animated;
+  d.moves = animated && ctx.pose.nodes[static_cast<size_t>(node_index)].weights_move;
   if (node.skin >= 0) {
     d.skin = node.skin;
     d.joints = &skin_joint_matrices(ctx, node.skin);

@@ -128,5 +128,41 @@ TEST(GltfSharedPose, ASequencePosesAgainOnlyWhatAnAnimationDeforms) {
   }
 }
 
+// Channels whose keys all hold one value pose alike at every time: joint 1's rotation keyed at its
+// rest turn, and CUBICSPLINE weights of flat tangents. CUBICSPLINE keys of one value with a tangent
+// that is not zero still move between the keys.
+TEST(GltfSharedPose, ChannelsWhoseKeysHoldOneValueDoNotMove) {
+  temp_folder dir;
+  for (const float tangent : {0.0f, 1.0f}) {
+    SCOPED_TRACE(tangent);
+    gltf_builder b = deforming_strip(8);
+    add_strip_nodes(b, 0, 2);
+    add_strip_nodes(b, 1, 2);
+    testing::animate(b, 1, "rotation", {0, 0, 0.258819f, 0.965926f}, {0, 0, 0.258819f, 0.965926f});
+    const int times = b.add_data(std::vector<float>{0, 1}, k_float, "SCALAR", 1);
+    // Per key: in-tangents, values, out-tangents of the two targets.
+    const std::vector<float> keys = {0, 0, 0.5f, 0.25f, tangent, 0, 0, 0, 0.5f, 0.25f, 0, 0};
+    b.doc["animations"].push_back(
+        {{"samplers",
+          {{{"input", times},
+            {"output", b.add_data(keys, k_float, "SCALAR", 1)},
+            {"interpolation", "CUBICSPLINE"}}}},
+         {"channels", {{{"sampler", 0}, {"target", {{"node", 4}, {"path", "weights"}}}}}}});
+    const std::string path = b.write(dir.file("held.gltf"));
+    gltf_sequence sequence(path, {});
+    scene previous = sequence.pose(0.0);
+    ASSERT_EQ(previous.meshes.size(), 3u);  // the skinned pose, node 4's own, node 5's
+    const uint32_t morphed = previous.instances.at(2).shape;
+    std::vector<uint32_t> posed;
+    const scene now = sequence.pose(0.5, &previous, &posed);
+    EXPECT_EQ(posed, tangent == 0.0f ? std::vector<uint32_t>{} : std::vector<uint32_t>{morphed});
+    gltf_load_options at;
+    at.time = 0.5;
+    expect_same_instances(now, load_gltf(path, at));
+    // With the tangent the weights bulge above (0.5, 0.25) halfway: the vertices rise above z = 0.5.
+    EXPECT_EQ(now.meshes.at(morphed).positions[0].z > 0.5f, tangent != 0.0f);
+  }
+}
+
 }  // namespace
 }  // namespace kiln
