@@ -133,6 +133,30 @@ std::vector<std::string> part_names(const std::string& path) {
   return names;
 }
 
+TEST(cli_messages, display_or_view_without_a_preview_warns_once_each_even_when_quiet) {
+  const std::string dir = scratch_folder("display_without_preview");
+  const std::vector<std::string> base = {"render",   demo_scene, "-o", dir + "/a.exr", "--width", "8",
+                                         "--height", "6",        "-q"};
+  auto with = [&base](const std::vector<std::string>& more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return run_kiln(args);
+  };
+  auto result = with({"--view", "Raw"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text, "kiln: warning: --view does nothing without --preview\n");
+  result = with({"--display", "sRGB", "--view", "Raw"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text,
+            "kiln: warning: --display does nothing without --preview\n"
+            "kiln: warning: --view does nothing without --preview\n");
+  // With a preview they choose its transform: nothing to say.
+  result = with({"--display", "sRGB", "--view", "Raw", "--preview", dir + "/a.png"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text, "");
+  EXPECT_TRUE(fs::exists(dir + "/a.png"));
+}
+
 TEST(cli_messages, multipart_help_lists_every_part_the_writer_makes) {
   const std::string help = kiln_stdout("render --help");
   const size_t at = help.find("\n  --multipart");  // its own entry, not a mention in another

@@ -116,6 +116,7 @@ void run_render_sequence(const render_options& options, const render_fingerprint
 }  // namespace
 
 void run_render(const render_options& options, const render_fingerprint* known) {
+  for (const std::string& line : job_option_warnings(options)) print_note(line);  // even with -q
   if (renders_sequence(options)) return run_render_sequence(options, known);
   check_outputs_unlocked(options);
   render_progress progress;

@@ -416,6 +416,15 @@ void check_job(const render_options& options, const shared_output_checks* shared
   check_deep_job(options, shared);
 }
 
+std::vector<std::string> job_option_warnings(const render_options& options) {
+  std::vector<std::string> lines;
+  // The display and view choose the preview's transform only; the EXR stays scene-linear.
+  if (!options.preview.empty()) return lines;
+  if (!options.display.empty()) lines.push_back("warning: --display does nothing without --preview");
+  if (!options.view.empty()) lines.push_back("warning: --view does nothing without --preview");
+  return lines;
+}
+
 uint64_t job_memory_limit(const render_options& options) {
   return options.max_memory ? options.max_memory : default_memory_budget();
 }

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "accel/accelerator.h"
 #include "core/memory_budget.h"
@@ -100,6 +101,10 @@ struct render_job_result {
 // (job/output_guard.h) holds what the frames of a sequence share, found once for all of them.
 struct shared_output_checks;
 void check_job(const render_options& options, const shared_output_checks* shared = nullptr);
+
+// Options given that do nothing beside the others ("--view without --preview"), one "warning: ..."
+// line each, for a client to print or raise; empty when none.
+std::vector<std::string> job_option_warnings(const render_options& options);
 
 // Renders the job. Throws kiln::error: input for bad input or a file over the memory budget,
 // render for a backend failure or an allocation that failed (naming the stage it failed in),

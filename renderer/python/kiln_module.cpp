@@ -356,6 +356,7 @@ render_job python_job(const std::string& function, const std::string& asset, con
   if (!output.is_none()) job.options.output = path_text(output);
   for (const auto& [key, value] : kwargs)
     apply_option(job.options, key.cast<std::string>(), value, function, *warnings);
+  for (const std::string& line : job_option_warnings(job.options)) warnings->add(line);
   return job;
 }
 

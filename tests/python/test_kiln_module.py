@@ -318,6 +318,17 @@ def test_warnings_are_kiln_warnings_and_result_warnings_as_the_cli_prints_them(t
     assert caught == []
 
 
+def test_view_without_a_preview_is_a_kiln_warning(tmp_path):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = kiln.render(CORNELL, width=8, height=6, spp=1, view="Raw")
+    assert result.warnings == ["--view does nothing without --preview"]
+    assert [(w.category, str(w.message)) for w in caught] == [(kiln.KilnWarning, result.warnings[0])]
+    preview = tmp_path / "p.png"
+    assert kiln.render(CORNELL, width=8, height=6, spp=1, view="Raw", preview=str(preview)).warnings == []
+    assert preview.exists()
+
+
 def test_info_is_the_clis_json_document(tmp_path):
     done = subprocess.run([KILN, "info", "--json", CORNELL, "--width", "40", "-q"], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
