@@ -20,7 +20,7 @@ ALLOWED = {
     "shade": {"core", "scene", "geometry", "accel"},
     "render": {"core", "scene", "geometry", "accel", "shade"},
     "io/file": {"core"},
-    "io/plugin": {"core"},
+    "io/plugin": {"core", "io/file"},
     "io/colour": {"core", "io/file", "io/plugin"},
     "io/image_codecs": {"core", "scene", "io/file", "io/exr", "io/plugin", "io/colour"},
     "io/gltf": {"core", "scene", "geometry", "io/file", "io/image_codecs"},
@@ -31,6 +31,7 @@ ALLOWED = {
     "python": {"core", "scene", "render", "io/exr", "job"},
     "app": {"core", "scene", "geometry", "accel", "shade", "render", "io/file", "io/image_codecs",
             "io/gltf", "io/exr", "job", "ray_replay"},
+    "package": set(),  # the CMake package's configuration: no sources
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

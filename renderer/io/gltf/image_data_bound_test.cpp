@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <filesystem>
@@ -62,7 +63,9 @@ std::string problem(const std::vector<uint8_t>& bytes) {
 
 // One solid-colour image written by OpenImageIO's encoder at its tightest, read back as bytes.
 std::vector<uint8_t> encoded_solid(const std::string& name, int size, const std::string& compression) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  // The process id in the name: another checkout's suite may run this test at the same time.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
   auto out = OIIO::ImageOutput::create(path);
   OIIO::ImageSpec spec(size, size, 4, OIIO::TypeDesc::UINT8);
   spec.attribute("compression", compression);
