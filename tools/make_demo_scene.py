@@ -703,7 +703,7 @@ def validate(out_dir):
 
 def main():
     repo_root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out-dir", default=os.path.join(repo_root, "scenes"))
     parser.add_argument("--no-validate", action="store_true")
     args = parser.parse_args()

@@ -34,9 +34,10 @@ def sky(u, v):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out")
-    parser.add_argument("--width", type=int, default=256)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("out", help="the Radiance .hdr file to write")
+    parser.add_argument("--width", type=int, default=256,
+                        help="width in pixels; the height is half of it (default 256)")
     args = parser.parse_args()
     width, height = args.width, args.width // 2
     with open(args.out, "wb") as f:

@@ -63,7 +63,7 @@ def render_kiln(args, asset, exr):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "renderer", "app", "kiln"))
     ap.add_argument("--blender", default=shutil.which("blender") or "blender")
     ap.add_argument("--assets", default=os.path.normpath(os.path.join(ROOT, "..", "shared", "assets")))

@@ -108,7 +108,7 @@ class builder:
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out-dir", default=os.path.join(os.path.dirname(__file__), "..", "scenes"))
     args = parser.parse_args()
     b = builder()

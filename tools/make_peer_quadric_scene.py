@@ -328,7 +328,7 @@ def build_pov():
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--gltf", default=os.path.join(here, "..", "scenes", "peer_quadrics.gltf"))
     parser.add_argument("--pov", default=os.path.join(here, "..", "bench", "peers", "peer_quadrics.pov"))
     args = parser.parse_args()

@@ -123,7 +123,7 @@ def exr_bytes():
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     here = os.path.dirname(os.path.abspath(__file__))
     parser.add_argument("--output", default=os.path.join(here, "..", "share", "environments", "studio.exr"))
     parser.add_argument("--check", action="store_true", help="compare with the file instead of writing it")

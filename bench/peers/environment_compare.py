@@ -437,7 +437,7 @@ def compare_asset(args, name, asset, ref_spp, work, images):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "renderer", "app", "kiln"))
     ap.add_argument("--blender", default=shutil.which("blender") or "blender")
     ap.add_argument("--environment", default=STUDIO)

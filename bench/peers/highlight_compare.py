@@ -165,7 +165,7 @@ def cycles_highlight(args, scene, out_exr, width, height):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--kiln", default=os.path.join(ROOT, "build", "renderer", "app", "kiln"))
     p.add_argument("--blender", default="blender")
     p.add_argument("--out", default=os.path.join(ROOT, "build", "bench-results", "highlight"))

@@ -420,7 +420,7 @@ def version_of(cmd, pattern):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kiln", default=os.path.join(ROOT, "build", "renderer", "app", "kiln"))
     ap.add_argument("--blender", default=shutil.which("blender") or "blender")
     ap.add_argument("--povray", default=shutil.which("povray") or "povray")

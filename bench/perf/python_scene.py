@@ -39,7 +39,7 @@ def timed(renders):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("assets", nargs="*", default=DEFAULT_ASSETS)
     parser.add_argument("--renders", type=int, default=100)
     parser.add_argument("--rounds", type=int, default=3)

@@ -853,7 +853,7 @@ def non_negative_int(text):
 
 
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog="kiln_farm.py", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="kiln_farm.py", description=__doc__.split("\n\n")[0])
     commands = parser.add_subparsers(dest="command", required=True)
     s = commands.add_parser("submit", help="write the task list and sbatch scripts, submit them")
     source = s.add_mutually_exclusive_group(required=True)
