@@ -210,6 +210,10 @@ animation_pose evaluate_animations(const tinygltf::Model& model, const std::vect
   animation_pose pose;
   std::vector<animated_node> nodes(model.nodes.size());
   std::map<std::pair<int, std::string>, int> driver;  // (node, path) -> the animation that drives it
+  // Properties a later animation drives too: a rig's clips each drive every bone, so one line says
+  // how many, naming the first.
+  std::string first_overlap;
+  size_t overlaps = 0;
   std::vector<double> sample;
   bool any = false;
   for (int a : animations) {
@@ -252,9 +256,9 @@ animation_pose evaluate_animations(const tinygltf::Model& model, const std::vect
           throw input_error(
               file, target,
               "a second channel of this animation drives " + path + " of " + pointer("nodes", node_index));
-        pose.warnings.push_back("animations " + std::to_string(owner->second) + " and " + std::to_string(a) +
-                                " both drive " + path + " of " + pointer("nodes", node_index) +
-                                "; the first wins (choose one with --animation)");
+        if (overlaps++ == 0)
+          first_overlap = "animations " + std::to_string(owner->second) + " and " + std::to_string(a) +
+                          " both drive " + path + " of " + pointer("nodes", node_index);
         continue;
       }
 
@@ -328,6 +332,12 @@ animation_pose evaluate_animations(const tinygltf::Model& model, const std::vect
       any = true;
     }
   }
+  if (overlaps == 1)
+    pose.warnings.push_back(first_overlap + "; the first wins (choose one with --animation)");
+  if (overlaps > 1)
+    pose.warnings.push_back(std::to_string(overlaps) +
+                            " node properties are driven by more than one animation (" + first_overlap +
+                            ", ...); the first wins (choose one with --animation)");
   if (any) pose.nodes = std::move(nodes);
   return pose;
 }

@@ -238,6 +238,30 @@ void expect_position(const mesh& m, size_t v, double x, double y, double z) {
   EXPECT_NEAR(m.positions.at(v).z, z, tol);
 }
 
+TEST(GltfAnimation, AnimationsDrivingTheSameNodesAreOneWarningWithTheCount) {
+  temp_folder dir;
+  gltf_builder b = triangle_node();
+  b.add_node({{"mesh", 0}});
+  b.add_node({{"mesh", 0}});
+  // Like a rig's clips: "walk" and "run" each drive nodes 0, 1 and 2; "wave" only node 2.
+  for (const float step : {1.0f, 2.0f}) {
+    const int a = add_animation(b, 0, "translation", {0, 1}, {0, 0, 0, step, 0, 0}, "VEC3", 3);
+    json& channels = b.doc["animations"][size_t(a)]["channels"];
+    for (const int node : {1, 2})
+      channels.push_back({{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}});
+  }
+  add_animation(b, 2, "translation", {0, 1}, {0, 0, 0, 0, 3, 0}, "VEC3", 3);
+  const scene s = load_at(b, dir, 1.0);
+  EXPECT_NEAR(translation_of(s, 2).x, 1.0, tol);  // the first animation wins
+  std::vector<std::string> overlaps;
+  for (const std::string& w : s.stats.warnings)
+    if (w.find("both drive") != std::string::npos) overlaps.push_back(w);
+  ASSERT_EQ(overlaps.size(), 1u);
+  EXPECT_EQ(overlaps[0],
+            "4 node properties are driven by more than one animation (animations 0 and 1 both drive "
+            "translation of /nodes/0, ...); the first wins (choose one with --animation)");
+}
+
 TEST(GltfMorph, MeshDefaultWeightsPoseAStillWithoutAnimation) {
   temp_folder dir;
   const scene s = load_gltf(morph_triangle(json::array({0.5, 0.25}), nullptr).write(dir.file("m.gltf")));
