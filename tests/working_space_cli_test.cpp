@@ -300,6 +300,9 @@ TEST(working_space_cli, bad_configs_and_spaces_are_one_line_exit_2_nothing_writt
   };
   expect_refused(with({"--ocio-config", config, "--working-space", "ACEScgg"}), out,
                  "kiln.ocio: --working-space: the config has no colour space 'ACEScgg'");
+  expect_refused(with({"--ocio-config", config, "--working-space", "ACEScgx"}), out,
+                 "the config has no colour space 'ACEScgx'; did you mean 'ACEScg'? (its colour spaces: "
+                 "'ACES2065-1', 'ACEScg', 'Linear Rec.709 (sRGB)', 'sRGB - Display')\n");
   expect_refused(with({"--ocio-config", dir + "/none.ocio", "--working-space", "ACEScg"}), out,
                  "--ocio-config");
   const std::string broken = dir + "/broken.ocio";

@@ -192,8 +192,16 @@ std::string failure(const std::string& space, const std::string& config_path) {
 }
 
 TEST(working_space, a_bad_config_or_space_is_one_line_naming_file_and_option) {
-  EXPECT_EQ(failure("ACEScgg", config),
-            config + ": --working-space: the config has no colour space 'ACEScgg'");
+  // A near miss is named, and the spaces a render can work in are listed (not the data space Raw).
+  EXPECT_EQ(
+      failure("ACEScgg", config),
+      config +
+          ": --working-space: the config has no colour space 'ACEScgg'; did you mean 'ACEScg'? (its colour "
+          "spaces: 'ACES2065-1', 'ACEScg', 'Linear Rec.709 (sRGB)', 'sRGB - Display')");
+  EXPECT_EQ(failure("AP1", config),
+            config +
+                ": --working-space: the config has no colour space 'AP1' (its colour spaces: 'ACES2065-1', "
+                "'ACEScg', 'Linear Rec.709 (sRGB)', 'sRGB - Display')");
   EXPECT_NE(failure("Raw", config).find("is a data space"), std::string::npos);
   EXPECT_NE(failure("sRGB - Display", config).find("not a linear (3x3 matrix) transform"), std::string::npos);
   EXPECT_EQ(failure("ACEScg", "/nonexistent/x.ocio"),
@@ -231,13 +239,23 @@ TEST(working_space, the_preview_goes_through_ocio_only_when_asked) {
   EXPECT_NEAR(rgb[1], 1.055f * std::pow(0.18f, 1 / 2.4f) - 0.055f, 1e-6f);
   EXPECT_NEAR(rgb[2], 1.055f * std::pow(0.5f, 1 / 2.4f) - 0.055f, 1e-6f);
   EXPECT_NEAR(rgb[3], 1.0f, 1e-6f);
+  // A display or view the config lacks: the one line names the near miss and what there is.
+  auto refusal = [&o]() -> std::string {
+    try {
+      preview_view(o);
+    } catch (const error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
   o.display = "P3";
-  try {
-    preview_view(o);
-    ADD_FAILURE() << "no error";
-  } catch (const error& e) {
-    EXPECT_STREQ(e.what(), (config + ": --display: the config has no display 'P3'").c_str());
-  }
+  EXPECT_EQ(refusal(), config + ": --display: the config has no display 'P3' (its displays: 'sRGB')");
+  o.display = "sRGB";
+  o.view = "Standrd";
+  EXPECT_EQ(refusal(),
+            config +
+                ": --view: the display 'sRGB' has no view 'Standrd'; did you mean 'Standard'? (its "
+                "views: 'Standard', 'Raw')");
 }
 
 }  // namespace

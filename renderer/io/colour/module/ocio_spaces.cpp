@@ -5,10 +5,14 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <vector>
 
+#include "core/closest_name.h"
 #include "core/error.h"
 #include "core/message_text.h"
 #include "io/colour/module/ocio_inputs.h"
@@ -85,6 +89,20 @@ OCIO::ConstProcessorRcPtr from_rec709(const OCIO::ConstConfigRcPtr& cfg, const c
   return checked_processor(cfg, group, config);
 }
 
+// What to give instead of a name the config lacks: "; did you mean 'ACEScg'?" for a near miss, then
+// the config's names of that kind, at most 16 (the ACES configs have dozens of colour spaces).
+std::string other_names(const std::string& given, const std::vector<std::string>& names,
+                        const std::string& kind) {
+  std::string hint;
+  if (const std::optional<std::string> near = closest_name(given, names))
+    hint += "; did you mean " + kiln::quoted(*near) + "?";
+  const size_t shown = std::min<size_t>(names.size(), 16);
+  hint += " (its " + kind + ":";
+  for (size_t i = 0; i < shown; ++i) hint += (i ? ", " : " ") + kiln::quoted(names[i]);
+  if (names.size() > shown) hint += " and " + std::to_string(names.size() - shown) + " more";
+  return hint + (names.empty() ? " none)" : ")");
+}
+
 std::array<double, 3> apply(const OCIO::ConstCPUProcessorRcPtr& cpu, std::array<double, 3> v) {
   float rgb[3] = {float(v[0]), float(v[1]), float(v[2])};
   cpu->applyRGB(rgb);
@@ -98,9 +116,15 @@ void check_config(const colour_config_source& config) { read_config(config); }
 working_space_info working_space(const colour_config_source& config, const std::string& space) {
   const OCIO::ConstConfigRcPtr cfg = read_config(config);
   const OCIO::ConstColorSpaceRcPtr target = cfg->getColorSpace(space.c_str());
-  if (!target)
+  if (!target) {
+    std::vector<std::string> spaces;  // those a render can work in: data spaces are refused below
+    for (int i = 0; i < cfg->getNumColorSpaces(); ++i)
+      if (const OCIO::ConstColorSpaceRcPtr cs = cfg->getColorSpace(cfg->getColorSpaceNameByIndex(i)))
+        if (!cs->isData()) spaces.push_back(cs->getName());
     throw input_error(config.path, "--working-space",
-                      "the config has no colour space " + kiln::quoted(space));
+                      "the config has no colour space " + kiln::quoted(space) +
+                          other_names(space, spaces, "colour spaces"));
+  }
   if (target->isData())
     throw input_error(config.path, "--working-space",
                       kiln::quoted(space) + " is a data space, not a colour space");
@@ -165,18 +189,19 @@ display_transform display_view(const colour_config_source& config, const std::st
         config.path, "--preview",
         "the config has no linear Rec.709 colour space to show the render from; give --working-space");
   const std::string chosen_display = display.empty() ? cfg->getDefaultDisplay() : display;
-  bool known = false;
-  for (int i = 0; i < cfg->getNumDisplays(); ++i) known = known || chosen_display == cfg->getDisplay(i);
-  if (!known)
-    throw input_error(config.path, "--display", "the config has no display " + kiln::quoted(chosen_display));
+  std::vector<std::string> displays, views;
+  for (int i = 0; i < cfg->getNumDisplays(); ++i) displays.push_back(cfg->getDisplay(i));
+  if (std::find(displays.begin(), displays.end(), chosen_display) == displays.end())
+    throw input_error(config.path, "--display",
+                      "the config has no display " + kiln::quoted(chosen_display) +
+                          other_names(chosen_display, displays, "displays"));
   const std::string chosen_view = view.empty() ? cfg->getDefaultView(chosen_display.c_str()) : view;
-  known = false;
   for (int i = 0; i < cfg->getNumViews(chosen_display.c_str()); ++i)
-    known = known || chosen_view == cfg->getView(chosen_display.c_str(), i);
-  if (!known)
-    throw input_error(
-        config.path, "--view",
-        "the display " + kiln::quoted(chosen_display) + " has no view " + kiln::quoted(chosen_view));
+    views.push_back(cfg->getView(chosen_display.c_str(), i));
+  if (std::find(views.begin(), views.end(), chosen_view) == views.end())
+    throw input_error(config.path, "--view",
+                      "the display " + kiln::quoted(chosen_display) + " has no view " +
+                          kiln::quoted(chosen_view) + other_names(chosen_view, views, "views"));
   try {
     auto to_view = OCIO::DisplayViewTransform::Create();
     to_view->setSrc(from.c_str());
