@@ -3,10 +3,13 @@
 
 Usage: exr_to_png.py IN.exr OUT.png [--exposure STOPS]
 
-The pixels are scaled by 2^STOPS, NaNs become black, negatives are clamped to 0, the linear
-values are encoded with the sRGB transfer function and quantised to 8 bits (values above 1
-clip to white). R,G,B are used when present; a single Y (or other lone) channel is shown as
-grey; otherwise the first three channels are taken. Alpha is dropped.
+The same picture as kiln's `--preview`, through the same transform: NaNs become black, the colour
+is scaled by 2^STOPS, clamped to [0, 1], encoded with the sRGB transfer function and quantised to
+8 bits. A PNG keeps alpha, with straight colour (the premultiplied colour divided by alpha where
+alpha > 0, as PNG defines it), so a viewer composites its edges over any background; a JPEG
+(OUT.jpg) has no alpha and holds the premultiplied colour, the image over black. R,G,B are used
+when present; a single Y (or other lone) channel is shown as grey; otherwise the first three
+channels are taken. A is used when present.
 
 Needs `oiiotool` (Debian package openimageio-tools), which does the actual work.
 """
@@ -42,22 +45,24 @@ def rgb_selection(names):
     return "R=%s,G=%s,B=%s" % ((names[0],) * 3)
 
 
-def build_command(oiiotool, src, dst, exposure, channels):
-    return [
-        oiiotool, src,
-        "--ch", channels,
-        "--fixnan", "black",
-        "--mulc", repr(2.0 ** exposure),
-        "--clamp:min=0",
-        "--colorconvert", "linear", "sRGB",
-        "-d", "uint8",
-        "-o", dst,
-    ]
+def build_command(oiiotool, src, dst, exposure, channels, alpha):
+    """The oiiotool command line; alpha: the file has an A channel and dst keeps it (a PNG)."""
+    scale = repr(2.0 ** exposure)
+    if not alpha:
+        return [oiiotool, src, "--ch", channels, "--fixnan", "black", "--mulc", scale,
+                "--clamp:min=0:max=1", "--colorconvert", "linear", "sRGB", "-d", "uint8", "-o", dst]
+    # Straight colour as kiln's preview writes it: divided by alpha before the curve, and the file
+    # marked as holding unassociated alpha so that the PNG writer does not divide it again.
+    return [oiiotool, src, "--ch", channels + ",A", "--fixnan", "black", "--unpremult",
+            "--mulc", ",".join([scale] * 3 + ["1"]), "--clamp:min=0:max=1",
+            "--colorconvert:unpremult=0", "linear", "sRGB",
+            "--attrib:type=int", "oiio:UnassociatedAlpha", "1", "-d", "uint8", "-o", dst]
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(
-        description="Convert a linear EXR to an 8-bit sRGB PNG preview (uses oiiotool).")
+        description="Convert a linear EXR to an 8-bit sRGB PNG preview, as kiln's --preview writes it "
+                    "(uses oiiotool).")
     parser.add_argument("input", metavar="IN.exr")
     parser.add_argument("output", metavar="OUT.png")
     parser.add_argument("--exposure", type=float, default=0.0, metavar="STOPS",
@@ -76,8 +81,9 @@ def main(argv=None):
 
     try:
         names = channel_names(oiiotool, args.input)
+        keeps_alpha = "A" in names and not args.output.lower().endswith((".jpg", ".jpeg"))
         cmd = build_command(oiiotool, args.input, args.output, args.exposure,
-                            rgb_selection(names))
+                            rgb_selection(names), keeps_alpha)
         if args.verbose:
             print(" ".join(cmd))
         subprocess.run(cmd, check=True, capture_output=not args.verbose, text=True)
