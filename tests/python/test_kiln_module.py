@@ -325,7 +325,8 @@ def test_view_without_a_preview_is_a_kiln_warning(tmp_path):
     assert result.warnings == ["--view does nothing without --preview"]
     assert [(w.category, str(w.message)) for w in caught] == [(kiln.KilnWarning, result.warnings[0])]
     preview = tmp_path / "p.png"
-    assert kiln.render(CORNELL, width=8, height=6, spp=1, view="Raw", preview=str(preview)).warnings == []
+    assert kiln.render(CORNELL, output=str(tmp_path / "p.exr"), width=8, height=6, spp=1, view="Raw",
+                       preview=str(preview)).warnings == []
     assert preview.exists()
 
 
