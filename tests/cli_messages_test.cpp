@@ -157,6 +157,19 @@ TEST(cli_messages, display_or_view_without_a_preview_warns_once_each_even_when_q
   EXPECT_TRUE(fs::exists(dir + "/a.png"));
 }
 
+TEST(cli_messages, texture_cache_mb_is_accepted_with_one_deprecation_warning_and_not_offered) {
+  const std::string dir = scratch_folder("texture_cache_mb");
+  const auto result = run_kiln({"render", demo_scene, "-o", dir + "/a.exr", "--width", "8", "--height", "6",
+                                "--texture-cache-mb", "64", "-q"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(
+      result.stderr_text,
+      "kiln: warning: --texture-cache-mb does nothing (kiln keeps every texture's mip pyramid in memory) "
+      "and will be removed; drop it\n");
+  EXPECT_TRUE(fs::exists(dir + "/a.exr"));
+  EXPECT_EQ(kiln_stdout("render --help").find("texture-cache"), std::string::npos);
+}
+
 TEST(cli_messages, multipart_help_lists_every_part_the_writer_makes) {
   const std::string help = kiln_stdout("render --help");
   const size_t at = help.find("\n  --multipart");  // its own entry, not a mention in another

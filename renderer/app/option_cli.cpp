@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 
 #include "core/error.h"
+#include "job/retired_options.h"
 
 namespace kiln {
 
@@ -73,11 +75,32 @@ void add_entry(CLI::App& app, const option_spec& spec, render_options& options) 
   }
 }
 
+// Options that were view options once: accepted with any value and never offered. The warning is
+// given once a process (a batch parses each manifest job's options).
+void add_retired_options(CLI::App& app, std::initializer_list<option_scope> scopes) {
+  if (std::find(scopes.begin(), scopes.end(), option_scope::view) == scopes.end()) return;
+  static std::set<std::string> warned;
+  for (const retired_option& retired : retired_options()) {
+    const std::string name = "--" + retired.name;
+    app.add_option(
+           name,
+           [&retired, name](const CLI::results_t&) {
+             if (warned.insert(name).second)
+               std::cerr << "kiln: " << retired_option_warning(retired, name) << '\n';
+             return true;
+           },
+           "")
+        ->expected(1)
+        ->group("");
+  }
+}
+
 }  // namespace
 
 void add_table_options(CLI::App& app, render_options& options, std::initializer_list<option_scope> scopes) {
   for (const option_spec& spec : render_option_table())
     if (std::find(scopes.begin(), scopes.end(), spec.scope) != scopes.end()) add_entry(app, spec, options);
+  add_retired_options(app, scopes);
 }
 
 }  // namespace kiln

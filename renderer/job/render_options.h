@@ -108,7 +108,6 @@ struct render_options {
   int max_depth = 8;
   float min_throughput = 1e-3f;
   uint64_t max_rays_per_sample = shading_options{}.max_rays_per_sample;  // --max-rays-per-sample
-  float texture_cache_mb = 256.0f;  // no effect: accepted so existing command lines keep working
   bool allow_outside_files = false;
   gltf_limits limits;                   // --max-json-bytes, --max-json-depth, --max-nodes, ...
   size_t max_pixels = size_t(1) << 28;  // width × height; the film alone takes 32 bytes a pixel

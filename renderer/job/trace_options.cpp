@@ -106,11 +106,6 @@ void add_trace_options(std::vector<option_spec>& t) {
       "64",
       "Reflected, refracted and continued rays one camera sample may spawn; past it the sample "
       "keeps the light gathered so far"));
-  add(number_option<float>(
-          "texture-cache-mb", [](render_options & o) -> auto& { return o.texture_cache_mb; }, 1.0, 1e6, "64",
-          "No effect (texture pyramids are kept in memory); accepted so existing command lines "
-          "keep working"))
-      .effect = option_effect::none;
   add(flag_option(
       "allow-outside-files", [](render_options & o) -> auto& { return o.allow_outside_files; },
       "Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that "

@@ -38,6 +38,7 @@
 #include "job/option_table.h"
 #include "job/render_job.h"
 #include "job/render_sequence.h"
+#include "job/retired_options.h"
 
 namespace py = pybind11;
 
@@ -129,6 +130,10 @@ void apply_option(render_options& options, const std::string& keyword, const py:
   for (char& c : name)
     if (c == '_') c = '-';
   const option_spec* spec = find_render_option(name);
+  if (const retired_option* retired = spec ? nullptr : find_retired_option(name)) {
+    if (!value.is_none()) warnings.add(retired_option_warning(*retired, keyword + "="));
+    return;
+  }
   if (!spec) unknown_keyword(function, keyword);
   if (value.is_none()) return;
   if (name == spec->alias)

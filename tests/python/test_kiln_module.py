@@ -318,6 +318,16 @@ def test_warnings_are_kiln_warnings_and_result_warnings_as_the_cli_prints_them(t
     assert caught == []
 
 
+def test_texture_cache_mb_is_accepted_with_a_deprecation_warning():
+    assert "texture_cache_mb" not in [option["name"] for option in kiln.options()]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = kiln.render(CORNELL, width=8, height=6, spp=1, texture_cache_mb=64)
+    assert result.warnings == ["texture_cache_mb= does nothing (kiln keeps every texture's mip pyramid in memory) "
+                               "and will be removed; drop it"]
+    assert [w.category for w in caught] == [kiln.KilnWarning]
+
+
 def test_view_without_a_preview_is_a_kiln_warning(tmp_path):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

@@ -120,8 +120,6 @@ class RenderOptions(TypedDict, total=False):
     """--min-throughput: Reflections weighted below this are not traced (default 0.00100000005)"""
     max_rays_per_sample: Optional[int]
     """--max-rays-per-sample: Reflected, refracted and continued rays one camera sample may spawn; past it the sample keeps the light gathered so far (default 4096)"""
-    texture_cache_mb: Optional[float]
-    """--texture-cache-mb: No effect (texture pyramids are kept in memory); accepted so existing command lines keep working (default 256)"""
     allow_outside_files: Optional[bool]
     """--allow-outside-files: Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that lead out); absolute paths and URLs stay refused (default false)"""
     max_json_bytes: Optional[int]
