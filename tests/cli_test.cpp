@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 
 #include "support/run_kiln.h"
 
@@ -18,15 +19,19 @@ using testing::scratch_folder;
 
 const std::string demo_scene = std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf";
 
+// `kiln render --help`: CLI11 prints help on stdout, captured through the shell.
+std::string render_help() {
+  std::string help_file = scratch_folder("help") + "/help.txt";
+  std::string command = std::string("'") + KILN_BINARY + "' render --help > '" + help_file + "'";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(help_file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 TEST(cli, help_documents_every_render_option) {
   auto result = run_kiln({"render", "--help"});
   EXPECT_EQ(result.exit_code, 0);
-  // CLI11 prints help on stdout; rerun capturing it through the shell.
-  std::string help_file = scratch_folder("help") + "/help.txt";
-  std::string command = std::string("'") + KILN_BINARY + "' render --help > '" + help_file + "'";
-  ASSERT_EQ(std::system(command.c_str()), 0);
-  std::ifstream in(help_file);
-  std::string help((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string help = render_help();
   for (const char* option : {"--output",
                              "--width",
                              "--height",
@@ -50,6 +55,40 @@ TEST(cli, help_documents_every_render_option) {
                              "--aovs",
                              "--crop"})
     EXPECT_NE(help.find(option), std::string::npos) << option;
+}
+
+TEST(cli, help_groups_the_options_by_task_output_first_limits_last) {
+  std::vector<std::string> headings;
+  std::map<std::string, std::string> group_of;  // option -> its heading
+  std::vector<std::string> output_group;
+  for (const std::string& line : lines(render_help())) {
+    if (!line.empty() && line[0] != ' ' && line.back() == ':')
+      headings.push_back(line.substr(0, line.size() - 1));
+    if (line.rfind("  -", 0) != 0 || headings.empty()) continue;
+    const std::string names = line.substr(2, line.find(' ', 2) - 2);
+    group_of[names] = headings.back();
+    if (headings.back() == "Output") output_group.push_back(names);
+  }
+  EXPECT_EQ(headings, (std::vector<std::string>{"Positionals", "Options", "Output", "Camera and scene",
+                                                "Sampling", "Lighting", "AOVs", "Animation", "Render layers",
+                                                "Colour", "Performance", "Progress", "Limits"}));
+  ASSERT_FALSE(output_group.empty());
+  EXPECT_EQ(output_group.front(), "-o,--output");
+  EXPECT_EQ(group_of["-h,--help"], "Options");  // alone in CLI11's own group
+  EXPECT_EQ(group_of["--spp"], "Sampling");
+  EXPECT_EQ(group_of["--look-at"], "Camera and scene");
+  EXPECT_EQ(group_of["--frames"], "Animation");
+  EXPECT_EQ(group_of["--aovs"], "AOVs");
+  EXPECT_EQ(group_of["--max-json-bytes"], "Limits");
+  EXPECT_EQ(group_of["--time-limit"], "Limits");
+  EXPECT_EQ(group_of["-q,--quiet"], "Progress");
+  EXPECT_EQ(group_of.count("--batch-command-line"), 0u);  // internal, hidden
+  // A typo as near --up (Camera, shown first) as --spp still gets the table's earlier --spp, as
+  // in the Python module.
+  const auto typo = run_kiln({"render", demo_scene, "-o", scratch_folder("help") + "/x.exr", "--sp", "1"});
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.stderr_text.find("unknown option --sp; did you mean --spp?"), std::string::npos)
+      << typo.stderr_text;
 }
 
 TEST(cli, usage_errors_exit_2_with_one_line) {

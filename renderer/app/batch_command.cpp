@@ -18,6 +18,7 @@
 #include "app/cli_suggest.h"
 #include "app/exit_status.h"
 #include "app/interrupt.h"
+#include "app/option_cli.h"
 #include "app/output_lock.h"
 #include "app/text_output.h"
 #include "core/error.h"
@@ -192,9 +193,7 @@ void add_batch_options(CLI::App& app, batch_options& o) {
   app.add_option(
       "assets", o.assets,
       "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
-  add_view_settings(app, o.defaults);
-  add_image_options(app, o.defaults);
-  add_progress_interval_option(app, o.defaults);
+  add_table_options(app, o.defaults, {option_scope::view, option_scope::image, option_scope::progress});
   app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();

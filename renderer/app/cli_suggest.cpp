@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 
+#include "job/option_table.h"
+
 namespace kiln {
 
 std::optional<std::string> unknown_command_message(const CLI::App& app,
@@ -26,6 +28,15 @@ std::optional<std::string> unknown_option_message(const CLI::App& command,
   std::vector<std::string> known;
   for (const CLI::Option* option : command.get_options())
     for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+  // Ties go to the earlier option of the table, as the Python module's suggestions do, whatever
+  // order --help's groups show them in; the command's own options come after.
+  const std::vector<option_spec>& table = render_option_table();
+  auto rank = [&table](const std::string& name) {
+    const option_spec* spec = find_render_option(name);
+    return spec ? size_t(spec - table.data()) : table.size();
+  };
+  std::stable_sort(known.begin(), known.end(),
+                   [&rank](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
   for (const std::string& argument : arguments) {
     if (argument == "--") break;  // the rest are positionals
     if (argument.rfind("--", 0) != 0 || argument.size() < 3) continue;

@@ -64,7 +64,8 @@ void add_entry(CLI::App& app, const option_spec& spec, render_options& options) 
     CLI::Option* option = app.add_option(deprecated ? "--" + spec.alias : names,
                                          apply(spec, options, deprecated), deprecated ? "" : spec.help);
     option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    if (deprecated) option->group("");  // accepted, not offered
+    // Under its group's heading; a deprecated name is accepted, not offered.
+    option->group(deprecated ? "" : option_group_title(spec.group));
     if (spec.type == option_type::flag) {
       option->expected(0, 1)->expected(0);  // a flag: --name, or --name=false in a manifest
       continue;
@@ -98,8 +99,11 @@ void add_retired_options(CLI::App& app, std::initializer_list<option_scope> scop
 }  // namespace
 
 void add_table_options(CLI::App& app, render_options& options, std::initializer_list<option_scope> scopes) {
-  for (const option_spec& spec : render_option_table())
-    if (std::find(scopes.begin(), scopes.end(), spec.scope) != scopes.end()) add_entry(app, spec, options);
+  // CLI11 shows groups in the order their first option was added: group by group, in table order inside.
+  for (option_group group : option_groups())
+    for (const option_spec& spec : render_option_table())
+      if (spec.group == group && std::find(scopes.begin(), scopes.end(), spec.scope) != scopes.end())
+        add_entry(app, spec, options);
   add_retired_options(app, scopes);
 }
 

@@ -14,7 +14,8 @@ class App;
 namespace kiln {
 
 // Declares every table option of scopes on app, writing into options (which must outlive the
-// parse). Help shows each option's current value in options as its default.
+// parse), group by group under the groups' headings. Help shows each option's current value in
+// options as its default. A command adding its own options to a group does so before this.
 void add_table_options(CLI::App& app, render_options& options, std::initializer_list<option_scope> scopes);
 
 }  // namespace kiln

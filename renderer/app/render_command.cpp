@@ -39,10 +39,14 @@ void print_summary(const render_job_result& result, const render_options& option
                options.output.c_str());
 }
 
+void add_asset_argument(CLI::App& app, render_options& o) {
+  app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
+}
+
 }  // namespace
 
 void add_view_options(CLI::App& app, render_options& o) {
-  app.add_option("asset", o.input, "glTF 2.0 asset to render (.gltf or .glb)")->required();
+  add_asset_argument(app, o);
   add_view_settings(app, o);
 }
 
@@ -50,15 +54,12 @@ void add_view_settings(CLI::App& app, render_options& o) { add_table_options(app
 
 void add_image_options(CLI::App& app, render_options& o) { add_table_options(app, o, {option_scope::image}); }
 
-void add_progress_interval_option(CLI::App& app, render_options& o) {
-  add_table_options(app, o, {option_scope::progress});
-}
-
 void add_render_options(CLI::App& app, render_options& o) {
-  add_view_options(app, o);
-  app.add_option("-o,--output", o.output, "Output OpenEXR file")->required();
-  add_image_options(app, o);
-  add_progress_interval_option(app, o);
+  add_asset_argument(app, o);
+  app.add_option("-o,--output", o.output, "Output OpenEXR file")
+      ->required()
+      ->group(option_group_title(option_group::output));  // first in its group, the group first
+  add_table_options(app, o, {option_scope::view, option_scope::image, option_scope::progress});
   // Internal: kiln batch runs each job as `kiln render ... --batch-command-line LINE` in a child
   // process; LINE is the job's own command line for the EXR header. Hidden from --help.
   app.add_option_function<std::string>(

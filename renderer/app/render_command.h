@@ -21,9 +21,6 @@ void add_view_settings(CLI::App& app, render_options& options);
 // What render adds to the view options besides -o: the EXR's layers and storage, --crop, --band.
 void add_image_options(CLI::App& app, render_options& options);
 
-// --progress-interval (render and batch).
-void add_progress_interval_option(CLI::App& app, render_options& options);
-
 // Declares the render subcommand's options on app: the view options plus output and backend.
 void add_render_options(CLI::App& app, render_options& options);
 

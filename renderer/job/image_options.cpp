@@ -13,7 +13,8 @@
 namespace kiln::option_entries {
 
 void add_image_options(std::vector<option_spec>& t) {
-  const scoped_adder add{t, option_scope::image};
+  scoped_adder add{t, option_scope::image};
+  add.group = option_group::output;
   add(flag_option(
       "float", [](render_options & o) -> auto& { return o.full_float; },
       "Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the "
@@ -67,6 +68,7 @@ void add_image_options(std::vector<option_spec>& t) {
       "multipart", [](render_options & o) -> auto& { return o.exr.multipart; },
       "One EXR part per layer (" + exr_part_list() + "), each with the full header"));
   // A sequence is many renders; each frame's own --frame reaches its settings hash.
+  add.group = option_group::animation;
   add(custom_option(
           "frames",
           [](render_options& o, const std::string& text) {
@@ -132,6 +134,7 @@ void add_image_options(std::vector<option_spec>& t) {
           "(the pose at --time, default 0, while the camera turns)"))
       .recorded_as = "kiln/turntable_animation";
   t.back().choices = {"play", "hold"};
+  add.group = option_group::output;
   option_spec& preview = add(custom_option(
       "preview",
       [](render_options& o, const std::string& text) {
@@ -145,6 +148,7 @@ void add_image_options(std::vector<option_spec>& t) {
       },
       "x.png", "Also write an 8-bit sRGB preview FILE.png (with alpha) or FILE.jpg of the beauty"));
   preview.effect = option_effect::none;  // an output, not a setting of the EXR's pixels
+  preview.names_file = true;
   // Colour management: the working space changes pixels (and so the settings hash); the config
   // is hashed by its path, as --environment is. The display and view change only the preview.
   auto text_option = [](const std::string& name, std::string render_options::*at, const std::string& example,
@@ -160,6 +164,7 @@ void add_image_options(std::vector<option_spec>& t) {
         },
         example, help);
   };
+  add.group = option_group::colour;
   add(file_option("ocio-config", &render_options::ocio_config,
                   "OpenColorIO config for --working-space and the preview (default: $OCIO, else kiln's "
                   "share/ocio/kiln.ocio)"))
@@ -180,6 +185,7 @@ void add_image_options(std::vector<option_spec>& t) {
           "1", "Preview: scale linear colour by 2^EV"))
       .effect = option_effect::none;
   // Hashed like a pixel setting: a stored EXR rendered without it has no deep file beside it.
+  add.group = option_group::output;
   add(flag_option(
           "deep", [](render_options & o) -> auto& { return o.deep; },
           "Also write a deep EXR beside -o (NAME.deep.exr for NAME.exr): per pixel its camera paths' "
@@ -187,6 +193,7 @@ void add_image_options(std::vector<option_spec>& t) {
           "front to back, premultiplied R G B A, Z, ZBack and the ids; whole frame, stratified samples and a "
           "filter inside the pixel only"))
       .recorded_as = "kiln/deep";
+  add.group = option_group::aovs;
   add(custom_option(
           "aovs", parse_aovs,
           [](const render_options& o) -> std::optional<std::string> { return aov_list_name(o.aovs); },
@@ -208,6 +215,7 @@ void add_image_options(std::vector<option_spec>& t) {
       "planar",
       "What Z holds: distance (along the ray from the camera, the default) or planar (along the view axis)"));
   t.back().choices = {"distance", "planar"};
+  add.group = option_group::output;
   add(custom_option(
           "crop", [](render_options& o, const std::string& text) { o.crop = parse_crop(text); },
           [](const render_options& o) -> std::optional<std::string> {
@@ -232,6 +240,7 @@ void add_image_options(std::vector<option_spec>& t) {
   band.effect = option_effect::region;
   band.alias = "tile";  // the name before render tiles, EXR tiles and farm bands were told apart
   // compare and bench name their backends with their own --accel.
+  add.group = option_group::performance;
   add(choice_option(
           "accel", [](render_options & o) -> auto& { return o.accel; }, {"embree", "grid", "adaptive-grid"},
           "grid", "Traversal backend"))
@@ -243,6 +252,7 @@ void add_progress_options(std::vector<option_spec>& t) {
       "progress-interval", [](render_options & o) -> auto& { return o.progress_interval; }, 0.01, 86400.0,
       "1", "Seconds between progress lines when stderr is not a terminal (a log or a pipe)");
   s.scope = option_scope::progress;
+  s.group = option_group::progress;
   s.effect = option_effect::none;
   t.push_back(std::move(s));
 }

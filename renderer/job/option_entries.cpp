@@ -66,7 +66,7 @@ option_spec custom_option(const std::string& name,
 }
 
 option_spec file_option(const std::string& name, std::string render_options::*at, const std::string& help) {
-  return custom_option(
+  option_spec s = custom_option(
       name,
       [name, at](render_options& o, const std::string& text) {
         check_existing_file(text, dashed(name));
@@ -77,6 +77,8 @@ option_spec file_option(const std::string& name, std::string render_options::*at
         return fs::absolute(o.*at).lexically_normal().string();
       },
       "", help);
+  s.names_file = true;
+  return s;
 }
 
 option_spec optional_side(const std::string& name, field<std::optional<int>> at, const std::string& example,

@@ -101,12 +101,15 @@ void parse_band(render_options& o, const std::string& text);
 void parse_aovs(render_options& o, const std::string& text);
 std::vector<std::string> quality_names();
 
-// Appends the entries of one scope to the table; gives back the entry added, for the fields set after it.
+// Appends the entries of one scope to the table, each in the group last set; gives back the entry
+// added, for the fields set after it.
 struct scoped_adder {
   std::vector<option_spec>& table;
   option_scope scope;
+  option_group group = option_group::unassigned;
   option_spec& operator()(option_spec s) const {
     s.scope = scope;
+    s.group = group;
     table.push_back(std::move(s));
     return table.back();
   }

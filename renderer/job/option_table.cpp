@@ -54,7 +54,42 @@ exr_value recorded_value(const option_spec& spec, const std::string& text) {
   return text;
 }
 
+struct group_heading {
+  option_group group;
+  const char* title;
+};
+
+// The groups in order, with their headings.
+constexpr group_heading group_headings[] = {
+    {option_group::output, "Output"},
+    {option_group::camera, "Camera and scene"},
+    {option_group::sampling, "Sampling"},
+    {option_group::lighting, "Lighting"},
+    {option_group::aovs, "AOVs"},
+    {option_group::animation, "Animation"},
+    {option_group::layers, "Render layers"},
+    {option_group::colour, "Colour"},
+    {option_group::performance, "Performance"},
+    {option_group::progress, "Progress"},
+    {option_group::limits, "Limits"},
+};
+
 }  // namespace
+
+const std::vector<option_group>& option_groups() {
+  static const std::vector<option_group> groups = [] {
+    std::vector<option_group> in_order;
+    for (const group_heading& heading : group_headings) in_order.push_back(heading.group);
+    return in_order;
+  }();
+  return groups;
+}
+
+const char* option_group_title(option_group group) {
+  for (const group_heading& heading : group_headings)
+    if (heading.group == group) return heading.title;
+  return "Unassigned";
+}
 
 const std::vector<option_spec>& render_option_table() {
   static const std::vector<option_spec> table = make_table();

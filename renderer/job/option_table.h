@@ -1,8 +1,9 @@
 // The render option table: the one place an option of `kiln render` is declared. Each entry
 // names the option, parses and checks its text into render_options, and gives back its value; the
 // command-line parser (app/option_cli.h), batch manifests, the Python module, the canonical
-// arguments behind the settings hash, the EXR metadata and the README's option list all come
-// from it. Adding an option is one entry here (and a README row, which a test checks).
+// arguments behind the settings hash, the EXR metadata, the man page, the shell completions and
+// the README's option list all come from it. Adding an option is one entry here, in a group (and a
+// README row, which a test checks).
 #pragma once
 
 #include <functional>
@@ -28,6 +29,30 @@ enum class option_scope {
 // or crop of one frame shares.
 enum class option_effect { pixels, region, none };
 
+// The task an option serves: --help, the man page and the docs list the options group by group, in
+// this order (what to write first, the loader's limits last). unassigned is no group: the table's
+// tests refuse an entry left in it.
+enum class option_group {
+  unassigned,
+  output,
+  camera,
+  sampling,
+  lighting,
+  aovs,
+  animation,
+  layers,
+  colour,
+  performance,
+  progress,
+  limits,
+};
+
+// Every group but unassigned, in order.
+const std::vector<option_group>& option_groups();
+
+// A group's heading: "Output", "Camera and scene", ...
+const char* option_group_title(option_group group);
+
 // The kind of value, for help texts (INT, UINT, FLOAT, TEXT) and the Python module's conversion.
 enum class option_type { integer, unsigned_integer, number, text, flag };
 
@@ -43,8 +68,10 @@ struct option_spec {
   option_type type = option_type::text;
   option_scope scope = option_scope::view;
   option_effect effect = option_effect::pixels;
+  option_group group = option_group::unassigned;
   std::string help;
   std::vector<std::string> choices;  // the values a choice takes; empty: any text of the type
+  bool names_file = false;           // the value is a file's path (shell completion offers files)
   // Parses text (a flag's: "true" or "false") into options; throws kiln::error (input) whose
   // location is "--NAME" and whose reason says what is expected.
   std::function<void(render_options&, const std::string&)> set;
@@ -56,7 +83,8 @@ struct option_spec {
   std::string example;  // a valid value other than the default, for the table's own tests
 };
 
-// Every render option, in the order of --help and of the canonical arguments.
+// Every render option, in the order of the canonical arguments (--help shows them group by group,
+// in this order inside a group).
 const std::vector<option_spec>& render_option_table();
 
 // The entry named name (with or without the leading dashes, or its alias); nullptr if none.

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -42,6 +43,27 @@ TEST(option_table, names_are_unique_and_every_entry_is_complete) {
     EXPECT_FALSE(example_of(spec).empty()) << spec.name << " has no example value";
   }
   EXPECT_GE(names.size(), 55u);
+}
+
+TEST(option_table, every_option_is_in_a_group_and_every_group_has_options) {
+  std::map<option_group, int> count;
+  for (const option_spec& spec : render_option_table()) {
+    EXPECT_NE(spec.group, option_group::unassigned) << spec.name << " has no group";
+    ++count[spec.group];
+  }
+  std::set<std::string> titles;
+  for (option_group group : option_groups()) {
+    EXPECT_GT(count[group], 0) << option_group_title(group) << " holds no option";
+    EXPECT_TRUE(titles.insert(option_group_title(group)).second) << option_group_title(group);
+  }
+  EXPECT_EQ(option_groups().front(), option_group::output);
+  EXPECT_EQ(option_groups().back(), option_group::limits);
+  EXPECT_EQ(find_render_option("spp")->group, option_group::sampling);
+  EXPECT_EQ(find_render_option("max-nodes")->group, option_group::limits);
+  // The paths a shell completes as files.
+  EXPECT_TRUE(find_render_option("environment")->names_file);
+  EXPECT_TRUE(find_render_option("preview")->names_file);
+  EXPECT_FALSE(find_render_option("camera")->names_file);
 }
 
 TEST(option_table, every_option_that_changes_pixels_reaches_the_settings_hash) {

@@ -11,7 +11,8 @@ namespace kiln::option_entries {
 
 void add_trace_options(std::vector<option_spec>& t) {
   // Settings of one view like the first part's (a batch job may override them per view).
-  const scoped_adder add{t, option_scope::view};
+  scoped_adder add{t, option_scope::view};
+  add.group = option_group::lighting;
   add(file_option(
           "environment", &render_options::environment,
           "Equirectangular environment map (EXR, HDR, ...; linear radiance): lights every surface and "
@@ -64,6 +65,7 @@ void add_trace_options(std::vector<option_spec>& t) {
         },
         "wheel_*,body", help);
   };
+  add.group = option_group::layers;
   add(node_patterns(
           "holdout", &render_options::holdout,
           "Render these nodes and their subtrees (names, /paths or globs, comma-separated) as holdout "
@@ -94,6 +96,7 @@ void add_trace_options(std::vector<option_spec>& t) {
     return std::string(o.deep && !o.holdout_invisible ? "invisible" : "matte");
   };
   add(std::move(others)).recorded_as = "kiln/others";
+  add.group = option_group::sampling;
   add(integer_option<int>(
           "max-depth", [](render_options & o) -> auto& { return o.max_depth; }, 0, 64, "2",
           "Maximum reflection depth"))
@@ -106,6 +109,7 @@ void add_trace_options(std::vector<option_spec>& t) {
       "64",
       "Reflected, refracted and continued rays one camera sample may spawn; past it the sample "
       "keeps the light gathered so far"));
+  add.group = option_group::limits;
   add(flag_option(
       "allow-outside-files", [](render_options & o) -> auto& { return o.allow_outside_files; },
       "Let buffer and image URIs name files outside the asset's folder ('..' escapes, symlinks that "
@@ -143,6 +147,7 @@ void add_trace_options(std::vector<option_spec>& t) {
           "Memory budget of a job, in bytes or with K, M, G, T (binary): a file whose estimated "
           "memory exceeds it is refused (default: 90% of the machine's or the cgroup's memory)"))
       .effect = option_effect::none;
+  add.group = option_group::performance;
   add(number_option<double>(
       "grid-density", [](render_options & o) -> auto& { return o.grid.density; }, 1e-3, 1e3, "4",
       "Grid backends: aim for density x N cells for N items (the resolution heuristic; "
@@ -199,11 +204,13 @@ void add_trace_options(std::vector<option_spec>& t) {
           "together, grouped by material, then shaded) or reference (each sample from its camera ray to "
           "its last bounce, one at a time: the scalar path the wave is held to)"))
       .recorded_as = "kiln/shading";
+  add.group = option_group::limits;
   add(number_option<double>(
           "time-limit", [](render_options & o) -> auto& { return o.time_limit_seconds; }, 0.0, 1e9, "60",
           "Stop a job still loading or rendering after this many seconds: nothing is written, "
           "exit 124 (0 = no limit)"))
       .effect = option_effect::none;
+  add.group = option_group::progress;
   option_spec& quiet = add(flag_option(
       "quiet", [](render_options & o) -> auto& { return o.quiet; }, "No progress line or summary"));
   quiet.short_name = "q";

@@ -10,13 +10,15 @@
 namespace kiln::option_entries {
 
 void add_view_options(std::vector<option_spec>& t) {
-  const scoped_adder add{t, option_scope::view};
+  scoped_adder add{t, option_scope::view};
+  add.group = option_group::output;
   add(optional_side(
       "width", [](render_options & o) -> auto& { return o.width; }, "64",
       "Image width in pixels (default 640, or from --height and the camera's aspect)"));
   add(optional_side(
       "height", [](render_options & o) -> auto& { return o.height; }, "48",
       "Image height in pixels (default 480, or from the camera's aspect ratio)"));
+  add.group = option_group::sampling;
   add(custom_option(
           "spp",
           [](render_options& o, const std::string& text) {
@@ -57,6 +59,7 @@ void add_view_options(std::vector<option_spec>& t) {
   add(integer_option<int>(
       "adaptive-depth", [](render_options & o) -> auto& { return o.adaptive_depth; }, 0, max_adaptive_depth,
       "2", "Adaptive supersampling: most splits per pixel"));
+  add.group = option_group::performance;
   add(integer_option<int>(
           "threads", [](render_options & o) -> auto& { return o.threads; }, 0, 4096, "3",
           "Render threads (0 = all cores)"))
@@ -64,6 +67,7 @@ void add_view_options(std::vector<option_spec>& t) {
   add(integer_option<int>(
       "tile-size", [](render_options & o) -> auto& { return o.tile_size; }, 1, 4096, "16",
       "Tile side in pixels"));
+  add.group = option_group::camera;
   add(custom_option(
       "camera", [](render_options& o, const std::string& text) { o.camera = text; },
       [](const render_options& o) -> std::optional<std::string> {
@@ -109,6 +113,7 @@ void add_view_options(std::vector<option_spec>& t) {
   scene.type = option_type::unsigned_integer;
   // The pose: which animations play and at what time. All optional, so a still's arguments (and
   // its settings hash) stay what they were; job/render_job.h's scene_time resolves them.
+  add.group = option_group::animation;
   add(custom_option(
           "time",
           [](render_options& o, const std::string& text) {
@@ -160,11 +165,13 @@ void add_view_options(std::vector<option_spec>& t) {
           [](const render_options& o) -> std::optional<std::string> { return o.animation; }, "1",
           "glTF animations to play: all, or one by name or index (default all)"))
       .recorded_as = "kiln/animation";
+  add.group = option_group::camera;
   add(custom_option(
           "variant", [](render_options& o, const std::string& text) { o.variant = text; },
           [](const render_options& o) -> std::optional<std::string> { return o.variant; }, "beach",
           "KHR_materials_variants: render the variant NAME (or its index) of a file with material variants"))
       .recorded_as = "kiln/variant";
+  add.group = option_group::animation;
   add(custom_option(
           "shutter", [](render_options& o, const std::string& text) { o.shutter = parse_shutter(text); },
           [](const render_options& o) -> std::optional<std::string> {
@@ -187,6 +194,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "5", "Time steps of --shutter's motion blur (default: as many as the motion needs, up to 33)"))
       .recorded_as = "kiln/motion_steps";
   t.back().type = option_type::integer;
+  add.group = option_group::lighting;
   add(custom_option(
           "background",
           [](render_options& o, const std::string& text) {
