@@ -23,6 +23,7 @@
 #include "app/cli_suggest.h"
 #include "app/compare_command.h"
 #include "app/exit_status.h"
+#include "app/help_command.h"
 #include "app/info_command.h"
 #include "app/interrupt.h"
 #include "app/render_command.h"
@@ -96,6 +97,12 @@ int main(int argc, char** argv) {
       "List an asset's cameras, animations, variants, lights, nodes and extensions, and estimate its render");
   kiln::add_info_options(*info_command, info);
 
+  // Hidden: `kiln help --man` and the completion scripts, which the build writes from it.
+  kiln::help_format help = kiln::help_format::usage;
+  CLI::App* help_command = app.add_subcommand("help", "Print this help, the man page or a completion script");
+  help_command->group("");
+  kiln::add_help_options(*help_command, help);
+
   kiln::require_integer_text(app);
   try {
     app.parse(argc, argv);
@@ -124,6 +131,7 @@ int main(int argc, char** argv) {
     if (bench_command->parsed()) kiln::run_bench_command(bench);
     if (stitch_command->parsed()) kiln::run_stitch(stitch);
     if (info_command->parsed()) kiln::run_info(info);
+    if (help_command->parsed()) kiln::run_help(app, help);
     if (batch_command->parsed()) return kiln::run_batch(batch);  // 0, 1 when a job failed, 128 + signal
     return exit_success;
   } catch (const std::exception& e) {

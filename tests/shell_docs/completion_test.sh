@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The bash completion, sourced, completes kiln's subcommands, every render option, a choice
+# option's values and files for -o; the zsh function lists every render option (and, where zsh
+# is installed, parses).
+# usage: completion_test.sh KILN BASH_COMPLETION ZSH_COMPLETION
+set -euo pipefail
+kiln=$1 bash_script=$2 zsh_script=$3
+source "$(dirname "$0")/render_options.sh"
+fail() { echo "completion: $*" >&2; exit 1; }
+source "$bash_script"
+
+# complete WORD...: COMPREPLY for the command line WORD..., the last word the one being completed.
+complete_line() {
+  COMP_WORDS=("$@")
+  COMP_CWORD=$((${#COMP_WORDS[@]} - 1))
+  COMPREPLY=()
+  _kiln
+  echo "${COMPREPLY[*]}"
+}
+
+[ "$(complete_line kiln render --acc)" = "--accel" ] || fail "kiln render --acc: '$(complete_line kiln render --acc)'"
+# --accel's values as --help shows them (--accel embree|grid|adaptive-grid=embree).
+accels=$("$kiln" render --help | sed -nE 's/^  --accel ([^= ]+).*/\1/p' | tr '|' ' ')
+[ -n "$accels" ] || fail "no --accel values in kiln render --help"
+[ "$(complete_line kiln render --accel '')" = "$accels" ] || fail "kiln render --accel: '$(complete_line kiln render --accel '')', not '$accels'"
+[ "$(complete_line kiln render --accel g)" = "grid" ] || fail "kiln render --accel g"
+[ "$(complete_line kiln b)" = "bench batch" ] || fail "kiln b: '$(complete_line kiln b)'"
+[ -z "$(complete_line kiln render --spp '')" ] || fail "a number is offered files or options"
+
+folder=$(mktemp -d)
+trap 'rm -rf "$folder"' EXIT
+touch "$folder/frame.exr" "$folder/scene.gltf"
+[ "$(complete_line kiln render -o "$folder/fr")" = "$folder/frame.exr" ] || fail "-o does not complete files"
+[ "$(complete_line kiln render "$folder/sc")" = "$folder/scene.gltf" ] || fail "the asset does not complete"
+
+count=0
+while read -r option; do
+  [[ " $(complete_line kiln render "$option") " == *" $option "* ]] || fail "bash: $option is not offered"
+  grep -qE -- "(^ +|[{,'(])$option([]['}, ])" "$zsh_script" || fail "zsh: $option is missing"
+  count=$((count + 1))
+done < <(render_options "$kiln")
+[ "$count" -ge 80 ] || fail "only $count options in kiln render --help"
+grep -qF -- "--accel'[Traversal backend]:value:($accels)'" "$zsh_script" || fail "zsh: --accel's values"
+if command -v zsh >/dev/null; then
+  zsh -n "$zsh_script" || fail "zsh cannot parse $zsh_script"
+fi
+echo "completion: $count render options in bash and zsh"
