@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The bash completion, sourced, completes kiln's subcommands, every render option, a choice
 # option's values and files for -o; the zsh function lists every render option (and, where zsh
-# is installed, parses).
+# is installed, parses and completes an option and its values in a real shell).
 # usage: completion_test.sh KILN BASH_COMPLETION ZSH_COMPLETION
 set -euo pipefail
 kiln=$1 bash_script=$2 zsh_script=$3
@@ -43,5 +43,13 @@ done < <(render_options "$kiln")
 grep -qF -- "--accel'[Traversal backend]:value:($accels)'" "$zsh_script" || fail "zsh: --accel's values"
 if command -v zsh >/dev/null; then
   zsh -n "$zsh_script" || fail "zsh cannot parse $zsh_script"
+  # Tab in a real zsh: the option's name, then its values.
+  completed=$(timeout 60 zsh -f "$(dirname "$0")/zsh_completion.zsh" "$(dirname "$zsh_script")" "$(dirname "$kiln")" |
+    sed 's/\x1b\[[0-9;?]*[a-zA-Z]//g')  # without the terminal's escapes
+  option_part=${completed%%"<<values>>"*} values_part=${completed#*"<<values>>"}
+  [[ $option_part == *"render --accel"* ]] || fail "zsh: kiln render --acc gave: $option_part"
+  for value in $accels; do
+    [[ $values_part == *"$value"* ]] || fail "zsh: kiln render --accel does not offer $value: $values_part"
+  done
 fi
 echo "completion: $count render options in bash and zsh"
