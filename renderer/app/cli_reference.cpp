@@ -32,6 +32,7 @@ cli_option_reference describe_option(const CLI::Option& option) {
   for (const std::string& name : option.get_snames()) o.names.push_back("-" + name);
   for (const std::string& name : option.get_lnames()) o.names.push_back("--" + name);
   o.help = option.get_description();
+  o.required = option.get_required();
   if (option.get_type_size() == 0) return o;  // a flag
   o.value_name = option.get_type_name();
   if (const option_spec* spec = find_render_option(option.get_lnames().front())) {

@@ -18,6 +18,7 @@ struct cli_option_reference {
   std::string help;
   std::vector<std::string> choices;  // the values it takes, when a fixed set
   bool names_file = false;           // the value is a file or folder path
+  bool required = false;             // every call gives it (render's -o)
 };
 
 struct cli_option_group {

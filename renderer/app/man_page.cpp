@@ -73,8 +73,13 @@ void write_command_options(std::ostream& out, const cli_command_reference& comma
   out << ".\n";
 }
 
-std::string positionals(const cli_command_reference& command) {
+// What a synopsis line shows after [OPTIONS]: the options every call gives, then the positionals.
+std::string synopsis_arguments(const cli_command_reference& command) {
   std::string text;
+  for (const cli_option_group& group : command.groups)
+    for (const cli_option_reference& option : group.options)
+      if (option.required)
+        text += " \\fB" + roff(option.names.front()) + "\\fR \\fI" + roff(option.value_name) + "\\fR";
   for (const std::string& name : command.positionals) text += " \\fI" + roff(name) + "\\fR";
   return text;
 }
@@ -88,7 +93,8 @@ void write_man_page(std::ostream& out, const std::string& summary,
       << ".SH NAME\nkiln \\- render glTF 2.0 assets to OpenEXR images\n"
       << ".SH SYNOPSIS\n";
   for (const cli_command_reference& command : commands)
-    out << "\\fBkiln " << roff(command.name) << "\\fR [\\fIOPTIONS\\fR]" << positionals(command) << "\n.br\n";
+    out << "\\fBkiln " << roff(command.name) << "\\fR [\\fIOPTIONS\\fR]" << synopsis_arguments(command)
+        << "\n.br\n";
   out << ".SH DESCRIPTION\n"
       << roff(summary.rfind("kiln: ", 0) == 0 ? "kiln " + summary.substr(6) : summary) << ".\n"
       << ".B kiln render\nreads one glTF 2.0 asset (.gltf or .glb) and writes an OpenEXR image to\n.BR \\-o "
