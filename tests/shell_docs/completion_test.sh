@@ -5,7 +5,7 @@
 # usage: completion_test.sh KILN BASH_COMPLETION ZSH_COMPLETION
 set -euo pipefail
 kiln=$1 bash_script=$2 zsh_script=$3
-source "$(dirname "$0")/render_options.sh"
+source "$(dirname "$0")/command_options.sh"
 fail() { echo "completion: $*" >&2; exit 1; }
 source "$bash_script"
 
@@ -38,8 +38,14 @@ while read -r option; do
   [[ " $(complete_line kiln render "$option") " == *" $option "* ]] || fail "bash: $option is not offered"
   grep -qE -- "(^ +|[{,'(])$option([]['}, ])" "$zsh_script" || fail "zsh: $option is missing"
   count=$((count + 1))
-done < <(render_options "$kiln")
+done < <(command_options "$kiln" render)
 [ "$count" -ge 80 ] || fail "only $count options in kiln render --help"
+for command in $(commands "$kiln"); do
+  [[ " $(complete_line kiln '') " == *" $command "* ]] || fail "bash: command $command is not offered"
+  while read -r option; do
+    [[ " $(complete_line kiln "$command" "$option") " == *" $option "* ]] || fail "bash: $command's $option"
+  done < <(command_options "$kiln" "$command")
+done
 grep -qF -- "--accel'[Traversal backend]:value:($accels)'" "$zsh_script" || fail "zsh: --accel's values"
 if command -v zsh >/dev/null; then
   zsh -n "$zsh_script" || fail "zsh cannot parse $zsh_script"

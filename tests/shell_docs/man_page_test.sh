@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # kiln.1 renders without a groff warning, has the sections a man page has and one subsection per
-# group of `kiln render --help` in its order, and lists every option the parser takes.
+# group of `kiln render --help` in its order, and lists every option of every command.
 # usage: man_page_test.sh KILN MAN_PAGE
 set -euo pipefail
 kiln=$1 page=$2
-source "$(dirname "$0")/render_options.sh"
+source "$(dirname "$0")/command_options.sh"
 fail() { echo "man page: $*" >&2; exit 1; }
 
 if command -v groff >/dev/null; then
@@ -29,6 +29,12 @@ while read -r option; do
   # in bold, every dash a minus sign (\-), so the name copied from the page still works
   grep -qF -- "\\fB${option//-/\\-}\\fR" "$page" || fail "$option is not written \\fB${option//-/\\-}\\fR"
   count=$((count + 1))
-done < <(render_options "$kiln")
+done < <(command_options "$kiln" render)
 [ "$count" -ge 80 ] || fail "only $count options in kiln render --help"
-echo "man page: $count render options, $(echo "$subsections" | wc -l) groups, no groff warning"
+for command in $(commands "$kiln"); do
+  grep -qE "^ +$command " <<<"$text" || fail "command $command is missing"
+  while read -r option; do
+    grep -qE -- "(^|[ ,])$option( |,|\$)" <<<"$text" || fail "$command's $option is missing"
+  done < <(command_options "$kiln" "$command")
+done
+echo "man page: $count render options, $(echo "$subsections" | wc -l) groups, every command, no groff warning"
