@@ -178,6 +178,30 @@ TEST(posing_cli, bad_times_animations_and_keyframes_exit_2_with_one_line) {
   }
 }
 
+TEST(posing_cli, the_loaders_warnings_are_given_once_whichever_view_frames_the_animation) {
+  const std::string dir = scratch_folder("posing_warnings");
+  const std::string asset = sliding_quad(dir);  // "slide" and "stay" both drive the quad
+  const std::string warning =
+      "kiln: warning: animations 0 and 1 both drive translation of /nodes/0; the first wins (choose one "
+      "with --animation)";
+  // The file's camera, an orbit that frames poses across the animation, a look-at camera and a shot
+  // (the framing and earlier frames' poses come first).
+  for (const std::vector<std::string>& view :
+       std::vector<std::vector<std::string>>{{"--time", "0.5"},
+                                             {"--time", "0.5", "--camera-view", "front"},
+                                             {"--time", "0.5", "--look-from", "0,0,5", "--look-at", "0,0,0"},
+                                             {"--frames", "1-3", "--fps", "4"}}) {
+    const std::string output = dir + (view[0] == "--frames" ? "/shot.####.exr" : "/still.exr");
+    std::vector<std::string> args = {"render", asset, "-o", output, "--width", "8", "--height", "8"};
+    args.insert(args.end(), view.begin(), view.end());
+    const auto result = run_kiln(args);
+    EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+    const std::vector<std::string> printed = lines(result.stderr_text);
+    EXPECT_EQ(std::count(printed.begin(), printed.end(), warning), 1) << view[0] << " " << view.back() << "\n"
+                                                                      << result.stderr_text;
+  }
+}
+
 // The shared animated, skinned and morphed sample models render at several times through the
 // CLI; the walking CesiumMan covers other pixels than its T-pose (the same fixed view).
 TEST(posing_cli, shared_animated_assets_render_at_several_times) {

@@ -316,6 +316,7 @@ void finish_loaded_scene(const render_options& options, prepared_scene& p,
       warn("warning: dropped " + std::to_string(dropped) + " degenerate triangle" +
            (dropped == 1 ? "" : "s") + " (repeated vertices or zero area)");
   }
+  p.world.stats.warnings.clear();  // given: the next frame's pose would carry them on
 
   apply_holdouts(p.world, options.holdout, options.only,
                  others_kind(options.others, options.holdout_invisible, options.deep));

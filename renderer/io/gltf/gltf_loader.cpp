@@ -591,6 +591,13 @@ scene gltf_sequence::pose(double time, scene* previous, std::vector<uint32_t>* p
   st.still_poses = std::move(ctx.still_poses);
   st.posed_once = true;
   if (posed_meshes) *posed_meshes = std::move(ctx.posed_meshes);
+  // Each warning is new once a sequence, so the warnings of a pose its caller only looked at (a
+  // shot's framing poses, shutter steps, motion neighbours) come along with the next.
+  if (previous) {
+    out.stats.warnings.insert(out.stats.warnings.begin(), previous->stats.warnings.begin(),
+                              previous->stats.warnings.end());
+    previous->stats.warnings.clear();
+  }
   return out;
 }
 

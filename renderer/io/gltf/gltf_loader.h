@@ -95,7 +95,9 @@ class gltf_sequence {
   // behind). Drop `previous` afterwards. Mesh indices and instance order are the same in every
   // frame unless a transform turns singular at some time. `posed_meshes` receives the meshes
   // posed anew for this time (those an animation deforms): a backend refits those and moves every
-  // instance. Throws kiln::error (input) for bad input at this time.
+  // instance. stats.warnings holds those new to the sequence, after the ones `previous` still held
+  // (moved from it): a client clears a scene's warnings once it has given them. Throws kiln::error
+  // (input) for bad input at this time.
   scene pose(double time, scene* previous = nullptr, std::vector<uint32_t>* posed_meshes = nullptr);
 
   // Whether animations drive the file's nodes, so frames differ.
