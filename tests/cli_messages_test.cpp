@@ -157,6 +157,22 @@ TEST(cli_messages, display_or_view_without_a_preview_warns_once_each_even_when_q
   EXPECT_TRUE(fs::exists(dir + "/a.png"));
 }
 
+TEST(cli_messages, a_batch_says_view_without_a_preview_once_for_all_its_jobs) {
+  const std::string dir = scratch_folder("batch_view_without_preview");
+  const std::string one = testing::copy_scene(dir, "one.gltf"), two = testing::copy_scene(dir, "two.gltf");
+  auto result = run_kiln(
+      {"batch", one, two, "--out-dir", dir + "/out", "--width", "8", "--height", "6", "--view", "Raw", "-q"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text, "kiln: warning: --view does nothing without --preview\n");
+  EXPECT_TRUE(fs::exists(dir + "/out/two.exr"));
+  // Each job's preview beside its EXR: the view is used.
+  result = run_kiln({"batch", one, two, "--out-dir", dir + "/with", "--width", "8", "--height", "6", "--view",
+                     "Raw", "--preview", "x.png", "-q"});
+  EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_EQ(result.stderr_text, "");
+  EXPECT_TRUE(fs::exists(dir + "/with/two.png"));
+}
+
 TEST(cli_messages, texture_cache_mb_is_accepted_with_one_deprecation_warning_and_not_offered) {
   const std::string dir = scratch_folder("texture_cache_mb");
   const auto result = run_kiln({"render", demo_scene, "-o", dir + "/a.exr", "--width", "8", "--height", "6",

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -402,6 +403,14 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
   return jobs;
 }
 
+// What job_option_warnings says of the jobs, each line once (the batch's options reach every job).
+void print_option_warnings(const std::vector<batch_job>& jobs) {
+  std::set<std::string> given;
+  for (const batch_job& job : jobs)
+    for (const std::string& line : job_option_warnings(job.options))
+      if (given.insert(line).second) std::fprintf(stderr, "kiln: %s\n", line.c_str());
+}
+
 // Creates --out-dir (and its parents) when missing.
 void create_out_dir(const std::string& out_dir) {
   std::error_code ec;
@@ -439,6 +448,7 @@ int run_batch(const batch_options& options) {
   bool locking = false;
   try {
     jobs = plan_batch(options);
+    print_option_warnings(jobs);
     if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
     create_out_dir(options.out_dir);
     const std::string out_dir = absolute_path(options.out_dir);
