@@ -419,6 +419,9 @@ void check_job(const render_options& options, const shared_output_checks* shared
 
 std::vector<std::string> job_option_warnings(const render_options& options) {
   std::vector<std::string> lines;
+  // The preview is written beside the EXR (a Python call without output= writes neither).
+  if (!options.preview.empty() && options.output.empty())
+    lines.push_back("warning: --preview does nothing without an output (output=; Result.write writes both)");
   // The display and view choose the preview's transform only; the EXR stays scene-linear.
   if (!options.preview.empty()) return lines;
   if (!options.display.empty()) lines.push_back("warning: --display does nothing without --preview");

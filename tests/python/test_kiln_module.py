@@ -338,6 +338,11 @@ def test_view_without_a_preview_is_a_kiln_warning(tmp_path):
     assert kiln.render(CORNELL, output=str(tmp_path / "p.exr"), width=8, height=6, spp=1, view="Raw",
                        preview=str(preview)).warnings == []
     assert preview.exists()
+    # A preview is written beside the EXR: without output= there is neither, and it says so.
+    with pytest.warns(kiln.KilnWarning, match="--preview does nothing without an output"):
+        result = kiln.render(CORNELL, width=8, height=6, spp=1, preview=str(tmp_path / "q.png"))
+    assert result.warnings == ["--preview does nothing without an output (output=; Result.write writes both)"]
+    assert not (tmp_path / "q.png").exists()
 
 
 def test_info_is_the_clis_json_document(tmp_path):
