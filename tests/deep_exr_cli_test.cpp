@@ -102,7 +102,9 @@ TEST(deep_exr_cli, samples_are_sorted_counted_and_flatten_to_the_beauty) {
     // Front to back: each sample's front at or behind the previous one's back.
     for (unsigned int k = 0; k < n; ++k) {
       EXPECT_LE(deep.at(p, k, "Z"), deep.at(p, k, "ZBack")) << "pixel " << p;
-      if (k > 0) EXPECT_LE(deep.at(p, k - 1, "ZBack"), deep.at(p, k, "Z")) << "pixel " << p;
+      if (k > 0) {
+        EXPECT_LE(deep.at(p, k - 1, "ZBack"), deep.at(p, k, "Z")) << "pixel " << p;
+      }
     }
     // Flatten as a compositor does: C += T·c, T *= 1 - a, front to back.
     float flattened[4] = {0, 0, 0, 0}, transmittance = 1.0f;
@@ -123,7 +125,9 @@ TEST(deep_exr_cli, samples_are_sorted_counted_and_flatten_to_the_beauty) {
     } else if (no_veil && whole_quad) {
       ++opaque;  // the quad alone, nothing in front: N samples merged into one
       EXPECT_EQ(n, 1u) << "quad pixel " << p;
-      if (n == 1) EXPECT_EQ(deep.at(p, 0, "A"), 1.0f);
+      if (n == 1) {
+        EXPECT_EQ(deep.at(p, 0, "A"), 1.0f);
+      }
     } else if (whole_veil && whole_quad) {
       ++veiled;  // the BLEND surface over the quad: its own sample in front
       ASSERT_EQ(n, 2u) << "veiled pixel " << p;

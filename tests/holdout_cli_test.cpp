@@ -101,8 +101,12 @@ TEST(holdout_cli, layers_add_into_the_full_render) {
     EXPECT_LE(worst, 1e-5f) << what;
     EXPECT_GT(covered, 50u) << what;
     EXPECT_GT(shadowed, 20u) << what;
-    if (sampling[1] == "1") EXPECT_EQ(edges, 0u);
-    if (sampling[1] == "4") EXPECT_GT(edges, 0u);
+    if (sampling[1] == "1") {
+      EXPECT_EQ(edges, 0u);
+    }
+    if (sampling[1] == "4") {
+      EXPECT_GT(edges, 0u);
+    }
     std::printf("spp %s: %zu of %zu pixels on layer edges; everywhere max |front plus back - full| %.3g\n",
                 what.c_str(), edges, full.count(), worst);
   }

@@ -213,7 +213,9 @@ TEST(render_layers_cli, deep_layers_of_disjoint_objects_merge_into_the_full_rend
     EXPECT_LE(worst_colour, 1e-3f) << "spp " << spp;
     EXPECT_GT(checked, l.full.count() / 2) << "spp " << spp;
     EXPECT_LT(edges, l.full.count() / 3) << "spp " << spp;
-    if (spp == "16") EXPECT_GT(edges, 0u);
+    if (spp == "16") {
+      EXPECT_GT(edges, 0u);
+    }
     std::printf(
         "spp %s: merge alpha max error %.3g on all pixels, colour %.3g on %zu interior pixels (%zu edge)\n",
         spp.c_str(), worst_alpha, worst_colour, checked, edges);
@@ -269,7 +271,9 @@ TEST(render_layers_cli, a_deep_holdout_of_one_layer_by_another_is_the_matte_rend
     }
     EXPECT_LE(worst, 1e-3f) << "spp " << spp;
     EXPECT_LE(worst_edge_alpha, 1e-3f) << "spp " << spp;
-    if (spp == "16") EXPECT_GT(edge_alpha_checked, 10u);
+    if (spp == "16") {
+      EXPECT_GT(edge_alpha_checked, 10u);
+    }
   }
 }
 
