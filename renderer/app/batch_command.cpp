@@ -195,7 +195,7 @@ void add_batch_options(CLI::App& app, batch_options& o) {
       "assets", o.assets,
       "glTF assets or glob patterns (quoted patterns such as 'assets/*/*.gltf' are expanded by kiln)");
   add_table_options(app, o.defaults, {option_scope::view, option_scope::image, option_scope::progress});
-  app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (see README: Batch rendering)")
+  app.add_option("--manifest", o.manifest, "Jobs from a .json or .csv manifest (docs/batch.md)")
       ->check(CLI::ExistingFile);
   app.add_option("--out-dir", o.out_dir, "Folder for the outputs (created when missing)")->required();
   app.add_flag(

@@ -35,6 +35,7 @@ cli_option_reference describe_option(const CLI::Option& option) {
   o.required = option.get_required();
   if (option.get_type_size() == 0) return o;  // a flag
   o.value_name = option.get_type_name();
+  o.default_value = option.get_default_str();
   if (const option_spec* spec = find_render_option(option.get_lnames().front())) {
     o.choices = spec->choices;
     o.names_file = spec->names_file;
@@ -66,6 +67,13 @@ cli_command_reference describe_command(const CLI::App& command) {
   return c;
 }
 
+bool has_option(const cli_command_reference& command, const cli_option_reference& option) {
+  for (const cli_option_group& group : command.groups)
+    for (const cli_option_reference& known : group.options)
+      if (known.names == option.names && known.help == option.help) return true;
+  return false;
+}
+
 }  // namespace
 
 std::vector<cli_command_reference> describe_commands(const CLI::App& app) {
@@ -73,6 +81,28 @@ std::vector<cli_command_reference> describe_commands(const CLI::App& app) {
   for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
     if (!command->get_group().empty()) commands.push_back(describe_command(*command));
   return commands;
+}
+
+const cli_command_reference* find_command(const std::vector<cli_command_reference>& commands,
+                                          const std::string& name) {
+  for (const cli_command_reference& command : commands)
+    if (command.name == name) return &command;
+  return nullptr;
+}
+
+cli_own_options own_options(const cli_command_reference& command, const cli_command_reference* render) {
+  cli_own_options options;
+  for (const cli_option_group& group : command.groups) {
+    bool shares = false;
+    for (const cli_option_reference& option : group.options) {
+      if (render && has_option(*render, option))
+        shares = true;
+      else
+        options.own.push_back(option);
+    }
+    if (shares) options.shared_groups.push_back(group.title);
+  }
+  return options;
 }
 
 }  // namespace kiln

@@ -1,6 +1,6 @@
-// `kiln help`: kiln's --help, and, hidden from it, the man page and the shell completion scripts
-// written from the parsers of every command (`kiln help --man`, `--bash-completion`,
-// `--zsh-completion`), which the build runs to make the files it installs.
+// `kiln help`: kiln's --help, and, hidden from it, the man page, docs/options.md and the shell
+// completion scripts written from the parsers of every command (`kiln help --man`, `--markdown`,
+// `--bash-completion`, `--zsh-completion`), which the build and tools/make_options_doc.py run.
 #pragma once
 
 namespace CLI {
@@ -9,7 +9,7 @@ class App;
 
 namespace kiln {
 
-enum class help_format { usage, man, bash, zsh };
+enum class help_format { usage, man, markdown, bash, zsh };
 
 // Declares help's flags on command, writing the format chosen into format.
 void add_help_options(CLI::App& command, help_format& format);

@@ -134,7 +134,7 @@ void print_text(const asset_info& info) {
 
 void add_info_options(CLI::App& app, info_options& o) {
   add_view_options(app, o.view);
-  app.add_flag("--json", o.json, "Print one JSON document (its keys: README, 'kiln info')");
+  app.add_flag("--json", o.json, "Print one JSON document (its keys: docs/info.md)");
 }
 
 void run_info(const info_options& options) {

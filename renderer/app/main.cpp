@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       "List an asset's cameras, animations, variants, lights, nodes and extensions, and estimate its render");
   kiln::add_info_options(*info_command, info);
 
-  // Hidden: `kiln help --man` and the completion scripts, which the build writes from it.
+  // Hidden: `kiln help --man`, `--markdown` and the completion scripts, written from the parsers.
   kiln::help_format help = kiln::help_format::usage;
   CLI::App* help_command = app.add_subcommand("help", "Print this help, the man page or a completion script");
   help_command->group("");

@@ -42,34 +42,18 @@ void write_groups(std::ostream& out, const cli_command_reference& command) {
   }
 }
 
-bool has_option(const cli_command_reference& command, const cli_option_reference& option) {
-  for (const cli_option_group& group : command.groups)
-    for (const cli_option_reference& known : group.options)
-      if (known.names == option.names && known.help == option.help) return true;
-  return false;
-}
-
 // Another command's section: its own options, then the groups of render options it shares, by name.
 void write_command_options(std::ostream& out, const cli_command_reference& command,
                            const cli_command_reference* render) {
   std::string heading;
   for (char c : command.name) heading += char(std::toupper(static_cast<unsigned char>(c)));
   out << ".SH " << roff(heading) << " OPTIONS\n";
-  std::vector<std::string> shared;
-  for (const cli_option_group& group : command.groups) {
-    bool shares = false;
-    for (const cli_option_reference& option : group.options) {
-      if (render && has_option(*render, option)) {
-        shares = true;
-        continue;
-      }
-      write_option(out, option);
-    }
-    if (shares) shared.push_back(group.title);
-  }
-  if (shared.empty()) return;
+  const cli_own_options options = own_options(command, render);
+  for (const cli_option_reference& option : options.own) write_option(out, option);
+  if (options.shared_groups.empty()) return;
   out << ".PP\nAnd the render options of these groups: ";
-  for (size_t i = 0; i < shared.size(); ++i) out << (i ? ", " : "") << roff(shared[i]);
+  for (size_t i = 0; i < options.shared_groups.size(); ++i)
+    out << (i ? ", " : "") << roff(options.shared_groups[i]);
   out << ".\n";
 }
 
@@ -105,14 +89,11 @@ void write_man_page(std::ostream& out, const std::string& summary,
       << ".SH COMMANDS\n";
   for (const cli_command_reference& command : commands)
     out << ".TP\n.B " << roff(command.name) << "\n" << roff(command.description) << '\n';
-  for (const cli_command_reference& command : commands) {
-    if (command.name != "render") continue;
+  const cli_command_reference* render = find_command(commands, "render");
+  if (render) {
     out << ".SH RENDER OPTIONS\n";
-    write_groups(out, command);
+    write_groups(out, *render);
   }
-  const cli_command_reference* render = nullptr;
-  for (const cli_command_reference& command : commands)
-    if (command.name == "render") render = &command;
   for (const cli_command_reference& command : commands)
     if (&command != render) write_command_options(out, command, render);
   out << ".SH EXIT STATUS\n"
@@ -125,7 +106,8 @@ void write_man_page(std::ostream& out, const std::string& summary,
       << ".TP\n.B 128 + n\nSignal n stopped the render (130 for SIGINT, 143 for SIGTERM).\n"
       << ".SH SEE ALSO\n"
       << ".BR exrheader (1),\n.BR oiiotool (1);\n"
-      << "\\fBkiln\\fR \\fIcommand\\fR \\fB\\-\\-help\\fR; the README and docs/ of kiln's source.\n";
+      << "\\fBkiln\\fR \\fIcommand\\fR \\fB\\-\\-help\\fR; docs/options.md and the other pages of docs/ in "
+         "kiln's source.\n";
 }
 
 }  // namespace kiln
