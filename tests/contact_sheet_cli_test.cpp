@@ -1,5 +1,5 @@
 // `kiln batch --contact-sheet` end to end: after the jobs, one PNG (or JPEG) with a cell per job in a
-// grid of the size README states, each good job's render in its box over the backdrop and its name
+// grid of the size docs/batch.md states, each good job's render in its box over the backdrop and its name
 // under it, a failed job's box dark red with a red cross; a batch stopped early or a bad sheet
 // name writes none, and a bad name is refused with one line and exit 2 before anything renders.
 #include <OpenImageIO/imageio.h>

@@ -70,7 +70,7 @@ image render(const std::string& scene, const std::string& dir, const std::string
 
 const char* const rgba[4] = {"R", "G", "B", "A"};
 
-// A plus B, channel c of pixel p (premultiplied): what the README says disjoint flat layers give.
+// A plus B, channel c of pixel p (premultiplied): what docs/output.md says disjoint flat layers give.
 float plus(const image& a, const image& b, size_t p, const char* c) { return a.at(p, c) + b.at(p, c); }
 
 // Every camera sample lands in exactly one of two layers of disjoint node sets, so adding them is the

@@ -2,8 +2,8 @@
 // EXR header and in kiln bench's JSON, refuse bad values with one line, and leave the pixels byte
 // for byte as the default render's on a small mesh room built here: all meshes, so packets are
 // really traced (the demo scene holds quadrics, which Embree answers one ray at a time), and no
-// coincident surfaces, the one case where packets may pick the other surface of a tie (see README
-// "Performance").
+// coincident surfaces, the one case where packets may pick the other surface of a tie (see
+// docs/performance.md, "Summary").
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 

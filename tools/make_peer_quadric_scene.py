@@ -30,7 +30,7 @@ finishes, Whitted):
   - Depth: kiln --max-depth 8 (camera ray is depth 0, 8 bounces) = POV-Ray max_trace_level 9
     (the camera ray is level 1); kiln --min-throughput 0.001 = POV-Ray adc_bailout 0.001.
 What differs: kiln widens point-light highlights on smooth surfaces to the pixel footprint
-(README "Highlights of point lights"), POV-Ray draws none on the mirror and glass; POV-Ray's
+(docs/shading.md, "Highlights of point lights"), POV-Ray draws none on the mirror and glass; POV-Ray's
 checker is procedural, kiln's is 256 quads of two materials (same edges); Fresnel on the
 diffuse lobe is exact only at normal incidence.
 

@@ -48,7 +48,7 @@ struct prepared_scene;
 asset_info describe_prepared(const render_options& options, const prepared_scene& prepared,
                              gltf_summary declared);
 
-// The info as one JSON document (keys documented in README.md, "kiln info"), indented by 2.
+// The info as one JSON document (keys documented in docs/info.md), indented by 2.
 std::string asset_info_json(const asset_info& info);
 
 }  // namespace kiln

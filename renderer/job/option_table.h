@@ -2,8 +2,8 @@
 // names the option, parses and checks its text into render_options, and gives back its value; the
 // command-line parser (app/option_cli.h), batch manifests, the Python module, the canonical
 // arguments behind the settings hash, the EXR metadata, the man page, the shell completions and
-// the README's option list all come from it. Adding an option is one entry here, in a group (and a
-// README row, which a test checks).
+// docs/options.md all come from it. Adding an option is one entry here, in a group (and a row in
+// the docs' option tables that explains it, which a test checks).
 #pragma once
 
 #include <functional>

@@ -1,7 +1,8 @@
 // The option table against itself and against what it feeds: every option that changes pixels
 // reaches the settings hash and the region ones only the band's, every value reads back through
-// its own parser, bad text is refused in the option's name, and the README lists exactly the
-// table's options. Adding an entry that misses any of these fails here, with its name.
+// its own parser, bad text is refused in the option's name, and the docs' option tables explain
+// exactly the table's options, each once. Adding an entry that misses any of these fails here,
+// with its name.
 #include "job/option_table.h"
 
 #include <gtest/gtest.h>
@@ -168,30 +169,39 @@ TEST(option_table, recorded_options_are_the_exr_attributes) {
   EXPECT_EQ(attributes.count("kiln/frame"), 0u);  // not given: not recorded
 }
 
-// The README's "Rendering" option table: its first column's `--name`s.
-std::set<std::string> readme_render_options() {
-  std::ifstream in(KILN_SOURCE_DIR "/README.md");
-  std::set<std::string> names;
-  bool in_section = false;
-  const std::regex more(R"(--([a-z][a-z-]*))");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("#", 0) == 0) in_section = line == "## Rendering";  // up to the next heading
-    if (!in_section || line.rfind("| `--", 0) != 0) continue;
-    const std::string first = line.substr(0, line.find(" | "));
-    for (std::sregex_iterator m(first.begin(), first.end(), more), end; m != end; ++m) names.insert((*m)[1]);
+// The docs' render option tables (docs/*.md, each table whose header is `| render option | meaning |`):
+// their first column's `--name`s, each with the page that explains it.
+std::multimap<std::string, std::string> documented_render_options() {
+  std::multimap<std::string, std::string> names;
+  const std::regex option(R"(--([a-z][a-z-]*))");
+  for (const auto& entry : std::filesystem::directory_iterator(KILN_SOURCE_DIR "/docs")) {
+    if (entry.path().extension() != ".md") continue;
+    std::ifstream in(entry.path());
+    bool in_table = false;
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("|", 0) != 0) in_table = false;  // a table ends at its first line without a cell
+      if (line == "| render option | meaning |") in_table = true;
+      if (!in_table || line.rfind("| `--", 0) != 0) continue;
+      const std::string first = line.substr(0, line.find(" | "));
+      for (std::sregex_iterator m(first.begin(), first.end(), option), end; m != end; ++m)
+        names.emplace((*m)[1], entry.path().filename().string());
+    }
   }
   return names;
 }
 
-TEST(option_table, the_readme_lists_every_option) {
-  const std::set<std::string> listed = readme_render_options();
+TEST(option_table, the_docs_explain_every_option_once) {
+  const std::multimap<std::string, std::string> listed = documented_render_options();
   ASSERT_GE(listed.size(), 40u);
   std::set<std::string> table;
   for (const option_spec& spec : render_option_table()) {
     table.insert(spec.name);
-    if (spec.name != "quiet") EXPECT_EQ(listed.count(spec.name), 1u) << "README lacks --" << spec.name;
+    if (spec.name != "quiet")
+      EXPECT_EQ(listed.count(spec.name), 1u)
+          << "docs/*.md explain --" << spec.name << " " << listed.count(spec.name) << " times";
   }
-  for (const std::string& name : listed) EXPECT_EQ(table.count(name), 1u) << "README lists --" << name;
+  for (const auto& [name, page] : listed)
+    EXPECT_EQ(table.count(name), 1u) << "docs/" << page << " lists --" << name;
 }
 
 }  // namespace

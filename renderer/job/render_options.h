@@ -121,7 +121,7 @@ struct render_options {
 };
 
 // Samples per pixel when --spp is not given: enough for anti-aliased edges and an environment's light
-// without visible noise on the shipped assets (README "Anti-aliasing" has the measurements).
+// without visible noise on the shipped assets (docs/rendering.md, "Anti-aliasing", has the measurements).
 constexpr int default_samples_per_pixel = 16;
 
 // The samples per pixel a render takes: --spp, else the default (1 under adaptive supersampling,

@@ -3,8 +3,8 @@
 // followed on its own surface: by its object-space position for rigid motion, by its triangle and
 // barycentrics through a skin or morph. Depends on scene and render/view_camera.
 //
-// Conventions (README, "What the EXR holds"): Nuke's forward and backward layers. forward = where the point
-// is at the next frame minus where it is now, backward = at the previous frame minus now, u to the
+// Conventions (docs/output.md, "What the EXR holds"): Nuke's forward and backward layers. forward = where the
+// point is at the next frame minus where it is now, backward = at the previous frame minus now, u to the
 // right and v up (Nuke's and Blender's y-up pixel space; the EXR's rows run down). Blender's
 // Vector pass points back in time in both pairs: (backward.u, backward.v, −forward.u, −forward.v).
 #pragma once

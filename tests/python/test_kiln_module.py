@@ -259,8 +259,33 @@ def test_a_progress_callback_that_raises_cancels_the_render():
     assert all(total == 1600 * 1200 for _, total in calls)
 
 
+def readme_script():
+    """The README's first Python script, exactly as the README shows it."""
+    with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as f:
+        readme = f.read()
+    match = re.search(r"<!-- tests/python/test_kiln_module\.py runs this block -->\n```python\n(.*?)```", readme, re.S)
+    assert match, "README.md has no tested first Python script"
+    return match.group(1)
+
+
+def test_the_readmes_first_script_runs_as_written(tmp_path, monkeypatch, capsys):
+    code = readme_script()
+    assert len(code.strip().splitlines()) <= 12  # a first script, not a program
+    os.symlink(os.path.join(os.path.abspath(SOURCE), "scenes"), tmp_path / "scenes")
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(compile(code, "README.md", "exec"), namespace)
+    assert namespace["r"].aovs["beauty"].shape == (240, 320, 4)
+    assert (tmp_path / "out.exr").is_file() and (tmp_path / "out.png").is_file()
+    moves = sorted(p.name for p in tmp_path.glob("move.*.exr"))
+    assert moves == ["move.%04d.exr" % i for i in range(8)]
+    printed = [float(line) for line in capsys.readouterr().out.split()]
+    assert printed and printed[-1] == 1.0 and printed == sorted(printed)
+
+
 def test_the_readmes_progress_callback_works_and_ends_at_100_percent(capsys):
-    # The README's own example, exactly: no (0, 0) call while the scene loads.
+    # The README's own callback, exactly: no (0, 0) call while the scene loads.
+    assert "progress=lambda done, total: print(done / total)" in readme_script()
     kiln.render(GLASS, width=400, height=300, spp=4, threads=2, progress=lambda done, total: print(done / total))
     printed = [float(line) for line in capsys.readouterr().out.split()]
     assert printed and printed[-1] == 1.0

@@ -3,7 +3,7 @@ options, bit for bit, whatever was rendered before; options that change the load
 that render alone; two threads may render one Scene; frames and info come from the kept scene; glTF
 given in memory (a dict, JSON or GLB bytes, with buffers and images by index or URI) renders as the
 file does, reads no file, and is checked as a file is; pathlib.Path is a path everywhere; and the
-README's NumPy example runs as written. Run by CTest with PYTHONPATH at the build's module."""
+NumPy example of docs/python.md runs as written. Run by CTest with PYTHONPATH at the build's module."""
 import concurrent.futures
 import json
 import os
@@ -201,11 +201,11 @@ def test_gltf_in_memory_is_checked_as_a_file_and_reads_no_file(tmp_path, monkeyp
 
 
 def readme_example():
-    """The README's NumPy example, exactly as the README shows it."""
-    with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as f:
+    """The NumPy example of docs/python.md, exactly as the page shows it."""
+    with open(os.path.join(SOURCE, "docs", "python.md"), encoding="utf-8") as f:
         readme = f.read()
     match = re.search(r"<!-- tests/python/test_scene\.py runs this block -->\n```python\n(.*?)```", readme, re.S)
-    assert match, "README.md has no tested NumPy example"
+    assert match, "docs/python.md has no tested NumPy example"
     return match.group(1)
 
 
@@ -216,7 +216,7 @@ def test_the_readme_numpy_example_renders_a_lit_sphere(tmp_path, monkeypatch):
     namespace = {}
     with warnings.catch_warnings():
         warnings.simplefilter("error", kiln.KilnWarning)  # no headlight, no degenerate triangles
-        exec(compile(code, "README.md", "exec"), namespace)
+        exec(compile(code, "docs/python.md", "exec"), namespace)
     result = namespace["result"]
     beauty = result.aovs["beauty"]
     height, width, _ = beauty.shape

@@ -224,7 +224,7 @@ def render_sequence(
     output= with #### or %04d writes each frame as it finishes."""
 
 def info(asset: _Path, **options: Unpack[RenderOptions]) -> Dict[str, Any]:
-    """What `kiln info ASSET --json` prints (its keys: README, "kiln info")."""
+    """What `kiln info ASSET --json` prints (its keys: docs/info.md)."""
 
 class Scene:
     """An asset loaded once (kiln.load), rendered and described as often as wanted."""
