@@ -121,6 +121,27 @@ bool spawn_child(const std::vector<std::string>& arguments, int pipe_write, pid_
   return status == 0;
 }
 
+std::string shell_quoted(const std::string& s) {
+  if (!s.empty() &&
+      s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:") ==
+          std::string::npos)
+    return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The `kiln render` line that renders the job, for the EXR header.
+std::string render_command_line(const render_options& o) {
+  std::string line = "kiln render " + shell_quoted(o.input) + " -o " + shell_quoted(o.output);
+  for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
+    line += " " + shell_quoted(a);
+  if (!o.preview.empty())
+    line +=
+        " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
+  return line;
+}
+
 }  // namespace
 
 std::string signal_name(int signo) {
@@ -128,8 +149,7 @@ std::string signal_name(int signo) {
   return "signal " + std::to_string(signo);
 }
 
-std::vector<std::string> child_render_arguments(const batch_job& job, double progress_interval) {
-  const render_options& o = job.options;
+std::vector<std::string> child_render_arguments(const render_options& o, double progress_interval) {
   std::vector<std::string> a = {"render", o.input, "-o", o.output};
   for (std::string& argument : canonical_render_arguments(o, region_arguments::include))
     a.push_back(std::move(argument));
@@ -138,18 +158,18 @@ std::vector<std::string> child_render_arguments(const batch_job& job, double pro
     a.insert(a.end(), {"--preview", o.preview, "--preview-exposure", exact_text(o.preview_exposure)});
   if (o.quiet) a.push_back("-q");
   a.insert(a.end(), {"--progress-interval", exact_text(progress_interval)});
-  a.insert(a.end(), {"--batch-command-line", o.command_line});
+  a.insert(a.end(), {"--batch-command-line", render_command_line(o)});
   return a;
 }
 
-child_outcome run_job_in_child(const batch_job& job, const std::string& label, bool quiet) {
+child_outcome run_job_in_child(const render_options& options, const std::string& label, bool quiet) {
   child_outcome outcome;
   relay out;
   out.label = label;
   out.quiet = quiet;
   out.terminal = ::isatty(STDERR_FILENO);
   // On a terminal the line rewrites itself, so it may change often; a log gets one every few seconds.
-  const double interval = out.terminal ? 0.25 : job.options.progress_interval;
+  const double interval = out.terminal ? 0.25 : options.progress_interval;
 
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -165,7 +185,7 @@ child_outcome run_job_in_child(const batch_job& job, const std::string& label, b
       ::close(fds[1]);
       return outcome;
     }
-    outcome.started = spawn_child(child_render_arguments(job, interval), fds[1], pid, outcome.error);
+    outcome.started = spawn_child(child_render_arguments(options, interval), fds[1], pid, outcome.error);
     if (outcome.started) forward_interrupts_to(pid);
   }
   ::close(fds[1]);

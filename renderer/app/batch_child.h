@@ -20,15 +20,16 @@ struct child_outcome {
   std::string error;     // its last message line (without "kiln: "), or why it could not start
 };
 
-// The `kiln render` arguments (after the program name) that run job in a child: the asset, -o,
-// the canonical render arguments, --threads, the preview, and the hidden --batch-command-line
-// that records the job's own command line. progress_interval: seconds between progress lines.
-std::vector<std::string> child_render_arguments(const batch_job& job, double progress_interval);
+// The `kiln render` arguments (after the program name) that run a job with options (its
+// batch_job_options) in a child: the asset, -o, the canonical render arguments, --threads, the
+// preview, and the hidden --batch-command-line that records the job's own command line.
+// progress_interval: seconds between progress lines.
+std::vector<std::string> child_render_arguments(const render_options& options, double progress_interval);
 
-// Runs job in a child and waits for it. Lines the child prints go to stderr as
+// Runs the job with options in a child and waits for it. Lines the child prints go to stderr as
 // "kiln batch: LABEL: ..." (none when quiet); on a terminal its progress becomes one line that
 // rewrites itself. The last line is kept as the error when the child fails.
-child_outcome run_job_in_child(const batch_job& job, const std::string& label, bool quiet);
+child_outcome run_job_in_child(const render_options& options, const std::string& label, bool quiet);
 
 // "SIGABRT" for 6: the signal's abbreviation, or "signal N".
 std::string signal_name(int signo);

@@ -82,27 +82,6 @@ std::string default_output(const batch_job_spec& spec, bool sequence) {
   return name + (sequence ? ".####.exr" : ".exr");
 }
 
-std::string shell_quoted(const std::string& s) {
-  if (!s.empty() &&
-      s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:") ==
-          std::string::npos)
-    return s;
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// The `kiln render` line that renders the job, for the EXR header.
-std::string render_command_line(const render_options& o) {
-  std::string line = "kiln render " + shell_quoted(o.input) + " -o " + shell_quoted(o.output);
-  for (const std::string& a : canonical_render_arguments(o, region_arguments::include))
-    line += " " + shell_quoted(a);
-  if (!o.preview.empty())
-    line +=
-        " --preview " + shell_quoted(o.preview) + " --preview-exposure " + std::to_string(o.preview_exposure);
-  return line;
-}
-
 // Every job's EXR and preview, and the contact sheet, against every file any job reads (one job's
 // output must not replace another's asset, buffer or environment map) and the rules of kiln
 // render: .exr, no symlink.
@@ -111,19 +90,22 @@ void check_batch_outputs(const std::vector<batch_job>& jobs, const std::string& 
   // The files a job reads depend on these options alone; the frames of a sequence (up to a million)
   // share them, so the asset's JSON is read once per sequence, not once per frame.
   std::set<std::tuple<std::string, std::string, bool, uint64_t, uint64_t>> read_already;
+  const batch_entry* last_entry = nullptr;
   for (const batch_job& job : jobs) {
-    const render_options& o = job.options;
+    if (job.entry.get() == last_entry) continue;
+    last_entry = job.entry.get();
+    const render_options& o = job.entry->options;
     if (!read_already
              .emplace(o.input, o.environment, o.allow_outside_files, o.limits.max_json_bytes, o.max_memory)
              .second)
       continue;
-    std::vector<input_file> read = render_input_files(job.options, &interrupt_requested());
+    std::vector<input_file> read = render_input_files(batch_job_options(job), &interrupt_requested());
     files.insert(files.end(), read.begin(), read.end());
   }
   const input_index inputs = index_inputs(files);  // one stat per file, not per pair
   for (const batch_job& job : jobs) {
     try {
-      const render_options& o = job.options;
+      const render_options o = batch_job_options(job);
       check_output_spares_inputs(o.output, "output", inputs);
       if (!o.preview.empty()) check_output_spares_inputs(o.preview, "--preview", inputs);
       check_not_symlink(o.output, "output");
@@ -134,17 +116,20 @@ void check_batch_outputs(const std::vector<batch_job>& jobs, const std::string& 
         check_not_symlink(deep_output_path(o.output), "--deep");
       }
     } catch (const error& e) {
-      throw input_error("", job.where, e.what());
+      throw input_error("", job.entry->where, e.what());
     }
   }
   if (contact_sheet.empty()) return;
   check_output_spares_inputs(contact_sheet, "--contact-sheet", inputs);
   check_not_symlink(contact_sheet, "--contact-sheet");
   const fs::path sheet = fs::absolute(contact_sheet).lexically_normal();
-  for (const batch_job& job : jobs)
-    for (const std::string& written : {job.options.output, job.options.preview})
+  for (const batch_job& job : jobs) {
+    const render_options o = batch_job_options(job);
+    for (const std::string& written : {o.output, o.preview})
       if (!written.empty() && fs::path(written).lexically_normal() == sheet)
-        throw input_error("", "--contact-sheet", "'" + contact_sheet + "' is also written by " + job.where);
+        throw input_error("", "--contact-sheet",
+                          "'" + contact_sheet + "' is also written by " + job.entry->where);
+  }
 }
 
 // A job's plan-time estimate for the farm (job/plan_estimate.h); null when its asset cannot be
@@ -170,19 +155,19 @@ nlohmann::json estimate_json(const render_options& options) {
 // checked before anything is written.
 void write_plan(const std::string& path, const std::vector<batch_job>& jobs, bool estimates) {
   for (const batch_job& job : jobs) {
-    if (!job.error.empty()) throw input_error("", job.where, job.error);
-    if (job.options.crop || job.options.band_count > 0)
-      throw input_error("", job.where, "a plan leaves --crop and --band to whoever runs it; drop them");
+    const batch_entry& entry = *job.entry;
+    if (!entry.error.empty()) throw input_error("", entry.where, entry.error);
+    if (entry.options.crop || entry.options.band_count > 0)
+      throw input_error("", entry.where, "a plan leaves --crop and --band to whoever runs it; drop them");
   }
   write_json_list_atomically(path, {{"version", 1}}, "jobs", jobs.size(), [&](size_t i) {
     const batch_job& job = jobs[i];
-    std::vector<std::string> args = canonical_render_arguments(job.options, region_arguments::omit);
-    if (job.options.threads) args.insert(args.end(), {"--threads", std::to_string(job.options.threads)});
-    nlohmann::json entry = {{"name", job.name},
-                            {"asset", job.options.input},
-                            {"output", job.options.output},
-                            {"render_args", args}};
-    if (nlohmann::json estimate = estimates ? estimate_json(job.options) : nullptr; !estimate.is_null())
+    const render_options options = batch_job_options(job);
+    std::vector<std::string> args = canonical_render_arguments(options, region_arguments::omit);
+    if (options.threads) args.insert(args.end(), {"--threads", std::to_string(options.threads)});
+    nlohmann::json entry = {
+        {"name", job.name}, {"asset", options.input}, {"output", options.output}, {"render_args", args}};
+    if (nlohmann::json estimate = estimates ? estimate_json(options) : nullptr; !estimate.is_null())
       entry["estimate"] = estimate;
     return entry;
   });
@@ -252,10 +237,10 @@ std::string variant_output(const std::string& output, const std::string& variant
   return (path.parent_path() / (path.stem().string() + "_" + safe + path.extension().string())).string();
 }
 
-// The jobs of a manifest job's "variants": one per KHR_materials_variants variant, each with
+// The entries of a manifest job's "variants": one per KHR_materials_variants variant, each with
 // --variant and its own output; the job itself when it names none. "all" reads the asset's list;
 // an asset that cannot be read fails its job alone, as it would when rendering.
-std::vector<batch_job> variant_jobs(batch_job job, const batch_job_spec& spec) {
+std::vector<batch_entry> variant_entries(batch_entry job, const batch_job_spec& spec) {
   std::vector<std::string> variants = spec.variants;
   if (spec.all_variants && job.error.empty()) {
     try {
@@ -267,9 +252,9 @@ std::vector<batch_job> variant_jobs(batch_job job, const batch_job_spec& spec) {
     }
   }
   if (variants.empty() || !job.error.empty()) return {std::move(job)};
-  std::vector<batch_job> out;
+  std::vector<batch_entry> out;
   for (const std::string& variant : variants) {
-    batch_job one = job;
+    batch_entry one = job;
     one.options.variant = variant;
     one.options.output = variant_output(job.options.output, variant);
     out.push_back(std::move(one));
@@ -277,31 +262,38 @@ std::vector<batch_job> variant_jobs(batch_job job, const batch_job_spec& spec) {
   return out;
 }
 
-// Adds a job whose options are complete: its command line, a unique output and name.
-void add_planned_job(batch_job job, const fs::path& out_dir, const std::string& where,
-                     std::vector<batch_job>& jobs, std::map<std::string, size_t>& writers,
-                     std::map<std::string, int>& names) {
-  job.options.command_line = render_command_line(job.options);
+// The outputs the batch has planned so far and the names it has given, so that no two jobs write
+// one file and every job's name is unique.
+struct planned_outputs {
+  std::map<std::string, size_t> writers;  // output -> job index
+  std::map<std::string, int> names;
+};
+
+// Adds a job whose entry is complete: a unique output and name.
+void add_planned_job(batch_job job, const fs::path& out_dir, std::vector<batch_job>& jobs,
+                     planned_outputs& planned) {
+  const batch_entry& entry = *job.entry;
+  const std::string output = batch_job_output(job);
   // The deep file (--deep) is written too: no other job may write it, as its EXR or its own deep file.
-  std::vector<std::string> written = {job.options.output};
-  if (job.options.deep) written.push_back(deep_output_path(job.options.output));
+  std::vector<std::string> written = {output};
+  if (entry.options.deep) written.push_back(deep_output_path(output));
   for (const std::string& file : written) {
-    auto [it, inserted] = writers.emplace(file, jobs.size());
+    auto [it, inserted] = planned.writers.emplace(file, jobs.size());
     if (!inserted)
-      throw input_error(
-          "", where,
-          "writes " + file + ", as does " + jobs[it->second].where + " (give one of them another output)");
+      throw input_error("", entry.where,
+                        "writes " + file + ", as does " + jobs[it->second].entry->where +
+                            " (give one of them another output)");
   }
   // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
-  const fs::path output(job.options.output);
-  fs::path relative = output.lexically_relative(out_dir);
-  job.name = (relative.empty() || *relative.begin() == "..") ? output.stem().string()
+  const fs::path output_path(output);
+  fs::path relative = output_path.lexically_relative(out_dir);
+  job.name = (relative.empty() || *relative.begin() == "..") ? output_path.stem().string()
                                                              : relative.replace_extension().string();
-  if (int seen = names[job.name]++) job.name += "-" + std::to_string(seen + 1);
-  for (const std::string* text : {&job.options.input, &job.options.output})
+  if (int seen = planned.names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+  for (const std::string* text : {&entry.options.input, &output})
     if (const std::string why = unprintable(*text); !why.empty())
       throw input_error(
-          "", where,
+          "", entry.where,
           "the path " + nlohmann::json(*text).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) +
               " " + why);
   jobs.push_back(std::move(job));
@@ -329,6 +321,14 @@ void check_inside_out_dir(const fs::path& output, const fs::path& out_dir, const
                         " (outputs stay inside the folder the batch locks)");
 }
 
+render_options batch_job_options(const batch_job& job) {
+  return job.frame ? frame_options(job.entry->options, *job.frame) : job.entry->options;
+}
+
+std::string batch_job_output(const batch_job& job) {
+  return job.frame ? frame_path(job.entry->options.output, *job.frame) : job.entry->options.output;
+}
+
 std::vector<batch_job> plan_batch(const batch_options& options) {
   std::vector<batch_job_spec> specs;
   for (const std::string& argument : options.assets) {
@@ -351,18 +351,17 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
 
   const fs::path out_dir = fs::absolute(options.out_dir).lexically_normal();
   std::vector<batch_job> jobs;
-  std::map<std::string, size_t> writers;  // output -> job index
-  std::map<std::string, int> names;
+  planned_outputs planned;
   for (const batch_job_spec& spec : specs) {
-    batch_job job;
+    batch_entry job;
     job.where = spec.where;
     job.options = options.defaults;
     job.options.input = spec.asset;
     job.options.summary_line = false;
-    job.arguments = manifest_defaults;
-    job.arguments.insert(job.arguments.end(), spec.arguments.begin(), spec.arguments.end());
+    std::vector<std::string> arguments = manifest_defaults;
+    arguments.insert(arguments.end(), spec.arguments.begin(), spec.arguments.end());
     try {
-      apply_render_arguments(job.options, job.arguments);
+      apply_render_arguments(job.options, arguments);
     } catch (const CLI::ParseError& e) {
       job.error = std::string("bad render options: ") + e.what();
     }
@@ -370,33 +369,33 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
     const fs::path output = out_dir / (spec.output.empty() ? default_output(spec, sequence) : spec.output);
     if (!spec.output.empty()) check_inside_out_dir(output.lexically_normal(), out_dir, spec);
     job.options.output = output.lexically_normal().string();
-    for (batch_job& one : variant_jobs(std::move(job), spec)) {
+    for (batch_entry& one : variant_entries(std::move(job), spec)) {
       // --preview in a batch names the format only: each job's preview sits beside its EXR.
       if (!one.options.preview.empty())
         one.options.preview = fs::path(one.options.output)
                                   .replace_extension(fs::path(one.options.preview).extension())
                                   .string();
+      auto entry = std::make_shared<const batch_entry>(std::move(one));
       if (!sequence) {
-        add_planned_job(std::move(one), out_dir, spec.where, jobs, writers, names);
+        add_planned_job({"", entry, std::nullopt}, out_dir, jobs, planned);
         continue;
       }
       // A sequence (--frames, --turntable) is one job per frame, each with its own output, resume
       // state and farm task.
       std::vector<long long> frames;
       try {
-        frames = sequence_frames(one.options);
+        frames = sequence_frames(entry->options);
       } catch (const error& e) {
         throw input_error("", spec.where, e.what());
       }
-      if (frames.size() > 1 && !has_frame_placeholder(one.options.output))
+      if (frames.size() > 1 && !has_frame_placeholder(entry->options.output))
         throw input_error("", spec.where,
-                          "output " + one.options.output +
+                          "output " + entry->options.output +
                               " has no frame placeholder for its frames (name it like shot.####.exr)");
-      for (long long frame : frames) {
-        batch_job framed = one;
-        framed.options = frame_options(one.options, frame);
-        add_planned_job(std::move(framed), out_dir, spec.where, jobs, writers, names);
-      }
+      // Room for the frames at once (a million jobs grown by doubling would hold twice that).
+      if (jobs.capacity() - jobs.size() < frames.size())
+        jobs.reserve(std::max(jobs.size() + frames.size(), 2 * jobs.capacity()));
+      for (long long frame : frames) add_planned_job({"", entry, frame}, out_dir, jobs, planned);
     }
   }
   check_batch_outputs(jobs, options.contact_sheet);
@@ -406,9 +405,13 @@ std::vector<batch_job> plan_batch(const batch_options& options) {
 // What job_option_warnings says of the jobs, each line once (the batch's options reach every job).
 void print_option_warnings(const std::vector<batch_job>& jobs) {
   std::set<std::string> given;
-  for (const batch_job& job : jobs)
-    for (const std::string& line : job_option_warnings(job.options))
+  const batch_entry* last_entry = nullptr;
+  for (const batch_job& job : jobs) {
+    if (job.entry.get() == last_entry) continue;  // a sequence's frames warn as their first does
+    last_entry = job.entry.get();
+    for (const std::string& line : job_option_warnings(batch_job_options(job)))
       if (given.insert(line).second) std::fprintf(stderr, "kiln: %s\n", line.c_str());
+  }
 }
 
 // Creates --out-dir (and its parents) when missing.
@@ -458,9 +461,9 @@ int run_batch(const batch_options& options) {
     // Another running batch's folder inside this one is its own subtree: no job may write there.
     for (const batch_job& job : jobs) {
       try {
-        check_not_in_locked_folder(job.options.output, out_dir);
+        check_not_in_locked_folder(batch_job_output(job), out_dir);
       } catch (const error& e) {
-        throw input_error("", job.where, e.what());
+        throw input_error("", job.entry->where, e.what());
       }
     }
     return run_batch_jobs(jobs, options.resume, options.summary, options.contact_sheet,

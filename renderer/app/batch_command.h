@@ -4,6 +4,8 @@
 // every job's fate, also after a failure or a signal. App layer only.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,14 +30,27 @@ struct batch_options {
   bool plan_estimates = true;  // the plan carries each job's estimate (--no-estimates: not)
 };
 
-// One resolved job: the options `kiln render` would get, or why they are invalid.
-struct batch_job {
-  std::string name;                    // unique: the output's path under --out-dir without .exr
-  std::string where;                   // the manifest location, or the asset argument
-  render_options options;              // input and output absolute
-  std::vector<std::string> arguments;  // the job's render arguments after the defaults
-  std::string error;  // non-empty: the options did not parse; the job fails without rendering
+// What the jobs of one manifest entry (or one of its variants, or one asset argument) share.
+struct batch_entry {
+  std::string where;       // the manifest location, or the asset argument
+  render_options options;  // input and output absolute; a sequence's keep --frames and the placeholder
+  std::string error;       // non-empty: the options did not parse; its jobs fail without rendering
 };
+
+// One resolved job: its entry, and for a frame of a sequence the frame. The frames of an entry
+// share it, so a frame plans in a few hundred bytes instead of a copy of the render options: a
+// job's own options are made when it is checked, written or rendered (batch_job_options).
+struct batch_job {
+  std::string name;  // unique: the output's path under --out-dir without .exr
+  std::shared_ptr<const batch_entry> entry;
+  std::optional<long long> frame;  // set: the options are frame_options(entry->options, *frame)
+};
+
+// The options `kiln render` would get for job (input and output absolute).
+render_options batch_job_options(const batch_job& job);
+
+// The EXR job writes, without making its options.
+std::string batch_job_output(const batch_job& job);
 
 void add_batch_options(CLI::App& app, batch_options& options);
 

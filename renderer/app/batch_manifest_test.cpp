@@ -66,8 +66,8 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
     ]})");
   const std::vector<batch_job> jobs = plan(path);
   ASSERT_EQ(jobs.size(), 3u);
-  const render_options& a = jobs[0].options;
-  EXPECT_EQ(jobs[0].error, "");
+  const render_options& a = jobs[0].entry->options;
+  EXPECT_EQ(jobs[0].entry->error, "");
   EXPECT_EQ(a.input, (dir / "assets/a.gltf").string());
   EXPECT_EQ(a.output, (dir / "out/a_cam.exr").string());
   EXPECT_EQ(a.camera, "Cam");
@@ -79,7 +79,7 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
   EXPECT_EQ(aov_list_name(a.aovs), "beauty,Z");
   EXPECT_EQ(jobs[0].name, "a_cam");
 
-  const render_options& b = jobs[1].options;
+  const render_options& b = jobs[1].entry->options;
   EXPECT_EQ(b.input, (dir / "b.glb").string());
   EXPECT_EQ(b.output, (dir / "out/b_2.exr").string());  // asset stem + _camera
   EXPECT_EQ(samples_per_pixel_of(b), 4);                // the manifest's default
@@ -88,7 +88,7 @@ TEST_F(manifest, json_jobs_apply_defaults_fields_and_overrides_in_that_order) {
   EXPECT_FALSE(b.width.has_value());
   EXPECT_EQ(aov_list_name(b.aovs), "beauty,Z,N");
 
-  const render_options& c = jobs[2].options;
+  const render_options& c = jobs[2].entry->options;
   EXPECT_EQ(c.input, "/abs/c.gltf");
   EXPECT_EQ(c.output, (dir / "out/sub/c.exr").string());
   EXPECT_EQ(jobs[2].name, "sub/c");
@@ -100,8 +100,8 @@ TEST_F(manifest, a_bare_json_array_is_a_list_of_jobs) {
   const std::vector<batch_job> jobs =
       plan(write("m.json", R"([{"asset": "x.gltf"}, {"asset": "y.gltf", "spp": 2}])"));
   ASSERT_EQ(jobs.size(), 2u);
-  EXPECT_EQ(jobs[0].options.output, (dir / "out/x.exr").string());
-  EXPECT_EQ(samples_per_pixel_of(jobs[1].options), 2);
+  EXPECT_EQ(jobs[0].entry->options.output, (dir / "out/x.exr").string());
+  EXPECT_EQ(samples_per_pixel_of(jobs[1].entry->options), 2);
 }
 
 TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
@@ -113,8 +113,8 @@ TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
                                  "\"c, d.gltf\",1,,,,\n");
   const std::vector<batch_job> jobs = plan(path);
   ASSERT_EQ(jobs.size(), 3u);
-  const render_options& a = jobs[0].options;
-  EXPECT_EQ(jobs[0].error, "");
+  const render_options& a = jobs[0].entry->options;
+  EXPECT_EQ(jobs[0].entry->error, "");
   EXPECT_EQ(a.input, (dir / "assets/a.gltf").string());
   EXPECT_EQ(a.output, (dir / "out/a.exr").string());
   EXPECT_EQ(a.camera, "Cam");
@@ -123,13 +123,13 @@ TEST_F(manifest, csv_rows_apply_their_columns_and_quoted_overrides) {
   EXPECT_EQ(samples_per_pixel_of(a), 8);
   EXPECT_EQ(a.max_depth, 4);
   EXPECT_EQ(aov_list_name(a.aovs), "beauty,Z");
-  EXPECT_EQ(jobs[1].error, "");
-  EXPECT_EQ(samples_per_pixel_of(jobs[1].options),
+  EXPECT_EQ(jobs[1].entry->error, "");
+  EXPECT_EQ(samples_per_pixel_of(jobs[1].entry->options),
             default_samples_per_pixel);  // empty cells leave the defaults
-  EXPECT_EQ(jobs[1].options.background, std::optional<vec3>(vec3(0.5f, 0.25f, 0.0f)));
-  EXPECT_EQ(jobs[1].options.up, dvec3(0.0, 0.0, 1.0));  // a quoted argument inside the overrides
-  EXPECT_EQ(jobs[2].options.input, (dir / "c, d.gltf").string());
-  EXPECT_EQ(jobs[2].options.output, (dir / "out/c, d_1.exr").string());
+  EXPECT_EQ(jobs[1].entry->options.background, std::optional<vec3>(vec3(0.5f, 0.25f, 0.0f)));
+  EXPECT_EQ(jobs[1].entry->options.up, dvec3(0.0, 0.0, 1.0));  // a quoted argument inside the overrides
+  EXPECT_EQ(jobs[2].entry->options.input, (dir / "c, d.gltf").string());
+  EXPECT_EQ(jobs[2].entry->options.output, (dir / "out/c, d_1.exr").string());
 }
 
 TEST_F(manifest, bad_csv_rows_are_refused_with_file_and_line) {
@@ -177,10 +177,11 @@ TEST_F(manifest, a_bad_override_fails_only_its_job_with_the_parsers_message) {
       plan(write("m.json", R"([{"asset": "x.gltf", "overrides": {"max-depth": 99}},
       {"asset": "y.gltf", "overrides": {"no-such-option": 1}}, {"asset": "z.gltf"}])"));
   ASSERT_EQ(jobs.size(), 3u);
-  EXPECT_EQ(jobs[0].error, "bad render options: --max-depth: expects an integer from 0 to 64, got '99'");
-  EXPECT_NE(jobs[1].error.find("--no-such-option"), std::string::npos) << jobs[1].error;
-  EXPECT_EQ(jobs[2].error, "");
-  EXPECT_EQ(jobs[0].where, (dir / "m.json").string() + ": /0");
+  EXPECT_EQ(jobs[0].entry->error,
+            "bad render options: --max-depth: expects an integer from 0 to 64, got '99'");
+  EXPECT_NE(jobs[1].entry->error.find("--no-such-option"), std::string::npos) << jobs[1].entry->error;
+  EXPECT_EQ(jobs[2].entry->error, "");
+  EXPECT_EQ(jobs[0].entry->where, (dir / "m.json").string() + ": /0");
 }
 
 TEST_F(manifest, two_jobs_writing_one_output_are_refused_before_anything_renders) {

@@ -63,13 +63,13 @@ bool is_interrupt(int signo) { return signo == SIGINT || signo == SIGTERM; }
 job_result run_job(const batch_job& job, bool resume, const std::string& label, bool quiet) {
   job_result result;
   const auto start = std::chrono::steady_clock::now();
+  const render_options options = batch_job_options(job);
   try {
-    if (!job.error.empty()) throw input_error("", job.where, job.error);
+    if (!job.entry->error.empty()) throw input_error("", job.entry->where, job.entry->error);
     std::error_code ec;
-    if (resume && fs::exists(job.options.output, ec)) {
-      memory_budget budget(job_memory_limit(job.options));
-      result.resume =
-          resume_problem(job.options, make_fingerprint(job.options, &interrupt_requested()), &budget);
+    if (resume && fs::exists(options.output, ec)) {
+      memory_budget budget(job_memory_limit(options));
+      result.resume = resume_problem(options, make_fingerprint(options, &interrupt_requested()), &budget);
       if (result.resume.empty()) {
         result.status = job_status::skipped;
         result.seconds = seconds_since(start);
@@ -83,8 +83,8 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
     return result;
   }
   std::error_code ec;
-  fs::create_directories(fs::path(job.options.output).parent_path(), ec);
-  const child_outcome child = run_job_in_child(job, label, quiet);
+  fs::create_directories(fs::path(options.output).parent_path(), ec);
+  const child_outcome child = run_job_in_child(options, label, quiet);
   result.seconds = seconds_since(start);
   result.error = child.error;
   if (!child.started) {
@@ -115,8 +115,8 @@ job_result run_job(const batch_job& job, bool resume, const std::string& label, 
 // The summary's entry of job i.
 nlohmann::json summary_entry(const batch_job& job, const job_result& r) {
   return {{"name", job.name},
-          {"asset", job.options.input},
-          {"output", job.options.output},
+          {"asset", job.entry->options.input},
+          {"output", batch_job_output(job)},
           {"status", status_name(r.status)},
           {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
           {"resume", r.resume.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.resume)},
@@ -159,10 +159,10 @@ void write_batch_contact_sheet(const std::string& path, const std::vector<batch_
   for (size_t i = 0; i < jobs.size(); ++i) {
     contact_sheet_cell cell;
     cell.label = jobs[i].name;
-    cell.exposure = jobs[i].options.preview_exposure;
+    cell.exposure = jobs[i].entry->options.preview_exposure;
     const job_status status = results[i].status;
     cell.failed = status == job_status::failed || status == job_status::crashed;
-    if (status == job_status::rendered || status == job_status::skipped) cell.exr = jobs[i].options.output;
+    if (status == job_status::rendered || status == job_status::skipped) cell.exr = batch_job_output(jobs[i]);
     cells.push_back(std::move(cell));
   }
   write_contact_sheet(path, cells);
