@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
 
   kiln::stitch_options stitch;
   CLI::App* stitch_command = app.add_subcommand(
-      "stitch", "Join region EXRs (e.g. the bands of render --tile i/N) into one full-frame EXR");
+      "stitch", "Join region EXRs (e.g. the bands of render --band I/N) into one full-frame EXR");
   kiln::add_stitch_options(*stitch_command, stitch);
 
   kiln::batch_options batch;
