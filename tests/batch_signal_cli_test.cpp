@@ -37,25 +37,32 @@ void write_slow_manifest(const fs::path& dir) {
              {"asset": "scenes/cornell_box.gltf", "output": "c.exr", "spp": 26}]})");
 }
 
-// Starts the slow batch in dir, sends signo once the first output exists, and checks the exit code
-// and the summary: a rendered, b interrupted (or not yet started), c not started.
-void expect_signal_stops_batch(const fs::path& dir, int signo) {
-  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
-  std::vector<std::string> args = {KILN_BINARY, "batch", "--manifest", (dir / "jobs.json").string(),
-                                   "--out-dir", out,     "--summary",  summary,
-                                   "-q"};
+// Starts kiln with args in the background, stderr into err_file; returns its pid.
+pid_t start_kiln(std::vector<std::string> args, const std::string& err_file) {
+  args.insert(args.begin(), KILN_BINARY);
   std::vector<char*> argv;
   for (std::string& s : args) argv.push_back(s.data());
   argv.push_back(nullptr);
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(null, STDIN_FILENO);
     ::dup2(null, STDOUT_FILENO);
-    ::dup2(null, STDERR_FILENO);
+    ::dup2(err, STDERR_FILENO);
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }
+  return pid;
+}
+
+// Starts the slow batch in dir, sends signo once the first output exists, and checks the exit code
+// and the summary: a rendered, b interrupted (or not yet started), c not started.
+void expect_signal_stops_batch(const fs::path& dir, int signo) {
+  const std::string out = (dir / "out").string(), summary = (dir / "summary.json").string();
+  const pid_t pid = start_kiln(
+      {"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", out, "--summary", summary, "-q"},
+      "/dev/null");
   ASSERT_GT(pid, 0);
   // The first output appears by rename, so it is complete the moment it exists.
   for (int i = 0; i < 6000 && !fs::exists(out + "/a.exr"); ++i)
@@ -110,25 +117,6 @@ TEST(batch_cli, sigint_stops_the_batch_cleanly_and_resume_finishes_it_like_a_fre
       run_kiln({"batch", "--manifest", (dir / "jobs.json").string(), "--out-dir", fresh, "-q"});
   ASSERT_EQ(clean.exit_code, 0) << clean.stderr_text;
   for (const char* name : {"/a.exr", "/b.exr", "/c.exr"}) expect_same_pixels(out + name, fresh + name);
-}
-
-// Starts kiln with args in the background, stderr into err_file; returns its pid.
-pid_t start_kiln(std::vector<std::string> args, const std::string& err_file) {
-  args.insert(args.begin(), KILN_BINARY);
-  std::vector<char*> argv;
-  for (std::string& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_RDWR);
-    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(null, STDIN_FILENO);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(err, STDERR_FILENO);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  return pid;
 }
 
 int wait_exit_code(pid_t pid) {
