@@ -97,8 +97,8 @@ uint32_t camera_ray_seed(const ray& r) {
 // the ray's cone there; camera: the camera ray's origin, from which deep surfaces are measured).
 // The sample's ray tree gets its own budget.
 void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& camera, const shading_point& p,
-                       const ray_cone& at_hit, bool show_background, const sample_outputs& outputs,
-                       camera_sample& s, ray_counts& counts) {
+                       const ray_cone& at_hit, const planned_light* planned, bool show_background,
+                       const sample_outputs& outputs, camera_sample& s, ray_counts& counts) {
   camera_path path;
   path.record_surfaces = outputs.surfaces != nullptr;
   path.origin = camera;
@@ -115,6 +115,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   state.memo = outputs.memo;
   state.seed = camera_ray_seed(r);
   state.stratum = outputs.stratum;
+  state.planned = planned;
   const vec3 radiance = shade_prepared(ctx, r, p, state, counts);
   std::copy(path.layers, path.layers + path.layer_count, s.layers);
   s.layer_count = path.layer_count;
@@ -133,6 +134,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
 void prepare_camera_hit(const shading_context& ctx, const ray& start, const std::optional<hit>& first,
                         const ray_cone& cone, ray_counts& counts, triangle_memo* memo, camera_hit& out) {
   out.r = start;  // find_visible_hit moves the origin past culled back faces
+  out.planned = false;
   std::optional<hit> walked;
   out.visible = visible_hit_from(ctx, out.r, first, walked, counts);
   if (!out.visible) return;
@@ -140,6 +142,24 @@ void prepare_camera_hit(const shading_context& ctx, const ray& start, const std:
   out.at_hit = cone_at(cone, out.distance);
   out.p =
       prepare_shading(ctx, out.r, make_surface_point(ctx.world, *out.visible, out.r, out.at_hit.width, memo));
+}
+
+void plan_camera_light(const shading_context& ctx, const pixel_stratum& stratum, bool passes, camera_hit& h,
+                       light_terms& terms) {
+  h.planned = false;
+  if (!h.visible || h.p.mp.unlit || is_matte(ctx.world.instances[h.visible->instance_id].holdout)) return;
+  // A BLEND surface that covers nothing of the ray is not shaded, only passed.
+  if (ctx.world.materials[h.p.sp.material].alpha == alpha_mode::blend && !(h.p.mp.alpha > 0.0f)) return;
+  // What shade_camera_path's state gives direct_light at this point.
+  light_query q;
+  q.cone = h.at_hit;
+  q.seed = camera_ray_seed(h.r);
+  q.stratum = stratum;
+  q.camera = true;
+  q.passes = passes;
+  h.light.terms = &terms;
+  h.light.span = plan_direct_light(ctx, h.p.sp, h.p.mp, -glm::normalize(h.r.direction), q, terms);
+  h.planned = true;
 }
 
 camera_sample shade_prepared_camera_hit(const shading_context& ctx, const view_camera& cam,
@@ -160,8 +180,8 @@ camera_sample shade_prepared_camera_hit(const shading_context& ctx, const view_c
   // a matte picked from them selects only objects the layer holds.
   if (!is_matte(ctx.world.instances[prepared.visible->instance_id].holdout))
     record_hit(ctx, *prepared.visible, prepared.p, prepared.distance, outputs, s);
-  shade_camera_path(ctx, prepared.r, start.origin, prepared.p, prepared.at_hit, show_background, outputs, s,
-                    counts);
+  shade_camera_path(ctx, prepared.r, start.origin, prepared.p, prepared.at_hit,
+                    prepared.planned ? &prepared.light : nullptr, show_background, outputs, s, counts);
   return s;
 }
 

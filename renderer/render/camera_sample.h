@@ -9,6 +9,7 @@
 #include "render/film.h"
 #include "render/motion_vectors.h"
 #include "render/view_camera.h"
+#include "shade/direct_light.h"
 #include "shade/ray_cone.h"
 #include "shade/whitted.h"
 
@@ -86,11 +87,20 @@ struct camera_hit {
   float distance = 0.0f;  // from the camera ray's origin to the visible hit
   ray_cone at_hit;        // the ray's cone there
   shading_point p;        // the surface and material there (set when visible)
+  // Its direct light, when plan_camera_light made it (in a run's light_terms, answered there).
+  bool planned = false;
+  planned_light light;
 };
 
 // The camera hit of the camera ray `start` whose closest hit `first` is known, with footprint cone.
 void prepare_camera_hit(const shading_context& ctx, const ray& start, const std::optional<hit>& first,
                         const ray_cone& cone, ray_counts& counts, triangle_memo* memo, camera_hit& out);
+
+// Plans the direct light of the prepared camera hit h into terms (its shadow rays to be answered
+// with the run's, before h is shaded), when shading will ask for it: a visible lit surface that is
+// not a matte. stratum and passes: what the sample's shading has (sample_outputs).
+void plan_camera_light(const shading_context& ctx, const pixel_stratum& stratum, bool passes, camera_hit& h,
+                       light_terms& terms);
 
 // The sample of the camera ray `start` from its prepared camera hit: the second half of
 // shade_camera_hit.

@@ -134,18 +134,21 @@ inline pixel_stratum sample_stratum(int x, int y, int s, int spp) {
 }
 
 // The wave stage's camera hits of the run of samples a tile's camera ray batch holds (first: the
-// batch's first sample when they were made; none yet: npos).
+// batch's first sample when they were made; none yet: npos), with their direct light's terms.
 struct camera_hits {
   size_t first = ~size_t(0);
   std::vector<camera_hit> hits;
   std::vector<uint32_t> order;  // the batch's rays grouped by the material they hit first
+  light_terms lights;           // the hits' direct light, their shadow rays answered together
 };
 
 // Makes the camera hits of the run rays holds, unless they are made: the rays grouped by the
 // material of their closest hit (misses last), so that one material's textures and branches are
-// worked through together, each group in the order the rays were made.
+// worked through together, each group in the order the rays were made; then their direct light is
+// planned and the run's shadow rays are answered at once (through the accelerator's packets).
 const std::vector<camera_hit>& camera_hits_of(const shading_context& ctx, const camera_ray_batch& rays,
-                                              camera_hits& out, triangle_memo& memo, ray_counts& counts) {
+                                              int spp, bool passes, camera_hits& out, triangle_memo& memo,
+                                              ray_counts& counts) {
   if (out.first == rays.first && out.hits.size() == rays.rays.size()) return out.hits;
   const size_t n = rays.rays.size();
   out.first = rays.first;
@@ -158,8 +161,14 @@ const std::vector<camera_hit>& camera_hits_of(const shading_context& ctx, const 
   };
   std::stable_sort(out.order.begin(), out.order.end(),
                    [&](uint32_t a, uint32_t b) { return material_of(a) < material_of(b); });
-  for (uint32_t i : out.order)
+  out.lights.clear();
+  for (uint32_t i : out.order) {
     prepare_camera_hit(ctx, rays.rays[i], rays.hits[i], rays.sources[i].cone, counts, &memo, out.hits[i]);
+    const camera_ray_source& source = rays.sources[i];
+    plan_camera_light(ctx, sample_stratum(source.x, source.y, int(source.sample), spp), passes, out.hits[i],
+                      out.lights);
+  }
+  answer_shadow_rays_together(ctx, out.lights, counts);
   return out.hits;
 }
 
@@ -182,12 +191,13 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     const size_t k = camera_ray_at(rays, x, y, s, cam, settings, ctx.accel);
     const camera_ray_source& source = rays.sources[k];
     outputs.stratum = sample_stratum(x, y, s, settings.samples_per_pixel);
-    camera_sample cs =
-        settings.reference_shading
-            ? shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k], source.cone,
-                               counts, outputs)
-            : shade_prepared_camera_hit(ctx, cam, settings.show_background, rays.rays[k],
-                                        camera_hits_of(ctx, rays, wave, memo, counts)[k], counts, outputs);
+    camera_sample cs = settings.reference_shading
+                           ? shade_camera_hit(ctx, cam, settings.show_background, rays.rays[k], rays.hits[k],
+                                              source.cone, counts, outputs)
+                           : shade_prepared_camera_hit(ctx, cam, settings.show_background, rays.rays[k],
+                                                       camera_hits_of(ctx, rays, settings.samples_per_pixel,
+                                                                      outputs.passes, wave, memo, counts)[k],
+                                                       counts, outputs);
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.

@@ -42,35 +42,30 @@ void stop_short_of_light(const light& l, const light_sample& ls, ray& r) {
 
 // A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
 // its Lambert transmission, shadowed along a ray that leaves from the back of the surface.
-vec3 back_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                const vec3& to_viewer, const light& l, const light_sample& ls, ray_counts& counts) {
+void plan_back_light(const surface_point& sp, const material_point& mp, const vec3& to_viewer, const light& l,
+                     const light_sample& ls, light_term& term, light_terms& out) {
+  term.kind = light_term_kind::back;
   const float cos_theta = -glm::dot(sp.shading_normal, ls.direction);
-  if (!(cos_theta > 0.0f)) return vec3(0.0f);
+  if (!(cos_theta > 0.0f)) return;
   const vec3 f = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction);
-  if (f == vec3(0.0f)) return vec3(0.0f);
-  vec3 visibility(1.0f);
-  if (l.casts_shadows) {
-    ray shadow = spawn_ray(sp, ls.direction, ray_kind::shadow);
-    stop_short_of_light(l, ls, shadow);
-    visibility = shadow_visibility(ctx, shadow, counts);
-  }
-  return f * ls.irradiance * cos_theta * visibility;
+  if (f == vec3(0.0f)) return;
+  term.value = f * ls.irradiance * cos_theta;
+  if (!l.casts_shadows) return;
+  ray shadow = spawn_ray(sp, ls.direction, ray_kind::shadow);
+  stop_short_of_light(l, ls, shadow);
+  out.rays.push_back(shadow);
+  term.shadowed = true;
 }
 
-// Direct light from every punctual light; with light groups, each light's share is filed in its
-// group (times the ray's tint); on the camera's path with passes, by lobe and as shadow mattes.
-vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                    const vec3& to_viewer, const path_state& s, ray_counts& counts) {
-  const ray_cone& cone = s.cone;
-  vec3 total(0.0f);
-  auto add = [&](size_t i, const vec3& light) {
-    total += light;
-    record_group(s.record, i, light);
-  };
+// The terms of every punctual light: the light it brings unshadowed and its shadow ray.
+void plan_punctual_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                         const vec3& to_viewer, const light_query& q, light_terms& out) {
   for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
     const light& l = ctx.world.lights[i];
     light_sample ls = sample_light(l, sp.position);
     if (ls.irradiance == vec3(0.0f)) continue;
+    light_term term;
+    term.light = uint32_t(i);
     // A light behind the surface cannot reach it, whatever the shading normal says. The surface is
     // the smooth one the vertex normals describe, not the flat facet: facets just past a low-poly
     // mesh's terminator still face the light there, and their shadow rays start on that smooth
@@ -78,46 +73,30 @@ vec3 punctual_light(const shading_context& ctx, const surface_point& sp, const m
     if (glm::dot(sp.smooth_normal, ls.direction) <= 0.0f) {
       // ...except through a surface that transmits diffusely: then it lights the far side.
       if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
-      const vec3 through = back_light(ctx, sp, mp, to_viewer, l, ls, counts);
-      add(i, through);
-      record_diffuse(s.record, through);
+      plan_back_light(sp, mp, to_viewer, l, ls, term, out);
+      out.terms.push_back(term);
       continue;
     }
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
     if (cos_theta <= 0.0f) continue;
     const float scale = ctx.options.highlight_footprint_scale;
     const highlight_footprint footprint =
-        highlight_footprint_of(cone.spread * scale, cone.width * scale, ls.distance, sp.curvature);
+        highlight_footprint_of(q.cone.spread * scale, q.cone.width * scale, ls.distance, sp.curvature);
     vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
     if (f == vec3(0.0f)) continue;
     // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
-    const brdf_lobes lobes =
-        s.record.passes ? evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint)
-                        : brdf_lobes{};
-
-    if (!l.casts_shadows) {
-      add(i, f * ls.irradiance * cos_theta);
-      record_light_passes(s.record, i, lobes, ls.irradiance * cos_theta, vec3(1.0f));
-      continue;
+    if (q.passes) term.lobes = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
+    term.incident = ls.irradiance * cos_theta;
+    term.value = f * ls.irradiance * cos_theta;
+    if (l.casts_shadows) {
+      ray shadow = spawn_shadow_ray_above(sp, ls.direction);
+      stop_short_of_light(l, ls, shadow);
+      out.rays.push_back(shadow);
+      term.shadowed = true;
     }
-    ray shadow = spawn_shadow_ray_above(sp, ls.direction);
-    stop_short_of_light(l, ls, shadow);
-    vec3 visibility = shadow_visibility(ctx, shadow, counts);
-    record_light_passes(s.record, i, lobes, ls.irradiance * cos_theta, visibility);
-    if (visibility == vec3(0.0f)) continue;
-    add(i, f * ls.irradiance * cos_theta * visibility);
+    out.terms.push_back(term);
   }
-  return total;
 }
-
-// What the environment's samples at one shading point gather: the light by lobe, and the
-// luminance arriving before and after the shadow rays (for the shadow matte).
-struct environment_tally {
-  vec3 diffuse{0.0f};
-  vec3 specular{0.0f};
-  float unshadowed = 0.0f;
-  float lit = 0.0f;
-};
 
 // Veach's power heuristic (β = 2) for a sample drawn with density pdf against another strategy's
 // other, in the form that cannot overflow.
@@ -127,38 +106,35 @@ float power_heuristic(float pdf, float other) {
   return 1.0f / (1.0f + ratio * ratio);
 }
 
-// Adds the environment's light arriving along the unit direction l, times weight (the sample's MIS
-// weight over its density), with its shadow ray: the lobes above the smooth surface, the diffuse
-// transmission below it (from the back, as back_light lights it).
-void add_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                               const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
-                               const vec2& uv, float weight, environment_tally& tally, ray_counts& counts) {
+// The term of the environment's light arriving along the unit direction l, times weight (the
+// sample's MIS weight over its density), with its shadow ray: the lobes above the smooth surface,
+// the diffuse transmission below it (from the back, as plan_back_light lights it).
+void plan_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                                const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
+                                const vec2& uv, float weight, light_terms& out) {
   const bool above = glm::dot(sp.smooth_normal, l) > 0.0f;
   const float cos_theta = above ? glm::dot(sp.shading_normal, l) : -glm::dot(sp.shading_normal, l);
   if (!(cos_theta > 0.0f) || !(weight > 0.0f)) return;
-  brdf_lobes f;
+  light_term term;
+  term.kind = light_term_kind::environment;
   if (above)
-    f = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, l, glossy);
+    term.lobes = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, l, glossy);
   else if (diffuse_see_through_weight(mp) > 0.0f)
-    f.diffuse = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, l);
-  if (f.diffuse == vec3(0.0f) && f.specular == vec3(0.0f)) return;
-  const vec3 arriving = environment_radiance_at(ctx.world, uv) * (cos_theta * weight);
-  if (arriving == vec3(0.0f)) return;
-  const ray shadow = above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow);
-  const vec3 visibility = shadow_visibility(ctx, shadow, counts);
-  tally.diffuse += f.diffuse * arriving * visibility;
-  tally.specular += f.specular * arriving * visibility;
-  const vec3 unshadowed = (f.diffuse + f.specular) * arriving;
-  tally.unshadowed += luminance(unshadowed);
-  tally.lit += luminance(unshadowed * visibility);
+    term.lobes.diffuse = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, l);
+  if (term.lobes.diffuse == vec3(0.0f) && term.lobes.specular == vec3(0.0f)) return;
+  term.incident = environment_radiance_at(ctx.world, uv) * (cos_theta * weight);
+  if (term.incident == vec3(0.0f)) return;
+  out.rays.push_back(above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow));
+  term.shadowed = true;
+  out.terms.push_back(term);
 }
 
-// The environment's direct light: environment_samples pairs of samples (half as many off the
-// camera's path), one drawn from the map's importance and one from the material's lobes, each
-// weighed against the other's density. The
-// pairs are stratified over the map's rows and over the choice of lobe.
-vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                          const vec3& to_viewer, const path_state& s, ray_counts& counts) {
+// The environment's terms: environment_samples pairs of samples (half as many off the camera's
+// path), one drawn from the map's importance and one from the material's lobes, each weighed
+// against the other's density. The pairs are stratified over the map's rows and over the choice
+// of lobe. Returns the number of pairs.
+int plan_environment_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
+                           const vec3& to_viewer, const light_query& q, light_terms& out) {
   const environment_light& e = *ctx.environment;
   const glossy_weights glossy = environment_glossy_weights(ctx.options, mp);
   const lobe_sampler lobes = make_lobe_sampler(mp, sp.shading_normal, to_viewer, glossy);
@@ -166,24 +142,23 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
   // weighted down by Fresnel and transmission, and there are as many of them as camera surfaces in
   // a scene of glass and chrome.
   const int asked = std::max(ctx.options.environment_samples, 1);
-  const int n = s.record.camera ? asked : (asked + 1) / 2;
-  environment_tally tally;
+  const int n = q.camera ? asked : (asked + 1) / 2;
   for (int i = 0; i < n; ++i) {
-    const auto next = [&s, i](uint32_t dimension) { return hash_to_unit(s.seed, uint32_t(i), dimension); };
+    const auto next = [&q, i](uint32_t dimension) { return hash_to_unit(q.seed, uint32_t(i), dimension); };
     const float stratum = float(i);
     vec2 light_u(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f));
     vec2 lobe_u(next(4), next(5));
-    if (s.stratum.count > 0) {
+    if (q.stratum.count > 0) {
       // The camera's first surface: its pixel's samples × n pairs take consecutive points of a
       // scrambled (0, 2)-sequence, so the pixel's estimate is stratified over both domains.
-      const uint32_t point = s.stratum.index * uint32_t(n) + uint32_t(i), key = s.stratum.scramble;
+      const uint32_t point = q.stratum.index * uint32_t(n) + uint32_t(i), key = q.stratum.scramble;
       sobol_2d(point, hash_u32(key ^ 0x1B56C4E9U), hash_u32(key ^ 0x27D4EB2FU), light_u.x, light_u.y);
       sobol_2d(point, hash_u32(key ^ 0x165667B1U), hash_u32(key ^ 0x61C88647U), lobe_u.x, lobe_u.y);
     }
     const environment_sample es = sample_environment(e, light_u);
     if (es.pdf > 0.0f) {
       const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
-      add_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, tally, counts);
+      plan_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, out);
     }
     const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), lobe_u.x, lobe_u.y);
     if (const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u)) {
@@ -192,19 +167,106 @@ vec3 environment_light_at(const shading_context& ctx, const surface_point& sp, c
         // The map's coordinates of the direction, once for its density and its radiance.
         const vec2 uv = e.uniform ? vec2(0.0f) : environment_uv(*l, e.rotation);
         const float weight = power_heuristic(pdf, environment_pdf_at(e, *l, uv)) / pdf;
-        add_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, uv, weight, tally, counts);
+        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, uv, weight, out);
       }
     }
   }
-  const float scale = 1.0f / float(n);
+  return n;
+}
+
+// What the environment's terms at one shading point gather: the light by lobe, and the luminance
+// arriving before and after the shadow rays (for the shadow matte).
+struct environment_tally {
+  vec3 diffuse{0.0f};
+  vec3 specular{0.0f};
+  float unshadowed = 0.0f;
+  float lit = 0.0f;
+};
+
+void add_environment_term(const light_term& term, const vec3& visibility, environment_tally& tally) {
+  const brdf_lobes& f = term.lobes;
+  const vec3& arriving = term.incident;
+  tally.diffuse += f.diffuse * arriving * visibility;
+  tally.specular += f.specular * arriving * visibility;
+  const vec3 unshadowed = (f.diffuse + f.specular) * arriving;
+  tally.unshadowed += luminance(unshadowed);
+  tally.lit += luminance(unshadowed * visibility);
+}
+
+}  // namespace
+
+light_query light_query_of(const path_state& s) {
+  light_query q;
+  q.cone = s.cone;
+  q.seed = s.seed;
+  q.stratum = s.stratum;
+  q.camera = s.record.camera != nullptr;
+  q.passes = s.record.passes != nullptr;
+  return q;
+}
+
+light_terms_span plan_direct_light(const shading_context& ctx, const surface_point& sp,
+                                   const material_point& mp, const vec3& to_viewer, const light_query& q,
+                                   light_terms& out) {
+  light_terms_span span;
+  span.first_term = uint32_t(out.terms.size());
+  span.first_ray = uint32_t(out.rays.size());
+  plan_punctual_light(ctx, sp, mp, to_viewer, q, out);
+  if (ctx.environment && ctx.environment->lights)
+    span.environment_pairs = plan_environment_light(ctx, sp, mp, to_viewer, q, out);
+  span.term_count = uint32_t(out.terms.size()) - span.first_term;
+  return span;
+}
+
+void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts) {
+  t.visibility.resize(t.rays.size());
+  for (size_t i = first_ray; i < t.rays.size(); ++i)
+    t.visibility[i] = shadow_visibility(ctx, t.rays[i], counts);
+}
+
+void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray_counts& counts) {
+  const size_t n = t.rays.size();
+  t.visibility.resize(n);
+  t.blocked.resize(n);
+  ctx.accel.occluded_batch(t.rays.data(), n, t.blocked.data());
+  counts.shadow += n;
+  for (size_t i = 0; i < n; ++i)
+    t.visibility[i] = !t.blocked[i]               ? vec3(1.0f)
+                      : !ctx.see_through_shadows ? vec3(0.0f)
+                                                 : shadow_transmittance(ctx.world, ctx.accel, t.rays[i], counts.shadow);
+}
+
+vec3 resolve_direct_light(const shading_context& ctx, const light_terms& t, const light_terms_span& span,
+                          const path_state& s) {
+  vec3 total(0.0f);
+  environment_tally tally;
+  size_t next_ray = span.first_ray;
+  for (size_t k = span.first_term; k < span.first_term + span.term_count; ++k) {
+    const light_term& term = t.terms[k];
+    const vec3 visibility = term.shadowed ? t.visibility[next_ray++] : vec3(1.0f);
+    if (term.kind == light_term_kind::environment) {
+      add_environment_term(term, visibility, tally);
+      continue;
+    }
+    // With light groups, each light's share is filed in its group (times the ray's tint); on the
+    // camera's path with passes, by lobe and as shadow mattes.
+    if (term.kind == light_term_kind::front) {
+      record_light_passes(s.record, term.light, term.lobes, term.incident, visibility);
+      if (visibility == vec3(0.0f)) continue;
+    }
+    const vec3 light = term.value * visibility;
+    total += light;
+    record_group(s.record, term.light, light);
+    if (term.kind == light_term_kind::back) record_diffuse(s.record, light);
+  }
+  if (span.environment_pairs == 0) return total;
+  const float scale = 1.0f / float(span.environment_pairs);
   const vec3 light = (tally.diffuse + tally.specular) * scale;
   record_group(s.record, environment_group(ctx.world), light);
   record_environment_passes(s.record, ctx.world.lights.size(), tally.diffuse * scale, tally.specular * scale,
                             tally.unshadowed, tally.lit);
-  return light;
+  return total + light;
 }
-
-}  // namespace
 
 glossy_weights environment_glossy_weights(const shading_options& options, const material_point& mp) {
   const float limit = options.mirror_roughness_limit;
@@ -215,10 +277,14 @@ glossy_weights environment_glossy_weights(const shading_options& options, const 
 
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                   const vec3& to_viewer, const path_state& s, ray_counts& counts) {
-  vec3 total = punctual_light(ctx, sp, mp, to_viewer, s, counts);
-  if (ctx.environment && ctx.environment->lights)
-    total += environment_light_at(ctx, sp, mp, to_viewer, s, counts);
-  return total;
+  if (s.planned) return resolve_direct_light(ctx, *s.planned->terms, s.planned->span, s);
+  // Direct light is never asked for inside another point's (its rays are traced after it), so one
+  // buffer a thread serves every point.
+  thread_local light_terms scratch;
+  scratch.clear();
+  const light_terms_span span = plan_direct_light(ctx, sp, mp, to_viewer, light_query_of(s), scratch);
+  answer_shadow_rays(ctx, scratch, 0, counts);
+  return resolve_direct_light(ctx, scratch, span, s);
 }
 
 }  // namespace kiln

@@ -3,13 +3,25 @@
 // importance sampling (Veach's power heuristic), each sample with its shadow ray. With light groups
 // and passes the light is filed by source and by lobe. Sees the Scene and the accelerator interface
 // only, like the rest of shading.
+//
+// The light comes in three steps, so that the wave (render/tile_renderer.cpp) can answer the shadow
+// rays of a run of camera hits together: plan_direct_light makes the point's terms (what each
+// light or environment direction brings unshadowed) and their shadow rays, the rays are answered
+// (one at a time, or all of a run at once through accelerator::occluded_batch), and
+// resolve_direct_light sums the terms by their answers and files them. direct_light runs the three
+// for one point, the scalar path every other shading point takes; both sum in the same order, so
+// they give the same bits.
 #pragma once
+
+#include <cstdint>
+#include <vector>
 
 #include "shade/whitted.h"
 
 namespace kiln {
 
-// The direct light leaving sp (material mp) toward to_viewer, for ray state s.
+// The direct light leaving sp (material mp) toward to_viewer, for ray state s: s.planned's terms when
+// the wave made them, else planned, answered and resolved here.
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                   const vec3& to_viewer, const path_state& s, ray_counts& counts);
 
@@ -17,5 +29,74 @@ vec3 direct_light(const shading_context& ctx, const surface_point& sp, const mat
 // perfect mirror (faded out with roughness, see shading_options) leaves, and none of the dielectric's
 // transmissive share, whose reflection is traced.
 glossy_weights environment_glossy_weights(const shading_options& options, const material_point& mp);
+
+enum class light_term_kind : uint8_t {
+  front,        // a punctual light on the side the surface faces
+  back,         // a punctual light through a diffusely transmitting surface
+  environment,  // one direction of the environment's samples
+};
+
+// One term of a shading point's direct light, before its shadow ray is answered.
+struct light_term {
+  light_term_kind kind = light_term_kind::front;
+  bool shadowed = false;  // it has a shadow ray: the next of its point's rays, in order
+  uint32_t light = 0;     // front and back: the punctual light's index
+  vec3 value{0.0f};       // front and back: the light it brings unshadowed (f · E · cos θ)
+  brdf_lobes lobes;       // front, with passes: f by lobe; environment: f by lobe
+  vec3 incident{0.0f};    // front: E · cos θ; environment: the map's radiance · cos θ · MIS weight
+};
+
+// The terms of one or many shading points, their shadow rays and, once answered, the rays'
+// visibility (0 to 1 by channel). Kept and cleared, not freed, from one run to the next.
+struct light_terms {
+  std::vector<light_term> terms;
+  std::vector<ray> rays;
+  std::vector<vec3> visibility;
+  std::vector<uint8_t> blocked;  // occluded_batch's answers, before see-through walks
+  void clear() {
+    terms.clear();
+    rays.clear();
+    visibility.clear();
+  }
+};
+
+// Where one shading point's terms and rays lie in a light_terms.
+struct light_terms_span {
+  uint32_t first_term = 0, term_count = 0;
+  uint32_t first_ray = 0;
+  int environment_pairs = 0;  // the environment's sample pairs taken (0: it lights nothing)
+};
+
+// A point's planned direct light: the wave's camera hits carry one in path_state::planned.
+struct planned_light {
+  const light_terms* terms = nullptr;
+  light_terms_span span;
+};
+
+// What of a ray's state the direct light reads.
+struct light_query {
+  ray_cone cone;          // the ray's cone at the point (the highlight's footprint)
+  uint32_t seed = 0;      // the ray's random numbers
+  pixel_stratum stratum;  // the camera's first surface: its sample's place in the pixel
+  bool camera = false;    // on the camera's path (the environment takes all its samples)
+  bool passes = false;    // the light by lobe is wanted (path_record's passes)
+};
+light_query light_query_of(const path_state& s);
+
+// Appends sp's terms and shadow rays to out.
+light_terms_span plan_direct_light(const shading_context& ctx, const surface_point& sp,
+                                   const material_point& mp, const vec3& to_viewer, const light_query& q,
+                                   light_terms& out);
+
+// Answers t's rays from first_ray on, one at a time.
+void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts);
+
+// Answers all of t's rays together: one occlusion batch, then, in scenes with see-through
+// surfaces, the transmittance walk of each blocked ray (a clear ray's walk would find nothing).
+void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray_counts& counts);
+
+// The direct light of the point whose terms span holds (answered), filed into s.record.
+vec3 resolve_direct_light(const shading_context& ctx, const light_terms& t, const light_terms_span& span,
+                          const path_state& s);
 
 }  // namespace kiln

@@ -92,6 +92,7 @@ path_state spawned_state(const path_state& s, const delta_lobe& lobe, float thro
       refracts ? child_seed(s.seed, spawned::refraction, lobe.channel)
                : child_seed(s.seed, lobe.kind == delta_kind::mirror ? spawned::mirror : spawned::coat_mirror);
   next.stratum = {};
+  next.planned = nullptr;
   ++next.depth;
   next.throughput = throughput;
   next.media = lobe.media;
@@ -173,6 +174,7 @@ vec3 trace_behind(const shading_context& ctx, const ray& r, const surface_point&
   path_state next = s;
   next.seed = child_seed(s.seed, spawned::behind);
   next.stratum = {};
+  next.planned = nullptr;
   next.throughput = s.throughput * (1.0f - alpha);
   next.record = scaled_record(s.record, 1.0f - alpha);
   if (s.depth >= ctx.options.max_depth || !(next.throughput >= ctx.options.min_throughput) ||

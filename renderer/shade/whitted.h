@@ -20,6 +20,8 @@
 
 namespace kiln {
 
+struct planned_light;
+
 struct shading_options {
   int max_depth = 8;             // camera ray is depth 0; reflections stop after this many bounces
   float min_throughput = 1e-3f;  // a reflection whose weight falls below this is not traced
@@ -134,6 +136,9 @@ struct path_state {
   uint32_t seed = 0;
   // Set on the camera's own first shading point only (shade/direct_light.h stratifies by it).
   pixel_stratum stratum;
+  // The direct light of the camera's own first shading point, when the wave planned it and answered
+  // its shadow rays with the rest of its run (shade/direct_light.h); null: shading computes it.
+  const planned_light* planned = nullptr;
 };
 
 // Where path_state::groups files emission and the environment, after the lights.
