@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "app/batch_manifest.h"
 #include "app/batch_run.h"
@@ -262,34 +263,54 @@ std::vector<batch_entry> variant_entries(batch_entry job, const batch_job_spec& 
   return out;
 }
 
-// The outputs the batch has planned so far and the names it has given, so that no two jobs write
-// one file and every job's name is unique.
+// The files job writes: its EXR and, with --deep, the deep EXR.
+std::vector<std::string> written_files(const batch_job& job) {
+  std::vector<std::string> files = {batch_job_output(job)};
+  if (job.entry->options.deep) files.push_back(deep_output_path(files.front()));
+  return files;
+}
+
+// The files the batch has planned so far and the names it has given, so that no two jobs write
+// one file and every job's name is unique. Kept by hash with the job that holds the text: a
+// million frames' paths would take more than their jobs. Texts whose hashes meet are compared.
 struct planned_outputs {
-  std::map<std::string, size_t> writers;  // output -> job index
-  std::map<std::string, int> names;
+  std::unordered_multimap<size_t, size_t> writers;                // a file's hash -> the job that writes it
+  std::unordered_multimap<size_t, std::pair<size_t, int>> names;  // a name's hash -> its first job, its jobs
 };
 
 // Adds a job whose entry is complete: a unique output and name.
 void add_planned_job(batch_job job, const fs::path& out_dir, std::vector<batch_job>& jobs,
                      planned_outputs& planned) {
   const batch_entry& entry = *job.entry;
-  const std::string output = batch_job_output(job);
   // The deep file (--deep) is written too: no other job may write it, as its EXR or its own deep file.
-  std::vector<std::string> written = {output};
-  if (entry.options.deep) written.push_back(deep_output_path(output));
+  const std::vector<std::string> written = written_files(job);
+  std::vector<size_t> hashes;
   for (const std::string& file : written) {
-    auto [it, inserted] = planned.writers.emplace(file, jobs.size());
-    if (!inserted)
-      throw input_error("", entry.where,
-                        "writes " + file + ", as does " + jobs[it->second].entry->where +
-                            " (give one of them another output)");
+    hashes.push_back(std::hash<std::string>{}(file));
+    auto [begin, end] = planned.writers.equal_range(hashes.back());
+    for (auto it = begin; it != end; ++it) {
+      const std::vector<std::string> other = written_files(jobs[it->second]);
+      if (std::find(other.begin(), other.end(), file) != other.end())
+        throw input_error("", entry.where,
+                          "writes " + file + ", as does " + jobs[it->second].entry->where +
+                              " (give one of them another output)");
+    }
   }
+  for (size_t hash : hashes) planned.writers.emplace(hash, jobs.size());
+  const std::string& output = written.front();
   // The name is the output under --out-dir; one outside it (an absolute output) goes by its stem.
   const fs::path output_path(output);
   fs::path relative = output_path.lexically_relative(out_dir);
   job.name = (relative.empty() || *relative.begin() == "..") ? output_path.stem().string()
                                                              : relative.replace_extension().string();
-  if (int seen = planned.names[job.name]++) job.name += "-" + std::to_string(seen + 1);
+  const size_t name_hash = std::hash<std::string>{}(job.name);
+  auto [begin, end] = planned.names.equal_range(name_hash);
+  const auto same =
+      std::find_if(begin, end, [&](const auto& seen) { return jobs[seen.second.first].name == job.name; });
+  if (same == end)
+    planned.names.emplace(name_hash, std::make_pair(jobs.size(), 1));
+  else
+    job.name += "-" + std::to_string(++same->second.second);
   for (const std::string* text : {&entry.options.input, &output})
     if (const std::string why = unprintable(*text); !why.empty())
       throw input_error(

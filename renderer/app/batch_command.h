@@ -38,7 +38,7 @@ struct batch_entry {
 };
 
 // One resolved job: its entry, and for a frame of a sequence the frame. The frames of an entry
-// share it, so a frame plans in a few hundred bytes instead of a copy of the render options: a
+// share it, so a frame plans in under 200 bytes instead of a copy of the render options: a
 // job's own options are made when it is checked, written or rendered (batch_job_options).
 struct batch_job {
   std::string name;  // unique: the output's path under --out-dir without .exr
