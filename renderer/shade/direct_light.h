@@ -91,8 +91,8 @@ light_terms_span plan_direct_light(const shading_context& ctx, const surface_poi
 // Answers t's rays from first_ray on, one at a time.
 void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts);
 
-// Answers all of t's rays together: one occlusion batch, then, in scenes with see-through
-// surfaces, the transmittance walk of each blocked ray (a clear ray's walk would find nothing).
+// Answers all of t's rays together: one occlusion batch (Embree's packets); in scenes with
+// see-through surfaces, each ray's transmittance walk instead.
 void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray_counts& counts);
 
 // The direct light of the point whose terms span holds (answered), filed into s.record.
