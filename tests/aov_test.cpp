@@ -8,7 +8,9 @@
 
 #include "accel/embree/embree_accelerator.h"
 #include "io/gltf/gltf_loader.h"
+#include "render/aov_table.h"
 #include "render/tile_renderer.h"
+#include "shade/path_record.h"
 #include "support/gltf_builder.h"
 
 namespace kiln {
@@ -42,9 +44,7 @@ scene two_quads() {
 }
 
 aov_set every_aov() {
-  aov_set a;
-  a.position = a.albedo = a.uv = a.ids = true;
-  return a;
+  return aov_set_of({aov::beauty, aov::depth, aov::normal, aov::position, aov::albedo, aov::uv, aov::ids});
 }
 
 film render(const scene& world, int threads, int spp, const aov_set& aovs = every_aov()) {
@@ -77,10 +77,31 @@ TEST(aov, only_requested_buffers_exist) {
   EXPECT_EQ(f.vec3_layer(aov::normal).size(), size_t(width * height));
   EXPECT_TRUE(f.vec3_layer(aov::position).empty() && f.vec3_layer(aov::albedo).empty() && f.uv.empty() &&
               f.ids.empty());
-  aov_set ids_only{false, false, false, false, false, false, true};
+  const aov_set ids_only = aov_set_of({aov::ids});
   f = render(world, 1, 1, ids_only);
   EXPECT_TRUE(f.depth.empty() && f.vec3_layer(aov::normal).empty() && f.vec3_layer(aov::position).empty());
   EXPECT_EQ(f.ids.size(), size_t(width * height));
+}
+
+// Shading files a filtered AOV of three floats in the sample's camera_passes, which keep one colour
+// per AOV from aov::direct on: a row before it would have nowhere to be recorded.
+TEST(aov, every_filtered_triple_has_a_camera_pass_slot) {
+  int slots = 0;
+  for (const aov_row& row : aov_table) {
+    if (row.shape != aov_shape::triple || row.sampling != aov_sampling::filtered) continue;
+    EXPECT_GE(int(row.id), first_pass) << row.name;
+    EXPECT_LT(int(row.id) - first_pass, pass_count) << row.name;
+    ++slots;
+  }
+  EXPECT_GE(slots, 7);  // the light split, albedo_filtered, N_filtered, diffuse, specular
+  camera_passes p;
+  p.value(aov::specular) = vec3(1.0f, 2.0f, 3.0f);
+  p.value(aov::direct) += vec3(0.5f);
+  EXPECT_EQ(p.value(aov::specular), vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(p.value(aov::direct), vec3(0.5f));
+  EXPECT_EQ(p.value(aov::diffuse), vec3(0.0f));
+  p.clear();
+  EXPECT_EQ(p.value(aov::specular), vec3(0.0f));
 }
 
 TEST(aov, position_is_the_camera_ray_hit_point) {

@@ -56,7 +56,7 @@ rendered render_layers(const std::vector<material>& layers, bool transparent_gla
   settings.samples_per_pixel = 4;
   settings.show_background = show_background;
   settings.shading.transmission_transparent = transparent_glass;
-  settings.aovs.crypto_object = true;
+  settings.aovs.set(aov::crypto_object);
   settings.aovs.crypto_depth = 4;
   for (uint32_t i = 0; i < layers.size(); ++i) settings.mattes.object_by_node.push_back(100 + i);
   // Each quad is its own glTF node, so its object id is 100 + node.

@@ -20,7 +20,7 @@ struct cornell {
 };
 
 film render(const cornell& c, render_settings s, const pixel_rect& crop = {}) {
-  s.aovs.position = s.aovs.albedo = s.aovs.uv = s.aovs.ids = true;
+  for (aov a : {aov::position, aov::albedo, aov::uv, aov::ids}) s.aovs.set(a);
   s.crop = crop;
   s.tile_size = 8;
   s.threads = 2;

@@ -44,7 +44,7 @@ film render_demo(double scale, const dvec3& shift) {
   view_camera cam = make_gltf_camera(s.cameras.at(0), 96, 72);
   render_settings settings;
   settings.threads = 2;
-  settings.aovs.ids = true;  // for on_edge
+  settings.aovs.set(aov::ids);  // for on_edge
   return render_image(s, accel, cam, settings);
 }
 

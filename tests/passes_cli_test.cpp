@@ -295,8 +295,8 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
 
 // The memory estimate counts the passes' buffers: film_bytes equals the bytes the film allocates.
 TEST(passes_cli, film_bytes_count_the_pass_buffers) {
-  aov_set a;
-  a.albedo_filtered = a.normal_filtered = a.diffuse = a.specular = a.shadow = true;
+  const aov_set a = aov_set_of({aov::beauty, aov::depth, aov::normal, aov::albedo_filtered,
+                                aov::normal_filtered, aov::diffuse, aov::specular, aov::shadow});
   const std::vector<std::string> groups = {"lightgroup_a", "lightgroup_b", "lightgroup_c",
                                            "lightgroup_emission", "lightgroup_environment"};
   const film f(7, 5, a, groups);

@@ -60,7 +60,7 @@ film render(const scene& s, const view_camera& cam, int spp = 1) {
   render_settings settings;
   settings.threads = 1;
   settings.samples_per_pixel = spp;
-  settings.aovs.position = true;
+  settings.aovs.set(aov::position);
   return render_image(s, accel, cam, settings);
 }
 

@@ -74,8 +74,7 @@ render_settings settings_for(bool reference, bool with_passes) {
   settings.shading.max_depth = 0;  // camera hits only: every shadow ray is a camera hit's
   settings.reference_shading = reference;
   if (with_passes) {
-    settings.aovs.light_groups = true;
-    settings.aovs.diffuse = settings.aovs.specular = settings.aovs.shadow = true;
+    for (aov a : {aov::light_groups, aov::diffuse, aov::specular, aov::shadow}) settings.aovs.set(a);
   }
   return settings;
 }

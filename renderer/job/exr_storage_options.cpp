@@ -76,7 +76,7 @@ exr_settings resolve_exr_settings(const render_options& options) {
       throw input_error("", "--compression-level", codec + " takes a level from 1 to 9");
   }
   check_exr_settings(options.aovs, settings);
-  if (!options.preview.empty() && !options.aovs.beauty)
+  if (!options.preview.empty() && !options.aovs.has(aov::beauty))
     throw input_error("", "--preview", "the preview shows the beauty; add beauty to --aovs");
   return settings;
 }

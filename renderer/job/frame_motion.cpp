@@ -23,7 +23,7 @@ namespace {
 // The frame at `time` into p.world, with its neighbours in p.motion when the motion AOV asks.
 void pose_frame_and_neighbours(gltf_sequence& asset, const render_options& options, double time,
                                scene* previous, std::vector<uint32_t>* posed, prepared_scene& p) {
-  if (!options.aovs.motion) {
+  if (!options.aovs.has(aov::motion)) {
     p.world = asset.pose(time, previous, posed);
     return;
   }

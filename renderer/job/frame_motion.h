@@ -17,9 +17,9 @@ double motion_frame_seconds(const render_options& options);
 // The first call for an animated file seen by the default camera or an orbit view also finds
 // p.framing, the bounds of its poses across the animation. Poses asset at the job's time into p.world
 // (previous: the scene the asset's last pose returned, or null; posed: the meshes built for this time). With
-// options.aovs.motion, first poses the times one frame before and after and keeps in p.motion what they place
-// where, with their cameras; finish_loaded_scene adds the frame's own pose. A file without animation does not
-// move: its neighbours are the frame itself.
+// the motion AOV asked for, first poses the times one frame before and after and keeps in p.motion what they
+// place where, with their cameras; finish_loaded_scene adds the frame's own pose. A file without animation
+// does not move: its neighbours are the frame itself.
 void pose_job_frame(gltf_sequence& asset, const render_options& options, scene* previous,
                     std::vector<uint32_t>* posed, prepared_scene& p);
 

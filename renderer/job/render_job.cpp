@@ -224,8 +224,8 @@ exr_metadata job_metadata(const render_options& options, const prepared_scene& p
   if (options.frame)
     metadata.shot =
         exr_shot_frame{options.fps.value_or(24.0), *options.frame - options.frame_start.value_or(1)};
-  for (const auto* layer :
-       {options.aovs.crypto_object ? &objects : nullptr, options.aovs.crypto_material ? &materials : nullptr})
+  for (const auto* layer : {options.aovs.has(aov::crypto_object) ? &objects : nullptr,
+                            options.aovs.has(aov::crypto_material) ? &materials : nullptr})
     if (layer)
       for (auto& [name, value] : cryptomatte_attributes(*layer))
         metadata.attributes.emplace_back(name, value);

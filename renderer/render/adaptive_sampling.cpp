@@ -63,9 +63,6 @@ struct pixel_refiner {
       for (const camera_sample* s : {&a, &b, &c, &d}) {
         weighted_corner corner;
         corner.weight = w;
-        corner.split[0] = s->split.direct;
-        corner.split[1] = s->split.reflection;
-        corner.split[2] = s->split.refraction;
         corner.groups = s->groups;
         corner.passes = s->passes;
         if (s->finite) {

@@ -33,11 +33,9 @@ using sample_tracer = std::function<camera_sample(double x, double y)>;
 
 // A corner of a final square and its weight in the pixel's mean.
 struct weighted_corner {
-  float weight = 0.0f;  // 1/4 of its square's area: the pixel's weights sum to exactly 1
-  // Its colour by first event: direct, reflection, refraction.
-  vec3 split[3] = {};
+  float weight = 0.0f;       // 1/4 of its square's area: the pixel's weights sum to exactly 1
   std::vector<vec3> groups;  // its colour by light group (empty unless the samples carry them)
-  camera_passes passes;      // its denoiser and relighting passes (zero unless the samples carry them)
+  camera_passes passes;      // its light split and other passes (zero unless the samples carry them)
   // The instances it covers (none for a miss or a sample with non-finite radiance).
   path_layer layers[max_path_layers];
   int layer_count = 0;

@@ -14,29 +14,29 @@ constexpr const char* cryptomatte_name = "cryptomatte";
 }  // namespace
 
 std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad) {
-  aov_set aovs;
-  for (const aov_row& a : aov_table) aovs.*a.flag = false;
+  aov_set aovs = aov_set_of({});
   std::istringstream in(text);
   std::string item;
   bool any = false;
   while (std::getline(in, item, ',')) {
     if (item == cryptomatte_name) {
-      if (aovs.crypto_object || aovs.crypto_material) {
+      if (aovs.has(aov::crypto_object) || aovs.has(aov::crypto_material)) {
         if (bad) *bad = item + " (given twice)";
         return std::nullopt;
       }
-      aovs.crypto_object = aovs.crypto_material = true;
+      aovs.set(aov::crypto_object);
+      aovs.set(aov::crypto_material);
       any = true;
       continue;
     }
     const aov_row* found = nullptr;
     for (const aov_row& a : aov_table)
       if (item == a.name) found = &a;
-    if (!found || aovs.*found->flag) {
+    if (!found || aovs.has(found->id)) {
       if (bad) *bad = found ? item + " (given twice)" : "'" + item + "'";
       return std::nullopt;
     }
-    aovs.*found->flag = true;
+    aovs.set(found->id);
     any = true;
   }
   // getline drops a trailing empty item, so "beauty," needs its own check.
@@ -50,8 +50,23 @@ std::optional<aov_set> parse_aov_list(const std::string& text, std::string* bad)
 std::string aov_list_name(const aov_set& aovs) {
   std::string out;
   for (const aov_row& a : aov_table)
-    if (aovs.*a.flag) out += (out.empty() ? "" : ",") + std::string(a.name);
+    if (aovs.has(a.id)) out += (out.empty() ? "" : ",") + std::string(a.name);
   return out;
+}
+
+bool wants_camera_passes(const aov_set& a) {
+  for (const aov_row& row : aov_table)
+    if (row.sampling == aov_sampling::filtered && row.shape != aov_shape::rgba &&
+        row.shape != aov_shape::per_group && !is_light_split(row.id) && a.has(row.id))
+      return true;
+  return false;
+}
+
+aov_set aov_set_of(std::initializer_list<aov> list) {
+  aov_set aovs;
+  aovs.bits = 0;
+  for (aov a : list) aovs.set(a);
+  return aovs;
 }
 
 std::optional<depth_mode> parse_depth_mode(const std::string& name) {

@@ -10,8 +10,9 @@ namespace {
 TEST(aov_list, default_is_beauty_z_n) {
   std::optional<aov_set> aovs = parse_aov_list("beauty,Z,N", nullptr);
   ASSERT_TRUE(aovs);
-  EXPECT_TRUE(aovs->beauty && aovs->depth && aovs->normal);
-  EXPECT_FALSE(aovs->position || aovs->albedo || aovs->uv || aovs->ids);
+  EXPECT_TRUE(aovs->has(aov::beauty) && aovs->has(aov::depth) && aovs->has(aov::normal));
+  EXPECT_FALSE(aovs->has(aov::position) || aovs->has(aov::albedo) || aovs->has(aov::uv) ||
+               aovs->has(aov::ids));
   EXPECT_EQ(aov_list_name(aov_set{}), "beauty,Z,N");
 }
 
@@ -33,13 +34,13 @@ TEST(aov_list, refuses_unknown_repeated_and_empty_names) {
 TEST(aov_list, cryptomatte_is_shorthand_for_both_layers) {
   std::optional<aov_set> both = parse_aov_list("cryptomatte,beauty", nullptr);
   ASSERT_TRUE(both);
-  EXPECT_TRUE(both->crypto_object && both->crypto_material);
-  EXPECT_FALSE(both->depth || both->ids);
+  EXPECT_TRUE(both->has(aov::crypto_object) && both->has(aov::crypto_material));
+  EXPECT_FALSE(both->has(aov::depth) || both->has(aov::ids));
   EXPECT_EQ(aov_list_name(*both), "beauty,crypto_object,crypto_material");
   std::optional<aov_set> one = parse_aov_list("crypto_material", nullptr);
   ASSERT_TRUE(one);
-  EXPECT_FALSE(one->crypto_object);
-  EXPECT_TRUE(one->crypto_material);
+  EXPECT_FALSE(one->has(aov::crypto_object));
+  EXPECT_TRUE(one->has(aov::crypto_material));
   EXPECT_EQ(aov_list_name(*one), "crypto_material");
   for (const char* text : {"cryptomatte,crypto_object", "crypto_material,cryptomatte",
                            "cryptomatte,cryptomatte", "CryptoObject"}) {
@@ -52,8 +53,8 @@ TEST(aov_list, cryptomatte_is_shorthand_for_both_layers) {
 TEST(aov_list, light_split_names) {
   std::optional<aov_set> aovs = parse_aov_list("refraction,beauty,direct", nullptr);
   ASSERT_TRUE(aovs);
-  EXPECT_TRUE(aovs->direct && aovs->refraction && wants_light_split(*aovs));
-  EXPECT_FALSE(aovs->reflection);
+  EXPECT_TRUE(aovs->has(aov::direct) && aovs->has(aov::refraction) && wants_light_split(*aovs));
+  EXPECT_FALSE(aovs->has(aov::reflection));
   EXPECT_EQ(aov_list_name(*aovs), "beauty,direct,refraction");
   EXPECT_FALSE(wants_light_split(aov_set{}));
 }

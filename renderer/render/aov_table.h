@@ -3,8 +3,8 @@
 // like the beauty, the nearest sample's, or Cryptomatte ranks), whether it is colour or data, its
 // default sample format and its help. Parsing and listing --aovs, the film's buffers, its crop, the
 // splat's filtered parts, the EXR writer's layers and formats and the help text all loop over it:
-// a new AOV stored as three floats a pixel is a row here, its flag in aov_set and the hook in
-// shading that records it. Depends on render/aov_list.h only.
+// a new AOV filtered like the beauty as three floats a pixel is its name in core/aov_id.h, a row
+// here and the hook in shading that records it. Depends on render/aov_list.h only.
 #pragma once
 
 #include <algorithm>
@@ -14,29 +14,6 @@
 #include "render/aov_list.h"
 
 namespace kiln {
-
-enum class aov : uint8_t {
-  beauty,
-  depth,
-  normal,
-  position,
-  albedo,
-  uv,
-  ids,
-  motion,
-  crypto_object,
-  crypto_material,
-  direct,
-  reflection,
-  refraction,
-  light_groups,
-  albedo_filtered,
-  normal_filtered,
-  diffuse,
-  specular,
-  shadow,
-};
-constexpr int aov_count = int(aov::shadow) + 1;
 
 // How a pixel of the AOV is made from its samples.
 enum class aov_sampling : uint8_t {
@@ -60,8 +37,7 @@ enum class aov_shape : uint8_t {
 
 struct aov_row {
   aov id;
-  const char* name;     // in --aovs, --channel-format and kiln/aovs
-  bool aov_set::*flag;  // whether a render writes it
+  const char* name;  // in --aovs, --channel-format and kiln/aovs
   // The EXR parts it is written as with --multipart (space-separated; the layer names of a single
   // part file too), and their channels, space-separated, in file order. Empty for layers named at
   // run time (light groups, shadow mattes, Cryptomatte).
@@ -81,7 +57,6 @@ struct aov_row {
 extern const aov_row aov_table[aov_count];
 
 inline const aov_row& aov_row_of(aov a) { return aov_table[int(a)]; }
-inline bool wants(const aov_set& s, aov a) { return s.*aov_row_of(a).flag; }
 
 // The vec3 parts filtered beside the beauty with its weights, per sample: one per filtered AOV asked
 // for, in the table's order, where light groups take one per group and the shadow mattes (the

@@ -18,10 +18,8 @@ namespace {
 void discard(camera_sample& s, ray_counts& counts) {
   ++counts.discarded_samples;
   s.rgba = vec4(0.0f);
-  s.split = light_split{};
   std::fill(s.groups.begin(), s.groups.end(), vec3(0.0f));
-  s.passes.albedo = s.passes.normal = s.passes.diffuse = s.passes.specular = vec3(0.0f);
-  std::fill(s.passes.shadow.begin(), s.passes.shadow.end(), 0.0f);
+  s.passes.clear();
   s.layer_count = 0;
   s.finite = false;
 }
@@ -30,12 +28,12 @@ void discard(camera_sample& s, ray_counts& counts) {
 
 sample_outputs sample_outputs_for(const aov_set& aovs, const scene_motion* motion) {
   sample_outputs o;
-  o.motion = aovs.motion ? motion : nullptr;
-  o.albedo = aovs.albedo;
+  o.motion = aovs.has(aov::motion) ? motion : nullptr;
+  o.albedo = aovs.has(aov::albedo);
   o.split = wants_light_split(aovs);
-  o.groups = aovs.light_groups;
+  o.groups = aovs.has(aov::light_groups);
   o.passes = wants_camera_passes(aovs);
-  o.shadow = aovs.shadow;
+  o.shadow = aovs.has(aov::shadow);
   return o;
 }
 
@@ -53,7 +51,7 @@ namespace {
 void missed(const shading_context& ctx, camera_sample& s, const ray& r, bool show_background, bool with_split,
             ray_counts& counts) {
   if (show_background) s.rgba = vec4(environment_radiance(ctx.world, r.direction), 1.0f);
-  if (with_split) s.split.direct = vec3(s.rgba);
+  if (with_split) s.passes.value(aov::direct) = vec3(s.rgba);
   if (!s.groups.empty()) s.groups[environment_group(ctx.world)] = vec3(s.rgba);
   if (!is_finite(s.rgba)) discard(s, counts);
 }
@@ -109,7 +107,7 @@ void shade_camera_path(const shading_context& ctx, const ray& r, const vec3& cam
   state.cone = at_hit;
   state.budget = &budget;
   state.record.camera = &path;
-  state.record.split = outputs.split ? &s.split : nullptr;
+  state.record.split = outputs.split ? &s.passes : nullptr;
   state.record.groups = s.groups.empty() ? nullptr : s.groups.data();
   state.record.passes = outputs.passes ? &s.passes : nullptr;
   state.memo = outputs.memo;
@@ -212,27 +210,6 @@ void keep_as_nearest(const camera_sample& s, camera_sample& nearest) {
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion) {
   if (motion && s.instance != no_instance)
     s.motion = hit_motion(*motion, world, s.surface_hit, s.render_point, s.time);
-}
-
-vec3 filtered_sample_value(aov a, const light_split& split, const camera_passes& passes) {
-  switch (a) {
-    case aov::direct:
-      return split.direct;
-    case aov::reflection:
-      return split.reflection;
-    case aov::refraction:
-      return split.refraction;
-    case aov::albedo_filtered:
-      return passes.albedo;
-    case aov::normal_filtered:
-      return passes.normal;
-    case aov::diffuse:
-      return passes.diffuse;
-    case aov::specular:
-      return passes.specular;
-    default:
-      return vec3(0.0f);
-  }
 }
 
 void store_nearest_sample(const camera_sample& s, film& out, size_t i) {

@@ -37,12 +37,11 @@ struct camera_sample {
   dvec3 render_point{0.0};
   float time = 0.0f;  // when in the shutter the camera ray was traced (motion blur)
   vec4 motion{0.0f};
-  // With outputs.split: rgba's colour by first event.
-  light_split split;
   // With outputs.groups: rgba's colour by light group (render/light_groups.h); else empty.
   std::vector<vec3> groups;
-  // With outputs.passes: what the camera path collects for the denoiser and relighting passes
-  // (shade/path_record.h), its shadow mattes (one per light) only with outputs.shadow.
+  // What the camera path collects for the filtered AOVs (shade/path_record.h): rgba's colour by
+  // first event with outputs.split, the denoiser and relighting passes with outputs.passes, its
+  // shadow mattes (one per light) only with outputs.shadow too.
   camera_passes passes;
   // The instances the sample covers and their coverage (summing to alpha), for Cryptomatte.
   path_layer layers[max_path_layers];
@@ -53,9 +52,9 @@ struct camera_sample {
 // What a camera sample records beside its colour and geometry AOVs.
 struct sample_outputs {
   bool albedo = false;  // evaluates the material once more for the albedo AOV
-  bool split = false;   // fills split
+  bool split = false;   // fills the light split of passes (direct, reflection, refraction)
   bool groups = false;  // fills groups
-  bool passes = false;  // fills passes (albedo, normal, diffuse, specular)
+  bool passes = false;  // fills the other passes (albedo_filtered, N_filtered, diffuse, specular...)
   bool shadow = false;  // fills passes.shadow too (with passes)
   // Deep output: set to the caller's buffer, which each sample clears and fills with the surfaces
   // its camera path shades, their radiance summing to rgba's colour and their coverage to its
@@ -123,10 +122,6 @@ void keep_as_nearest(const camera_sample& s, camera_sample& nearest);
 // Fills s.motion (forward and backward, in pixels) when s hit something and motion is set: once a
 // pixel, for the sample that decides it, not for every sample.
 void motion_of_nearest(camera_sample& s, const scene& world, const scene_motion* motion);
-
-// The value a sample gives the filtered AOV a of three floats (aov_shape::triple): where the film
-// finds what shading recorded for it (shade/path_record.h).
-vec3 filtered_sample_value(aov a, const light_split& split, const camera_passes& passes);
 
 // Writes the AOVs of the sample that decides pixel i (the nearest) into the film's buffers that
 // exist; Z as out.aovs.depth_kind says.

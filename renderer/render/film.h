@@ -62,22 +62,22 @@ struct film {
   aov_set aovs;  // what the file should hold
 
   film() = default;
-  // group_layers: the light groups' layers (kept when a.light_groups or a.shadow).
+  // group_layers: the light groups' layers (kept when a.has(aov::light_groups) or a.has(aov::shadow)).
   film(int w, int h, const aov_set& a = aov_set{}, const std::vector<std::string>& group_layers = {})
       : width(w), height(h), full_width(w), full_height(h), aovs(a) {
     const size_t n = size_t(w) * h;
     color.assign(n, vec4(0.0f));
-    if (a.depth) depth.assign(n, inf);
+    if (a.has(aov::depth)) depth.assign(n, inf);
     for (const aov_row& row : aov_table)
-      if (row.shape == aov_shape::triple && a.*row.flag) vec3_layers[int(row.id)].assign(n, vec3(0.0f));
-    if (a.uv) uv.assign(n, vec2(0.0f));
-    if (a.ids) ids.assign(n, glm::ivec3(-1));
-    if (a.motion) motion.assign(n, vec4(0.0f));
-    if (a.light_groups || a.shadow) light_group_layers = group_layers;
-    if (a.light_groups) light_groups.assign(n * group_layers.size(), vec3(0.0f));
-    if (a.shadow) shadow.assign(n * size_t(shadow_count()), 0.0f);
-    if (a.crypto_object) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
-    if (a.crypto_material) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
+      if (row.shape == aov_shape::triple && a.has(row.id)) vec3_layers[int(row.id)].assign(n, vec3(0.0f));
+    if (a.has(aov::uv)) uv.assign(n, vec2(0.0f));
+    if (a.has(aov::ids)) ids.assign(n, glm::ivec3(-1));
+    if (a.has(aov::motion)) motion.assign(n, vec4(0.0f));
+    if (a.has(aov::light_groups) || a.has(aov::shadow)) light_group_layers = group_layers;
+    if (a.has(aov::light_groups)) light_groups.assign(n * group_layers.size(), vec3(0.0f));
+    if (a.has(aov::shadow)) shadow.assign(n * size_t(shadow_count()), 0.0f);
+    if (a.has(aov::crypto_object)) crypto_object.assign(n * size_t(a.crypto_depth), id_coverage{});
+    if (a.has(aov::crypto_material)) crypto_material.assign(n * size_t(a.crypto_depth), id_coverage{});
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
@@ -102,15 +102,15 @@ struct film {
 // The bytes a w × h film with aovs (and light_groups groups) holds: its constructor's buffers.
 inline uint64_t film_bytes(int w, int h, const aov_set& a, int light_groups = 0) {
   uint64_t per_pixel = sizeof(vec4);
-  per_pixel += a.depth ? sizeof(float) : 0;
+  per_pixel += a.has(aov::depth) ? sizeof(float) : 0;
   for (const aov_row& row : aov_table)
-    per_pixel += row.shape == aov_shape::triple && a.*row.flag ? sizeof(vec3) : 0;
-  per_pixel += a.light_groups ? sizeof(vec3) * uint64_t(light_groups) : 0;
-  per_pixel += a.shadow ? sizeof(float) * uint64_t(std::max(light_groups - 1, 0)) : 0;
-  per_pixel += a.uv ? sizeof(vec2) : 0;
-  per_pixel += a.ids ? sizeof(glm::ivec3) : 0;
-  per_pixel += a.motion ? sizeof(vec4) : 0;
-  for (bool crypto : {a.crypto_object, a.crypto_material})
+    per_pixel += row.shape == aov_shape::triple && a.has(row.id) ? sizeof(vec3) : 0;
+  per_pixel += a.has(aov::light_groups) ? sizeof(vec3) * uint64_t(light_groups) : 0;
+  per_pixel += a.has(aov::shadow) ? sizeof(float) * uint64_t(std::max(light_groups - 1, 0)) : 0;
+  per_pixel += a.has(aov::uv) ? sizeof(vec2) : 0;
+  per_pixel += a.has(aov::ids) ? sizeof(glm::ivec3) : 0;
+  per_pixel += a.has(aov::motion) ? sizeof(vec4) : 0;
+  for (bool crypto : {a.has(aov::crypto_object), a.has(aov::crypto_material)})
     per_pixel += crypto ? sizeof(id_coverage) * uint64_t(a.crypto_depth) : 0;
   return per_pixel * uint64_t(w) * uint64_t(h);
 }

@@ -114,7 +114,8 @@ film splat_field(const reconstruction_filter& f, int w, int h, std::vector<pixel
   if (reverse) std::reverse(tiles.begin(), tiles.end());
   pixel_splat splat(splats.reach(), layers);
   aov_set aovs;
-  aovs.crypto_object = aovs.crypto_material = true;
+  aovs.set(aov::crypto_object);
+  aovs.set(aov::crypto_material);
   film out(w, h, aovs);
   tile_sums sums;
   for (const pixel_rect& tile : tiles) {

@@ -186,7 +186,7 @@ void store_beauty_parts(film& out, size_t p, const vec3* parts) {
   // A mean of values in [0, 1] can round just past 1 (Σ w·a in double over Σ w in float): the
   // albedo (a denoiser wants [0, 1]) and the mattes are clamped back (aov_row::clamp_unit).
   for (const aov_row& row : aov_table) {
-    if (row.sampling != aov_sampling::filtered || row.shape == aov_shape::rgba || !(out.aovs.*row.flag))
+    if (row.sampling != aov_sampling::filtered || row.shape == aov_shape::rgba || !out.aovs.has(row.id))
       continue;
     if (row.shape == aov_shape::triple) {
       out.vec3_layer(row.id)[p] = row.clamp_unit ? glm::clamp(*parts, 0.0f, 1.0f) : *parts;

@@ -81,7 +81,7 @@ film crop_film(const film& from, const pixel_rect& to) {
 // Which Cryptomatte layers the film keeps.
 struct matte_layers {
   bool on[matte_layer_count] = {};
-  explicit matte_layers(const aov_set& a) : on{a.crypto_object, a.crypto_material} {}
+  explicit matte_layers(const aov_set& a) : on{a.has(aov::crypto_object), a.has(aov::crypto_material)} {}
   bool any() const { return on[object_layer] || on[material_layer]; }
 };
 
@@ -103,13 +103,13 @@ sample_mattes mattes_of(const scene& world, const matte_ids& mattes, const path_
 // The beauty's parts of one sample, as the film keeps them (render/aov_list.h's beauty_part_count):
 // every filtered AOV's in the table's order, light groups one part each, the shadow mattes three
 // to a part.
-void gather_beauty_parts(const aov_set& aovs, const light_split& split, const std::vector<vec3>& groups,
-                         const camera_passes& passes, std::vector<vec3>& parts) {
+void gather_beauty_parts(const aov_set& aovs, const std::vector<vec3>& groups, const camera_passes& passes,
+                         std::vector<vec3>& parts) {
   parts.clear();
   for (const aov_row& row : aov_table) {
-    if (row.sampling != aov_sampling::filtered || !(aovs.*row.flag)) continue;
+    if (row.sampling != aov_sampling::filtered || !aovs.has(row.id)) continue;
     if (row.shape == aov_shape::triple)
-      parts.push_back(filtered_sample_value(row.id, split, passes));
+      parts.push_back(passes.value(row.id));
     else if (row.shape == aov_shape::per_group)
       parts.insert(parts.end(), groups.begin(), groups.end());
     else if (row.shape == aov_shape::per_matte)
@@ -122,7 +122,7 @@ void gather_beauty_parts(const aov_set& aovs, const light_split& split, const st
 }
 
 bool wants_beauty_parts(const aov_set& aovs) {
-  return wants_light_split(aovs) || aovs.light_groups || wants_camera_passes(aovs);
+  return wants_light_split(aovs) || aovs.has(aov::light_groups) || wants_camera_passes(aovs);
 }
 
 // Sample s of pixel (x, y)'s place among the pixel's spp samples, for stratifying what its shading
@@ -201,7 +201,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
     // A sample with non-finite radiance is left out (and counted in counts.discarded_samples):
     // one NaN or infinity would poison the pixel and every filter a compositor runs over it. The
     // pixel's filtered sum then weighs only the samples that remain.
-    gather_beauty_parts(settings.aovs, cs.split, cs.groups, cs.passes, parts);
+    gather_beauty_parts(settings.aovs, cs.groups, cs.passes, parts);
     if (cs.finite) {
       const bool hit = cs.layer_count > 0;
       sample_mattes mattes;
@@ -218,7 +218,7 @@ void render_pixel(const shading_context& ctx, const view_camera& cam, const rend
   }
   // The film and the splats cover the rendered region, whose corner is (out.x0, out.y0).
   splats.add(x - out.x0, y - out.y0, splat, sums);
-  motion_of_nearest(nearest, ctx.world, settings.aovs.motion ? settings.motion : nullptr);
+  motion_of_nearest(nearest, ctx.world, settings.aovs.has(aov::motion) ? settings.motion : nullptr);
   store_nearest_sample(nearest, out, out.index(x - out.x0, y - out.y0));
 }
 
@@ -284,8 +284,7 @@ void store_adaptive_ranks(const tile_job& job, const adaptive_pixel& p, size_t i
 void store_adaptive_parts(film& out, const adaptive_pixel& p, size_t i) {
   std::vector<vec3> mean, parts;
   for (const weighted_corner& corner : p.corners) {
-    const light_split split{corner.split[0], corner.split[1], corner.split[2]};
-    gather_beauty_parts(out.aovs, split, corner.groups, corner.passes, parts);
+    gather_beauty_parts(out.aovs, corner.groups, corner.passes, parts);
     mean.resize(parts.size(), vec3(0.0f));
     for (size_t c = 0; c < parts.size(); ++c) mean[c] += corner.weight * parts[c];
   }
@@ -311,7 +310,8 @@ void render_adaptive_tile(const tile_job& job, const pixel_rect& tl, adaptive_sc
       adaptive_pixel p = refine_pixel(x, y, corners, options, trace, scratch);
       size_t i = job.out.index(x - job.out.x0, y - job.out.y0);
       job.out.color[i] = p.rgba;
-      motion_of_nearest(p.nearest, job.ctx.world, job.settings.aovs.motion ? job.settings.motion : nullptr);
+      motion_of_nearest(p.nearest, job.ctx.world,
+                        job.settings.aovs.has(aov::motion) ? job.settings.motion : nullptr);
       store_nearest_sample(p.nearest, job.out, i);
       if (matte_layers(job.settings.aovs).any()) store_adaptive_ranks(job, p, i);
       if (wants_beauty_parts(job.settings.aovs)) store_adaptive_parts(job.out, p, i);
@@ -376,9 +376,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   // The film, the splat accumulator and the texture pyramids are set up side by side on the
   // render's threads: zeroing the buffers and building the pyramids come before the first pixel,
   // and done on one thread they held two-thread renders well under twice the speed of one.
-  const std::vector<std::string> group_layers = settings.aovs.light_groups || settings.aovs.shadow
-                                                    ? light_group_layers(world)
-                                                    : std::vector<std::string>{};
+  const std::vector<std::string> group_layers =
+      settings.aovs.has(aov::light_groups) || settings.aovs.has(aov::shadow) ? light_group_layers(world)
+                                                                             : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
   std::unique_ptr<texture_filter> textures;

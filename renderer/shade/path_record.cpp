@@ -41,8 +41,8 @@ void record_light_passes(const path_record& r, size_t light, const brdf_lobes& l
                          const vec3& unshadowed_light, const vec3& visibility) {
   if (!r.passes) return;
   camera_passes& p = *r.passes;
-  p.diffuse += r.share * (lobes.diffuse * unshadowed_light * visibility);
-  p.specular += r.share * (lobes.specular * unshadowed_light * visibility);
+  record_pass(r, aov::diffuse, lobes.diffuse * unshadowed_light * visibility);
+  record_pass(r, aov::specular, lobes.specular * unshadowed_light * visibility);
   if (p.shadow.empty()) return;
   const float unshadowed = luminance((lobes.diffuse + lobes.specular) * unshadowed_light);
   if (!(unshadowed > 0.0f)) return;
@@ -53,8 +53,8 @@ void record_light_passes(const path_record& r, size_t light, const brdf_lobes& l
 void record_environment_passes(const path_record& r, size_t matte, const vec3& diffuse, const vec3& specular,
                                float unshadowed, float lit) {
   if (!r.passes) return;
-  r.passes->diffuse += r.share * diffuse;
-  r.passes->specular += r.share * specular;
+  record_pass(r, aov::diffuse, diffuse);
+  record_pass(r, aov::specular, specular);
   if (r.passes->shadow.size() > matte && unshadowed > 0.0f)
     r.passes->shadow[matte] += r.share * blocked_share(unshadowed, lit);
 }
@@ -69,8 +69,8 @@ void record_covered(const path_record& r, const surface_point& sp, const materia
   r.camera->add_surface(sp.instance, sp.position, r.share * radiance, covered);
   // The denoiser's albedo and normal go by the surface's coverage, like its matte.
   if (r.passes && covered > 0.0f) {
-    r.passes->albedo += covered * denoising_albedo(mp);
-    if (is_finite(sp.shading_normal)) r.passes->normal += covered * sp.shading_normal;
+    r.passes->value(aov::albedo_filtered) += covered * denoising_albedo(mp);
+    if (is_finite(sp.shading_normal)) r.passes->value(aov::normal_filtered) += covered * sp.shading_normal;
   }
 }
 

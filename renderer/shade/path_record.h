@@ -3,47 +3,56 @@
 // light split by first event, the light groups by source, the camera's passes, alpha, the mattes
 // and deep surfaces). Shading calls the record_* hooks below at a few events (a surface covered,
 // light added, a branch taken, the scene left); off the camera's own path most of them do nothing.
-// Adding an output layer is a field here and a line in one hook; the radiance never depends on it.
+// Adding a filtered output layer is a record_pass call in shading; the radiance never depends on it.
 // Depends on core and shade/surface.h, shade/material_eval.h only.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
+#include "core/aov_id.h"
 #include "core/math.h"
 #include "shade/material_eval.h"
 #include "shade/surface.h"
 
 namespace kiln {
 
-// A camera sample's radiance split by its first event: direct (emission, direct light and what is
-// seen straight through BLEND surfaces or past the scene), reflection (all that arrives through the
-// first mirror ray) and refraction (through the first refracted ray). The three sum to the radiance.
-struct light_split {
-  vec3 direct{0.0f};
-  vec3 reflection{0.0f};
-  vec3 refraction{0.0f};
-};
-
-// What the camera's own path collects for a denoiser and for relighting, at the surfaces it covers
-// (the first visible surface, and those behind BLEND surfaces), each times the share of the sample
-// the surface covers, so a pixel's filtered value is premultiplied by coverage like R G B:
-// - albedo: the surface's denoising albedo (material_eval.h's denoising_albedo), normal: the shading
-//   normal the N AOV holds (normal map applied, bent toward the viewer);
+// What a camera sample's own path collects for the output layers filtered like the beauty: one
+// colour per AOV from aov::direct on (core/aov_id.h), each times the share of the sample it is
+// filed for, so a pixel's filtered value is premultiplied by coverage like R G B. Shading files a
+// layer by naming its AOV (record_pass); the light groups' and shadow mattes' slots stay unused,
+// they are kept apart.
+// - direct, reflection, refraction: the radiance split by its first event: direct (emission,
+//   direct light and what is seen straight through BLEND surfaces or past the scene), reflection
+//   (all that arrives through the first mirror ray) and refraction (through the first refracted
+//   ray). The three sum to the radiance.
+// - albedo_filtered, normal_filtered: at the surfaces the path covers (the first visible one and
+//   those behind BLEND surfaces), times the share each covers: the denoising albedo
+//   (material_eval.h's denoising_albedo) and the shading normal the N AOV holds (normal map
+//   applied, bent toward the viewer);
 // - diffuse, specular: the punctual lights' and the environment's direct light there by lobe of the
 //   BRDF (Lambert, and GGX for dielectric and metal), shadowed as the beauty is; their sum plus the
-//   emission and the background the path sees is the light split's direct;
+//   emission and the background the path sees is direct;
 // - shadow (one per light, then the environment's; empty unless kept): the luminance share of that
 //   source's unshadowed direct light that its shadow rays find blocked, 1 − Y(shadowed)/Y(unshadowed),
 //   0 where it adds nothing (behind the surface, zero BRDF, a light that casts no shadows, a dark
 //   environment).
+constexpr int first_pass = int(aov::direct);
+constexpr int pass_count = aov_count - first_pass;
 struct camera_passes {
-  vec3 albedo{0.0f};
-  vec3 normal{0.0f};
-  vec3 diffuse{0.0f};
-  vec3 specular{0.0f};
+  vec3 filtered[pass_count];
   std::vector<float> shadow;
+
+  camera_passes() { clear(); }
+  vec3& value(aov a) { return filtered[int(a) - first_pass]; }
+  const vec3& value(aov a) const { return filtered[int(a) - first_pass]; }
+  // Every value and shadow matte back to 0 (the mattes keep their count).
+  void clear() {
+    std::fill(std::begin(filtered), std::end(filtered), vec3(0.0f));
+    std::fill(shadow.begin(), shadow.end(), 0.0f);
+  }
 };
 
 // A surface a camera sample covers, and how much of the sample it covers.
@@ -95,8 +104,9 @@ struct path_record {
   camera_path* camera = nullptr;
   float share = 1.0f;         // the part of the camera sample this ray carries (BLEND layers, glass)
   bool record_layers = true;  // false inside a refraction: what glass shows is the glass's matte
-  // Where this ray's radiance is filed by first event (null: not kept, or the caller files it).
-  light_split* split = nullptr;
+  // Where this ray's radiance is filed by first event: the passes' direct, reflection and refraction
+  // (null: not kept, or the caller files it).
+  camera_passes* split = nullptr;
   // The camera sample's light groups (null: not kept): one colour per scene light, then emission,
   // then the environment (render/light_groups.h). Every ray of the tree files the light it adds,
   // times tint: the colour its radiance is weighted by in the sample (mirror and refraction
@@ -112,7 +122,7 @@ struct path_record {
 
 // What a camera path sees directly (emission, direct light, background): the split's direct.
 inline void record_direct(const path_record& r, const vec3& radiance) {
-  if (r.split) r.split->direct += r.share * radiance;
+  if (r.split) r.split->value(aov::direct) += r.share * radiance;
 }
 
 // Light the ray adds from source group `group` (a light's index, emission_group, environment_group).
@@ -123,7 +133,7 @@ inline void record_group(const path_record& r, size_t group, const vec3& radianc
 // What a mirror (reflection) or refracted ray brought back, weighted: the split's reflection or
 // refraction.
 inline void record_branch(const path_record& r, bool refraction, const vec3& radiance) {
-  if (r.split) (refraction ? r.split->refraction : r.split->reflection) += r.share * radiance;
+  if (r.split) r.split->value(refraction ? aov::refraction : aov::reflection) += r.share * radiance;
 }
 
 // Light `light`'s direct light at a camera-path surface, by lobe and shadowed by visibility, and the
@@ -131,10 +141,14 @@ inline void record_branch(const path_record& r, bool refraction, const vec3& rad
 void record_light_passes(const path_record& r, size_t light, const brdf_lobes& lobes,
                          const vec3& unshadowed_light, const vec3& visibility);
 
-// Light added to the diffuse pass alone (a light through a diffusely transmitting surface).
-inline void record_diffuse(const path_record& r, const vec3& light) {
-  if (r.passes) r.passes->diffuse += r.share * light;
+// What the camera path adds to the filtered pass of AOV a (one after the light split's, such as
+// diffuse alone for a light through a diffusely transmitting surface): its share of value.
+inline void record_pass(const path_record& r, aov a, const vec3& value) {
+  if (r.passes) r.passes->value(a) += r.share * value;
 }
+
+// Light added to the diffuse pass alone (a light through a diffusely transmitting surface).
+inline void record_diffuse(const path_record& r, const vec3& light) { record_pass(r, aov::diffuse, light); }
 
 // The environment's direct light at a camera-path surface by lobe, and its shadow matte (matte: the
 // index of the environment's, after the lights'): the luminance arriving before and after the

@@ -70,8 +70,8 @@ film render_scene(double offset, const std::string& name, const char* accel) {
   o.quiet = true;
   o.lighting = "file";  // the file's light alone: its closed form, no sampled environment
   o.spp_given = 1;
-  o.aovs.ids = true;
-  o.aovs.position = true;
+  o.aovs.set(aov::ids);
+  o.aovs.set(aov::position);
   const prepared_scene p = prepare_scene(o);
   const std::unique_ptr<accelerator> a = make_accelerator(p.world, *parse_accel_kind(accel));
   return render_image(p.world, *a, p.cam, make_render_settings(o));

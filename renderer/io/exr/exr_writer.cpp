@@ -194,7 +194,7 @@ std::vector<layer> film_layers(const film& f, const exr_settings& settings) {
   std::vector<layer> out;
   for (bool ranks : {false, true})
     for (const aov_row& row : aov_table)
-      if ((row.shape == aov_shape::ranks) == ranks && f.aovs.*row.flag)
+      if ((row.shape == aov_shape::ranks) == ranks && f.aovs.has(row.id))
         add_aov_layers(row, f, settings.formats, out);
   return out;
 }

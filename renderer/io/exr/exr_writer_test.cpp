@@ -113,8 +113,8 @@ TEST(exr_writer, half_colour_saturates_instead_of_becoming_infinite) {
 // A film with every AOV, values that half cannot hold exactly (so a format mix-up shows), 7x5 so
 // 4x4 tiles leave partial tiles at the right and bottom edges.
 film all_aov_film() {
-  aov_set all;
-  all.position = all.albedo = all.uv = all.ids = true;
+  const aov_set all =
+      aov_set_of({aov::beauty, aov::depth, aov::normal, aov::position, aov::albedo, aov::uv, aov::ids});
   film f(7, 5, all);
   for (int y = 0; y < f.height; ++y)
     for (int x = 0; x < f.width; ++x) {
@@ -246,7 +246,7 @@ TEST(exr_writer, lossy_codecs_reach_only_colour_like_parts) {
   }
   // Without data layers a single part may use a lossy codec.
   film beauty_only = all_aov_film();
-  beauty_only.aovs = aov_set{true, false, false};
+  beauty_only.aovs = aov_set_of({aov::beauty});
   exr_settings s;
   s.compression = "dwab";
   EXPECT_NO_THROW(check_exr_settings(beauty_only.aovs, s));
@@ -284,9 +284,7 @@ TEST(exr_writer, lossless_codecs_round_trip_every_bit_and_levels_are_recorded) {
 // A beauty-only film of smooth colour with a fixed-seed ripple of noise: what zlib and DCT codecs
 // compress better the coarser they may be, 96x64 so DWA sees whole 32-line blocks.
 film textured_film() {
-  aov_set beauty;
-  beauty.depth = beauty.normal = false;
-  film f(96, 64, beauty);
+  film f(96, 64, aov_set_of({aov::beauty}));
   uint32_t state = 12345;
   for (size_t i = 0; i < f.color.size(); ++i) {
     state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG
@@ -377,9 +375,7 @@ TEST(exr_writer, stored_beauty_is_the_file_s_beauty_bit_for_bit_under_lossless_c
   exr_settings lossy;
   lossy.compression = "dwab";
   EXPECT_FALSE(stored_beauty(f, lossy));
-  aov_set no_beauty;
-  no_beauty.beauty = false;
-  EXPECT_FALSE(stored_beauty(film(2, 2, no_beauty), exr_settings{}));
+  EXPECT_FALSE(stored_beauty(film(2, 2, aov_set_of({aov::depth, aov::normal})), exr_settings{}));
 }
 
 TEST(exr_writer, tiled_files_record_the_tile_size_and_scanline_files_none) {
