@@ -28,15 +28,24 @@ sample_format* format_slot(layer_formats& formats, const std::string& name, cons
                     "unknown AOV '" + name + "' (choose from " + selectable_format_aovs() + ")");
 }
 
+// "a, b, c": the names of the AOV table's rows that keep.
+template <typename predicate>
+std::string aov_names_where(predicate keep) {
+  std::string out;
+  for (const aov_row& row : aov_table)
+    if (keep(row)) out += (out.empty() ? "" : ", ") + std::string(row.name);
+  return out;
+}
+
 }  // namespace
 
 const std::string& selectable_format_aovs() {
-  static const std::string list = [] {
-    std::string out;
-    for (const aov_row& row : aov_table)
-      if (!row.data) out += (out.empty() ? "" : ", ") + std::string(row.name);
-    return out;
-  }();
+  static const std::string list = aov_names_where([](const aov_row& row) { return !row.data; });
+  return list;
+}
+
+const std::string& half_by_default_aovs() {
+  static const std::string list = aov_names_where([](const aov_row& row) { return row.half_by_default; });
   return list;
 }
 

@@ -12,6 +12,9 @@ namespace kiln {
 // "beauty, N, albedo, ...": the AOVs --channel-format (and --float) choose a format for.
 const std::string& selectable_format_aovs();
 
+// "beauty, N, albedo, ...": the AOVs written as half unless --float or --channel-format says float.
+const std::string& half_by_default_aovs();
+
 // "rgba, depth, N, ...": every part --multipart can write, from the writer's table.
 std::string exr_part_list();
 

@@ -17,10 +17,9 @@ void add_image_options(std::vector<option_spec>& t) {
   add.group = option_group::output;
   add(flag_option(
       "float", [](render_options & o) -> auto& { return o.full_float; },
-      "Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the "
-      "passes (albedo_filtered, N_filtered, diffuse, specular, shadow) as 32-bit float "
-      "instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are "
-      "always float)"));
+      "Write " + half_by_default_aovs() +
+          " as 32-bit float instead of half (uv is float unless --channel-format uv=half; Z, P, id and "
+          "Cryptomatte are always float)"));
   add(custom_option(
       "channel-format",
       [](render_options& o, const std::string& text) {

@@ -157,7 +157,7 @@ class RenderOptions(TypedDict, total=False):
     quiet: Optional[bool]
     """--quiet: No progress line or summary (default false)"""
     float: Optional[bool]
-    """--float: Write RGBA, N, albedo, the light split (direct, reflection, refraction), the light groups and the passes (albedo_filtered, N_filtered, diffuse, specular, shadow) as 32-bit float instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are always float) (default false)"""
+    """--float: Write beauty, N, albedo, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow as 32-bit float instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are always float) (default false)"""
     channel_format: Optional[_Text]
     """--channel-format: Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (beauty, N, albedo, uv, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow; Z, P and id are always float)"""
     compression: Optional[Literal['none', 'rle', 'zips', 'zip', 'piz', 'pxr24', 'b44', 'b44a', 'dwaa', 'dwab']]
