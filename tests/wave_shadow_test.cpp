@@ -2,7 +2,8 @@
 // (a point light's and the environment's) reach the accelerator through occluded_batch, many at a
 // time, and the image equals the reference shading's (each shadow ray asked alone) bit for bit,
 // with the passes, light groups and shadow mattes that file the light by source too. With a
-// see-through blocker every ray is walked for its transmittance, as the reference walks it.
+// see-through blocker the batches first find what stops light and what is clear, and only the rays
+// that cross the see-through surface are walked for their transmittance.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -105,19 +106,22 @@ TEST(wave_shadow, camera_hits_ask_their_shadow_rays_in_batches_and_match_the_ref
       expect_same_bits(wave, reference);
       // The reference asks each ray alone (through the walk when something lets light through).
       EXPECT_EQ(reference_accel.batches.load(), 0u);
-      EXPECT_EQ(wave_stats.rays.shadow, reference_stats.rays.shadow);
-      EXPECT_GT(wave_stats.rays.shadow, 1000u);
-      if (glass) {
-        // Each ray walked, none asked as an occlusion query (a blocked one would be asked twice).
-        EXPECT_EQ(wave_accel.batched.load() + wave_accel.single.load(), 0u);
-        continue;
-      }
+      EXPECT_GT(reference_stats.rays.shadow, 1000u);
       // The wave asks no shadow ray alone; its batches hold a run's camera hits (24×16 pixels at 4
       // spp: two runs), each with the light's ray and the sky's.
       EXPECT_EQ(wave_accel.single.load(), 0u);
       EXPECT_GE(wave_accel.batches.load(), 1u);
       EXPECT_GE(wave_accel.batched.load() / wave_accel.batches.load(), 500u);
-      EXPECT_EQ(reference_accel.single.load(), wave_accel.batched.load());
+      if (!glass) {
+        EXPECT_EQ(reference_accel.single.load(), wave_accel.batched.load());
+        EXPECT_EQ(wave_stats.rays.shadow, reference_stats.rays.shadow);
+        continue;
+      }
+      // Glass: the batches (what stops light, then what lets it through) leave only the rays that
+      // cross the glass box to be walked, far fewer queries than the reference's walk of every ray.
+      const uint64_t walked = wave_stats.rays.shadow - wave_accel.batched.load();
+      EXPECT_GT(walked, 0u);
+      EXPECT_LT(walked, reference_stats.rays.shadow / 2);
     }
   }
 }

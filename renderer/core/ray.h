@@ -12,6 +12,15 @@ namespace kiln {
 enum class ray_kind : uint8_t { camera, shadow, reflection, refraction, other };
 constexpr int ray_kind_count = int(ray_kind::other) + 1;
 
+// Which instances a ray may hit. A shadow ray through a scene with see-through surfaces is answered
+// in steps (shade/direct_light.cpp): is anything that lets no light through in the way; if not, is
+// anything see-through; only then is it walked. Every backend honours it (scene.h's ray_may_hit).
+enum class ray_sees : uint8_t {
+  everything,
+  light_stoppers,    // only instances that let no light through
+  see_through_only,  // only instances a shadow ray walks through (shade/shadow_transmittance.h)
+};
+
 // A ray segment o + t·d for t in [tmin, tmax]. Direction need not be unit length for
 // accelerators, but kiln's own rays keep it unit so t is a distance.
 struct ray {
@@ -20,6 +29,7 @@ struct ray {
   float tmin = 0.0f;
   float tmax = inf;
   ray_kind kind = ray_kind::other;
+  ray_sees sees = ray_sees::everything;
   // When in the shutter the ray is traced (motion blur): 0 at its opening, 1 at its closing. Every
   // ray of a camera sample's path keeps the camera ray's time; 0 in a scene that does not move.
   float time = 0.0f;

@@ -409,6 +409,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   const environment_light environment = make_environment_light(world);
   shading_context ctx{world,          accel,           shading,     scene_has_see_through(world),
                       textures.get(), settings.cancel, &environment};
+  ctx.shadow_packets = world.quadrics.empty();
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/ray.h"
 
 namespace kiln {
 
@@ -210,6 +211,12 @@ inline bool is_matte(holdout_kind k) { return k == holdout_kind::matte || k == h
 // backend skips an unseen one for them, as if it were not in the scene.
 inline bool camera_rays_hit(holdout_kind k) { return k != holdout_kind::unseen; }
 
+// Whether a material lets a shadow ray's light through (transmission, or alphaMode BLEND's uncovered
+// share): the shadow walk (shade/shadow_transmittance.h) goes on past such a surface.
+inline bool lets_light_through(const material& m) {
+  return !(m.transmission_factor <= 0.0f) || m.alpha == alpha_mode::blend;
+}
+
 struct instance {
   shape_kind kind = shape_kind::mesh;
   holdout_kind holdout = holdout_kind::none;
@@ -315,6 +322,20 @@ struct scene {
   dvec3 render_origin{0.0};
   shutter_motion shutter;  // what moves during the shutter; empty without --shutter
 };
+
+// Whether a shadow ray's walk goes on past the instance: its material lets light through, or it is
+// an invisible holdout (which casts no shadow).
+inline bool shadow_walks_through(const scene& s, const instance& inst) {
+  return inst.holdout == holdout_kind::invisible || lets_light_through(s.materials[inst.material]);
+}
+
+// Whether a ray of this kind that sees `sees` can hit the instance; every backend skips the others
+// as if they were not in the scene.
+inline bool ray_may_hit(const scene& s, const instance& inst, ray_kind kind, ray_sees sees) {
+  if (kind == ray_kind::camera && !camera_rays_hit(inst.holdout)) return false;
+  if (sees == ray_sees::everything) return true;
+  return shadow_walks_through(s, inst) == (sees == ray_sees::see_through_only);
+}
 
 // World-space bounds of every instance.
 bounds3 world_bounds(const scene& s);

@@ -52,7 +52,11 @@ struct light_terms {
   std::vector<light_term> terms;
   std::vector<ray> rays;
   std::vector<vec3> visibility;
-  std::vector<uint8_t> blocked;  // occluded_batch's answers, before see-through walks
+  // Scratch of answer_shadow_rays_together: occluded_batch's answers, and the rays (and their
+  // indices in rays) still open after a step.
+  std::vector<uint8_t> blocked;
+  std::vector<ray> open_rays;
+  std::vector<uint32_t> open_index;
   void clear() {
     terms.clear();
     rays.clear();
@@ -91,8 +95,11 @@ light_terms_span plan_direct_light(const shading_context& ctx, const surface_poi
 // Answers t's rays from first_ray on, one at a time.
 void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts);
 
-// Answers all of t's rays together: one occlusion batch (Embree's packets); in scenes with
-// see-through surfaces, each ray's transmittance walk instead.
+// Answers all of t's rays together through occlusion batches (Embree's packets; one at a time
+// without ctx.shadow_packets). In scenes with
+// see-through surfaces in steps: a batch that sees only what stops light (blocked: 0), then one of
+// the rest that sees only see-through surfaces (clear: 1), then the transmittance walk of the rays
+// that cross one, past see-through surfaces alone.
 void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray_counts& counts);
 
 // The direct light of the point whose terms span holds (answered), filed into s.record.

@@ -14,9 +14,7 @@ constexpr int max_shadow_crossings = 32;
 
 // Whether surface_transmittance is 0 for every point of a surface with material m, whatever the
 // point: then a shadow ray that meets it needs no surface point and no material evaluation.
-bool passes_no_light(const material& m) {
-  return m.transmission_factor <= 0.0f && m.alpha != alpha_mode::blend;
-}
+bool passes_no_light(const material& m) { return !lets_light_through(m); }
 
 }  // namespace
 

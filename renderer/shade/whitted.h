@@ -80,6 +80,10 @@ struct shading_context {
   // The environment as a light (shade/environment_light.h); null or dark: it lights nothing, and is
   // seen only by rays that leave the scene.
   const environment_light* environment = nullptr;
+  // The wave's shadow rays go to the accelerator as occlusion batches (shade/direct_light.h). Off in
+  // scenes with quadrics: their user geometry answers a packet lane by lane, and the batches measured
+  // 4-8% slower there than single rays (docs/performance.md).
+  bool shadow_packets = true;
 };
 
 // True when some material can pass light through itself (transmission or alphaMode BLEND), so

@@ -139,11 +139,27 @@ void set_instance_motion(RTCGeometry geometry, const std::vector<dmat4>& steps) 
   for (size_t k = 0; k < steps.size(); ++k) set_instance_transform(geometry, steps[k], unsigned(k));
 }
 
-// Ray masks: an instance the camera's own rays must pass by (scene.h's camera_rays_hit) has the
-// camera's bit cleared; camera rays carry that bit alone, every other ray all bits.
+// Ray masks (scene.h's ray_may_hit): an instance the camera's own rays must pass by has the camera's
+// bit cleared, and each instance has one of two bits for shadow rays: it stops light, or the shadow
+// walk goes through it. Camera rays carry the camera's bit alone, a shadow ray that sees one kind
+// of instance that kind's bit, every other ray all bits.
 constexpr unsigned camera_ray_mask = 1u;
+constexpr unsigned light_stopper_mask = 2u;
+constexpr unsigned see_through_mask = 4u;
 constexpr unsigned other_ray_mask = ~0u;
-unsigned ray_mask(const ray& r) { return r.kind == ray_kind::camera ? camera_ray_mask : other_ray_mask; }
+unsigned ray_mask(const ray& r) {
+  if (r.kind == ray_kind::camera) return camera_ray_mask;
+  if (r.sees == ray_sees::light_stoppers) return light_stopper_mask;
+  if (r.sees == ray_sees::see_through_only) return see_through_mask;
+  return other_ray_mask;
+}
+
+unsigned instance_mask(const scene& s, const instance& inst) {
+  unsigned mask = ~(camera_ray_mask | light_stopper_mask | see_through_mask);
+  if (camera_rays_hit(inst.holdout)) mask |= camera_ray_mask;
+  mask |= shadow_walks_through(s, inst) ? see_through_mask : light_stopper_mask;
+  return mask;
+}
 
 // Fills Embree's ray from r field by field, in place. Building a zero-initialised RTCRay and
 // copying it into the query made GCC store 8 bytes and reload them as 16: a failed store-to-load
@@ -331,7 +347,7 @@ embree_accelerator::embree_accelerator(const scene& s, const embree_options& opt
     if (!shape) continue;
     RTCGeometry geometry = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geometry, shape);
-    if (!camera_rays_hit(inst.holdout)) rtcSetGeometryMask(geometry, ~camera_ray_mask);
+    rtcSetGeometryMask(geometry, instance_mask(s, inst));
     if (instance_moves(s, uint32_t(i)))
       set_instance_motion(geometry, s.shutter.instance_steps[i]);
     else
@@ -392,6 +408,7 @@ bool embree_accelerator::update(const std::vector<uint32_t>& changed_meshes) {
     RTCGeometry geometry = rtcGetGeometry(st.top, unsigned(i));
     if (inst.kind == shape_kind::mesh && rebuilt[inst.shape])
       rtcSetGeometryInstancedScene(geometry, st.mesh_scenes[inst.shape]);
+    rtcSetGeometryMask(geometry, instance_mask(s, inst));  // this frame's materials and holdouts
     set_instance_transform(geometry, inst.world_from_object);
     rtcCommitGeometry(geometry);
   }

@@ -158,6 +158,42 @@ TEST_P(occlusion_batch, every_tail_length_and_offset_matches) {
     }
 }
 
+// A shadow ray that sees only what stops light, or only what a shadow walk goes through (core/ray.h's
+// ray_sees), is answered alike by Embree's packets (instance masks) and by the grid (which skips
+// the other instances): ray for ray, closest hits at the same distance, each of the kind it sees.
+TEST_P(occlusion_batch, rays_that_see_one_kind_of_instance_agree_with_the_grid) {
+  const scene s = load_scene(GetParam());
+  const embree_accelerator accel(s);
+  const grid_accelerator grid(s, adaptive_grid_options());
+  for (ray_sees sees : {ray_sees::light_stoppers, ray_sees::see_through_only}) {
+    SCOPED_TRACE(sees == ray_sees::light_stoppers ? "light stoppers" : "see-through only");
+    std::vector<ray> rays = random_rays(s, 4001, 42);
+    for (ray& r : rays) r.sees = sees;
+    std::vector<uint8_t> blocked(rays.size(), 7);
+    accel.occluded_batch(rays.data(), rays.size(), blocked.data());
+    EXPECT_EQ(differing(blocked, single_answers(accel, rays)), 0u);
+    EXPECT_EQ(differing(blocked, single_answers(grid, rays)), 0u);
+    size_t hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const std::optional<hit> h = accel.intersect(rays[i]), g = grid.intersect(rays[i]);
+      ASSERT_EQ(h.has_value(), g.has_value()) << i;
+      if (!h) continue;
+      ++hits;
+      // The same distance (two surfaces may meet there, so not always the same instance), and both
+      // hits of the kind the ray sees.
+      EXPECT_NEAR(h->t, g->t, 1e-4f * std::max(1.0f, h->t)) << i;
+      for (const hit& x : {*h, *g})
+        EXPECT_EQ(shadow_walks_through(s, s.instances[x.instance_id]), sees == ray_sees::see_through_only)
+            << i;
+    }
+    // A scene with nothing of the kind is never hit by such rays.
+    bool has_kind = false;
+    for (const instance& inst : s.instances)
+      has_kind |= shadow_walks_through(s, inst) == (sees == ray_sees::see_through_only);
+    if (!has_kind) EXPECT_EQ(hits, 0u);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(scenes, occlusion_batch, ::testing::ValuesIn(scene_names()),
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
                            std::string name = fs::path(param_info.param).stem().string();

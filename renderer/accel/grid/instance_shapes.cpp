@@ -46,7 +46,7 @@ std::optional<shape_hit> intersect_instance_shape(const scene& s, uint32_t insta
                                                   const vec3& origin, const vec3& direction, float tmax,
                                                   const mesh_grid* grid, traversal_counters& counters) {
   const instance& inst = s.instances[instance_id];
-  if (world_ray.kind == ray_kind::camera && !camera_rays_hit(inst.holdout)) return std::nullopt;
+  if (!ray_may_hit(s, inst, world_ray.kind, world_ray.sees)) return std::nullopt;
   switch (inst.kind) {
     case shape_kind::mesh: {
       const mesh& m = s.meshes[inst.shape];
@@ -71,7 +71,7 @@ std::optional<shape_hit> intersect_instance_shape(const scene& s, uint32_t insta
 bool occluded_instance_shape(const scene& s, uint32_t instance_id, const ray& world_ray, const vec3& origin,
                              const vec3& direction, const mesh_grid* grid, traversal_counters& counters) {
   const instance& inst = s.instances[instance_id];
-  if (world_ray.kind == ray_kind::camera && !camera_rays_hit(inst.holdout)) return false;
+  if (!ray_may_hit(s, inst, world_ray.kind, world_ray.sees)) return false;
   switch (inst.kind) {
     case shape_kind::mesh: {
       const mesh& m = s.meshes[inst.shape];
