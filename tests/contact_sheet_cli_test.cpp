@@ -116,13 +116,13 @@ TEST(contact_sheet_cli, a_batch_sheet_is_a_grid_of_renders_with_the_failed_job_c
   // The empty fourth cell is the sheet's background.
   EXPECT_EQ(sheet.at(cell_width + 4, cell_height + 4), (std::array<int, 3>{24, 24, 24}));
 
-  // A JPEG sheet of two jobs: one row.
+  // A JPEG sheet of two jobs: one row; the sheet inside --out-dir, which the batch creates.
   std::ofstream(dir + "/two.csv") << "asset,output\ncube.gltf,a.exr\n" << cube << ",b.exr\n";
   const auto jpeg =
       run_kiln({"batch", "--manifest", dir + "/two.csv", "--out-dir", dir + "/out2", "--width", "32",
-                "--height", "24", "--spp", "1", "--contact-sheet", dir + "/sheet.jpg", "-q"});
+                "--height", "24", "--spp", "1", "--contact-sheet", dir + "/out2/sheet.jpg", "-q"});
   ASSERT_EQ(jpeg.exit_code, 0) << jpeg.stderr_text;
-  const rgb_image small = read_image(dir + "/sheet.jpg");
+  const rgb_image small = read_image(dir + "/out2/sheet.jpg");
   EXPECT_EQ(small.width, 2 * cell_width);
   EXPECT_EQ(small.height, cell_height);
 }

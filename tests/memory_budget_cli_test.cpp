@@ -86,6 +86,16 @@ TEST(MemoryBudget, PyramidsOverTheBudgetAreRefusedAndNothingIsWritten) {
   EXPECT_TRUE(fs::exists(out));
 }
 
+// Each part of a render's memory is named in a sentence that reads: the environment's tables too.
+TEST(MemoryBudget, TheEnvironmentsTablesOverTheBudgetAreNamed) {
+  const std::string dir = scratch_folder("memory_environment");
+  const auto refused = run_kiln({"render", std::string(KILN_SOURCE_DIR) + "/scenes/cornell_box.gltf", "-o",
+                                 dir + "/out.exr", "--max-memory", "1M"});
+  EXPECT_EQ(refused.exit_code, 2) << refused.stderr_text;
+  EXPECT_TRUE(contains(refused.stderr_text, "cornell_box.gltf: the environment's sampling tables need about"))
+      << refused.stderr_text;
+}
+
 TEST(MemoryBudget, SizesAreBytesOrBinaryUnits) {
   const std::string dir = scratch_folder("memory_sizes");
   const std::string asset = textured_quad(dir, 64);

@@ -473,8 +473,8 @@ int run_batch(const batch_options& options) {
   try {
     jobs = plan_batch(options);
     print_option_warnings(jobs);
+    create_out_dir(options.out_dir);  // before the contact sheet's check: it may lie inside
     if (!options.contact_sheet.empty()) check_output_writable(options.contact_sheet);
-    create_out_dir(options.out_dir);
     const std::string out_dir = absolute_path(options.out_dir);
     locking = true;
     const output_folder_lock lock(out_dir, options.wait_for_lock);

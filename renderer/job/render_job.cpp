@@ -439,7 +439,7 @@ void charge_render_memory(const prepared_scene& prepared, const render_settings&
   pixel_rect region = settings.crop;
   if (region.width() <= 0) region = {0, 0, prepared.cam.width, prepared.cam.height};
   held.add(texture_filter_bytes(prepared.world), file, "the textures' mip pyramids");
-  held.add(environment_light_bytes(prepared.world), file, "the environment's sampling distribution");
+  held.add(environment_light_bytes(prepared.world), file, "the environment's sampling tables");
   held.add(accelerator_bytes(prepared.world), file, "the acceleration structures");
   held.add(film_and_output_bytes(region, settings.aovs, light_group_count(prepared.world)), file,
            "the film and AOV buffers");

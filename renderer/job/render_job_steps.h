@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "io/exr/cryptomatte.h"
 #include "io/gltf/gltf_loader.h"
 #include "job/job_stop.h"
@@ -78,8 +79,9 @@ auto run_stoppable(const render_job& job, const render_options& options, F&& fn)
   } catch (const error& e) {
     if (e.kind() != error_kind::interrupted) throw;
     if (stop.timed_out())
-      throw error(error_kind::time_limit, options.output, "",
-                  "time limit of " + exact_text(options.time_limit_seconds) + " s reached, nothing written");
+      throw error(
+          error_kind::time_limit, options.output, "",
+          "time limit of " + format_number(options.time_limit_seconds) + " s reached, nothing written");
     if (!e.file().empty()) throw;
     throw error(error_kind::interrupted, options.output, "", "render interrupted, nothing written");
   }
