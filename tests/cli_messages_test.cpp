@@ -121,6 +121,7 @@ const std::vector<std::string> all_parts = {"rgba",
                                             "N_filtered",
                                             "diffuse",
                                             "specular",
+                                            "emission",
                                             "CryptoObject",
                                             "CryptoMaterial"};
 
@@ -199,7 +200,7 @@ TEST(cli_messages, multipart_help_lists_every_part_the_writer_makes) {
   const auto result = run_kiln(
       {"render", demo_scene, "-o", out, "--width", "8", "--height", "6", "-q", "--multipart", "--aovs",
        "beauty,Z,N,P,albedo,uv,id,motion,direct,reflection,refraction,cryptomatte,albedo_filtered,N_filtered,"
-       "diffuse,specular"});
+       "diffuse,specular,emission"});
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_EQ(part_names(out), all_parts);
 }

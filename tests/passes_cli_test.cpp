@@ -1,4 +1,4 @@
-// `--aovs albedo_filtered,N_filtered,diffuse,specular,shadow` end to end, read back as a compositor
+// `--aovs albedo_filtered,N_filtered,diffuse,specular,shadow,emission` end to end, read back as a compositor
 // or a denoiser would. A white-ish Lambert plane under one directional light, seen by an
 // orthographic camera (so every lit sample has the same radiance), is half shadowed by a
 // single-sided occluder the camera culls: the closed forms are the base colour for albedo_filtered,
@@ -54,6 +54,25 @@ int add_quad(gltf_builder& b, float x0, float x1, float y0, float y1, float z, i
                                          material, {{0, 0, nz}, {0, 0, nz}, {0, 0, nz}, {0, 0, nz}})}});
 }
 
+// The plane's material: grey, a rough dielectric (a Lambert and a GGX lobe), BLEND below opacity 1.
+nlohmann::json grey_material(float opacity) {
+  nlohmann::json grey = {{"pbrMetallicRoughness",
+                          {{"baseColorFactor", {base, base, base, opacity}},
+                           {"metallicFactor", 0.0},
+                           {"roughnessFactor", 1.0}}}};
+  if (opacity < 1.0f) grey["alphaMode"] = "BLEND";
+  return grey;
+}
+
+// An orthographic camera on +z seeing [-1, 1]² and a directional light "sun" shining down -z.
+void add_camera_and_sun(gltf_builder& b) {
+  b.add_camera({{"type", "orthographic"},
+                {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 100.0}}}});
+  b.add_node({{"camera", 0}, {"translation", {0, 0, 4}}});
+  const int sun = b.add_light({{"type", "directional"}, {"name", "sun"}, {"intensity", 2.0}});
+  b.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+}
+
 // The plane z = 0 over [-plane_x, 1.5] × [-1.5, 1.5] (grey, rough dielectric: a Lambert and a GGX
 // lobe), an orthographic camera on +z seeing [-1, 1]², a directional light "sun" shining down -z, and an
 // occluder at z = 1 over x < 0 facing the plane: the camera culls its back face, the light's shadow
@@ -61,19 +80,10 @@ int add_quad(gltf_builder& b, float x0, float x1, float y0, float y1, float z, i
 // 19 and 20). With plane_x < 1 the plane's left edge lies in view, over the background.
 std::string shadowed_plane(const std::string& dir, float plane_x, float opacity = 1.0f) {
   gltf_builder b;
-  nlohmann::json grey_material = {{"pbrMetallicRoughness",
-                                   {{"baseColorFactor", {base, base, base, opacity}},
-                                    {"metallicFactor", 0.0},
-                                    {"roughnessFactor", 1.0}}}};
-  if (opacity < 1.0f) grey_material["alphaMode"] = "BLEND";
-  const int grey = b.add_material(grey_material);
+  const int grey = b.add_material(grey_material(opacity));
   add_quad(b, -plane_x, 1.5f, -1.5f, 1.5f, 0.0f, grey, false);
   add_quad(b, -3.0f, 0.0f, -3.0f, 3.0f, 1.0f, grey, true);
-  b.add_camera({{"type", "orthographic"},
-                {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 100.0}}}});
-  b.add_node({{"camera", 0}, {"translation", {0, 0, 4}}});
-  const int sun = b.add_light({{"type", "directional"}, {"name", "sun"}, {"intensity", 2.0}});
-  b.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+  add_camera_and_sun(b);
   // A second light shining up from below: it never reaches the plane's lit side, so it adds
   // nothing and its matte is 0 everywhere (not 1: nothing of it is blocked).
   const int under = b.add_light({{"type", "directional"}, {"name", "under"}, {"intensity", 5.0}});
@@ -239,6 +249,67 @@ TEST(passes_cli, albedo_of_metal_and_glass) {
   EXPECT_EQ(im.at(pixel(size - 5, size / 2), "N_filtered.Z"), 1.0f);
 }
 
+// An emissive quad beside a plain one, both grey and lit by "sun", seen straight on by the
+// orthographic camera over [-1, 1]²: emission is the emissive factor × strength, (0.25, 0.5, 1) × 4,
+// on the emissive half (columns 0-19) and 0 on the other, and emission + diffuse + specular = direct
+// everywhere (nothing else is seen directly). At opacity 0.5 (BLEND over nothing) the quads cover
+// half of each sample: emission is its value × A.
+std::string emissive_and_plain_quads(const std::string& dir, float opacity) {
+  gltf_builder b;
+  const nlohmann::json grey = grey_material(opacity);
+  nlohmann::json glowing = grey;
+  glowing["emissiveFactor"] = {0.25, 0.5, 1.0};
+  glowing["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}};
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  add_quad(b, -1.5f, 0.0f, -1.5f, 1.5f, 0.0f, b.add_material(glowing), false);
+  add_quad(b, 0.0f, 1.5f, -1.5f, 1.5f, 0.0f, b.add_material(grey), false);
+  add_camera_and_sun(b);
+  const std::string path = dir + "/emissive_" + std::to_string(int(opacity * 100)) + ".gltf";
+  b.write(path);
+  return path;
+}
+
+TEST(passes_cli, emission_is_the_emitted_light_seen_directly) {
+  const std::string dir = scratch_folder("passes_emission");
+  const float emitted[3] = {1.0f, 2.0f, 4.0f};
+  for (const float opacity : {1.0f, 0.5f})
+    for (const auto& sampling : samplings) {
+      const image im = render(emissive_and_plain_quads(dir, opacity), dir, "emission.exr",
+                              with({"--aovs", "beauty,direct,diffuse,specular,emission"}, sampling));
+      const std::string what = sampling[0] + " " + sampling[1] + " opacity " + std::to_string(opacity);
+      ASSERT_TRUE(im.has("emission.R") && im.has("emission.G") && im.has("emission.B")) << what;
+      float worst_sum = 0.0f;
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const size_t p = pixel(x, y);
+          const float alpha = im.at(p, "A");
+          for (int c = 0; c < 3; ++c) {
+            const float emission = im.at(p, std::string("emission") + rgb[c]);
+            const float direct = im.at(p, std::string("direct") + rgb[c]);
+            const float rest =
+                im.at(p, std::string("diffuse") + rgb[c]) + im.at(p, std::string("specular") + rgb[c]);
+            worst_sum = std::max(worst_sum, std::abs(emission + rest - direct) / std::max(1e-3f, direct));
+            if (x >= 17 && x <= 22) continue;  // the quads' seam, within the widest filter's reach
+            const float expected = x < size / 2 ? emitted[c] * alpha : 0.0f;
+            EXPECT_NEAR(emission, expected, 1e-6f * emitted[c]) << what << " " << x << "," << y;
+          }
+          if (x < 17) {
+            EXPECT_GT(im.at(p, "diffuse.G"), 0.1f * alpha) << what;  // lit as well as glowing
+          }
+        }
+      EXPECT_NEAR(im.at(pixel(5, size / 2), "A"), opacity, 1e-6f) << what;
+      EXPECT_LE(worst_sum, 1e-5f) << what;
+      std::printf("%s: max relative |emission + diffuse + specular - direct| %.3g\n", what.c_str(),
+                  worst_sum);
+    }
+  // A compositor finds it by its Nuke layer name: one part named emission with --multipart.
+  const auto multipart =
+      run_kiln({"render", emissive_and_plain_quads(dir, 1.0f), "-o", dir + "/parts.exr", "--width", "8",
+                "--height", "8", "-q", "--aovs", "beauty,emission", "--multipart"});
+  ASSERT_EQ(multipart.exit_code, 0) << multipart.stderr_text;
+  EXPECT_EQ(testing::exr_part_names_in(dir + "/parts.exr"), (std::set<std::string>{"rgba", "emission"}));
+}
+
 // Asking for the passes changes no beauty byte, they do not depend on threads or bands (a band is a
 // crop of the frame, whose filter reach is traced and dropped), each light gets its
 // own matte named after its light group, and --multipart writes each as a part of its own.
@@ -249,7 +320,7 @@ TEST(passes_cli, beauty_bytes_stay_and_passes_are_deterministic) {
   const image plain =
       render(scene, dir, "plain.exr", with({"--aovs", "beauty,direct,lightgroups"}, base_args));
   const std::vector<std::string> passes = {
-      "--aovs", "beauty,direct,lightgroups,albedo_filtered,N_filtered,diffuse,specular,shadow"};
+      "--aovs", "beauty,direct,lightgroups,albedo_filtered,N_filtered,diffuse,specular,shadow,emission"};
   const image one = render(scene, dir, "one.exr", with(with(passes, base_args), {"--threads", "1"}));
   const image two = render(scene, dir, "two.exr", with(with(passes, base_args), {"--threads", "2"}));
   const image band = render(scene, dir, "band.exr", with(with(passes, base_args), {"--band", "1/2"}));

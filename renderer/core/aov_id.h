@@ -30,7 +30,8 @@ enum class aov : uint8_t {
   diffuse,
   specular,
   shadow,
+  emission,
 };
-constexpr int aov_count = int(aov::shadow) + 1;
+constexpr int aov_count = int(aov::emission) + 1;
 
 }  // namespace kiln

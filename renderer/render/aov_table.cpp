@@ -42,6 +42,8 @@ const aov_row aov_table[aov_count] = {
      true, false, "direct light by the glossy lobes"},
     {aov::shadow, "shadow", "", "", S::per_matte, M::filtered, false, true, true,
      "one shadow matte per light and the environment"},
+    {aov::emission, "emission", "emission", "emission.R emission.G emission.B", S::triple, M::filtered, false,
+     true, false, "emitted light seen directly"},
 };
 
 int beauty_part_count(const aov_set& a, int light_groups) {

@@ -131,6 +131,7 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   if (mp.unlit) {
     record_direct(s.record, mp.base_color);
     record_group(s.record, emission_group(ctx.world), mp.base_color);
+    record_pass(s.record, aov::emission, mp.base_color);
     return mp.base_color;
   }
   const vec3 incident = glm::normalize(r.direction);
@@ -139,6 +140,7 @@ vec3 shade_covered(const shading_context& ctx, const ray& r, const surface_point
   // KHR_materials_clearcoat: the coat lies over the emission too.
   const vec3 emission = mp.emission * (1.0f - clearcoat_weight(mp, coat_cos_theta));
   record_group(s.record, emission_group(ctx.world), emission);
+  record_pass(s.record, aov::emission, emission);
   vec3 radiance = emission + direct_light(ctx, sp, mp, to_viewer, s, counts);
   record_direct(s.record, radiance);
   if (s.depth >= ctx.options.max_depth) return radiance;

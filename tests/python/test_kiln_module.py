@@ -66,10 +66,10 @@ def assert_arrays_match_exr(result, path):
 OPTIONS = {"width": 40, "height": 30, "spp": 2, "threads": 2,
            "aovs": ["beauty", "Z", "N", "P", "albedo", "uv", "id", "direct", "reflection", "refraction",
                     "cryptomatte", "lightgroups", "albedo_filtered", "N_filtered", "diffuse", "specular",
-                    "shadow"]}
+                    "shadow", "emission"]}
 ARGUMENTS = ["--width", "40", "--height", "30", "--spp", "2", "--threads", "2", "--aovs",
              "beauty,Z,N,P,albedo,uv,id,direct,reflection,refraction,cryptomatte,lightgroups,"
-             "albedo_filtered,N_filtered,diffuse,specular,shadow"]
+             "albedo_filtered,N_filtered,diffuse,specular,shadow,emission"]
 
 
 @pytest.mark.parametrize("extra,arguments", [({}, []), ({"float": True}, ["--float"]),

@@ -157,9 +157,9 @@ class RenderOptions(TypedDict, total=False):
     quiet: Optional[bool]
     """--quiet: No progress line or summary (default false)"""
     float: Optional[bool]
-    """--float: Write beauty, N, albedo, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow as 32-bit float instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are always float) (default false)"""
+    """--float: Write beauty, N, albedo, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow, emission as 32-bit float instead of half (uv is float unless --channel-format uv=half; Z, P, id and Cryptomatte are always float) (default false)"""
     channel_format: Optional[_Text]
-    """--channel-format: Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (beauty, N, albedo, uv, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow; Z, P and id are always float)"""
+    """--channel-format: Per-AOV sample format after --float, e.g. beauty=float,N=half,uv=half (beauty, N, albedo, uv, direct, reflection, refraction, lightgroups, albedo_filtered, N_filtered, diffuse, specular, shadow, emission; Z, P and id are always float)"""
     compression: Optional[Literal['none', 'rle', 'zips', 'zip', 'piz', 'pxr24', 'b44', 'b44a', 'dwaa', 'dwab']]
     """--compression: EXR codec; pxr24, b44, b44a, dwaa and dwab are lossy and need --multipart when the file holds Z, P or id (which then keep zip) (default zip)"""
     compression_level: Optional[int]
@@ -169,7 +169,7 @@ class RenderOptions(TypedDict, total=False):
     exr_tile_size: Optional[int]
     """--exr-tile-size: Tiled EXR with NxN tiles (implies --tiled)"""
     multipart: Optional[bool]
-    """--multipart: One EXR part per layer (rgba, depth, N, P, albedo, uv, id, forward, backward, direct, reflection, refraction, albedo_filtered, N_filtered, diffuse, specular, CryptoObject, CryptoMaterial), each with the full header (default false)"""
+    """--multipart: One EXR part per layer (rgba, depth, N, P, albedo, uv, id, forward, backward, direct, reflection, refraction, albedo_filtered, N_filtered, diffuse, specular, emission, CryptoObject, CryptoMaterial), each with the full header (default false)"""
     frames: Optional[_Text]
     """--frames: Render frames FIRST-LAST[:STEP] in one process, each to -o with its #### (or %04d) replaced by the frame number; the asset loads once and only what moves is updated"""
     turntable: Optional[int]
@@ -195,7 +195,7 @@ class RenderOptions(TypedDict, total=False):
     deep: Optional[bool]
     """--deep: Also write a deep EXR beside -o (NAME.deep.exr for NAME.exr): per pixel its camera paths' surfaces front to back, premultiplied R G B A, Z, ZBack and the ids; whole frame, stratified samples and a filter inside the pixel only (default false)"""
     aovs: Optional[_Text]
-    """--aovs: Comma-separated outputs to write: beauty (R G B A, premultiplied colour), Z (ray distance, or planar depth with --depth-mode), N (world shading normal), P (world position), albedo (base colour after textures and vertex colours), uv (TEXCOORD_0), id (glTF node, material and scene instance as integers), motion (screen-space motion to the next and previous frame, in pixels), crypto_object (Cryptomatte of the node names), crypto_material (Cryptomatte of the material names), direct (the beauty's emission, direct light and background seen directly), reflection (the beauty through the first mirror ray), refraction (the beauty through the first refracted ray), lightgroups (the beauty by light: one layer per light, emission and environment), albedo_filtered (denoising albedo filtered like the beauty), N_filtered (shading normal filtered like the beauty), diffuse (direct light by the Lambert lobe), specular (direct light by the glossy lobes), shadow (one shadow matte per light and the environment); cryptomatte for both Cryptomatte layers (default beauty,Z,N)"""
+    """--aovs: Comma-separated outputs to write: beauty (R G B A, premultiplied colour), Z (ray distance, or planar depth with --depth-mode), N (world shading normal), P (world position), albedo (base colour after textures and vertex colours), uv (TEXCOORD_0), id (glTF node, material and scene instance as integers), motion (screen-space motion to the next and previous frame, in pixels), crypto_object (Cryptomatte of the node names), crypto_material (Cryptomatte of the material names), direct (the beauty's emission, direct light and background seen directly), reflection (the beauty through the first mirror ray), refraction (the beauty through the first refracted ray), lightgroups (the beauty by light: one layer per light, emission and environment), albedo_filtered (denoising albedo filtered like the beauty), N_filtered (shading normal filtered like the beauty), diffuse (direct light by the Lambert lobe), specular (direct light by the glossy lobes), shadow (one shadow matte per light and the environment), emission (emitted light seen directly); cryptomatte for both Cryptomatte layers (default beauty,Z,N)"""
     cryptomatte_depth: Optional[int]
     """--cryptomatte-depth: Cryptomatte ranks (id and coverage pairs) per pixel, two per RGBA channel set (default 6)"""
     depth_mode: Optional[Literal['distance', 'planar']]
