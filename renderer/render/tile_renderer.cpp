@@ -164,6 +164,9 @@ const std::vector<camera_hit>& camera_hits_of(const shading_context& ctx, const 
   out.lights.clear();
   for (uint32_t i : out.order) {
     prepare_camera_hit(ctx, rays.rays[i], rays.hits[i], rays.sources[i].cone, counts, &memo, out.hits[i]);
+    // Without packets (quadrics) the shadow rays are asked one at a time anyway: each hit's are
+    // answered as it is shaded, and nothing is kept.
+    if (!ctx.shadow_packets) continue;
     const camera_ray_source& source = rays.sources[i];
     plan_camera_light(ctx, sample_stratum(source.x, source.y, int(source.sample), spp), passes, out.hits[i],
                       out.lights);

@@ -42,24 +42,26 @@ void stop_short_of_light(const light& l, const light_sample& ls, ray& r) {
 
 // A light on the far side of a diffusely transmitting surface (KHR_materials_diffuse_transmission):
 // its Lambert transmission, shadowed along a ray that leaves from the back of the surface.
+template <typename Sink>
 void plan_back_light(const surface_point& sp, const material_point& mp, const vec3& to_viewer, const light& l,
-                     const light_sample& ls, light_term& term, light_terms& out) {
+                     const light_sample& ls, light_term& term, Sink& out) {
   term.kind = light_term_kind::back;
   const float cos_theta = -glm::dot(sp.shading_normal, ls.direction);
-  if (!(cos_theta > 0.0f)) return;
-  const vec3 f = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction);
-  if (f == vec3(0.0f)) return;
+  const vec3 f =
+      cos_theta > 0.0f ? evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, ls.direction) : vec3(0.0f);
+  if (f == vec3(0.0f)) return out.take(term, nullptr);  // filed as no light, as it always was
   term.value = f * ls.irradiance * cos_theta;
-  if (!l.casts_shadows) return;
+  if (!l.casts_shadows) return out.take(term, nullptr);
   ray shadow = spawn_ray(sp, ls.direction, ray_kind::shadow);
   stop_short_of_light(l, ls, shadow);
-  out.rays.push_back(shadow);
-  term.shadowed = true;
+  out.take(term, &shadow);
 }
 
-// The terms of every punctual light: the light it brings unshadowed and its shadow ray.
+// The terms of every punctual light: the light it brings unshadowed and its shadow ray, handed to
+// out.take(term, shadow ray or null) in the lights' order.
+template <typename Sink>
 void plan_punctual_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                         const vec3& to_viewer, const light_query& q, light_terms& out) {
+                         const vec3& to_viewer, const light_query& q, Sink& out) {
   for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
     const light& l = ctx.world.lights[i];
     light_sample ls = sample_light(l, sp.position);
@@ -74,7 +76,6 @@ void plan_punctual_light(const shading_context& ctx, const surface_point& sp, co
       // ...except through a surface that transmits diffusely: then it lights the far side.
       if (!(diffuse_see_through_weight(mp) > 0.0f)) continue;
       plan_back_light(sp, mp, to_viewer, l, ls, term, out);
-      out.terms.push_back(term);
       continue;
     }
     float cos_theta = glm::dot(sp.shading_normal, ls.direction);
@@ -88,13 +89,13 @@ void plan_punctual_light(const shading_context& ctx, const surface_point& sp, co
     if (q.passes) term.lobes = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
     term.incident = ls.irradiance * cos_theta;
     term.value = f * ls.irradiance * cos_theta;
-    if (l.casts_shadows) {
-      ray shadow = spawn_shadow_ray_above(sp, ls.direction);
-      stop_short_of_light(l, ls, shadow);
-      out.rays.push_back(shadow);
-      term.shadowed = true;
+    if (!l.casts_shadows) {
+      out.take(term, nullptr);
+      continue;
     }
-    out.terms.push_back(term);
+    ray shadow = spawn_shadow_ray_above(sp, ls.direction);
+    stop_short_of_light(l, ls, shadow);
+    out.take(term, &shadow);
   }
 }
 
@@ -109,9 +110,10 @@ float power_heuristic(float pdf, float other) {
 // The term of the environment's light arriving along the unit direction l, times weight (the
 // sample's MIS weight over its density), with its shadow ray: the lobes above the smooth surface,
 // the diffuse transmission below it (from the back, as plan_back_light lights it).
+template <typename Sink>
 void plan_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                                 const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
-                                const vec2& uv, float weight, light_terms& out) {
+                                const vec2& uv, float weight, Sink& out) {
   const bool above = glm::dot(sp.smooth_normal, l) > 0.0f;
   const float cos_theta = above ? glm::dot(sp.shading_normal, l) : -glm::dot(sp.shading_normal, l);
   if (!(cos_theta > 0.0f) || !(weight > 0.0f)) return;
@@ -124,17 +126,17 @@ void plan_environment_direction(const shading_context& ctx, const surface_point&
   if (term.lobes.diffuse == vec3(0.0f) && term.lobes.specular == vec3(0.0f)) return;
   term.incident = environment_radiance_at(ctx.world, uv) * (cos_theta * weight);
   if (term.incident == vec3(0.0f)) return;
-  out.rays.push_back(above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow));
-  term.shadowed = true;
-  out.terms.push_back(term);
+  const ray shadow = above ? spawn_shadow_ray_above(sp, l) : spawn_ray(sp, l, ray_kind::shadow);
+  out.take(term, &shadow);
 }
 
 // The environment's terms: environment_samples pairs of samples (half as many off the camera's
 // path), one drawn from the map's importance and one from the material's lobes, each weighed
 // against the other's density. The pairs are stratified over the map's rows and over the choice
 // of lobe. Returns the number of pairs.
+template <typename Sink>
 int plan_environment_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                           const vec3& to_viewer, const light_query& q, light_terms& out) {
+                           const vec3& to_viewer, const light_query& q, Sink& out) {
   const environment_light& e = *ctx.environment;
   const glossy_weights glossy = environment_glossy_weights(ctx.options, mp);
   const lobe_sampler lobes = make_lobe_sampler(mp, sp.shading_normal, to_viewer, glossy);
@@ -193,6 +195,64 @@ void add_environment_term(const light_term& term, const vec3& visibility, enviro
   tally.lit += luminance(unshadowed * visibility);
 }
 
+// A point's answered terms summed, in the order they were planned.
+struct light_sum {
+  vec3 total{0.0f};
+  environment_tally tally;
+};
+
+// Adds one answered term: a light's share is filed in its group (times the ray's tint) and, on
+// the camera's path with passes, by lobe and as its shadow matte; the environment's directions are
+// tallied and filed once by finish_light_sum.
+void add_term(const path_record& record, const light_term& term, const vec3& visibility, light_sum& sum) {
+  if (term.kind == light_term_kind::environment) return add_environment_term(term, visibility, sum.tally);
+  if (term.kind == light_term_kind::front) {
+    record_light_passes(record, term.light, term.lobes, term.incident, visibility);
+    if (visibility == vec3(0.0f)) return;
+  }
+  const vec3 light = term.value * visibility;
+  sum.total += light;
+  record_group(record, term.light, light);
+  if (term.kind == light_term_kind::back) record_diffuse(record, light);
+}
+
+// The point's direct light: the lights' total and the environment's pairs averaged (none: no pairs).
+vec3 finish_light_sum(const shading_context& ctx, const path_record& record, int environment_pairs,
+                      const light_sum& sum) {
+  if (environment_pairs == 0) return sum.total;
+  const float scale = 1.0f / float(environment_pairs);
+  const environment_tally& tally = sum.tally;
+  const vec3 light = (tally.diffuse + tally.specular) * scale;
+  record_group(record, environment_group(ctx.world), light);
+  record_environment_passes(record, ctx.world.lights.size(), tally.diffuse * scale, tally.specular * scale,
+                            tally.unshadowed, tally.lit);
+  return sum.total + light;
+}
+
+// Where planned terms go: kept with their shadow rays, to be answered with a run's (the wave's
+// camera hits)...
+struct term_store {
+  light_terms& out;
+  void take(light_term term, const ray* shadow) {
+    if (shadow) {
+      out.rays.push_back(*shadow);
+      term.shadowed = true;
+    }
+    out.terms.push_back(term);
+  }
+};
+
+// ...or answered and added up at once (every other shading point: nothing is stored).
+struct term_now {
+  const shading_context& ctx;
+  const path_record& record;
+  ray_counts& counts;
+  light_sum sum;
+  void take(const light_term& term, const ray* shadow) {
+    add_term(record, term, shadow ? shadow_visibility(ctx, *shadow, counts) : vec3(1.0f), sum);
+  }
+};
+
 }  // namespace
 
 light_query light_query_of(const path_state& s) {
@@ -211,9 +271,10 @@ light_terms_span plan_direct_light(const shading_context& ctx, const surface_poi
   light_terms_span span;
   span.first_term = uint32_t(out.terms.size());
   span.first_ray = uint32_t(out.rays.size());
-  plan_punctual_light(ctx, sp, mp, to_viewer, q, out);
+  term_store store{out};
+  plan_punctual_light(ctx, sp, mp, to_viewer, q, store);
   if (ctx.environment && ctx.environment->lights)
-    span.environment_pairs = plan_environment_light(ctx, sp, mp, to_viewer, q, out);
+    span.environment_pairs = plan_environment_light(ctx, sp, mp, to_viewer, q, store);
   span.term_count = uint32_t(out.terms.size()) - span.first_term;
   return span;
 }
@@ -279,34 +340,13 @@ void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray
 
 vec3 resolve_direct_light(const shading_context& ctx, const light_terms& t, const light_terms_span& span,
                           const path_state& s) {
-  vec3 total(0.0f);
-  environment_tally tally;
+  light_sum sum;
   size_t next_ray = span.first_ray;
   for (size_t k = span.first_term; k < span.first_term + span.term_count; ++k) {
     const light_term& term = t.terms[k];
-    const vec3 visibility = term.shadowed ? t.visibility[next_ray++] : vec3(1.0f);
-    if (term.kind == light_term_kind::environment) {
-      add_environment_term(term, visibility, tally);
-      continue;
-    }
-    // With light groups, each light's share is filed in its group (times the ray's tint); on the
-    // camera's path with passes, by lobe and as shadow mattes.
-    if (term.kind == light_term_kind::front) {
-      record_light_passes(s.record, term.light, term.lobes, term.incident, visibility);
-      if (visibility == vec3(0.0f)) continue;
-    }
-    const vec3 light = term.value * visibility;
-    total += light;
-    record_group(s.record, term.light, light);
-    if (term.kind == light_term_kind::back) record_diffuse(s.record, light);
+    add_term(s.record, term, term.shadowed ? t.visibility[next_ray++] : vec3(1.0f), sum);
   }
-  if (span.environment_pairs == 0) return total;
-  const float scale = 1.0f / float(span.environment_pairs);
-  const vec3 light = (tally.diffuse + tally.specular) * scale;
-  record_group(s.record, environment_group(ctx.world), light);
-  record_environment_passes(s.record, ctx.world.lights.size(), tally.diffuse * scale, tally.specular * scale,
-                            tally.unshadowed, tally.lit);
-  return total + light;
+  return finish_light_sum(ctx, s.record, span.environment_pairs, sum);
 }
 
 glossy_weights environment_glossy_weights(const shading_options& options, const material_point& mp) {
@@ -319,13 +359,12 @@ glossy_weights environment_glossy_weights(const shading_options& options, const 
 vec3 direct_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                   const vec3& to_viewer, const path_state& s, ray_counts& counts) {
   if (s.planned) return resolve_direct_light(ctx, *s.planned->terms, s.planned->span, s);
-  // Direct light is never asked for inside another point's (its rays are traced after it), so one
-  // buffer a thread serves every point.
-  thread_local light_terms scratch;
-  scratch.clear();
-  const light_terms_span span = plan_direct_light(ctx, sp, mp, to_viewer, light_query_of(s), scratch);
-  answer_shadow_rays(ctx, scratch, 0, counts);
-  return resolve_direct_light(ctx, scratch, span, s);
+  const light_query q = light_query_of(s);
+  term_now now{ctx, s.record, counts, {}};
+  plan_punctual_light(ctx, sp, mp, to_viewer, q, now);
+  const int pairs =
+      ctx.environment && ctx.environment->lights ? plan_environment_light(ctx, sp, mp, to_viewer, q, now) : 0;
+  return finish_light_sum(ctx, s.record, pairs, now.sum);
 }
 
 }  // namespace kiln
