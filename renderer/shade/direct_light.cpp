@@ -279,13 +279,13 @@ light_terms_span plan_direct_light(const shading_context& ctx, const surface_poi
   return span;
 }
 
-void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts) {
-  t.visibility.resize(t.rays.size());
-  for (size_t i = first_ray; i < t.rays.size(); ++i)
-    t.visibility[i] = shadow_visibility(ctx, t.rays[i], counts);
-}
-
 namespace {
+
+// Answers t's rays one at a time.
+void answer_shadow_rays(const shading_context& ctx, light_terms& t, ray_counts& counts) {
+  t.visibility.resize(t.rays.size());
+  for (size_t i = 0; i < t.rays.size(); ++i) t.visibility[i] = shadow_visibility(ctx, t.rays[i], counts);
+}
 
 // Asks the rays of t.open_rays as an occlusion batch seeing `sees`, into t.blocked.
 void ask_open_rays(const shading_context& ctx, light_terms& t, ray_sees sees, ray_counts& counts) {
@@ -312,7 +312,7 @@ void keep_open_rays(light_terms& t, bool keep_blocked) {
 
 void answer_shadow_rays_together(const shading_context& ctx, light_terms& t, ray_counts& counts) {
   if (!ctx.shadow_packets) {
-    answer_shadow_rays(ctx, t, 0, counts);
+    answer_shadow_rays(ctx, t, counts);
     return;
   }
   const size_t n = t.rays.size();

@@ -8,9 +8,9 @@
 // rays of a run of camera hits together: plan_direct_light makes the point's terms (what each
 // light or environment direction brings unshadowed) and their shadow rays, the rays are answered
 // (one at a time, or all of a run at once through accelerator::occluded_batch), and
-// resolve_direct_light sums the terms by their answers and files them. direct_light runs the three
-// for one point, the scalar path every other shading point takes; both sum in the same order, so
-// they give the same bits.
+// resolve_direct_light sums the terms by their answers and files them. Every other shading point
+// (direct_light) runs the same plan but answers and sums each term as it is made, keeping nothing;
+// both sum in the same order, so they give the same bits.
 #pragma once
 
 #include <cstdint>
@@ -91,9 +91,6 @@ light_query light_query_of(const path_state& s);
 light_terms_span plan_direct_light(const shading_context& ctx, const surface_point& sp,
                                    const material_point& mp, const vec3& to_viewer, const light_query& q,
                                    light_terms& out);
-
-// Answers t's rays from first_ray on, one at a time.
-void answer_shadow_rays(const shading_context& ctx, light_terms& t, size_t first_ray, ray_counts& counts);
 
 // Answers all of t's rays together through occlusion batches (Embree's packets; one at a time
 // without ctx.shadow_packets). In scenes with

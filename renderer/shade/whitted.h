@@ -81,8 +81,7 @@ struct shading_context {
   // seen only by rays that leave the scene.
   const environment_light* environment = nullptr;
   // The wave's shadow rays go to the accelerator as occlusion batches (shade/direct_light.h). Off in
-  // scenes with quadrics: their user geometry answers a packet lane by lane, and the batches measured
-  // 4-8% slower there than single rays (docs/performance.md).
+  // scenes with quadrics, whose user geometry answers a packet lane by lane: slower than single rays.
   bool shadow_packets = true;
 };
 
