@@ -114,7 +114,7 @@ TEST(perf_options_cli, defaults_are_recorded_in_the_header) {
   const stored_image a = read(render(scratch_folder("perf_default"), "a.exr", {}));
   EXPECT_EQ(a.spec.get_string_attribute("kiln/bvh_quality"), "medium");
   EXPECT_EQ(a.spec.get_string_attribute("kiln/bvh_compact"), "off");
-  EXPECT_EQ(a.spec.get_string_attribute("kiln/packets"), "off");
+  EXPECT_EQ(a.spec.get_string_attribute("kiln/packets"), "on");
 }
 
 TEST(perf_options_cli, every_build_setting_and_packets_leave_the_pixels_unchanged) {

@@ -163,7 +163,7 @@ TEST(option_table, recorded_options_are_the_exr_attributes) {
   EXPECT_EQ(attributes["kiln/shutter"], exr_value(vec2(-0.25f, 0.5f)));
   EXPECT_EQ(attributes["kiln/background"], exr_value(vec3(0.5f, 0.25f, 2.0f)));
   EXPECT_EQ(attributes["kiln/bvh_compact"], exr_value("on"));
-  EXPECT_EQ(attributes["kiln/packets"], exr_value("off"));
+  EXPECT_EQ(attributes["kiln/packets"], exr_value("on"));
   EXPECT_EQ(attributes["kiln/aovs"], exr_value("beauty,Z,N"));
   EXPECT_EQ(attributes["kiln/accelerator"], exr_value("embree"));
   EXPECT_EQ(attributes.count("kiln/frame"), 0u);  // not given: not recorded

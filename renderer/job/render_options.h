@@ -98,7 +98,7 @@ struct render_options {
   std::string accel = "embree";                 // embree | grid | adaptive-grid
   grid_options grid = adaptive_grid_options();  // --grid-*; the uniform grid drops max_depth
   embree_options embree;                        // --bvh-quality, --bvh-compact
-  bool packets = false;                         // --packets on|off: trace each tile's camera rays together
+  bool packets = true;                          // --packets on|off: trace each pixel's camera rays together
   std::string shading = "wave";                 // --shading wave|reference (render/tile_renderer.h)
   std::string environment;                      // equirectangular map file; empty: the --background colour
   std::string lighting = "auto";                // --lighting auto|studio|headlight|file (job/lighting.h)

@@ -194,7 +194,7 @@ void add_trace_options(std::vector<option_spec>& t) {
       [](const render_options& o) -> std::optional<std::string> {
         return std::string(o.packets ? "on" : "off");
       },
-      "on", "Trace each tile's camera rays together as Embree packets: on or off (default off)"));
+      "off", "Trace each pixel's camera rays together as Embree packets: on or off (default on)"));
   t.back().recorded_as = "kiln/packets";
   t.back().choices = {"on", "off"};
   add(choice_option(

@@ -17,20 +17,28 @@ size_t tile_sample_index(const camera_ray_batch& b, int x, int y, int s, int spp
   return pixel * size_t(spp) + size_t(s);
 }
 
-// The run of samples [begin, end) that starts at `begin`, and whether it is whole rows.
+// The run of samples [begin, end) that holds sample `index`.
 struct sample_run {
   size_t begin = 0, end = 0;
-  bool whole_rows = false;
 };
 
-sample_run run_from(const camera_ray_batch& b, size_t begin, int spp) {
+// Whole rows of the tile, as many as fit in max_rays; else whole pixels from index's pixel on, as
+// many as fit; else (a pixel of more than max_rays samples) max_rays of index's pixel's samples,
+// counted from its first. Either way a run holds a pixel's samples from its first or from a multiple
+// of max_rays, so the packets of trace_camera_rays depend on the pixel alone.
+sample_run run_from(const camera_ray_batch& b, size_t index, int spp) {
   const size_t per_row = size_t(b.x1 - b.x0) * size_t(spp);
   const size_t total = per_row * size_t(b.y1 - b.y0);
-  if (per_row > camera_ray_batch::max_rays)
-    return {begin, std::min(total, begin + camera_ray_batch::max_rays), false};
-  const size_t row = begin / per_row;  // a run of rows starts at a row's first sample
-  const size_t rows = std::max<size_t>(1, camera_ray_batch::max_rays / per_row);
-  return {row * per_row, std::min(total, (row + rows) * per_row), true};
+  const size_t max_rays = camera_ray_batch::max_rays;
+  if (per_row <= max_rays) {
+    const size_t row = index / per_row;
+    return {row * per_row, std::min(total, (row + max_rays / per_row) * per_row)};
+  }
+  const size_t pixel_first = index - index % size_t(spp);
+  if (size_t(spp) <= max_rays)
+    return {pixel_first, std::min(total, pixel_first + max_rays / size_t(spp) * size_t(spp))};
+  const size_t begin = index - (index - pixel_first) % max_rays;
+  return {begin, std::min(pixel_first + size_t(spp), begin + max_rays)};
 }
 
 // Makes the camera rays of samples [run.begin, run.end), each with where it comes from.
@@ -66,12 +74,26 @@ void make_camera_rays(camera_ray_batch& b, const sample_run& run, const view_cam
   }
 }
 
-// The closest hit of every ray of b: runs of whole rows as one coherent stream with packets, the
-// others one ray at a time.
-void trace_camera_rays(camera_ray_batch& b, bool coherent, const accelerator& accel) {
-  b.hits.resize(b.rays.size());
-  if (coherent) return accel.intersect_coherent(b.rays.data(), b.rays.size(), b.hits.data());
-  for (size_t i = 0; i < b.rays.size(); ++i) b.hits[i] = accel.intersect(b.rays[i]);
+// The closest hit of every ray of b: one ray at a time, or with packets each pixel's samples of the
+// run together (accelerator::intersect_coherent: Embree's packets, filled from the pixel's first
+// sample in the run). A packet's traversal may break a tie between coincident surfaces otherwise
+// than a single ray; packets of one pixel's samples alone make that choice the pixel's own, the
+// same whatever tile size, crop or region renders it. A pixel of one sample is one ray.
+void trace_camera_rays(camera_ray_batch& b, bool packets, const accelerator& accel) {
+  const size_t n = b.rays.size();
+  b.hits.resize(n);
+  if (!packets) {
+    for (size_t i = 0; i < n; ++i) b.hits[i] = accel.intersect(b.rays[i]);
+    return;
+  }
+  for (size_t begin = 0, end = 0; begin < n; begin = end) {
+    const camera_ray_source& first = b.sources[begin];
+    for (end = begin + 1; end < n && b.sources[end].x == first.x && b.sources[end].y == first.y;) ++end;
+    if (end - begin == 1)
+      b.hits[begin] = accel.intersect(b.rays[begin]);
+    else
+      accel.intersect_coherent(&b.rays[begin], end - begin, &b.hits[begin]);
+  }
 }
 
 }  // namespace
@@ -92,7 +114,7 @@ size_t camera_ray_at(camera_ray_batch& b, int x, int y, int s, const view_camera
   if (index < b.first || index >= b.first + b.rays.size()) {
     const sample_run run = run_from(b, index, spp);
     make_camera_rays(b, run, cam, settings);
-    trace_camera_rays(b, settings.packets && run.whole_rows, accel);
+    trace_camera_rays(b, settings.packets, accel);
   }
   return index - b.first;
 }

@@ -1,7 +1,10 @@
 // Camera rays as the first stage of a tile's render: the rays of a run of the tile's samples are
 // made first, in the order the pixels are shaded (rows top to bottom, pixels left to right, each
-// pixel's samples in order), then traced to their closest hits (one ray at a time, or together as
-// Embree packets through accelerator::intersect_coherent), and shading starts from each stored hit.
+// pixel's samples in order), then traced to their closest hits (one ray at a time, or each pixel's
+// samples together as Embree packets through accelerator::intersect_coherent), and shading starts
+// from each stored hit. A packet's traversal may break a tie between two coincident surfaces
+// otherwise than a single ray does; since a packet holds one pixel's samples only, that choice is
+// the pixel's own and does not change with the tile size, crop or region.
 // Depends on render and the accelerator interface; never on a backend.
 #pragma once
 
@@ -42,10 +45,9 @@ struct camera_ray_batch {
 camera_ray_batch tile_camera_rays(int x0, int y0, int x1, int y1);
 
 // The position in b of sample s of pixel (x, y) of its tile, after making and tracing the run of
-// samples that starts there when b does not hold it. A run is whole pixel rows, as many as fit in
-// max_rays (with packets those rows are traced as one stream); a row of more than max_rays samples
-// is cut into runs of max_rays, traced one ray at a time. So with packets the streams are the
-// tile's runs of rows whatever the order pixels are asked for, and the image does not depend on it.
+// samples that holds it when b does not: whole pixel rows, as many as fit in max_rays; else whole
+// pixels from (x, y) on; else max_rays of the pixel's samples, counted from its first. The image
+// does not depend on the order pixels are asked for.
 size_t camera_ray_at(camera_ray_batch& b, int x, int y, int s, const view_camera& cam,
                      const render_settings& settings, const accelerator& accel);
 

@@ -37,9 +37,10 @@ struct render_settings {
   adaptive_options adaptive;     // threshold > 0: Whitted's adaptive corner sampling instead of spp
   bool show_background = false;  // camera rays that miss see the environment (alpha 1) instead of alpha 0
   shading_options shading;
-  // Camera rays of a tile traced together (accelerator::intersect_coherent) before shading; the
-  // image is the same either way. Adaptive sampling traces its samples one at a time.
-  bool packets = false;
+  // Each pixel's camera rays traced together (accelerator::intersect_coherent) before shading; the
+  // image is the same either way but where two surfaces coincide (render/camera_rays.h). Adaptive
+  // sampling traces its samples one at a time.
+  bool packets = true;
   // Shade each sample from its camera ray to its last bounce before the next (the reference the
   // wave is held to) instead of making a run's camera hits ready together first.
   bool reference_shading = false;

@@ -149,7 +149,7 @@ class RenderOptions(TypedDict, total=False):
     bvh_compact: Optional[bool]
     """--bvh-compact: Embree: compact BVH layout (less memory, slower rays) (default false)"""
     packets: Optional[Union[Literal['on', 'off'], bool]]
-    """--packets: Trace each tile's camera rays together as Embree packets: on or off (default off)"""
+    """--packets: Trace each pixel's camera rays together as Embree packets: on or off (default on)"""
     shading: Optional[Literal['wave', 'reference']]
     """--shading: How a tile's samples are shaded: wave (the camera's hits of a run of samples made ready together, grouped by material, then shaded) or reference (each sample from its camera ray to its last bounce, one at a time: the scalar path the wave is held to) (default wave)"""
     time_limit: Optional[float]
