@@ -451,12 +451,8 @@ void embree_accelerator::closest_hit(const ray& r, bool quadric_normal, std::opt
 }
 
 void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::optional<hit>* out) const {
-  if (state_->has_quadrics) {
-    // Quadric callbacks answer single rays: one query each, written straight into out.
-    for (size_t i = 0; i < count; ++i) closest_hit(rays[i], true, out[i]);
-    return;
-  }
-  // Invalid rays never reach Embree; the stream holds the others in order.
+  // Invalid rays never reach Embree; the stream holds the others in order, each with its index in
+  // rays as its id (quadric callbacks read the double-precision world ray by it).
   thread_local std::vector<RTCRayHit> queries;
   thread_local std::vector<uint32_t> index;
   queries.clear();
@@ -464,7 +460,9 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
   for (size_t i = 0; i < count; ++i) {
     out[i].reset();
     if (!is_valid(rays[i])) continue;
-    fill_embree_query(rays[i], queries.emplace_back());
+    RTCRayHit& query = queries.emplace_back();
+    fill_embree_query(rays[i], query);
+    query.ray.id = unsigned(i);
     index.push_back(uint32_t(i));
   }
   if (queries.empty()) return;
@@ -472,6 +470,7 @@ void embree_accelerator::intersect_coherent(const ray* rays, size_t count, std::
   rtcInitIntersectContext(&context.embree);
   context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   context.world = &scene_;
+  context.world_rays = rays;
   rtcIntersect1M(state_->top, &context.embree, queries.data(), unsigned(queries.size()), sizeof(RTCRayHit));
   for (size_t k = 0; k < queries.size(); ++k)
     kiln_hit(scene_, queries[k], rays[index[k]], true, out[index[k]]);

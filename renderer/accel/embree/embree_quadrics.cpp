@@ -37,25 +37,30 @@ std::optional<quadric_ray_hit> query(RTCIntersectContext* embree_context, const 
   return intersect_quadric(*static_cast<const prepared_quadric*>(user), o, d, tnear, tfar, any_hit);
 }
 
+// Closest hits of N rays: one (rtcIntersect1) or a packet's lanes (a coherent stream's packets,
+// handed to callbacks at the packet's own width), each lane its own world ray.
 void quadric_intersect_callback(const RTCIntersectFunctionNArguments* args) {
-  // kiln traces closest-hit queries as single rays (rtcIntersect1), so N is 1.
-  if (args->N != 1 || !args->valid[0]) return;
-  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const auto* context = reinterpret_cast<const kiln_intersect_context*>(args->context);
-  const ray& r = context->world_rays[rayhit->ray.id];
-  std::optional<quadric_ray_hit> h =
-      query(args->context, args->geometryUserPtr, r, rayhit->ray.tnear, rayhit->ray.tfar, false);
-  if (!h) return;
-  rayhit->ray.tfar = float(h->t);
-  // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.
-  rayhit->hit.Ng_x = 0.0f;
-  rayhit->hit.Ng_y = 0.0f;
-  rayhit->hit.Ng_z = 1.0f;
-  rayhit->hit.u = 0.0f;
-  rayhit->hit.v = 0.0f;
-  rayhit->hit.primID = h->part;
-  rayhit->hit.geomID = args->geomID;
-  rayhit->hit.instID[0] = args->context->instID[0];
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    float& tfar = RTCRayN_tfar(rays, args->N, i);
+    const ray& r = context->world_rays[RTCRayN_id(rays, args->N, i)];
+    const std::optional<quadric_ray_hit> h =
+        query(args->context, args->geometryUserPtr, r, RTCRayN_tnear(rays, args->N, i), tfar, false);
+    if (!h) continue;
+    tfar = float(h->t);
+    // The accelerator rebuilds normal and UV from (t, part) in double: Ng, u, v are placeholders.
+    RTCHitN_Ng_x(hits, args->N, i) = 0.0f;
+    RTCHitN_Ng_y(hits, args->N, i) = 0.0f;
+    RTCHitN_Ng_z(hits, args->N, i) = 1.0f;
+    RTCHitN_u(hits, args->N, i) = 0.0f;
+    RTCHitN_v(hits, args->N, i) = 0.0f;
+    RTCHitN_primID(hits, args->N, i) = h->part;
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+    RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+  }
 }
 
 // Occlusion of N rays: one (rtcOccluded1) or a packet's lanes (rtcOccluded4/8/16, which Embree 3
