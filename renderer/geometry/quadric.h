@@ -121,6 +121,20 @@ float quadric_world_curvature(const instance& inst, const quadric& q, const ray&
 float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
                               const quadric_surface& s);
 
+// How the world normal turns at the same hit along two tangents across it: each tangent moves the
+// point by step[i] and the unit normal by turn[i] (both world; in closed form on quadrics, over a
+// central difference on the torus). shade/surface.h's curvature_from_differentials takes them to
+// the two principal curvatures. Not valid where the surface is flat (caps, disks) or has no normal
+// (the cone's apex).
+struct quadric_normal_turns {
+  bool valid = false;
+  dvec3 normal{0.0};  // unit, world
+  dvec3 step[2];
+  dvec3 turn[2];
+};
+quadric_normal_turns quadric_world_normal_turns(const instance& inst, const quadric& q, uint32_t part,
+                                                const quadric_surface& s);
+
 // The torus quartic along a ray, in s = (t − t_c)·|d| from the ray's closest approach to the
 // centre (coefficients[i] multiplies sⁱ; leading coefficient 1).
 struct torus_ray_quartic {

@@ -278,39 +278,52 @@ float quadric_world_curvature(const instance& inst, const quadric& q, const ray&
   return quadric_world_curvature(inst, q, part, quadric_surface_of_hit(inst, q, r, t, part));
 }
 
-float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
-                              const quadric_surface& s) {
+quadric_normal_turns quadric_world_normal_turns(const instance& inst, const quadric& q, uint32_t part,
+                                                const quadric_surface& s) {
+  quadric_normal_turns out;
   const dvec3 tangents[2] = {s.dpdu, glm::cross(s.normal, s.dpdu)};
-  if (is_cap(part) || q.kind == quadric_kind::disk) return 0.0f;  // planar
-  double curvature = 0.0;
+  if (is_cap(part) || q.kind == quadric_kind::disk) return out;  // planar
   if (q.kind != quadric_kind::torus) {
     // A quadric's Hessian is the constant 2A, so the world normal N·∇F / |N·∇F| turns along the
     // object tangent t at P·N·2A·t / |N·∇F| (P: the projection off the normal) while the point
-    // moves |M·t|: the limit of the central differences below, without their four projections.
+    // moves M·t: the limit of central differences, without their four projections.
     const implicit_form f = implicit_of(q);
     const dvec3 g = inst.world_from_object_normal * implicit_gradient(f, s.point);
     const double g_len = glm::length(g);
-    if (!(g_len > 0.0) || !std::isfinite(g_len)) return 0.0f;  // the cone's apex
-    const dvec3 n = g / g_len;
-    for (const dvec3& tangent : tangents) {
-      const dvec3 dg = inst.world_from_object_normal * (2.0 * (f.a * tangent));
-      const double turn = glm::length(dg - n * glm::dot(n, dg)) / g_len;
-      const double distance = glm::length(transform_vector(inst.world_from_object, tangent));
-      if (distance > 0.0) curvature = std::max(curvature, turn / distance);
+    if (!(g_len > 0.0) || !std::isfinite(g_len)) return out;  // the cone's apex
+    out.normal = g / g_len;
+    for (int i = 0; i < 2; ++i) {
+      const dvec3 dg = inst.world_from_object_normal * (2.0 * (f.a * tangents[i]));
+      out.turn[i] = (dg - out.normal * glm::dot(out.normal, dg)) / g_len;
+      out.step[i] = transform_vector(inst.world_from_object, tangents[i]);
     }
-    return std::isfinite(curvature) ? float(curvature) : 0.0f;
+    out.valid = true;
+    return out;
   }
   // The torus (quartic): central differences at a step small against the shape.
   const double h = 1e-4 * std::max(glm::length(q.bounds.diagonal()), 1e-12);
   const side_function side(q);
-  for (const dvec3& tangent : tangents) {
+  out.normal = glm::normalize(inst.world_from_object_normal * s.normal);
+  for (int i = 0; i < 2; ++i) {
     dvec3 a_point, a_normal, b_point, b_normal;
-    point_and_normal_at(side, part, s.point + h * tangent, a_point, a_normal);
-    point_and_normal_at(side, part, s.point - h * tangent, b_point, b_normal);
-    const dvec3 turn = glm::normalize(inst.world_from_object_normal * a_normal) -
-                       glm::normalize(inst.world_from_object_normal * b_normal);
-    const double distance = glm::length(transform_vector(inst.world_from_object, a_point - b_point));
-    if (distance > 0.0) curvature = std::max(curvature, glm::length(turn) / distance);
+    point_and_normal_at(side, part, s.point + h * tangents[i], a_point, a_normal);
+    point_and_normal_at(side, part, s.point - h * tangents[i], b_point, b_normal);
+    out.turn[i] = glm::normalize(inst.world_from_object_normal * a_normal) -
+                  glm::normalize(inst.world_from_object_normal * b_normal);
+    out.step[i] = transform_vector(inst.world_from_object, a_point - b_point);
+  }
+  out.valid = true;
+  return out;
+}
+
+float quadric_world_curvature(const instance& inst, const quadric& q, uint32_t part,
+                              const quadric_surface& s) {
+  const quadric_normal_turns turns = quadric_world_normal_turns(inst, q, part, s);
+  if (!turns.valid) return 0.0f;
+  double curvature = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    const double distance = glm::length(turns.step[i]);
+    if (distance > 0.0) curvature = std::max(curvature, glm::length(turns.turn[i]) / distance);
   }
   return std::isfinite(curvature) ? float(curvature) : 0.0f;
 }

@@ -503,6 +503,47 @@ TEST(texture_footprint, sphere_footprint_follows_its_parametric_uv) {
   EXPECT_NEAR(std::abs(sp.footprint0.dy.y), dv, 1e-3f * dv);
 }
 
+// A quadric's curvature has its two principal directions: a cylinder of radius 0.5 along x turns
+// its normal at 2 per unit around the axis (tilting along z at the top) and not along it; a sphere
+// of radius 2 turns at 1/2 every way. (The largest turn taken every way stretched a cylinder's
+// highlight off its ends.)
+TEST(surface, a_quadric_s_curvature_has_its_two_principal_directions) {
+  auto curvature_at_top = [](quadric_kind kind, double radius, const dmat4& world_from_object) {
+    scene s;
+    quadric q;
+    q.kind = kind;
+    q.radius = radius;
+    q.zmin = -1.0;
+    q.zmax = 1.0;
+    q.bounds = quadric_bounds(q);
+    s.quadrics.push_back(q);
+    s.materials.emplace_back();
+    s.materials[0].roughness_factor = 0.1f;  // smooth enough to need the curvature
+    instance inst;
+    inst.kind = shape_kind::quadric;
+    inst.world_from_object = world_from_object;
+    finish_instance_transform(inst);
+    s.instances.push_back(inst);
+    ray r;
+    r.origin = vec3(0, 5, 0);
+    r.direction = vec3(0, -1, 0);
+    hit h;
+    h.t = float(5.0 - radius);
+    h.primitive_id = quadric_side;
+    h.geometric_normal = vec3(0, 1, 0);
+    return make_surface_point(s, h, r, 0.01f).curvature;
+  };
+  const surface_curvature cylinder = curvature_at_top(
+      quadric_kind::cylinder, 0.5, glm::rotate(dmat4(1.0), 0.5 * double(pi), dvec3(0, 1, 0)));
+  EXPECT_NEAR(cylinder.major, 2.0f, 1e-5f);
+  EXPECT_NEAR(cylinder.minor, 0.0f, 1e-5f);
+  EXPECT_NEAR(std::abs(cylinder.axis.z), 1.0f, 1e-5f);
+  const surface_curvature sphere = curvature_at_top(quadric_kind::sphere, 2.0, dmat4(1.0));
+  EXPECT_NEAR(sphere.major, 0.5f, 1e-5f);
+  EXPECT_NEAR(sphere.minor, 0.5f, 1e-5f);
+  EXPECT_EQ(sphere.axis, vec3(0.0f));
+}
+
 // Refraction scales the spread as Snell's law bends two nearby rays: refract two directions dθ apart
 // through a plane and measure the angle between the refracted pair.
 TEST(ray_cone, refracted_spread_matches_snell_on_two_nearby_rays) {

@@ -106,9 +106,10 @@ surface_point make_quadric_surface_point(const scene& s, const instance& inst, c
     sp.footprint1 = sp.footprint0;
   }
   if (may_be_smooth(m)) {
-    // The quadric's largest turn, taken the same every way.
-    const float curvature = quadric_world_curvature(inst, q, h.primitive_id, object);
-    sp.curvature = {vec3(0.0f), curvature, curvature};
+    // The quadric's two principal turns: a cylinder's highlight widens around it, not along it.
+    const quadric_normal_turns t = quadric_world_normal_turns(inst, q, h.primitive_id, object);
+    if (t.valid)
+      sp.curvature = curvature_from_differentials(t.normal, t.step[0], t.step[1], t.turn[0], t.turn[1]);
   }
   return sp;
 }
