@@ -219,15 +219,14 @@ size_t walked_interval(const float* cdf, size_t n, float u) {
   return k;
 }
 
-// Guide tables only narrow the search: on a map of black rows, black runs, single bright texels and
-// uneven widths, every draw lands in the texel a walk along the CDFs finds, at the same point.
-TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
+// A scene whose environment is a 97x41 map of black rows, black runs and single bright texels, the
+// numbers drawn by rng.
+scene uneven_map_scene(std::mt19937& rng) {
   scene w;
   image im;
   im.width = 97;
   im.height = 41;
   im.texels32.assign(size_t(im.width) * size_t(im.height) * 4, 0.0f);
-  std::mt19937 rng(7);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int y = 3; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) {
@@ -238,6 +237,15 @@ TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
   w.images.push_back(im);
   w.env.map_image = 0;
   w.env.rotation = 0.3f;
+  return w;
+}
+
+// Guide tables only narrow the search: on a map of black rows, black runs, single bright texels and
+// uneven widths, every draw lands in the texel a walk along the CDFs finds, at the same point.
+TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const scene w = uneven_map_scene(rng);
   const environment_light e = make_environment_light(w);
   ASSERT_TRUE(e.lights);
   const size_t width = size_t(e.width), height = size_t(e.height);
@@ -253,6 +261,32 @@ TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
         vec2((float(x) + du) / float(width), (float(y) + dv) / float(height)), e.rotation);
     const environment_sample s = sample_environment(e, vec2(ux, uy));
     ASSERT_EQ(s.direction, expected) << i << " u " << ux << ", " << uy;
+  }
+}
+
+// A shading point's draws made together (their memory reads overlapped) are the draws made one by
+// one, bit for bit: on an uneven map, on a uniform environment, and over runs of every length
+// around the stage of 8.
+TEST(environment_light, draws_made_together_are_the_draws_made_one_by_one) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const scene w = uneven_map_scene(rng);
+  scene uniform;
+  uniform.env.color = vec3(0.5f);
+  for (const environment_light& e : {make_environment_light(w), make_environment_light(uniform)}) {
+    ASSERT_TRUE(e.lights);
+    for (int count = 0; count <= 19; ++count) {
+      std::vector<vec2> u(static_cast<size_t>(count));
+      for (vec2& v : u) v = vec2(unit(rng), std::min(unit(rng), 0.99999994f));
+      std::vector<environment_sample> together(static_cast<size_t>(count));
+      sample_environment_run(e, u.data(), count, together.data());
+      for (int i = 0; i < count; ++i) {
+        const environment_sample alone = sample_environment(e, u[size_t(i)]);
+        ASSERT_EQ(together[size_t(i)].direction, alone.direction) << count << " " << i;
+        ASSERT_EQ(together[size_t(i)].pdf, alone.pdf) << count << " " << i;
+        ASSERT_EQ(together[size_t(i)].uv, alone.uv) << count << " " << i;
+      }
+    }
   }
 }
 

@@ -31,11 +31,11 @@ exr_value recorded_value(const option_spec& spec, const std::string& text) {
   switch (spec.recorded_type) {
     case record_type::float64:
       return std::stod(text);
-    case record_type::vec2: {
+    case record_type::float2: {
       const size_t comma = text.find(',');
       return vec2(float(std::stod(text.substr(0, comma))), float(std::stod(text.substr(comma + 1))));
     }
-    case record_type::vec3:
+    case record_type::float3:
       return vec3(parse_triple(text, dashed(spec.name)));
     case record_type::by_type:
       break;

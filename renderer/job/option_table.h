@@ -59,7 +59,7 @@ enum class option_type { integer, unsigned_integer, number, text, flag };
 // How a recorded value is stored in the EXR header: by the option's type (integers as int,
 // numbers as float, flags as "on"/"off", the rest as text), or as a double (a time that must read
 // back exactly), a v2f or a v3f (a text of two or three numbers).
-enum class record_type { by_type, float64, vec2, vec3 };
+enum class record_type { by_type, float64, float2, float3 };
 
 struct option_spec {
   std::string name;        // "spp": --spp on the command line, "spp" in a manifest, spp= in Python

@@ -182,7 +182,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "Motion blur: the shutter is open from OPEN to CLOSE, in frames relative to the frame (default: no "
           "blur)"))
       .recorded_as = "kiln/shutter";
-  t.back().recorded_type = record_type::vec2;
+  t.back().recorded_type = record_type::float2;
   add(custom_option(
           "motion-steps",
           [](render_options& o, const std::string& text) {
@@ -210,7 +210,7 @@ void add_view_options(std::vector<option_spec>& t) {
           "A constant environment R,G,B (linear radiance): lights every surface and is seen by rays that "
           "leave the scene (default: none; see --lighting)"))
       .recorded_as = "kiln/background";
-  t.back().recorded_type = record_type::vec3;
+  t.back().recorded_type = record_type::float3;
 }
 
 }  // namespace kiln::option_entries

@@ -130,6 +130,45 @@ void plan_environment_direction(const shading_context& ctx, const surface_point&
   out.take(term, &shadow);
 }
 
+// The random numbers of pair i of n: light_u draws from the map, lobe_u from the material's lobes
+// (its first number picks the lobe). The pairs are stratified over the map's rows and over the
+// choice of lobe.
+void environment_pair_numbers(const light_query& q, int i, int n, vec2& light_u, vec3& lobe_u) {
+  const auto next = [&q, i](uint32_t dimension) { return hash_to_unit(q.seed, uint32_t(i), dimension); };
+  const float stratum = float(i);
+  light_u = vec2(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f));
+  vec2 lobe(next(4), next(5));
+  if (q.stratum.count > 0) {
+    // The camera's first surface: its pixel's samples × n pairs take consecutive points of a
+    // scrambled (0, 2)-sequence, so the pixel's estimate is stratified over both domains.
+    const uint32_t point = q.stratum.index * uint32_t(n) + uint32_t(i), key = q.stratum.scramble;
+    sobol_2d(point, hash_u32(key ^ 0x1B56C4E9U), hash_u32(key ^ 0x27D4EB2FU), light_u.x, light_u.y);
+    sobol_2d(point, hash_u32(key ^ 0x165667B1U), hash_u32(key ^ 0x61C88647U), lobe.x, lobe.y);
+  }
+  lobe_u = vec3(std::min((stratum + next(3)) / float(n), 0.99999994f), lobe.x, lobe.y);
+}
+
+// A direction drawn from a material's lobes, with its density and its map coordinates (found once,
+// for the map's density and its radiance); pdf 0 when none was drawn.
+struct lobe_direction {
+  vec3 direction{0.0f};
+  float pdf = 0.0f;
+  vec2 uv{0.0f};
+};
+
+lobe_direction lobe_direction_of(const environment_light& e, const lobe_sampler& lobes, const vec3& to_viewer,
+                                 const vec3& u) {
+  lobe_direction out;
+  const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u);
+  if (!l) return out;
+  const float pdf = lobe_pdf(lobes, to_viewer, *l);
+  if (!(pdf > 0.0f)) return out;
+  out.direction = *l;
+  out.pdf = pdf;
+  out.uv = e.uniform ? vec2(0.0f) : environment_uv(*l, e.rotation);
+  return out;
+}
+
 // The environment's terms: environment_samples pairs of samples (half as many off the camera's
 // path), one drawn from the map's importance and one from the material's lobes, each weighed
 // against the other's density. The pairs are stratified over the map's rows and over the choice
@@ -145,31 +184,34 @@ int plan_environment_light(const shading_context& ctx, const surface_point& sp, 
   // a scene of glass and chrome.
   const int asked = std::max(ctx.options.environment_samples, 1);
   const int n = q.camera ? asked : (asked + 1) / 2;
-  for (int i = 0; i < n; ++i) {
-    const auto next = [&q, i](uint32_t dimension) { return hash_to_unit(q.seed, uint32_t(i), dimension); };
-    const float stratum = float(i);
-    vec2 light_u(next(1), std::min((stratum + next(2)) / float(n), 0.99999994f));
-    vec2 lobe_u(next(4), next(5));
-    if (q.stratum.count > 0) {
-      // The camera's first surface: its pixel's samples × n pairs take consecutive points of a
-      // scrambled (0, 2)-sequence, so the pixel's estimate is stratified over both domains.
-      const uint32_t point = q.stratum.index * uint32_t(n) + uint32_t(i), key = q.stratum.scramble;
-      sobol_2d(point, hash_u32(key ^ 0x1B56C4E9U), hash_u32(key ^ 0x27D4EB2FU), light_u.x, light_u.y);
-      sobol_2d(point, hash_u32(key ^ 0x165667B1U), hash_u32(key ^ 0x61C88647U), lobe_u.x, lobe_u.y);
+  // Up to `run` pairs at a time: first every direction (the map's draws made together, the lobes'
+  // drawn and their map coordinates found, the map's texels for them asked for), then each pair's
+  // two terms in turn. The reads of the map and its tables then overlap instead of waiting one
+  // after another.
+  constexpr int run = 8;
+  for (int first = 0; first < n; first += run) {
+    const int count = std::min(run, n - first);
+    vec2 light_u[run];
+    vec3 lobe_u[run];
+    for (int k = 0; k < count; ++k) environment_pair_numbers(q, first + k, n, light_u[k], lobe_u[k]);
+    environment_sample drawn[run];
+    sample_environment_run(e, light_u, count, drawn);
+    lobe_direction from_lobes[run];
+    for (int k = 0; k < count; ++k) {
+      from_lobes[k] = lobe_direction_of(e, lobes, to_viewer, lobe_u[k]);
+      if (drawn[k].pdf > 0.0f) prefetch_environment_radiance(ctx.world, drawn[k].uv);
+      if (from_lobes[k].pdf > 0.0f) prefetch_environment_radiance(ctx.world, from_lobes[k].uv);
     }
-    const environment_sample es = sample_environment(e, light_u);
-    if (es.pdf > 0.0f) {
-      const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
-      plan_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, out);
-    }
-    const vec3 u(std::min((stratum + next(3)) / float(n), 0.99999994f), lobe_u.x, lobe_u.y);
-    if (const std::optional<vec3> l = sample_lobes(lobes, to_viewer, u)) {
-      const float pdf = lobe_pdf(lobes, to_viewer, *l);
-      if (pdf > 0.0f) {
-        // The map's coordinates of the direction, once for its density and its radiance.
-        const vec2 uv = e.uniform ? vec2(0.0f) : environment_uv(*l, e.rotation);
-        const float weight = power_heuristic(pdf, environment_pdf_at(e, *l, uv)) / pdf;
-        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, *l, uv, weight, out);
+    for (int k = 0; k < count; ++k) {
+      const environment_sample& es = drawn[k];
+      if (es.pdf > 0.0f) {
+        const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
+        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, out);
+      }
+      const lobe_direction& l = from_lobes[k];
+      if (l.pdf > 0.0f) {
+        const float weight = power_heuristic(l.pdf, environment_pdf_at(e, l.direction, l.uv)) / l.pdf;
+        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, l.direction, l.uv, weight, out);
       }
     }
   }

@@ -29,4 +29,19 @@ vec3 environment_radiance_at(const scene& s, const vec2& uv) {
   return vec3(sample_texture(s, map, uv, texel_encoding::linear)) * env.intensity;
 }
 
+void prefetch_environment_radiance(const scene& s, const vec2& uv) {
+  if (!s.env.has_map()) return;
+  const image& im = s.images[size_t(s.env.map_image)];
+  if (im.width <= 0 || im.height <= 0) return;
+  const int x = std::clamp(int(uv.x * float(im.width)), 0, im.width - 1);
+  const int y = std::clamp(int(uv.y * float(im.height)), 0, im.height - 1);
+  for (int row : {std::max(y - 1, 0), y, std::min(y + 1, im.height - 1)}) {
+    const size_t texel = (size_t(row) * size_t(im.width) + size_t(x)) * 4;
+    if (!im.texels32.empty())
+      __builtin_prefetch(&im.texels32[texel]);
+    else if (!im.texels8.empty())
+      __builtin_prefetch(&im.texels8[texel]);
+  }
+}
+
 }  // namespace kiln

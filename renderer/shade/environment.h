@@ -19,4 +19,9 @@ vec3 environment_radiance(const scene& s, const vec3& direction);
 // caller that has them already (a direction drawn from the map); the constant colour without a map.
 vec3 environment_radiance_at(const scene& s, const vec2& uv);
 
+// Asks the cache for the map's texels environment_radiance_at(s, uv) will read (the texel at uv and
+// its neighbours above and below), so that a shading point's directions, found first, wait on
+// their reads together rather than one after another. Changes no result.
+void prefetch_environment_radiance(const scene& s, const vec2& uv);
+
 }  // namespace kiln

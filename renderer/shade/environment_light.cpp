@@ -127,21 +127,22 @@ vec3 environment_direction(const vec2& uv, float rotation_radians) {
   return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
 }
 
-environment_sample sample_environment(const environment_light& e, const vec2& u) {
+namespace {
+
+environment_sample sample_uniform_environment(const vec2& u) {
   environment_sample out;
-  if (e.uniform) {
-    const float y = 1.0f - 2.0f * u.x;
-    const float r = std::sqrt(std::max(1.0f - y * y, 0.0f));
-    const float phi = 2.0f * pi * u.y;
-    out.direction = {r * std::cos(phi), y, r * std::sin(phi)};
-    out.pdf = 1.0f / (4.0f * pi);
-    return out;
-  }
+  const float y = 1.0f - 2.0f * u.x;
+  const float r = std::sqrt(std::max(1.0f - y * y, 0.0f));
+  const float phi = 2.0f * pi * u.y;
+  out.direction = {r * std::cos(phi), y, r * std::sin(phi)};
+  out.pdf = 1.0f / (4.0f * pi);
+  return out;
+}
+
+// The sample of the map's texel (x, y), drawn at (du, dv) within it.
+environment_sample map_sample(const environment_light& e, size_t x, size_t y, float du, float dv) {
+  environment_sample out;
   const size_t w = size_t(e.width), h = size_t(e.height);
-  float dv = 0.0f, du = 0.0f;
-  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
-  const size_t y = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u.y, dv);
-  const size_t x = find_guided(&e.column_cdf[y * (w + 1)], w, &e.column_guide[y * (gw + 1)], gw, u.x, du);
   const vec2 uv((float(x) + du) / float(w), (float(y) + dv) / float(h));
   out.uv = uv;
   out.direction = environment_direction(uv, e.rotation);
@@ -149,6 +150,49 @@ environment_sample sample_environment(const environment_light& e, const vec2& u)
   if (!(sin_theta > 0.0f)) return out;
   out.pdf = e.texel_density[y * w + x] / (2.0f * pi * pi * sin_theta);
   return out;
+}
+
+}  // namespace
+
+environment_sample sample_environment(const environment_light& e, const vec2& u) {
+  if (e.uniform) return sample_uniform_environment(u);
+  const size_t w = size_t(e.width), h = size_t(e.height);
+  float dv = 0.0f, du = 0.0f;
+  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  const size_t y = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u.y, dv);
+  const size_t x = find_guided(&e.column_cdf[y * (w + 1)], w, &e.column_guide[y * (gw + 1)], gw, u.x, du);
+  return map_sample(e, x, y, du, dv);
+}
+
+void sample_environment_run(const environment_light& e, const vec2* u, int count, environment_sample* out) {
+  if (e.uniform) {
+    for (int i = 0; i < count; ++i) out[i] = sample_uniform_environment(u[i]);
+    return;
+  }
+  // Each draw misses the cache three times in a row (its row's guide entry, then the CDF it points
+  // into, then the texel's density); in stages over a few draws, each stage's loads are asked for
+  // (prefetched) before any is waited on.
+  constexpr int stage = 8;
+  const size_t w = size_t(e.width), h = size_t(e.height);
+  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  for (int first = 0; first < count; first += stage) {
+    const int n = std::min(stage, count - first);
+    size_t y[stage], x[stage];
+    const uint32_t* guide[stage];
+    float dv[stage], du[stage];
+    for (int i = 0; i < n; ++i) {
+      const float ux = u[first + i].x;
+      y[i] = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u[first + i].y, dv[i]);
+      guide[i] = &e.column_guide[y[i] * (gw + 1) + std::min(size_t(ux * float(gw)), gw - 1)];
+      __builtin_prefetch(guide[i]);
+    }
+    for (int i = 0; i < n; ++i) __builtin_prefetch(&e.column_cdf[y[i] * (w + 1) + guide[i][0]]);
+    for (int i = 0; i < n; ++i) {
+      x[i] = find_interval(&e.column_cdf[y[i] * (w + 1)], w, u[first + i].x, du[i], guide[i][0], guide[i][1]);
+      __builtin_prefetch(&e.texel_density[y[i] * w + x[i]]);
+    }
+    for (int i = 0; i < n; ++i) out[first + i] = map_sample(e, x[i], y[i], du[i], dv[i]);
+  }
 }
 
 float environment_pdf(const environment_light& e, const vec3& d) {

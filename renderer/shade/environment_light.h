@@ -48,6 +48,10 @@ struct environment_sample {
 };
 environment_sample sample_environment(const environment_light& e, const vec2& u);
 
+// out[i] = sample_environment(e, u[i]) for each of count draws, the same bits, with the draws'
+// memory reads overlapped: a shading point's pairs draw together.
+void sample_environment_run(const environment_light& e, const vec2* u, int count, environment_sample* out);
+
 // The density per steradian with which sample_environment draws the unit direction d.
 float environment_pdf(const environment_light& e, const vec3& d);
 
