@@ -38,7 +38,9 @@ TEST(option_table, names_are_unique_and_every_entry_is_complete) {
   std::set<std::string> names;
   for (const option_spec& spec : render_option_table()) {
     EXPECT_TRUE(names.insert(spec.name).second) << spec.name << " is declared twice";
-    if (!spec.alias.empty()) EXPECT_TRUE(names.insert(spec.alias).second) << spec.alias;
+    if (!spec.alias.empty()) {
+      EXPECT_TRUE(names.insert(spec.alias).second) << spec.alias;
+    }
     EXPECT_FALSE(spec.help.empty()) << spec.name;
     EXPECT_TRUE(spec.set && spec.get) << spec.name;
     EXPECT_FALSE(example_of(spec).empty()) << spec.name << " has no example value";
@@ -196,9 +198,10 @@ TEST(option_table, the_docs_explain_every_option_once) {
   std::set<std::string> table;
   for (const option_spec& spec : render_option_table()) {
     table.insert(spec.name);
-    if (spec.name != "quiet")
+    if (spec.name != "quiet") {
       EXPECT_EQ(listed.count(spec.name), 1u)
           << "docs/*.md explain --" << spec.name << " " << listed.count(spec.name) << " times";
+    }
   }
   for (const auto& [name, page] : listed)
     EXPECT_EQ(table.count(name), 1u) << "docs/" << page << " lists --" << name;

@@ -159,6 +159,33 @@ TEST(surface, curvature_turns_around_a_cylinder_and_not_along_it) {
             0.0f);
 }
 
+// Prefetching a hit's triangle reads nothing out of bounds (AddressSanitizer would say so): a
+// primitive past the mesh's indices and a quadric are passed over, and the point made after a
+// prefetch is the point made without.
+TEST(surface, prefetching_a_hit_reads_only_its_own_triangle_and_changes_nothing) {
+  const scene s = one_triangle(dmat4(1.0));
+  hit h;
+  h.u = 0.25f;
+  h.v = 0.5f;
+  h.geometric_normal = vec3(0, 0, 1);
+  ray r;
+  r.origin = {0.5f, 2.0f, 5.0f};
+  r.direction = {0, 0, -1};
+  const surface_point before = make_surface_point(s, h, r, 0.01f);
+  for (bool corners : {false, true}) prefetch_surface_point(s, h, corners);
+  const surface_point after = make_surface_point(s, h, r, 0.01f);
+  EXPECT_EQ(after.position, before.position);
+  EXPECT_EQ(after.shading_normal, before.shading_normal);
+  EXPECT_EQ(after.uv0, before.uv0);
+  hit past = h;
+  past.primitive_id = 1;  // the mesh has one triangle
+  for (bool corners : {false, true}) prefetch_surface_point(s, past, corners);
+  scene with_quadric = s;
+  with_quadric.quadrics.push_back(quadric{});
+  with_quadric.instances[0].kind = shape_kind::quadric;
+  for (bool corners : {false, true}) prefetch_surface_point(with_quadric, h, corners);
+}
+
 TEST(surface, barycentric_interpolation_follows_embree_convention) {
   scene s = one_triangle(dmat4(1.0));
   hit h;
