@@ -159,18 +159,29 @@ TEST(surface, curvature_turns_around_a_cylinder_and_not_along_it) {
             0.0f);
 }
 
+// A hit at barycentrics (u, v) = (0.25, 0.5) of a triangle in the z = 0 plane, and the ray along -z
+// through it.
+hit hit_at_a_quarter_and_a_half() {
+  hit h;
+  h.u = 0.25f;
+  h.v = 0.5f;
+  h.geometric_normal = vec3(0, 0, 1);
+  return h;
+}
+ray ray_along_minus_z() {
+  ray r;
+  r.origin = {0.5f, 2.0f, 5.0f};
+  r.direction = {0, 0, -1};
+  return r;
+}
+
 // Prefetching a hit's triangle reads nothing out of bounds (AddressSanitizer would say so): a
 // primitive past the mesh's indices and a quadric are passed over, and the point made after a
 // prefetch is the point made without.
 TEST(surface, prefetching_a_hit_reads_only_its_own_triangle_and_changes_nothing) {
   const scene s = one_triangle(dmat4(1.0));
-  hit h;
-  h.u = 0.25f;
-  h.v = 0.5f;
-  h.geometric_normal = vec3(0, 0, 1);
-  ray r;
-  r.origin = {0.5f, 2.0f, 5.0f};
-  r.direction = {0, 0, -1};
+  const hit h = hit_at_a_quarter_and_a_half();
+  const ray r = ray_along_minus_z();
   const surface_point before = make_surface_point(s, h, r, 0.01f);
   for (bool corners : {false, true}) prefetch_surface_point(s, h, corners);
   const surface_point after = make_surface_point(s, h, r, 0.01f);
@@ -188,13 +199,8 @@ TEST(surface, prefetching_a_hit_reads_only_its_own_triangle_and_changes_nothing)
 
 TEST(surface, barycentric_interpolation_follows_embree_convention) {
   scene s = one_triangle(dmat4(1.0));
-  hit h;
-  h.u = 0.25f;
-  h.v = 0.5f;
-  h.geometric_normal = vec3(0, 0, 1);
-  ray r;
-  r.origin = {0.5f, 2.0f, 5.0f};
-  r.direction = {0, 0, -1};
+  const hit h = hit_at_a_quarter_and_a_half();
+  const ray r = ray_along_minus_z();
   surface_point sp = make_surface_point(s, h, r);
   // p = 0.25·(1,0,0)·2 + 0.5·(0,4,0) = (0.5, 2, 0); uv = (u, v); n ∝ (0.25, 0.5, 0.25).
   EXPECT_NEAR(sp.position.x, 0.5f, 1e-6f);
