@@ -162,15 +162,7 @@ const std::vector<camera_hit>& camera_hits_of(const shading_context& ctx, const 
   std::stable_sort(out.order.begin(), out.order.end(),
                    [&](uint32_t a, uint32_t b) { return material_of(a) < material_of(b); });
   out.lights.clear();
-  // The hits' triangles are asked for ahead: their indices 8 hits ahead, their corners 4 ahead.
-  auto prefetch = [&](size_t k, bool corners) {
-    if (k < n && rays.hits[out.order[k]])
-      prefetch_surface_point(ctx.world, *rays.hits[out.order[k]], corners);
-  };
-  for (size_t k = 0; k < n; ++k) {
-    prefetch(k + 8, false);
-    prefetch(k + 4, true);
-    const uint32_t i = out.order[k];
+  for (uint32_t i : out.order) {
     prepare_camera_hit(ctx, rays.rays[i], rays.hits[i], rays.sources[i].cone, counts, &memo, out.hits[i]);
     // Without packets (quadrics) the shadow rays are asked one at a time anyway: each hit's are
     // answered as it is shaded, and nothing is kept.

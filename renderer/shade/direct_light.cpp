@@ -200,10 +200,7 @@ int plan_environment_light(const shading_context& ctx, const surface_point& sp, 
     for (int k = 0; k < count; ++k) {
       from_lobes[k] = lobe_direction_of(e, lobes, to_viewer, lobe_u[k]);
       if (drawn[k].pdf > 0.0f) prefetch_environment_radiance(ctx.world, drawn[k].uv);
-      if (from_lobes[k].pdf > 0.0f) {
-        prefetch_environment_pdf(e, from_lobes[k].uv);
-        prefetch_environment_radiance(ctx.world, from_lobes[k].uv);
-      }
+      if (from_lobes[k].pdf > 0.0f) prefetch_environment_radiance(ctx.world, from_lobes[k].uv);
     }
     for (int k = 0; k < count; ++k) {
       const environment_sample& es = drawn[k];

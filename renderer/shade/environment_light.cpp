@@ -201,27 +201,14 @@ float environment_pdf(const environment_light& e, const vec3& d) {
   return environment_pdf_at(e, d, environment_uv(d, e.rotation));
 }
 
-namespace {
-
-// The texel of the map's density that uv falls in.
-size_t density_index(const environment_light& e, const vec2& uv) {
-  const size_t x = std::min(size_t(uv.x * float(e.width)), size_t(e.width) - 1);
-  const size_t y = std::min(size_t(uv.y * float(e.height)), size_t(e.height) - 1);
-  return y * size_t(e.width) + x;
-}
-
-}  // namespace
-
 float environment_pdf_at(const environment_light& e, const vec3& d, const vec2& uv) {
   if (!e.lights) return 0.0f;
   if (e.uniform) return 1.0f / (4.0f * pi);
   const float sin_theta = std::sqrt(std::max(1.0f - d.y * d.y, 0.0f));
   if (!(sin_theta > 0.0f)) return 0.0f;
-  return e.texel_density[density_index(e, uv)] / (2.0f * pi * pi * sin_theta);
-}
-
-void prefetch_environment_pdf(const environment_light& e, const vec2& uv) {
-  if (e.lights && !e.uniform) __builtin_prefetch(&e.texel_density[density_index(e, uv)]);
+  const size_t x = std::min(size_t(uv.x * float(e.width)), size_t(e.width) - 1);
+  const size_t y = std::min(size_t(uv.y * float(e.height)), size_t(e.height) - 1);
+  return e.texel_density[y * size_t(e.width) + x] / (2.0f * pi * pi * sin_theta);
 }
 
 }  // namespace kiln

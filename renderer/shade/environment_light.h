@@ -58,9 +58,6 @@ float environment_pdf(const environment_light& e, const vec3& d);
 // The same for a direction d whose map coordinates uv (environment_uv of d) the caller has.
 float environment_pdf_at(const environment_light& e, const vec3& d, const vec2& uv);
 
-// Asks the cache for the density environment_pdf_at(e, d, uv) will read. Changes no result.
-void prefetch_environment_pdf(const environment_light& e, const vec2& uv);
-
 // The world direction of equirectangular coordinates (u, v) for a map turned by rotation: the
 // inverse of environment.h's environment_uv.
 vec3 environment_direction(const vec2& uv, float rotation_radians);

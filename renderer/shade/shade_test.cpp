@@ -175,28 +175,6 @@ ray ray_along_minus_z() {
   return r;
 }
 
-// Prefetching a hit's triangle reads nothing out of bounds (AddressSanitizer would say so): a
-// primitive past the mesh's indices and a quadric are passed over, and the point made after a
-// prefetch is the point made without.
-TEST(surface, prefetching_a_hit_reads_only_its_own_triangle_and_changes_nothing) {
-  const scene s = one_triangle(dmat4(1.0));
-  const hit h = hit_at_a_quarter_and_a_half();
-  const ray r = ray_along_minus_z();
-  const surface_point before = make_surface_point(s, h, r, 0.01f);
-  for (bool corners : {false, true}) prefetch_surface_point(s, h, corners);
-  const surface_point after = make_surface_point(s, h, r, 0.01f);
-  EXPECT_EQ(after.position, before.position);
-  EXPECT_EQ(after.shading_normal, before.shading_normal);
-  EXPECT_EQ(after.uv0, before.uv0);
-  hit past = h;
-  past.primitive_id = 1;  // the mesh has one triangle
-  for (bool corners : {false, true}) prefetch_surface_point(s, past, corners);
-  scene with_quadric = s;
-  with_quadric.quadrics.push_back(quadric{});
-  with_quadric.instances[0].kind = shape_kind::quadric;
-  for (bool corners : {false, true}) prefetch_surface_point(with_quadric, h, corners);
-}
-
 TEST(surface, barycentric_interpolation_follows_embree_convention) {
   scene s = one_triangle(dmat4(1.0));
   const hit h = hit_at_a_quarter_and_a_half();

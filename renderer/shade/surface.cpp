@@ -377,23 +377,6 @@ surface_curvature curvature_from_differentials(const dvec3& n, const dvec3& dp1,
   return c;
 }
 
-void prefetch_surface_point(const scene& s, const hit& h, bool corners) {
-  const instance& inst = s.instances[h.instance_id];
-  if (inst.kind != shape_kind::mesh) return;
-  const mesh& m = s.meshes[inst.shape];
-  const size_t first = size_t(h.primitive_id) * 3;
-  if (first + 2 >= m.indices.size()) return;
-  if (!corners) return __builtin_prefetch(&m.indices[first]);
-  for (size_t k = 0; k < 3; ++k) {
-    const uint32_t v = m.indices[first + k];
-    if (v >= m.positions.size()) continue;
-    __builtin_prefetch(&m.positions[v]);
-    if (!m.normals.empty()) __builtin_prefetch(&m.normals[v]);
-    if (!m.texcoords0.empty()) __builtin_prefetch(&m.texcoords0[v]);
-    if (!m.tangents.empty()) __builtin_prefetch(&m.tangents[v]);
-  }
-}
-
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width,
                                  triangle_memo* memo) {
   // A moving instance or deforming mesh is shaded where it is at the ray's time.

@@ -96,10 +96,4 @@ struct triangle_memo {
 surface_point make_surface_point(const scene& s, const hit& h, const ray& r, float cone_width = 0.0f,
                                  triangle_memo* memo = nullptr);
 
-// Asks the cache for what make_surface_point will read of a triangle hit: with corners false its
-// three vertex indices, with corners true (the indices read by then) its corners' attributes. A
-// loop over many hits calls it a few hits ahead, corners false further ahead than true, so their
-// reads overlap. Changes no result; does nothing for quadrics.
-void prefetch_surface_point(const scene& s, const hit& h, bool corners);
-
 }  // namespace kiln
