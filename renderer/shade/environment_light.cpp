@@ -60,8 +60,11 @@ void make_guide(const float* cdf, size_t n, size_t g, uint32_t* guide) {
 
 // find_interval through the CDF's guide table: the same interval, searched for only between the
 // intervals holding the bucket's two ends (u·g is exact, g a power of two).
+// The guide table's bucket holding u (g buckets).
+size_t guide_bucket(float u, size_t g) { return std::min(size_t(u * float(g)), g - 1); }
+
 size_t find_guided(const float* cdf, size_t n, const uint32_t* guide, size_t g, float u, float& within) {
-  const size_t b = std::min(size_t(u * float(g)), g - 1);
+  const size_t b = guide_bucket(u, g);
   return find_interval(cdf, n, u, within, guide[b], guide[b + 1]);
 }
 
@@ -181,9 +184,8 @@ void sample_environment_run(const environment_light& e, const vec2* u, int count
     const uint32_t* guide[stage];
     float dv[stage], du[stage];
     for (int i = 0; i < n; ++i) {
-      const float ux = u[first + i].x;
       y[i] = find_guided(e.row_cdf.data(), h, e.row_guide.data(), gh, u[first + i].y, dv[i]);
-      guide[i] = &e.column_guide[y[i] * (gw + 1) + std::min(size_t(ux * float(gw)), gw - 1)];
+      guide[i] = &e.column_guide[y[i] * (gw + 1) + guide_bucket(u[first + i].x, gw)];
       __builtin_prefetch(guide[i]);
     }
     for (int i = 0; i < n; ++i) __builtin_prefetch(&e.column_cdf[y[i] * (w + 1) + guide[i][0]]);
