@@ -14,6 +14,10 @@ Cases (640x480, 2 threads by default):
                   as its World (bench/peers/blender_environment.py: diffuse bounces 0, the importer's
                   materials) through kiln's camera, read from a 1-spp kiln render's EXR before the
                   rounds (how far the two images agree: bench/peers/environment_compare.py)
+  toycar-env-16spp  the same for ToyCar (its own file, its first camera, no added light)
+  *-env-1pair-16spp the environment cases with kiln at --environment-samples 1: one direction drawn
+                  from the map and one from the material's lobes at each shading point, the samples
+                  a Cycles path takes there (one light sample, one BSDF sample); kiln's default is 2
 
 Each round runs every case with kiln, then Cycles, then POV-Ray, so machine load drifts over all
 renderers alike; medians over rounds are reported. A peer that is not installed is skipped with a
@@ -29,7 +33,7 @@ chart.png, images/ (the last round's renders as PNG and side-by-side comparisons
 Usage: /usr/bin/python3 bench/peers/peer_bench.py [--kiln build/renderer/app/kiln]
            [--out build/bench-results/peers] [--rounds 3] [--quick] [--cases a,b]
 Needs python3-matplotlib and python3-numpy for the chart, oiiotool for the PNGs, and
-python3-openimageio for the helmet-env case's camera.
+python3-openimageio for the environment cases' camera.
 """
 
 import argparse
@@ -52,6 +56,10 @@ RENDERERS = ["kiln", "cycles", "povray"]
 # The file's lights and nothing else, as the peers are set up: kiln's default (--lighting auto) adds its
 # studio environment to a file's lights, where Cycles' world is black here and POV-Ray has none.
 FILE_LIGHTS_ONLY = ["--lighting", "file"]
+
+# The environment cases' assets under --assets, by the case name's first word.
+ENVIRONMENT_ASSETS = {"helmet": ("DamagedHelmet", "glTF-Binary", "DamagedHelmet.glb"),
+                      "toycar": ("ToyCar", "glTF", "ToyCar.gltf")}
 
 # ToyCar's light: above and to the camera's right, so the car casts a shadow on its cloth.
 TOYCAR_LIGHT = {"position": [0.03, 0.09, 0.06], "intensity": 0.06, "color": [1.0, 1.0, 1.0]}
@@ -118,15 +126,15 @@ def toycar_wrapper(asset, folder, width, height):
     return path
 
 
-def environment_case(args, asset, folder, width, height):
-    """kiln's camera for an asset without one of its own, as blender_environment.py takes it: from the
+def environment_case(args, key, asset, folder, width, height):
+    """kiln's camera (the file's first, or kiln's framing), as blender_environment.py takes it: from the
     worldToCamera and worldToNDC of a 1-spp kiln render (numpy and OpenImageIO needed here only)."""
     import environment_compare
-    exr = os.path.join(folder, "helmet-env-camera.exr")
+    exr = os.path.join(folder, "%s-env-camera.exr" % key)
     run_timed([args.kiln, "render", asset, "-o", exr, "--width", str(width), "--height", str(height), "--spp", "1",
                "--lighting", "studio"])
     camera = environment_compare.blender_camera(environment_compare.read_exr(exr)[2], width, height)
-    path = os.path.join(folder, "helmet-env-camera.json")
+    path = os.path.join(folder, "%s-env-camera.json" % key)
     with open(path, "w", encoding="utf-8") as f:
         json.dump(camera, f)
     return path
@@ -431,7 +439,8 @@ def main():
     ap.add_argument("--width", type=int, default=640)
     ap.add_argument("--height", type=int, default=480)
     ap.add_argument("--spp", type=int, default=16, help="samples per pixel (a square number for POV-Ray's +R)")
-    ap.add_argument("--cases", default="toycar-16spp,quadrics-16spp,quadrics-1spp,helmet-env-16spp")
+    ap.add_argument("--cases", default="toycar-16spp,quadrics-16spp,quadrics-1spp,helmet-env-16spp,"
+                    "helmet-env-1pair-16spp,toycar-env-16spp,toycar-env-1pair-16spp")
     ap.add_argument("--renderers", default=",".join(RENDERERS))
     ap.add_argument("--quick", action="store_true", help="320x240, 1 round: a check that everything runs")
     ap.add_argument("--from-runs", metavar="RUNS_JSON", help="rewrite the tables and chart in --out from an "
@@ -476,23 +485,25 @@ def main():
     cases = []
     for name in args.cases.split(","):
         spp = 1 if name.endswith("-1spp") else args.spp
-        if name.startswith("toycar"):
+        if "-env" in name:
+            key = name.split("-env")[0]
+            asset = os.path.join(args.assets, *ENVIRONMENT_ASSETS[key]) if key in ENVIRONMENT_ASSETS else None
+            if not asset or not os.path.isfile(asset):
+                skipped.append("%s: asset not found under %s" % (name, args.assets))
+                continue
+            kiln_args = ["--lighting", "studio"] + (["--environment-samples", "1"] if "-1pair" in name else [])
+            cases.append({"name": name, "gltf": asset, "spp": spp, "renderers": ["kiln", "cycles"],
+                          "kiln_args": kiln_args,
+                          "environment": os.path.join(ROOT, "share", "environments", "studio.exr"),
+                          "camera_json": environment_case(args, key, asset, work, args.width, args.height)})
+            skipped.append("%s: POV-Ray reads no glTF" % name)
+        elif name.startswith("toycar"):
             asset = find_toycar(args.assets)
             if not asset:
                 skipped.append("%s: ToyCar not found under %s" % (name, args.assets))
                 continue
             cases.append({"name": name, "gltf": toycar_wrapper(asset, work, args.width, args.height), "outside": True,
                           "spp": spp, "renderers": ["kiln", "cycles"], "kiln_args": FILE_LIGHTS_ONLY})
-            skipped.append("%s: POV-Ray reads no glTF" % name)
-        elif name.startswith("helmet-env"):
-            asset = os.path.join(args.assets, "DamagedHelmet", "glTF-Binary", "DamagedHelmet.glb")
-            if not os.path.isfile(asset):
-                skipped.append("%s: DamagedHelmet not found under %s" % (name, args.assets))
-                continue
-            cases.append({"name": name, "gltf": asset, "spp": spp, "renderers": ["kiln", "cycles"],
-                          "kiln_args": ["--lighting", "studio"],
-                          "environment": os.path.join(ROOT, "share", "environments", "studio.exr"),
-                          "camera_json": environment_case(args, asset, work, args.width, args.height)})
             skipped.append("%s: POV-Ray reads no glTF" % name)
         elif name.startswith("quadrics"):
             cases.append({"name": name, "gltf": quadrics, "pov": pov, "spp": spp, "renderers": ["kiln", "povray"],
@@ -531,7 +542,7 @@ def main():
     summary = summarise(runs)
     meta = {"rounds": args.rounds, "machine": machine_info(args, versions), "skipped": skipped,
             "settings": "%dx%d, %d threads, %d spp (1 for the -1spp case); kiln --max-depth 8; Cycles Whitted-like "
-                        "(bench/peers/blender_render.py; helmet-env: bench/peers/blender_environment.py); "
+                        "(bench/peers/blender_render.py; the -env cases: bench/peers/blender_environment.py); "
                         "POV-Ray +A0.0 +AM1 +R%d (-A at 1 spp), max_trace_level 9."
                         % (args.width, args.height, args.threads, args.spp, int(round(math.sqrt(args.spp)))),
             "load_avg_after": os.getloadavg()}
