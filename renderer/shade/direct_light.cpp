@@ -62,6 +62,8 @@ void plan_back_light(const surface_point& sp, const material_point& mp, const ve
 template <typename Sink>
 void plan_punctual_light(const shading_context& ctx, const surface_point& sp, const material_point& mp,
                          const vec3& to_viewer, const light_query& q, Sink& out) {
+  if (ctx.world.lights.empty()) return;
+  const brdf_view view = brdf_view_of(mp, sp.shading_normal, to_viewer);
   for (size_t i = 0; i < ctx.world.lights.size(); ++i) {
     const light& l = ctx.world.lights[i];
     light_sample ls = sample_light(l, sp.position);
@@ -83,10 +85,11 @@ void plan_punctual_light(const shading_context& ctx, const surface_point& sp, co
     const float scale = ctx.options.highlight_footprint_scale;
     const highlight_footprint footprint =
         highlight_footprint_of(q.cone.spread * scale, q.cone.width * scale, ls.distance, sp.curvature);
-    vec3 f = evaluate_brdf(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
+    vec3 f = evaluate_brdf(view, mp, sp.shading_normal, to_viewer, ls.direction, footprint);
     if (f == vec3(0.0f)) continue;
     // The passes' lobes are evaluated beside f, which stays the beauty's (its bytes do not change).
-    if (q.passes) term.lobes = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, ls.direction, footprint);
+    if (q.passes)
+      term.lobes = evaluate_brdf_lobes(view, mp, sp.shading_normal, to_viewer, ls.direction, footprint);
     term.incident = ls.irradiance * cos_theta;
     term.value = f * ls.irradiance * cos_theta;
     if (!l.casts_shadows) {
@@ -112,15 +115,15 @@ float power_heuristic(float pdf, float other) {
 // the diffuse transmission below it (from the back, as plan_back_light lights it).
 template <typename Sink>
 void plan_environment_direction(const shading_context& ctx, const surface_point& sp, const material_point& mp,
-                                const vec3& to_viewer, const glossy_weights& glossy, const vec3& l,
-                                const vec2& uv, float weight, Sink& out) {
+                                const vec3& to_viewer, const brdf_view& view, const glossy_weights& glossy,
+                                const vec3& l, const vec2& uv, float weight, Sink& out) {
   const bool above = glm::dot(sp.smooth_normal, l) > 0.0f;
   const float cos_theta = above ? glm::dot(sp.shading_normal, l) : -glm::dot(sp.shading_normal, l);
   if (!(cos_theta > 0.0f) || !(weight > 0.0f)) return;
   light_term term;
   term.kind = light_term_kind::environment;
   if (above)
-    term.lobes = evaluate_brdf_lobes(mp, sp.shading_normal, to_viewer, l, glossy);
+    term.lobes = evaluate_brdf_lobes(view, mp, sp.shading_normal, to_viewer, l, glossy);
   else if (diffuse_see_through_weight(mp) > 0.0f)
     term.lobes.diffuse = evaluate_diffuse_btdf(mp, sp.shading_normal, to_viewer, l);
   if (term.lobes.diffuse == vec3(0.0f) && term.lobes.specular == vec3(0.0f)) return;
@@ -179,6 +182,7 @@ int plan_environment_light(const shading_context& ctx, const surface_point& sp, 
   const environment_light& e = *ctx.environment;
   const glossy_weights glossy = environment_glossy_weights(ctx.options, mp);
   const lobe_sampler lobes = make_lobe_sampler(mp, sp.shading_normal, to_viewer, glossy);
+  const brdf_view view = brdf_view_of(mp, sp.shading_normal, to_viewer);
   // Surfaces seen in mirrors and through glass take half as many: their light reaches the camera
   // weighted down by Fresnel and transmission, and there are as many of them as camera surfaces in
   // a scene of glass and chrome.
@@ -206,12 +210,12 @@ int plan_environment_light(const shading_context& ctx, const surface_point& sp, 
       const environment_sample& es = drawn[k];
       if (es.pdf > 0.0f) {
         const float weight = power_heuristic(es.pdf, lobe_pdf(lobes, to_viewer, es.direction)) / es.pdf;
-        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, es.direction, es.uv, weight, out);
+        plan_environment_direction(ctx, sp, mp, to_viewer, view, glossy, es.direction, es.uv, weight, out);
       }
       const lobe_direction& l = from_lobes[k];
       if (l.pdf > 0.0f) {
         const float weight = power_heuristic(l.pdf, environment_pdf_at(e, l.direction, l.uv)) / l.pdf;
-        plan_environment_direction(ctx, sp, mp, to_viewer, glossy, l.direction, l.uv, weight, out);
+        plan_environment_direction(ctx, sp, mp, to_viewer, view, glossy, l.direction, l.uv, weight, out);
       }
     }
   }

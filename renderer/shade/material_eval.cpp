@@ -351,25 +351,30 @@ float anisotropic_lobe(const material_point& mp, const vec3& n, const vec3& v, c
 
 // KHR_materials_sheen's albedo scaling of what lies beneath the sheen, for the view and light
 // cosines (the specification's min over both).
-float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
+// sheen_scaling with the view's albedo E(n·v) already found.
+float sheen_scaling_from(const material_point& mp, float albedo_v, float n_dot_l) {
   const material_layers& L = layers_of(mp);
   if (L.sheen_color == vec3(0.0f)) return 1.0f;
   const float strength = max3(L.sheen_color);
   // The spec's fitted visibility lets E pass 1 at grazing views on smooth sheen: keep the base's
   // weight from turning negative there.
-  return std::max(std::min(1.0f - strength * sheen_directional_albedo(n_dot_v, L.sheen_roughness),
+  return std::max(std::min(1.0f - strength * albedo_v,
                            1.0f - strength * sheen_directional_albedo(n_dot_l, L.sheen_roughness)),
                   0.0f);
 }
 
-brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                         const highlight_footprint& footprint, bool& zero,
+float sheen_scaling(const material_point& mp, float n_dot_v, float n_dot_l) {
+  return sheen_scaling_from(mp, sheen_directional_albedo(n_dot_v, layers_of(mp).sheen_roughness), n_dot_l);
+}
+
+brdf_lobes brdf_terms_at(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                         const vec3& l, const highlight_footprint& footprint, bool& zero,
                          const glossy_weights* weights = nullptr) {
   const material_layers& L = layers_of(mp);
   brdf_lobes out;
   zero = true;
   const float n_dot_l = glm::dot(n, l);
-  const float n_dot_v = glm::dot(n, v);
+  const float n_dot_v = view.n_dot_v;
   const bool coated = L.clearcoat > 0.0f;
   if (!(n_dot_l > 0.0f && n_dot_v > 0.0f) && !coated) return out;
   const vec3 h = glm::normalize(v + l);
@@ -391,19 +396,20 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
                            : (fresnel * specular) * (1.0f - mp.metallic) +
                                  (metal_fresnel(mp, v_dot_h) * specular) * mp.metallic;
     if (L.sheen_color != vec3(0.0f)) {
-      const float scaling = sheen_scaling(mp, n_dot_v, n_dot_l);
+      const float scaling = sheen_scaling_from(mp, view.sheen_albedo_v, n_dot_l);
       out.diffuse *= scaling;
       out.specular =
-          out.specular * scaling + L.sheen_color * (charlie_distribution(L.sheen_roughness, n_dot_h) *
-                                                    charlie_visibility(L.sheen_roughness, n_dot_v, n_dot_l));
+          out.specular * scaling +
+          L.sheen_color * (charlie_distribution(L.sheen_roughness, n_dot_h) *
+                           charlie_visibility_from(L.sheen_roughness, view.sheen_lambda_v, n_dot_v, n_dot_l));
     }
   }
   if (coated) {
     // fresnel_coat: the coat's GGX layer (no Fresnel of its own) weighted by clearcoat · F(nc · v),
     // over everything beneath weighted by one minus that.
-    const vec3 nc = coat_normal_or(mp, n);
-    const float coat_v = glm::dot(nc, v), coat_l = glm::dot(nc, l);
-    const float weight = clearcoat_weight(mp, coat_v);
+    const vec3& nc = view.coat_normal;
+    const float coat_v = view.coat_v, coat_l = glm::dot(nc, l);
+    const float weight = view.coat_weight;
     out.diffuse *= 1.0f - weight;
     out.specular *= 1.0f - weight;
     if (coat_v > 0.0f && coat_l > 0.0f) {
@@ -418,28 +424,59 @@ brdf_lobes brdf_terms_at(const material_point& mp, const vec3& n, const vec3& v,
 
 }  // namespace
 
-vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                   const highlight_footprint& footprint) {
+brdf_view brdf_view_of(const material_point& mp, const vec3& n, const vec3& v) {
+  const material_layers& L = layers_of(mp);
+  brdf_view view;
+  view.n_dot_v = glm::dot(n, v);
+  if (L.sheen_color != vec3(0.0f)) {
+    view.sheen_albedo_v = sheen_directional_albedo(view.n_dot_v, L.sheen_roughness);
+    view.sheen_lambda_v = charlie_lambda_at(L.sheen_roughness, view.n_dot_v);
+  }
+  view.coat_normal = coat_normal_or(mp, n);
+  if (L.clearcoat > 0.0f) {
+    view.coat_v = glm::dot(view.coat_normal, v);
+    view.coat_weight = clearcoat_weight(mp, view.coat_v);
+  }
+  return view;
+}
+
+vec3 evaluate_brdf(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                   const vec3& l, const highlight_footprint& footprint) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint, zero);
+  const brdf_lobes t = brdf_terms_at(view, mp, n, v, l, footprint, zero);
   if (zero) return vec3(0.0f);
   return t.diffuse + t.specular;
 }
 
-brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                               const highlight_footprint& footprint) {
+brdf_lobes evaluate_brdf_lobes(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                               const vec3& l, const highlight_footprint& footprint) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, footprint, zero);
+  const brdf_lobes t = brdf_terms_at(view, mp, n, v, l, footprint, zero);
   if (zero) return {};
   return t;
 }
 
-brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
-                               const glossy_weights& weights) {
+brdf_lobes evaluate_brdf_lobes(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                               const vec3& l, const glossy_weights& weights) {
   bool zero = true;
-  const brdf_lobes t = brdf_terms_at(mp, n, v, l, highlight_footprint{}, zero, &weights);
+  const brdf_lobes t = brdf_terms_at(view, mp, n, v, l, highlight_footprint{}, zero, &weights);
   if (zero) return {};
   return t;
+}
+
+vec3 evaluate_brdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                   const highlight_footprint& footprint) {
+  return evaluate_brdf(brdf_view_of(mp, n, v), mp, n, v, l, footprint);
+}
+
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               const highlight_footprint& footprint) {
+  return evaluate_brdf_lobes(brdf_view_of(mp, n, v), mp, n, v, l, footprint);
+}
+
+brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
+                               const glossy_weights& weights) {
+  return evaluate_brdf_lobes(brdf_view_of(mp, n, v), mp, n, v, l, weights);
 }
 
 vec3 evaluate_diffuse_btdf(const material_point& mp, const vec3& n, const vec3& v, const vec3& l) {

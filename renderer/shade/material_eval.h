@@ -220,6 +220,27 @@ brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const ve
 brdf_lobes evaluate_brdf_lobes(const material_point& mp, const vec3& n, const vec3& v, const vec3& l,
                                const glossy_weights& weights);
 
+// What a point's BRDF shares across its light directions, for the view v around the normal n: the
+// view's cosine, the sheen's albedo and Charlie Λ at it, and the coat's normal, cosine and weight.
+// Found once (brdf_view_of) and passed to each direction's evaluation below, which then gives the
+// same bits as the evaluation without it.
+struct brdf_view {
+  float n_dot_v = 0.0f;
+  float sheen_albedo_v = 0.0f;  // E(n·v, sheen roughness); 0 without sheen
+  float sheen_lambda_v = 0.0f;  // the Charlie visibility's Λ(n·v); 0 without sheen
+  vec3 coat_normal{0.0f};
+  float coat_v = 0.0f;       // coat normal · v
+  float coat_weight = 0.0f;  // clearcoat_weight at coat_v; 0 without a coat
+};
+brdf_view brdf_view_of(const material_point& mp, const vec3& n, const vec3& v);
+
+vec3 evaluate_brdf(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                   const vec3& l, const highlight_footprint& footprint);
+brdf_lobes evaluate_brdf_lobes(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                               const vec3& l, const highlight_footprint& footprint);
+brdf_lobes evaluate_brdf_lobes(const brdf_view& view, const material_point& mp, const vec3& n, const vec3& v,
+                               const vec3& l, const glossy_weights& weights);
+
 // The albedo a denoiser divides out (Open Image Denoise's auxiliary albedo: the surface's
 // reflectance independent of light and view, within [0, 1]): the base colour for the diffuse
 // dielectric part and for metal (its reflectance at normal incidence), 1 for the transmissive part

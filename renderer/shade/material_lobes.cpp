@@ -71,11 +71,19 @@ float charlie_distribution(float sheen_roughness, float n_dot_h) {
   return (2.0f + inv_alpha) * std::pow(sin2, 0.5f * inv_alpha) / (2.0f * pi);
 }
 
-float charlie_visibility(float sheen_roughness, float n_dot_v, float n_dot_l) {
+float charlie_lambda_at(float sheen_roughness, float cos_theta) {
+  return charlie_lambda(cos_theta, sheen_alpha(sheen_roughness));
+}
+
+float charlie_visibility_from(float sheen_roughness, float lambda_v, float n_dot_v, float n_dot_l) {
   const float alpha = sheen_alpha(sheen_roughness);
-  const float denominator =
-      (1.0f + charlie_lambda(n_dot_v, alpha) + charlie_lambda(n_dot_l, alpha)) * (4.0f * n_dot_v * n_dot_l);
+  const float denominator = (1.0f + lambda_v + charlie_lambda(n_dot_l, alpha)) * (4.0f * n_dot_v * n_dot_l);
   return denominator > 0.0f ? 1.0f / denominator : 0.0f;
+}
+
+float charlie_visibility(float sheen_roughness, float n_dot_v, float n_dot_l) {
+  return charlie_visibility_from(sheen_roughness, charlie_lambda_at(sheen_roughness, n_dot_v), n_dot_v,
+                                 n_dot_l);
 }
 
 vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos_theta, float thickness_nm,

@@ -17,6 +17,12 @@ float charlie_distribution(float sheen_roughness, float n_dot_h);
 // The specification's Charlie visibility, 1 / ((1 + Λ(n·v) + Λ(n·l)) · 4 · n·v · n·l).
 float charlie_visibility(float sheen_roughness, float n_dot_v, float n_dot_l);
 
+// The Charlie visibility's Λ(cos θ) for sheen roughness r, and the visibility from the view's Λ
+// found once (lambda_v = charlie_lambda_at(r, n·v)): a point's light directions share the view's
+// share, and each gives the same value as charlie_visibility.
+float charlie_lambda_at(float sheen_roughness, float cos_theta);
+float charlie_visibility_from(float sheen_roughness, float lambda_v, float n_dot_v, float n_dot_l);
+
 // The iridescent Fresnel reflectance per R, G, B at cos θ (the half vector's angle to the view)
 // of a thin film of ior film_ior and thickness in nanometres over a base of normal-incidence
 // reflectance base_f0, seen from a medium of ior outside_ior (1, air).

@@ -8,6 +8,7 @@
 #include "shade/dielectric.h"
 #include "shade/lights.h"
 #include "shade/material_eval.h"
+#include "shade/material_lobes.h"
 #include "shade/ray_cone.h"
 #include "shade/surface.h"
 #include "shade/texture_sampling.h"
@@ -287,6 +288,43 @@ TEST(material_eval, metal_reflects_base_colour_at_normal_incidence_peak) {
   float expected = 1.0f / (pi * alpha * alpha) * 0.25f;
   EXPECT_NEAR(f.x / expected, 0.9f, 1e-4f);
   EXPECT_NEAR(f.z / expected, 0.3f, 1e-4f);
+}
+
+// A point's view terms (brdf_view) are found once and serve every light direction at the point:
+// each direction's lobes are those of an evaluation alone, and the sheen and the coat count in them.
+TEST(material_eval, a_point_s_view_serves_all_its_light_directions) {
+  material_point mp;
+  mp.base_color = vec3(0.6f, 0.3f, 0.2f);
+  mp.roughness = 0.4f;
+  material_layers& layers = mp.layers.emplace();
+  layers.sheen_color = vec3(0.8f, 0.7f, 0.9f);
+  layers.sheen_roughness = 0.3f;
+  layers.clearcoat = 1.0f;
+  layers.clearcoat_roughness = 0.2f;
+  layers.clearcoat_normal = glm::normalize(vec3(0.1f, 0.0f, 1.0f));
+  const vec3 n(0, 0, 1), v = glm::normalize(vec3(0.3f, -0.2f, 1.0f));
+  const brdf_view view = brdf_view_of(mp, n, v);
+  EXPECT_GT(view.sheen_lambda_v, 0.0f);
+  EXPECT_GT(view.coat_weight, 0.0f);
+  material_point bare = mp;
+  bare.layers.reset();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int layered = 0;
+  for (int i = 0; i < 300; ++i) {
+    const vec3 l = glm::normalize(vec3(u(rng), u(rng), u(rng) + 0.3f));
+    const brdf_lobes shared = evaluate_brdf_lobes(view, mp, n, v, l, highlight_footprint{});
+    const brdf_lobes alone = evaluate_brdf_lobes(mp, n, v, l);
+    EXPECT_EQ(shared.diffuse, alone.diffuse);
+    EXPECT_EQ(shared.specular, alone.specular);
+    EXPECT_EQ(evaluate_brdf(view, mp, n, v, l, highlight_footprint{}), evaluate_brdf(mp, n, v, l));
+    if (alone.specular != evaluate_brdf_lobes(bare, n, v, l).specular) ++layered;
+    const float n_dot_l = glm::dot(n, l);
+    if (n_dot_l > 0.0f)
+      EXPECT_EQ(charlie_visibility_from(0.3f, charlie_lambda_at(0.3f, view.n_dot_v), view.n_dot_v, n_dot_l),
+                charlie_visibility(0.3f, view.n_dot_v, n_dot_l));
+  }
+  EXPECT_GT(layered, 200);
 }
 
 TEST(lights, point_light_follows_inverse_square) {
