@@ -191,6 +191,45 @@ TEST(turntable_cli, a_frame_is_the_look_at_render_from_its_eye_and_its_frame_alo
   EXPECT_LE(differ, 1);  // a pixel centre on an edge may fall either way of a 1e-7 move
 }
 
+// A textured asset's turntable builds its texture pyramids once: the later frames keep the first
+// frame's (their images are the ones its pose decoded, moved over) and say so, and each frame is
+// still the file of its frame alone, which builds its own.
+TEST(turntable_cli, a_textured_asset_builds_its_pyramids_once_and_each_frame_is_its_frame_alone) {
+  const std::filesystem::path asset =
+      std::filesystem::path(KILN_SHARED_ASSETS) / "BoxTextured/glTF/BoxTextured.gltf";
+  if (!std::filesystem::is_regular_file(asset)) GTEST_SKIP() << asset << " is absent";
+  const std::string dir = scratch_folder("turntable_textures");
+  const std::vector<std::string> common = {"--width", "32",          "--height", "24",     "--spp",
+                                           "4",       "--turntable", "3",        "--aovs", "beauty"};
+  std::vector<std::string> args = {"render", asset.string(), "-o", dir + "/tt.####.exr"};
+  args.insert(args.end(), common.begin(), common.end());
+  const auto sequence = run_kiln(args);
+  ASSERT_EQ(sequence.exit_code, 0) << sequence.stderr_text;
+  const std::vector<std::string> said = lines(sequence.stderr_text);
+  int kept = 0;
+  for (const std::string& line : said) {
+    if (line.rfind("kiln: frame 1: ", 0) == 0)
+      EXPECT_EQ(line.find("texture pyramids kept"), std::string::npos);
+    if (line.rfind("kiln: frame ", 0) == 0 && line.find(", texture pyramids kept") != std::string::npos)
+      ++kept;
+  }
+  EXPECT_EQ(kept, 2) << sequence.stderr_text;
+
+  std::vector<std::string> alone = {"render", asset.string(), "-o", dir + "/alone.exr", "-q", "--frame", "3"};
+  alone.insert(alone.end(), common.begin(), common.end());
+  ASSERT_EQ(run_kiln(alone).exit_code, 0);
+  const float_exr single = read_float_exr(dir + "/alone.exr");
+  const float_exr third = read_float_exr(frame_name(dir, "tt", 3));
+  EXPECT_EQ(single.pixels, third.pixels);
+  float lowest = 1.0f, highest = 0.0f;  // the texture shows: its pixels are not one colour
+  for (size_t i = 0; i < third.pixels.size(); i += 4) {
+    if (third.pixels[i + 3] < 0.999f) continue;
+    lowest = std::min(lowest, third.pixels[i]);
+    highest = std::max(highest, third.pixels[i]);
+  }
+  EXPECT_GT(highest - lowest, 0.05f);
+}
+
 TEST(turntable_cli, the_asset_stays_inside_the_frame_at_every_angle) {
   const std::string dir = scratch_folder("turntable_inside");
   const std::string scene = write_box(dir);

@@ -242,6 +242,7 @@ void run_sequence_bench(const bench_options& o) {
                       {"pose_seconds", made.pose_seconds},
                       {"backend_seconds", made.update_seconds},
                       {"backend_updated", made.backend_updated},
+                      {"textures_kept", made.textures_kept},
                       {"render_seconds", result.stats.seconds}});
     if (frames.size() == 1) {
       first_build = made.update_seconds;

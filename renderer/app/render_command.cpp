@@ -108,8 +108,9 @@ void run_render_sequence(const render_options& options, const render_fingerprint
       job, [&](const render_job_result& result, const render_options& frame, const frame_report& made) {
         write_job_outputs(result, frame, &interrupt_requested());
         if (options.quiet || !options.summary_line) return;
-        std::fprintf(stderr, "kiln: frame %lld: %s\n", made.frame,
-                     made.backend_updated ? "instances moved and deformed meshes refitted" : "backend built");
+        std::fprintf(stderr, "kiln: frame %lld: %s%s\n", made.frame,
+                     made.backend_updated ? "instances moved and deformed meshes refitted" : "backend built",
+                     made.textures_kept ? ", texture pyramids kept" : "");
         print_summary(result, frame);
       });
 }

@@ -80,6 +80,8 @@ struct loaded_scene::state {
   std::unique_ptr<accelerator> accel;
   std::string backend;  // backend_option_names' values accel was built under
   std::string environment_file;
+  // The texture pyramids of the last render, kept while the poses carry its images over.
+  std::unique_ptr<texture_filter> textures;
 };
 
 loaded_scene::loaded_scene(const render_job& job) : state_(std::make_unique<state>()) {
@@ -167,7 +169,8 @@ bool loaded_scene::pose_scene(const render_job& job, const render_options& optio
   const std::string environment_file = job_environment_file(options);
   if (environment_file != st.environment_file) environment.reset();
   if (!carry) {
-    st.accel.reset();  // it points into the meshes that go now
+    st.accel.reset();     // it points into the meshes that go now
+    st.textures.reset();  // and it into the images: decoded again, they may reuse the addresses
     previous = scene();
     p.colours_converted = false;
   }
@@ -228,6 +231,11 @@ render_job_result loaded_scene::render(const render_job& job, const render_optio
     st.backend = backend;
   }
   timings.update_seconds = result.build_seconds = seconds_since(build_start);
+
+  // The images a carrying pose moved keep their pyramids: built once for a sequence's frames.
+  timings.textures_kept = st.textures && st.textures->rebind(p.world);
+  if (!timings.textures_kept) st.textures.reset();
+  settings.kept_textures = &st.textures;
 
   stage = "rendering";
   const cryptomatte_layer objects = cryptomatte_objects(p.world);

@@ -384,7 +384,9 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                                                                              : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
-  std::unique_ptr<texture_filter> textures;
+  std::unique_ptr<texture_filter> own_textures;
+  std::unique_ptr<texture_filter>& textures = settings.kept_textures ? *settings.kept_textures : own_textures;
+  const bool needs_textures = scene_needs_texture_filter(world);
   arena.execute([&] {
     tbb::parallel_invoke([&] { out = film(region.width(), region.height(), settings.aovs, group_layers); },
                          [&] {
@@ -396,7 +398,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                                beauty_part_count(settings.aovs, light_group_count(world)));
                          },
                          [&] {
-                           if (scene_needs_texture_filter(world))
+                           if (needs_textures && !textures)
                              textures = std::make_unique<texture_filter>(world);
                          });
   });
@@ -410,8 +412,13 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
       adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
   // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
   const environment_light environment = make_environment_light(world);
-  shading_context ctx{world,          accel,           shading,     scene_has_see_through(world),
-                      textures.get(), settings.cancel, &environment};
+  shading_context ctx{world,
+                      accel,
+                      shading,
+                      scene_has_see_through(world),
+                      needs_textures ? textures.get() : nullptr,
+                      settings.cancel,
+                      &environment};
   ctx.shadow_packets = world.quadrics.empty();
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 
 #include "core/memory_budget.h"
 #include "render/adaptive_sampling.h"
@@ -16,6 +17,7 @@
 #include "render/motion_vectors.h"
 #include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
+#include "shade/texture_filter.h"
 #include "shade/whitted.h"
 
 namespace kiln {
@@ -69,6 +71,10 @@ struct render_settings {
   // path only (check_deep_path); render_image throws kiln::error (input) otherwise.
   deep_image* deep = nullptr;
   memory_charge* deep_memory = nullptr;
+  // When set, the texture pyramids a caller keeps across renders of one scene (a sequence's frames,
+  // a scene rendered again): render_image uses the filter it holds (the caller has pointed it at
+  // the scene, texture_filter::rebind) or builds one into it.
+  std::unique_ptr<texture_filter>* kept_textures = nullptr;
 };
 
 struct render_statistics {

@@ -58,6 +58,16 @@ class texture_filter {
   void minified_taps(uint32_t texture_index, texel_encoding encoding, vec2 uv, const uv_footprint& footprint,
                      lookup_taps& out) const;
 
+  // Points the pyramids at s's images when they are the images they were built from, moved: s is
+  // the scene the filter was made for, and every image a mip-mapped sampler reads holds the same
+  // texel buffer (the same allocation, size and format) and is read the same ways. A loaded
+  // scene's next pose moves its images into new places (job/loaded_scene.cpp), and its renders
+  // then keep the pyramids instead of building them again. The caller must know that no image was
+  // decoded or converted again in between (a freed buffer's address can come back): it drops the
+  // filter whenever its pose did not carry the images over. Returns false, changing nothing,
+  // otherwise.
+  bool rebind(const scene& s);
+
   // The pyramid lookups of scene texture `texture_index` read (level 0 alone for textures no
   // mip-mapped sampler reads).
   const mip_pyramid& pyramid(uint32_t texture_index, texel_encoding encoding) const {
@@ -66,8 +76,22 @@ class texture_filter {
   }
 
  private:
+  // The texel buffer an image held when the pyramids were built.
+  struct texel_source {
+    const void* texels = nullptr;
+    size_t count = 0;
+    int width = 0;
+    int height = 0;
+    bool operator==(const texel_source& o) const {
+      return texels == o.texels && count == o.count && width == o.width && height == o.height;
+    }
+  };
+  static texel_source source_of(const image& img);
+
   const scene& scene_;
   std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0), as pyramid()
+  std::vector<bool> used_;             // per slot as pyramids_: built beyond level 0
+  std::vector<texel_source> sources_;  // per image
 };
 
 // The bytes the pyramids a texture_filter over s would build take (coarser levels only: level 0

@@ -86,5 +86,39 @@ TEST(texture_filter_lifetime, lookups_over_one_footprint_at_two_image_sizes_stay
   }
 }
 
+// A loaded scene's next pose moves its images into new places; a filter rebinds to them and
+// answers as a filter made afresh. It refuses (and keeps its pyramids on the old images) when an
+// image was copied or decoded again (another buffer), when a material reads the images otherwise,
+// or for another scene.
+TEST(texture_filter_lifetime, a_filter_rebinds_to_its_images_moved_and_to_nothing_else) {
+  scene s = textured_scene();
+  texture_filter filter(s);
+  const std::vector<vec4> before = sample_everywhere(filter);
+
+  std::vector<image> moved(std::make_move_iterator(s.images.begin()),
+                           std::make_move_iterator(s.images.end()));
+  s.images = std::move(moved);  // new image objects, the same texel buffer
+  ASSERT_TRUE(filter.rebind(s));
+  EXPECT_EQ(&filter.pyramid(0, texel_encoding::srgb).level0->texels8, &s.images[0].texels8);
+  EXPECT_TRUE(sample_everywhere(filter) == before);
+  EXPECT_TRUE(sample_everywhere(texture_filter(s)) == before);
+
+  const image copy = s.images[0];
+  image original = std::move(s.images[0]);
+  s.images[0] = copy;  // the same texels in another buffer: decoded again, say
+  EXPECT_FALSE(filter.rebind(s));
+  s.images[0] = std::move(original);
+  EXPECT_TRUE(filter.rebind(s));
+
+  s.textures[0].sampling.mipmap = mip_mode::none;  // read without its pyramid now
+  EXPECT_FALSE(filter.rebind(s));
+  s.textures[0].sampling.mipmap = mip_mode::linear;
+  EXPECT_TRUE(filter.rebind(s));
+
+  scene other = textured_scene();
+  other.images = std::move(s.images);
+  EXPECT_FALSE(filter.rebind(other));
+}
+
 }  // namespace
 }  // namespace kiln
