@@ -249,6 +249,15 @@ TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
   const environment_light e = make_environment_light(w);
   ASSERT_TRUE(e.lights);
   const size_t width = size_t(e.width), height = size_t(e.height);
+  // Each guide entry is the interval holding its bucket's start.
+  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  for (size_t b = 0; b < gh; ++b)
+    ASSERT_EQ(e.row_guide[b], walked_interval(e.row_cdf.data(), height, float(b) / float(gh))) << b;
+  for (size_t y = 0; y < height; ++y)
+    for (size_t b = 0; b < gw; ++b)
+      ASSERT_EQ(e.column_guide[y * (gw + 1) + b],
+                walked_interval(&e.column_cdf[y * (width + 1)], width, float(b) / float(gw)))
+          << y << " " << b;
   for (int i = 0; i < 20000; ++i) {
     const vec2 u(i < 100 ? float(i) / 100.0f : unit(rng), i < 100 ? 1.0f - float(i) / 100.0f : unit(rng));
     const float uy = std::min(u.y, 0.99999994f), ux = std::min(u.x, 0.99999994f);

@@ -376,14 +376,16 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   }
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
-  // The film, the splat accumulator and the texture pyramids are set up side by side on the
-  // render's threads: zeroing the buffers and building the pyramids come before the first pixel,
-  // and done on one thread they held two-thread renders well under twice the speed of one.
+  // The film, the splat accumulator, the texture pyramids and the environment's tables are set up
+  // side by side on the render's threads: zeroing the buffers and building the tables come before
+  // the first pixel, and done on one thread they held two-thread renders well under twice the
+  // speed of one.
   const std::vector<std::string> group_layers =
       settings.aovs.has(aov::light_groups) || settings.aovs.has(aov::shadow) ? light_group_layers(world)
                                                                              : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
+  environment_light environment;  // the environment's sampling tables
   std::unique_ptr<texture_filter> own_textures;
   std::unique_ptr<texture_filter>& textures = settings.kept_textures ? *settings.kept_textures : own_textures;
   const bool needs_textures = scene_needs_texture_filter(world);
@@ -400,7 +402,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                          [&] {
                            if (needs_textures && !textures)
                              textures = std::make_unique<texture_filter>(world);
-                         });
+                         },
+                         [&] { environment = make_environment_light(world); });
   });
   out.x0 = region.x0;
   out.y0 = region.y0;
@@ -411,7 +414,6 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
   shading.highlight_footprint_scale =
       adaptive ? 1.0f : float(1.0 / sample_cone_scale(settings.samples_per_pixel));
   // The cancel flag also reaches inside each camera sample's ray tree (shade/ray_budget.h).
-  const environment_light environment = make_environment_light(world);
   shading_context ctx{world,
                       accel,
                       shading,

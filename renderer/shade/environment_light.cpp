@@ -1,5 +1,8 @@
 #include "shade/environment_light.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,10 +54,17 @@ size_t guide_size(size_t n) {
   return g;
 }
 
-// Fills guide (g + 1 entries) for the CDF of n intervals: entry b is the interval holding b / g.
+// Fills guide (g + 1 entries) for the CDF of n intervals: entry b is the interval holding b / g,
+// find_interval's (the count of cdf[1..n-1] at most b / g). The buckets' starts rise, so one walk
+// along the CDF finds them all, in O(n + g): a search for each bucket took O(g log n), a third of
+// a second for every render under a 4096x2048 map.
 void make_guide(const float* cdf, size_t n, size_t g, uint32_t* guide) {
-  float within;
-  for (size_t b = 0; b < g; ++b) guide[b] = uint32_t(find_interval(cdf, n, float(b) / float(g), within));
+  size_t k = 0;
+  for (size_t b = 0; b < g; ++b) {
+    const float u = float(b) / float(g);
+    while (k + 1 < n && cdf[k + 1] <= u) ++k;
+    guide[b] = uint32_t(k);
+  }
   guide[g] = uint32_t(n - 1);
 }
 
@@ -77,25 +87,35 @@ void build_map_distribution(const image& im, environment_light& e) {
   e.column_cdf.resize((w + 1) * h);
   e.row_cdf.resize(h + 1);
   std::vector<float> row_weight(h);
-  for (size_t y = 0; y < h; ++y) {
-    const float sin_theta = std::sin(pi * (float(y) + 0.5f) / float(h));
-    float* weights = &e.texel_density[y * w];
-    for (size_t x = 0; x < w; ++x) weights[x] = std::max(luminance(texel_rgb(im, x, y)), 0.0f) * sin_theta;
-    row_weight[y] = float(make_cdf(weights, w, &e.column_cdf[y * (w + 1)]));
-  }
+  e.column_guide_size = int(guide_size(w));
+  const size_t gw = size_t(e.column_guide_size);
+  e.column_guide.resize((gw + 1) * h);
+  // Rows are independent: their weights, CDFs and guides are made in parallel (on the caller's
+  // arena), each the same whatever thread makes it. A 4096x2048 map has 8 million texels.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, h, 16), [&](const tbb::blocked_range<size_t>& rows) {
+    for (size_t y = rows.begin(); y < rows.end(); ++y) {
+      const float sin_theta = std::sin(pi * (float(y) + 0.5f) / float(h));
+      float* weights = &e.texel_density[y * w];
+      for (size_t x = 0; x < w; ++x) weights[x] = std::max(luminance(texel_rgb(im, x, y)), 0.0f) * sin_theta;
+      float* cdf = &e.column_cdf[y * (w + 1)];
+      row_weight[y] = float(make_cdf(weights, w, cdf));
+      make_guide(cdf, w, gw, &e.column_guide[y * (gw + 1)]);
+    }
+  });
   const double total = make_cdf(row_weight.data(), h, e.row_cdf.data());
   e.row_guide_size = int(guide_size(h));
-  e.column_guide_size = int(guide_size(w));
-  const size_t gh = size_t(e.row_guide_size), gw = size_t(e.column_guide_size);
+  const size_t gh = size_t(e.row_guide_size);
   e.row_guide.resize(gh + 1);
   make_guide(e.row_cdf.data(), h, gh, e.row_guide.data());
-  e.column_guide.resize((gw + 1) * h);
-  for (size_t y = 0; y < h; ++y) make_guide(&e.column_cdf[y * (w + 1)], w, gw, &e.column_guide[y * (gw + 1)]);
   e.lights = total > 0.0;
   if (!e.lights) return;
   // Density over (u, v) in [0,1]²: weight / (total / texel count).
   const double scale = double(w) * double(h) / total;
-  for (float& d : e.texel_density) d = float(d * scale);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, e.texel_density.size(), size_t(1) << 16),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i < r.end(); ++i)
+                        e.texel_density[i] = float(e.texel_density[i] * scale);
+                    });
 }
 
 }  // namespace
