@@ -348,7 +348,9 @@ def write_chart(summary, folder):
         if s["case"] not in cases:
             cases.append(s["case"])
     colours = {"kiln": "#c0392b", "cycles": "#2471a3", "povray": "#239b56"}
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), gridspec_kw={"width_ratios": [3, 2]})
+    # Wider with more cases; the case names are turned so that long ones do not overlap.
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(max(10, 1.6 * len(cases)), 4.6),
+                                   gridspec_kw={"width_ratios": [3, 2]})
     width = 0.18
     labelled = set()
     for i, case in enumerate(cases):
@@ -362,7 +364,7 @@ def write_chart(summary, folder):
             labelled.add(label)
     ax1.set_yscale("log")
     ax1.set_xticks(range(len(cases)))
-    ax1.set_xticklabels(cases)
+    ax1.set_xticklabels(cases, rotation=30, ha="right", fontsize=8)
     ax1.set_ylabel("seconds (median, log scale)")
     ax1.set_title("time per scene")
     ax1.legend(fontsize=7, ncol=2)
@@ -382,7 +384,7 @@ def write_chart(summary, folder):
             ax2.text(x + off, v, "%.2f" % v, ha="center", va="bottom", fontsize=6)
     ax2.axhline(1.0, color="black", linewidth=0.8)
     ax2.set_xticks(list(xs))
-    ax2.set_xticklabels(labels, fontsize=7)
+    ax2.set_xticklabels(labels, fontsize=7, rotation=30, ha="right")
     ax2.set_ylabel("kiln speed-up (peer / kiln)")
     ax2.set_title("kiln speed-up")
     ax2.legend(fontsize=7)
