@@ -273,6 +273,41 @@ TEST(environment_light, guided_draws_land_where_a_walk_along_the_cdf_does) {
   }
 }
 
+// A kept environment's tables fit a scene whose map is the same texel buffer, moved into a new
+// image: not a copy of it (read again), not another map, not a map that lights nothing, and never
+// a constant environment's.
+TEST(environment_light, kept_tables_fit_only_the_map_they_were_made_from) {
+  std::mt19937 rng(5);
+  scene w = uneven_map_scene(rng);
+  w.env.intensity = 1.0f;
+  const environment_light e = make_environment_light(w);
+  ASSERT_TRUE(e.lights);
+  EXPECT_TRUE(environment_light_fits(e, w));
+
+  std::vector<image> moved(std::make_move_iterator(w.images.begin()),
+                           std::make_move_iterator(w.images.end()));
+  w.images = std::move(moved);
+  w.env.rotation = 1.2f;  // a turn moves directions, not the tables
+  EXPECT_TRUE(environment_light_fits(e, w));
+
+  const image copy = w.images[0];
+  image original = std::move(w.images[0]);
+  w.images[0] = copy;
+  EXPECT_FALSE(environment_light_fits(e, w));
+  w.images[0] = std::move(original);
+  w.env.intensity = 0.0f;
+  EXPECT_FALSE(environment_light_fits(e, w));
+  w.env.intensity = 1.0f;
+  EXPECT_TRUE(environment_light_fits(e, w));
+
+  std::mt19937 other_rng(6);
+  EXPECT_FALSE(environment_light_fits(e, uneven_map_scene(other_rng)));
+  scene constant;
+  constant.env.color = vec3(0.5f);
+  const environment_light uniform = make_environment_light(constant);
+  EXPECT_FALSE(environment_light_fits(uniform, constant));
+}
+
 // A shading point's draws made together (their memory reads overlapped) are the draws made one by
 // one, bit for bit: on an uneven map, on a uniform environment, and over runs of every length
 // around the stage of 8.

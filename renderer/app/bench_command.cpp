@@ -243,6 +243,7 @@ void run_sequence_bench(const bench_options& o) {
                       {"backend_seconds", made.update_seconds},
                       {"backend_updated", made.backend_updated},
                       {"textures_kept", made.textures_kept},
+                      {"environment_kept", made.environment_kept},
                       {"render_seconds", result.stats.seconds}});
     if (frames.size() == 1) {
       first_build = made.update_seconds;

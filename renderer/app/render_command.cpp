@@ -108,9 +108,14 @@ void run_render_sequence(const render_options& options, const render_fingerprint
       job, [&](const render_job_result& result, const render_options& frame, const frame_report& made) {
         write_job_outputs(result, frame, &interrupt_requested());
         if (options.quiet || !options.summary_line) return;
+        const char* kept = made.textures_kept && made.environment_kept
+                               ? "; kept: texture pyramids, environment tables"
+                           : made.textures_kept    ? "; kept: texture pyramids"
+                           : made.environment_kept ? "; kept: environment tables"
+                                                   : "";
         std::fprintf(stderr, "kiln: frame %lld: %s%s\n", made.frame,
                      made.backend_updated ? "instances moved and deformed meshes refitted" : "backend built",
-                     made.textures_kept ? ", texture pyramids kept" : "");
+                     kept);
         print_summary(result, frame);
       });
 }

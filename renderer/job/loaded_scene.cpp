@@ -80,8 +80,10 @@ struct loaded_scene::state {
   std::unique_ptr<accelerator> accel;
   std::string backend;  // backend_option_names' values accel was built under
   std::string environment_file;
-  // The texture pyramids of the last render, kept while the poses carry its images over.
+  // The texture pyramids of the last render, kept while the poses carry its images over, and the
+  // environment's tables, kept while its map is the same image.
   std::unique_ptr<texture_filter> textures;
+  std::unique_ptr<environment_light> environment_tables;
 };
 
 loaded_scene::loaded_scene(const render_job& job) : state_(std::make_unique<state>()) {
@@ -168,6 +170,8 @@ bool loaded_scene::pose_scene(const render_job& job, const render_options& optio
   std::optional<image> environment = take_environment(previous);
   const std::string environment_file = job_environment_file(options);
   if (environment_file != st.environment_file) environment.reset();
+  // Their map is read again (its freed buffer's address can come back), or converted afresh.
+  if (!environment || (!carry && p.colour.converts())) st.environment_tables.reset();
   if (!carry) {
     st.accel.reset();     // it points into the meshes that go now
     st.textures.reset();  // and it into the images: decoded again, they may reuse the addresses
@@ -236,6 +240,8 @@ render_job_result loaded_scene::render(const render_job& job, const render_optio
   timings.textures_kept = st.textures && st.textures->rebind(p.world);
   if (!timings.textures_kept) st.textures.reset();
   settings.kept_textures = &st.textures;
+  timings.environment_kept = st.environment_tables && environment_light_fits(*st.environment_tables, p.world);
+  settings.kept_environment = &st.environment_tables;
 
   stage = "rendering";
   const cryptomatte_layer objects = cryptomatte_objects(p.world);

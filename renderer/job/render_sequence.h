@@ -30,11 +30,12 @@ render_options frame_options(const render_options& sequence, long long frame);
 std::vector<long long> check_sequence(const render_options& options);
 
 // How a sequence's frame was made: rendered with a backend built for it, or with the last frame's
-// updated in place, and with the last frame's texture pyramids or new ones.
+// updated in place, and with the last frame's texture pyramids and environment tables or new ones.
 struct frame_report {
   long long frame = 0;
   bool backend_updated = false;
   bool textures_kept = false;
+  bool environment_kept = false;
   double pose_seconds = 0.0;    // posing the scene (and for the first frame, loading it)
   double update_seconds = 0.0;  // building or updating the backend
 };

@@ -385,7 +385,8 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                                                                              : std::vector<std::string>{};
   film out;
   std::unique_ptr<splat_film> splats;
-  environment_light environment;  // the environment's sampling tables
+  environment_light own_environment;  // the environment's sampling tables, unless the caller keeps them
+  const environment_light* environment = &own_environment;
   std::unique_ptr<texture_filter> own_textures;
   std::unique_ptr<texture_filter>& textures = settings.kept_textures ? *settings.kept_textures : own_textures;
   const bool needs_textures = scene_needs_texture_filter(world);
@@ -403,7 +404,16 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                            if (needs_textures && !textures)
                              textures = std::make_unique<texture_filter>(world);
                          },
-                         [&] { environment = make_environment_light(world); });
+                         [&] {
+                           if (!settings.kept_environment)
+                             return void(own_environment = make_environment_light(world));
+                           std::unique_ptr<environment_light>& kept = *settings.kept_environment;
+                           if (kept && environment_light_fits(*kept, world))
+                             kept->rotation = world.env.rotation;
+                           else
+                             kept = std::make_unique<environment_light>(make_environment_light(world));
+                           environment = kept.get();
+                         });
   });
   out.x0 = region.x0;
   out.y0 = region.y0;
@@ -420,7 +430,7 @@ film render_image(const scene& world, const accelerator& accel, const view_camer
                       scene_has_see_through(world),
                       needs_textures ? textures.get() : nullptr,
                       settings.cancel,
-                      &environment};
+                      environment};
   ctx.shadow_packets = world.quadrics.empty();
   std::vector<camera_sample> corners;
   const tile_job job{ctx, cam, settings, out, *splats, corners};

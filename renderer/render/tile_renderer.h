@@ -17,6 +17,7 @@
 #include "render/motion_vectors.h"
 #include "render/reconstruction_filter.h"
 #include "render/view_camera.h"
+#include "shade/environment_light.h"
 #include "shade/texture_filter.h"
 #include "shade/whitted.h"
 
@@ -75,6 +76,9 @@ struct render_settings {
   // a scene rendered again): render_image uses the filter it holds (the caller has pointed it at
   // the scene, texture_filter::rebind) or builds one into it.
   std::unique_ptr<texture_filter>* kept_textures = nullptr;
+  // The same for the environment's sampling tables: render_image uses them when they fit the scene
+  // (environment_light_fits), else makes them into it.
+  std::unique_ptr<environment_light>* kept_environment = nullptr;
 };
 
 struct render_statistics {

@@ -30,6 +30,9 @@ struct environment_light {
   int column_guide_size = 0;           // G of each row's CDF
   std::vector<uint32_t> row_guide;     // row_guide_size + 1 entries
   std::vector<uint32_t> column_guide;  // per row, column_guide_size + 1 entries
+  // The map's texel buffer the tables were made from (environment_light_fits).
+  const void* source_texels = nullptr;
+  size_t source_count = 0;
 };
 
 // The bytes make_environment_light(s) allocates: about three words a texel of a map (its density, its
@@ -38,6 +41,14 @@ uint64_t environment_light_bytes(const scene& s);
 
 // The environment light of s's environment (lights false when it is black everywhere).
 environment_light make_environment_light(const scene& s);
+
+// Whether e's tables are the ones make_environment_light(s) would make: e was made from a map,
+// and s's map holds the same texel buffer (the same allocation and size: moved, not read again)
+// and lights the scene (intensity above 0). A loaded scene keeps the tables across its renders
+// (job/loaded_scene.cpp) and drops them whenever it reads its map again, since a freed buffer's
+// address can come back. The map's rotation turns directions, not the tables: the caller sets e's
+// from s.
+bool environment_light_fits(const environment_light& e, const scene& s);
 
 // A direction drawn from e (lights) by two uniform numbers in [0, 1), and its density per
 // steradian (0 for a direction that cannot be drawn, such as a map's pole).

@@ -78,6 +78,28 @@ def test_bad_load_options_and_keywords_raise_as_kiln_render_does():
         kiln.load(os.path.join(SOURCE, "scenes", "no_such_file.gltf"))
 
 
+# A Scene keeps its textures' pyramids and its environment's tables between renders; each render
+# under another map, turn or strength, and back, must still be kiln.render's.
+TEXTURED = os.path.join(SOURCE, "..", "shared", "assets", "BoxTextured", "glTF", "BoxTextured.gltf")
+SKY = os.path.join(SOURCE, "scenes", "glass_showcase_sky.hdr")
+STUDIO = os.path.join(SOURCE, "share", "environments", "studio.exr")
+ENVIRONMENTS = [
+    {},
+    {"environment": SKY},
+    {"environment": SKY, "environment_rotation": 90},
+    {"environment": STUDIO, "environment_intensity": 0.5},
+    {"environment": SKY},
+    {"look_from": (2, 1, 3), "look_at": (0, 0, 0)},
+]
+
+
+@pytest.mark.skipif(not os.path.isfile(TEXTURED), reason="../shared/assets is absent")
+def test_kept_pyramids_and_environment_tables_render_what_kiln_render_renders():
+    scene = kiln.load(TEXTURED, **SMALL)
+    for options in ENVIRONMENTS:
+        assert_same_arrays(scene.render(**options), kiln.render(TEXTURED, **{**SMALL, **options}))
+
+
 def test_two_threads_render_one_scene_and_each_gets_its_own_picture():
     scene = kiln.load(CORNELL, **SMALL)
     views = [{"look_from": (0.2, 1.0, 3.5), "look_at": (0, 1, 0)}, {"spp": 3, "camera_view": "top"}]
