@@ -24,6 +24,24 @@ struct image {
   std::vector<float> texels32;   // used instead of texels8 for 16-bit or float sources
 };
 
+// Which texel buffer an image holds (its allocation, size and format): what is built from an image
+// (texture pyramids, environment tables) is kept while the image it fits holds the same buffer,
+// moved from one scene to the next rather than decoded again.
+struct texel_buffer {
+  const void* texels = nullptr;
+  size_t count = 0;
+  int width = 0;
+  int height = 0;
+  bool operator==(const texel_buffer& o) const {
+    return texels == o.texels && count == o.count && width == o.width && height == o.height;
+  }
+};
+inline texel_buffer texel_buffer_of(const image& img) {
+  const bool wide = !img.texels32.empty();
+  return {wide ? static_cast<const void*>(img.texels32.data()) : img.texels8.data(),
+          wide ? img.texels32.size() : img.texels8.size(), img.width, img.height};
+}
+
 enum class wrap_mode { repeat, clamp_to_edge, mirrored_repeat };
 enum class filter_mode { nearest, linear };
 // How minification moves between mip levels: none (level 0 only), the nearest level, or a blend of

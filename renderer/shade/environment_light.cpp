@@ -19,11 +19,6 @@ vec3 texel_rgb(const image& im, size_t x, size_t y) {
   return vec3(im.texels8[i], im.texels8[i + 1], im.texels8[i + 2]) * (1.0f / 255.0f);
 }
 
-// The texel buffer of a map (float or 8-bit).
-const void* map_texels(const image& im) {
-  return im.texels32.empty() ? static_cast<const void*>(im.texels8.data()) : im.texels32.data();
-}
-
 // Turns weights into a cumulative distribution from 0 to 1 (one entry more than weights), summed in
 // double so a 16k-texel row keeps its small texels. Returns the sum; all-zero weights give a CDF
 // that rises evenly, never drawn from (its row's marginal weight is 0).
@@ -144,19 +139,15 @@ environment_light make_environment_light(const scene& s) {
   if (!(env.intensity > 0.0f) || im.width <= 0 || im.height <= 0) return e;
   e.uniform = false;
   e.rotation = env.rotation;
-  e.source_texels = map_texels(im);
-  e.source_count = im.texels32.empty() ? im.texels8.size() : im.texels32.size();
+  e.source = texel_buffer_of(im);
   build_map_distribution(im, e);
   return e;
 }
 
 bool environment_light_fits(const environment_light& e, const scene& s) {
   const environment& env = s.env;
-  if (e.uniform || !e.source_texels || !env.has_map() || !(env.intensity > 0.0f)) return false;
-  const image& im = s.images[size_t(env.map_image)];
-  const size_t count = im.texels32.empty() ? im.texels8.size() : im.texels32.size();
-  return map_texels(im) == e.source_texels && count == e.source_count && im.width == e.width &&
-         im.height == e.height;
+  if (e.uniform || !e.source.texels || !env.has_map() || !(env.intensity > 0.0f)) return false;
+  return texel_buffer_of(s.images[size_t(env.map_image)]) == e.source;
 }
 
 vec3 environment_direction(const vec2& uv, float rotation_radians) {

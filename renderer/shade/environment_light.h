@@ -30,9 +30,7 @@ struct environment_light {
   int column_guide_size = 0;           // G of each row's CDF
   std::vector<uint32_t> row_guide;     // row_guide_size + 1 entries
   std::vector<uint32_t> column_guide;  // per row, column_guide_size + 1 entries
-  // The map's texel buffer the tables were made from (environment_light_fits).
-  const void* source_texels = nullptr;
-  size_t source_count = 0;
+  texel_buffer source;                 // the map's, when the tables were made (environment_light_fits)
 };
 
 // The bytes make_environment_light(s) allocates: about three words a texel of a map (its density, its
@@ -43,7 +41,7 @@ uint64_t environment_light_bytes(const scene& s);
 environment_light make_environment_light(const scene& s);
 
 // Whether e's tables are the ones make_environment_light(s) would make: e was made from a map,
-// and s's map holds the same texel buffer (the same allocation and size: moved, not read again)
+// and s's map holds the same texel buffer (texel_buffer: moved, not read again)
 // and lights the scene (intensity above 0). A loaded scene keeps the tables across its renders
 // (job/loaded_scene.cpp) and drops them whenever it reads its map again, since a freed buffer's
 // address can come back. The map's rotation turns directions, not the tables: the caller sets e's

@@ -105,7 +105,7 @@ vec4 read_lookup(const mip_pyramid& p, const lookup_taps& t) {
 texture_filter::texture_filter(const scene& s)
     : scene_(s), pyramids_(s.images.size() * 2), used_(mip_mapped_uses(s)) {
   for (size_t i = 0; i < s.images.size(); ++i) {
-    sources_.push_back(source_of(s.images[i]));
+    sources_.push_back(texel_buffer_of(s.images[i]));
     for (texel_encoding e : {texel_encoding::linear, texel_encoding::srgb})
       pyramids_[slot(uint32_t(i), e)] = build_mip_pyramid(s.images[i], e, false);
   }
@@ -116,19 +116,10 @@ texture_filter::texture_filter(const scene& s)
   });
 }
 
-texture_filter::texel_source texture_filter::source_of(const image& img) {
-  texel_source t;
-  t.texels = img.texels32.empty() ? static_cast<const void*>(img.texels8.data()) : img.texels32.data();
-  t.count = img.texels32.empty() ? img.texels8.size() : img.texels32.size();
-  t.width = img.width;
-  t.height = img.height;
-  return t;
-}
-
 bool texture_filter::rebind(const scene& s) {
   if (&s != &scene_ || s.images.size() != sources_.size() || mip_mapped_uses(s) != used_) return false;
   for (size_t i = 0; i < sources_.size(); ++i)
-    if ((used_[2 * i] || used_[2 * i + 1]) && !(source_of(s.images[i]) == sources_[i])) return false;
+    if ((used_[2 * i] || used_[2 * i + 1]) && !(texel_buffer_of(s.images[i]) == sources_[i])) return false;
   // Images no mip-mapped sampler reads have level 0 alone: any buffer serves them.
   for (size_t k = 0; k < pyramids_.size(); ++k) pyramids_[k].level0 = &s.images[k / 2];
   return true;

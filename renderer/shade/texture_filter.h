@@ -76,22 +76,10 @@ class texture_filter {
   }
 
  private:
-  // The texel buffer an image held when the pyramids were built.
-  struct texel_source {
-    const void* texels = nullptr;
-    size_t count = 0;
-    int width = 0;
-    int height = 0;
-    bool operator==(const texel_source& o) const {
-      return texels == o.texels && count == o.count && width == o.width && height == o.height;
-    }
-  };
-  static texel_source source_of(const image& img);
-
   const scene& scene_;
   std::vector<mip_pyramid> pyramids_;  // per image and encoding: image * 2 + (srgb ? 1 : 0), as pyramid()
   std::vector<bool> used_;             // per slot as pyramids_: built beyond level 0
-  std::vector<texel_source> sources_;  // per image
+  std::vector<texel_buffer> sources_;  // per image: what it held when the pyramids were built
 };
 
 // The bytes the pyramids a texture_filter over s would build take (coarser levels only: level 0
